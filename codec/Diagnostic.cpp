@@ -1,0 +1,20 @@
+#include "codec/Diagnostic.h"
+
+namespace rcm {
+
+std::string Diagnostic::toString() const
+{
+    std::string out;
+    if (block > 0) {
+        out += "block " + std::to_string(block);
+        if (offset >= 0)
+            out += " offset " + std::to_string(offset);
+        out += ": ";
+    }
+    if (!where.empty())
+        out += where + ": ";
+    out += message;
+    return out;
+}
+
+}  // namespace rcm

@@ -1,0 +1,37 @@
+// What went wrong, and where: every codec error and warning is one of these.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rcm {
+
+struct Diagnostic {
+    enum class Kind {
+        OutOfRange,      // a value outside its item's range
+        DoesNotFit,      // the message needs more than a block holds
+        MissingKey,      // a unit without its key item (eng_ID, system_ID, cam_ID)
+        CorruptField,    // a two-bit field reading 00 or 11 where that means corruption
+        ReservedBits,    // bits the profile fixes at 0 are not
+        UnknownItem,     // an Item_ID the profile does not define
+        Truncated,       // an item runs past the end of its block
+        Orphan,          // a unit item before any key item
+        Repeated,        // an item given twice in one unit
+        BadPadding,      // BLOCK 2 padding or End_Of_String is not as specified
+        Uncorrectable,   // more errors in a codeword than RS(255,223) corrects
+        Syntax,          // text format
+        Forged,          // authentication failed
+    };
+    Kind kind;
+    int block = 0;       // 1 or 2; 0 when not about a block
+    int offset = -1;     // byte offset in the block, -1 when not about a byte
+    std::string where;   // item or field, with its unit: "engine 2 eng_prop_pitch"
+    std::string message; // what is wrong, in full
+
+    // "block 1 offset 57: engine 2 eng_prop_pitch: ..." with the parts that apply.
+    std::string toString() const;
+};
+
+using Diagnostics = std::vector<Diagnostic>;
+
+}  // namespace rcm

@@ -1,0 +1,136 @@
+// The one table of BLOCK 1 items. Encoder, decoder, text format, panels and
+// the Wireshark dissector all read it; nothing else restates an item.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace rcm {
+
+enum class ItemId : std::uint8_t {
+    ID_msg = 0x03,
+    ID_UA_source = 0x04,
+    time_UTC = 0x05,
+    date_UTC = 0x06,
+    ID_BLK12_format = 0x07,
+    ID_GCS_destination = 0x08,
+    ID_GCS_backup = 0x09,
+    eng_status = 0x30,
+    eng_ID = 0x31,
+    eng_prop_pitch = 0x32,
+    eng_carb_SET = 0x33,
+    FLAP_status = 0x40,
+    F_aileron_LHS_set = 0x41,
+    F_aileron_RHS_set = 0x42,
+    F_lift_set = 0x43,
+    F_rudder_set = 0x44,
+    F_elev_set = 0x45,
+    F_airbrake_set = 0x46,
+    ENABLE_fuel_dump = 0x60,
+    land_wheels = 0x70,
+    lights = 0x71,
+    setting_72 = 0x72,
+    receiver_control = 0x80,
+    system_ID = 0x81,
+    Rx_freq = 0x82,
+    Tx_freq = 0x83,
+    Tx_OP_power = 0x84,
+    SA_zoom_LHS_cam = 0xB0,
+    SA_zoom_FWD_cam = 0xB1,
+    SA_zoom_RHS_cam = 0xB2,
+    cam_ID = 0xC0,
+    cam_mag_compass = 0xC1,
+    cam_elev = 0xC2,
+    cam_zoom_set = 0xC3,
+    take_one_photo = 0xC4,
+    cam_GCS_destination = 0xC5,
+    cam_GCS_backup = 0xC6,
+};
+
+// Bytes inside BLOCK 1 that are not items.
+inline constexpr std::uint8_t kPad55 = 0x55;    // NULL_0101
+inline constexpr std::uint8_t kPadAA = 0xAA;    // NULL_1010
+inline constexpr std::uint8_t kBegin = 0x01;    // BEGIN + section byte, never emitted
+inline constexpr std::uint8_t kEnd = 0x02;      // END, never emitted
+
+// The units an item belongs to, in canonical order. Engine, Radio and Camera
+// repeat; each instance starts with its key item.
+enum class UnitKind : std::uint8_t { Header, Engine, Flaps, FcuGeneral, Settings, Radio, Sense, Camera };
+inline constexpr int kUnitKindCount = 8;
+
+enum class ValueKind : std::uint8_t {
+    Unsigned,   // big-endian unsigned integer of `size` bytes
+    Signed,     // big-endian two's complement
+    Station,    // country dialling code (uint16) + unit number (uint16)
+    Time,       // hhmmss as a decimal number in a uint24
+    Date,       // yymmdd likewise
+    BytePair,   // two independent bytes
+    Fields,     // four two-bit fields, 01 and 10 valid, reserved fields 00
+    Text,       // ASCII, space padded
+    CameraId,   // three ASCII characters + camera number
+    Raw,        // an opaque byte kept as it was
+};
+
+// One two-bit field: its name and the names of its four codes, indexed by the
+// code (00, 01, 10, 11). An empty name marks a code meaning "data corruption".
+struct FieldInfo {
+    std::string_view name;
+    std::array<std::string_view, 4> codes;
+    std::string_view label;  // for people: "Control source"
+};
+
+struct ItemInfo {
+    ItemId id;
+    std::string_view name;   // the name in the text format, unique within its unit
+    std::uint8_t size;       // value bytes after the Item_ID byte
+    ValueKind kind;
+    std::int64_t min;        // range of the value in its text units x scale
+    std::int64_t max;        //   (Station: of the country code; Text: of the length)
+    int scale;               // 100 for hundredths of a degree, else 1
+    std::string_view unit;   // "deg", "kHz", "dBm", "" ...
+    UnitKind owner;
+    std::string_view label;  // for people: "Propeller pitch"
+    std::span<const FieldInfo> fields;  // Fields kind only, most significant first
+    bool key = false;        // starts a repeated unit
+};
+
+// All items in canonical order: the order an encoder emits them in.
+std::span<const ItemInfo> itemTable();
+
+// nullptr when the ID is not an item (padding, BEGIN/END and unused IDs too).
+const ItemInfo* findItem(std::uint8_t id);
+inline const ItemInfo* findItem(ItemId id) { return findItem(static_cast<std::uint8_t>(id)); }
+const ItemInfo& itemInfo(ItemId id);  // for IDs known to be items
+const ItemInfo* findItem(UnitKind owner, std::string_view name);
+
+// Position of an item in canonical order; used to keep units sorted.
+int canonicalRank(ItemId id);
+
+// The key item of a repeated unit, or nothing for the single units.
+std::optional<ItemId> unitKey(UnitKind kind);
+bool isRepeated(UnitKind kind);
+
+// Text-format section names: "HEADER", "engine", ...; and the enclosing
+// section ("FCU" for engine, flaps, FCU_general; "" for top-level ones).
+std::string_view sectionName(UnitKind kind);
+std::string_view parentSectionName(UnitKind kind);
+std::optional<UnitKind> unitKindFromSection(std::string_view name);
+std::string_view unitLabel(UnitKind kind);  // "Engine", "Radio" ... for people
+
+// Two-bit field access, B1_0B1_1 being field 0 (the most significant bits).
+constexpr unsigned fieldCode(std::uint8_t value, int field)
+{
+    return (value >> (6 - 2 * field)) & 0x3u;
+}
+constexpr std::uint8_t withFieldCode(std::uint8_t value, int field, unsigned code)
+{
+    const int shift = 6 - 2 * field;
+    return static_cast<std::uint8_t>((value & ~(0x3u << shift)) | ((code & 0x3u) << shift));
+}
+// True when the code has a meaning for this field (not corruption).
+inline bool fieldCodeValid(const FieldInfo& field, unsigned code) { return !field.codes[code & 3].empty(); }
+
+}  // namespace rcm
