@@ -11,6 +11,8 @@ std::string Diagnostic::toString() const
             out += " offset " + std::to_string(offset);
         out += ": ";
     }
+    if (line > 0)
+        out += "line " + std::to_string(line) + " column " + std::to_string(column) + ": ";
     if (!where.empty())
         out += where + ": ";
     out += message;

@@ -27,8 +27,11 @@ struct Diagnostic {
     int offset = -1;     // byte offset in the block, -1 when not about a byte
     std::string where;   // item or field, with its unit: "engine 2 eng_prop_pitch"
     std::string message; // what is wrong, in full
+    int line = 0;        // text format: 1-based line and column, 0 when not about text
+    int column = 0;
 
-    // "block 1 offset 57: engine 2 eng_prop_pitch: ..." with the parts that apply.
+    // "block 1 offset 57: engine 2 eng_prop_pitch: ..." or "line 3 column 8: ..."
+    // with the parts that apply.
     std::string toString() const;
 };
 
