@@ -93,26 +93,25 @@ std::string checkValue(const ItemInfo& item, const Value& value)
         return e;
     }
     case ValueKind::Time: {
-        if (value.number < 0 || value.number > 235959)
+        // Checked digit pair by digit pair so the reason names the part that is wrong.
+        if (value.number < 0)
             return plainRange(value.number, 0, 235959, "time hhmmss");
-        const int hh = static_cast<int>(value.number / 10000), mm = static_cast<int>(value.number / 100 % 100),
-                  ss = static_cast<int>(value.number % 100);
+        const std::int64_t hh = value.number / 10000, mm = value.number / 100 % 100, ss = value.number % 100;
         if (hh > 23)
             return plainRange(hh, 0, 23, "hours");
         if (mm > 59)
             return plainRange(mm, 0, 59, "minutes");
-        if (ss > 59)
-            return plainRange(ss, 0, 59, "seconds");
-        return {};
+        return plainRange(ss, 0, 59, "seconds");
     }
     case ValueKind::Date: {
-        if (value.number < 0 || value.number > 991231)
+        if (value.number < 0)
             return plainRange(value.number, 0, 991231, "date yymmdd");
-        const int yy = static_cast<int>(value.number / 10000), mm = static_cast<int>(value.number / 100 % 100),
-                  dd = static_cast<int>(value.number % 100);
+        const std::int64_t yy = value.number / 10000, mm = value.number / 100 % 100, dd = value.number % 100;
+        if (yy > 99)
+            return plainRange(yy, 0, 99, "year");
         if (mm < 1 || mm > 12)
             return plainRange(mm, 1, 12, "month");
-        return plainRange(dd, 1, daysInMonth(yy, mm), "day");
+        return plainRange(dd, 1, daysInMonth(static_cast<int>(yy), static_cast<int>(mm)), "day");
     }
     case ValueKind::Fields: {
         if (value.number < 0 || value.number > 255)
