@@ -208,7 +208,14 @@ void SimulatedAircraft::advance(std::chrono::milliseconds elapsed)
     }
 }
 
-Message SimulatedAircraft::status(std::chrono::system_clock::time_point utc)
+void SimulatedAircraft::statusSent()
+{
+    m_statusFrames = (m_statusFrames + 1) % kMessageIdModulus;
+    for (Camera& camera : m_cameras)
+        camera.photoSinceStatus = false;
+}
+
+Message SimulatedAircraft::status(std::chrono::system_clock::time_point utc) const
 {
     using enum ItemId;
     namespace chr = std::chrono;
@@ -222,7 +229,6 @@ Message SimulatedAircraft::status(std::chrono::system_clock::time_point utc)
     m.header.set(time_UTC, time.hours().count() * 10000 + time.minutes().count() * 100 + time.seconds().count());
     m.header.set(date_UTC, (static_cast<int>(date.year()) % 100) * 10000 + static_cast<unsigned>(date.month()) * 100 +
                                static_cast<unsigned>(date.day()));
-    m_statusFrames = (m_statusFrames + 1) % kMessageIdModulus;
 
     for (std::size_t i = 0; i < kSurfaces.size(); ++i)
         m.flaps.set(kSurfaces[i], std::lround(m_surfaceAngle[i]));
@@ -234,10 +240,8 @@ Message SimulatedAircraft::status(std::chrono::system_clock::time_point utc)
         for (int tank = 1; tank <= 3; ++tank)
             m.fuelDump.setFieldCode(ENABLE_fuel_dump, tank, kNoDump);
 
-    for (std::size_t i = 0; i < m.cameras.size(); ++i) {
+    for (std::size_t i = 0; i < m.cameras.size(); ++i)
         m.cameras[i].setFieldCode(take_one_photo, 0, m_cameras[i].photoSinceStatus ? kPhotoTake : kPhotoNone);
-        m_cameras[i].photoSinceStatus = false;
-    }
 
     if (const auto ack = m_assembler.lastComplete())
         m.flightPlan = ack->toSection();

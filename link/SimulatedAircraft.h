@@ -68,8 +68,13 @@ public:
     // Moves the gear and the surfaces on by `elapsed`.
     void advance(std::chrono::milliseconds elapsed);
 
-    // The next status frame's message; counts it.
-    rcm::Message status(std::chrono::system_clock::time_point utc);
+    // The next status frame's message. It stays the same until the state
+    // changes or statusSent() is called, so it can be handed to a sender
+    // again after every command without counting a frame each time.
+    rcm::Message status(std::chrono::system_clock::time_point utc) const;
+    // The status frame went out: counts it (ID_msg) and ends the one-frame
+    // indications (take_one_photo TAKE).
+    void statusSent();
 
     const rcm::Airframe& airframe() const { return m_airframe; }
     rcm::StationId identity() const { return m_identity.value_or(kDefaultIdentity); }

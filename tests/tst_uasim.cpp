@@ -28,7 +28,9 @@ constexpr unsigned kNone = 1, kTake = 2;
 Message nextStatus(SimulatedAircraft& aircraft)
 {
     aircraft.advance(1000ms);
-    return aircraft.status(kSomeUtc);
+    const Message status = aircraft.status(kSomeUtc);
+    aircraft.statusSent();
+    return status;
 }
 
 QByteArray joined(const std::vector<std::string>& lines)
@@ -50,6 +52,8 @@ private slots:
         SimulatedAircraft aircraft;
         for (std::uint32_t n = 0; n < 3; ++n) {
             const Message status = aircraft.status(kSomeUtc);
+            QCOMPARE(aircraft.status(kSomeUtc), status);  // asking again is not another frame
+            aircraft.statusSent();
             QCOMPARE(status.header.number(ItemId::ID_msg), n);
             QCOMPARE(status.header.number(ItemId::time_UTC), 73205);
             QCOMPARE(status.header.number(ItemId::date_UTC), 261122);
