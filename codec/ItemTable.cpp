@@ -56,7 +56,7 @@ constexpr std::int64_t kCountryMax = 1929;  // the seed's largest dialling code
 
 // Canonical order: sections as PROFILE.md lists them, key item first in each
 // repeated unit, the unit's other items in ascending Item_ID order.
-const ItemInfo kItems[] = {
+constexpr ItemInfo kItems[] = {
     {ID_msg, "ID_msg", 3, Unsigned, 0, 0xFFFFFF, 1, "", Header, "Message ID", {}},
     {ID_UA_source, "ID_UA_source", 4, Station, 1, kCountryMax, 1, "", Header, "Aircraft ID", {}},
     {time_UTC, "time_UTC", 3, Time, 0, 235959, 1, "hh:mm:ss", Header, "Time (UTC)", {}},
@@ -105,20 +105,15 @@ const ItemInfo kItems[] = {
 
 constexpr int kItemCount = static_cast<int>(std::size(kItems));
 
-struct Lookup {
+// Item_ID -> index in kItems, -1 for bytes that are not items; built at
+// compile time because the decoder consults it for every byte it reads.
+constexpr std::array<std::int16_t, 256> kIndexById = [] {
     std::array<std::int16_t, 256> byId{};
-    Lookup()
-    {
-        byId.fill(-1);
-        for (int i = 0; i < kItemCount; ++i)
-            byId[static_cast<std::uint8_t>(kItems[i].id)] = static_cast<std::int16_t>(i);
-    }
-};
-const Lookup& lookup()
-{
-    static const Lookup table;
-    return table;
-}
+    byId.fill(-1);
+    for (int i = 0; i < kItemCount; ++i)
+        byId[static_cast<std::uint8_t>(kItems[i].id)] = static_cast<std::int16_t>(i);
+    return byId;
+}();
 
 struct UnitNames {
     std::string_view section;
@@ -142,7 +137,7 @@ std::span<const ItemInfo> itemTable() { return kItems; }
 
 const ItemInfo* findItem(std::uint8_t id)
 {
-    const int index = lookup().byId[id];
+    const int index = kIndexById[id];
     return index < 0 ? nullptr : &kItems[index];
 }
 
@@ -162,7 +157,7 @@ const ItemInfo* findItem(UnitKind owner, std::string_view name)
     return nullptr;
 }
 
-int canonicalRank(ItemId id) { return lookup().byId[static_cast<std::uint8_t>(id)]; }
+int canonicalRank(ItemId id) { return kIndexById[static_cast<std::uint8_t>(id)]; }
 
 std::optional<ItemId> unitKey(UnitKind kind)
 {

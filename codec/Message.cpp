@@ -14,18 +14,26 @@ const Value* Unit::find(ItemId id) const
     return nullptr;
 }
 
-void Unit::set(ItemId id, Value value)
+bool Unit::set(ItemId id, Value value)
 {
-    const ItemInfo* info = findItem(id);
-    if (!info || info->owner != m_kind)
-        throw std::logic_error("Unit::set: item does not belong to this unit");
     const int rank = canonicalRank(id);
+    if (rank < 0 || itemTable()[static_cast<std::size_t>(rank)].owner != m_kind)
+        throw std::logic_error("Unit::set: item does not belong to this unit");
+    // Decoders and builders add items in canonical order: append without a search.
+    if (m_items.empty() || canonicalRank(m_items.back().id) < rank) {
+        if (m_items.empty())
+            m_items.reserve(8);
+        m_items.emplace_back(id, std::move(value));
+        return false;
+    }
     auto it = std::find_if(m_items.begin(), m_items.end(),
                            [rank](const ItemValue& v) { return canonicalRank(v.id) >= rank; });
-    if (it != m_items.end() && it->id == id)
+    if (it != m_items.end() && it->id == id) {
         it->value = std::move(value);
-    else
-        m_items.insert(it, ItemValue{id, std::move(value)});
+        return true;
+    }
+    m_items.insert(it, ItemValue{id, std::move(value)});
+    return false;
 }
 
 bool Unit::erase(ItemId id)

@@ -56,9 +56,10 @@ public:
 
     const Value* find(ItemId id) const;
     bool has(ItemId id) const { return find(id) != nullptr; }
-    // Sets or replaces; the item must belong to this unit's kind.
-    void set(ItemId id, Value value);
-    void set(ItemId id, std::int64_t number) { set(id, Value::of(number)); }
+    // Sets or replaces (returning true when it replaced); the item must belong
+    // to this unit's kind.
+    bool set(ItemId id, Value value);
+    bool set(ItemId id, std::int64_t number) { return set(id, Value::of(number)); }
     bool erase(ItemId id);
 
     // The number of a numeric item, or `fallback` when absent.

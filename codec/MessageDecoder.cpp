@@ -70,7 +70,8 @@ void decodeBlock1(const Block& block, Message& message, Diagnostics& diagnostics
             unit = message.single(info->owner);
         }
 
-        const std::string where = describeUnit(*unit) + " " + std::string(info->name);
+        // Built only for a diagnostic: the clean path must stay cheap.
+        auto where = [&] { return describeUnit(*unit) + " " + std::string(info->name); };
         if (info->kind == ValueKind::Fields) {
             // A corrupt field is reported and not acted on, but the item stays:
             // its other fields were read correctly. Readers check fieldCodeValid.
@@ -78,16 +79,15 @@ void decodeBlock1(const Block& block, Message& message, Diagnostics& diagnostics
             checkFields(*info, static_cast<std::uint8_t>(value.number), problems);
             for (FieldProblem& p : problems)
                 diagnostics.push_back({p.field == "reserved bits" ? Kind::ReservedBits : Kind::CorruptField, 1, offset,
-                                       where + " " + p.field, std::move(p.reason)});
+                                       where() + " " + p.field, p.reason + "; ignored"});
         } else if (std::string reason = checkValue(*info, value); !reason.empty()) {
-            diagnostics.push_back({Kind::OutOfRange, 1, offset, where, reason + "; ignored"});
+            diagnostics.push_back({Kind::OutOfRange, 1, offset, where(), reason + "; ignored"});
             if (info->key)  // keep the unit so its other items attach, but without a bad key
                 unit->erase(info->id);
             continue;
         }
-        if (!info->key && unit->has(info->id))
-            diagnostics.push_back({Kind::Repeated, 1, offset, where, "given twice; the later value is kept"});
-        unit->set(info->id, std::move(value));
+        if (unit->set(info->id, std::move(value)))
+            diagnostics.push_back({Kind::Repeated, 1, offset, where(), "given twice; the later value is kept"});
     }
 }
 

@@ -62,7 +62,7 @@ void checkFields(const ItemInfo& item, std::uint8_t byte, std::vector<FieldProbl
         const unsigned code = fieldCode(byte, f);
         if (!fieldCodeValid(item.fields[f], code))
             out.push_back({std::string(item.fields[f].name),
-                           std::string("code ") + (code == 0 ? "00" : "11") + " means data corruption; ignored"});
+                           std::string("code ") + (code == 0 ? "00" : "11") + " means data corruption"});
     }
     const unsigned reservedMask = n >= 4 ? 0u : (0xFFu >> (2 * n));
     if (byte & reservedMask) {
@@ -129,6 +129,9 @@ std::string checkValue(const ItemInfo& item, const Value& value)
                    " allowed";
         if (!printableAscii(value.text))
             return "text must be printable ASCII";
+        // Trailing spaces are the padding on the wire: they would not come back.
+        if (!value.text.empty() && value.text.back() == ' ')
+            return "text \"" + value.text + "\" ends in a space, which the wire cannot keep (spaces pad the field)";
         return {};
     case ValueKind::CameraId:
         if (value.text.size() != 3 || !printableAscii(value.text))
