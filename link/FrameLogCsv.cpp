@@ -98,17 +98,16 @@ std::vector<Cell> cellsOf(const rcm::Message& message)
         });
     });
 
+    // The flight plan is not a unit of items: its columns are named by its section and its lines.
     rcm::Message plan;
     plan.flightPlan = message.flightPlan;
     std::string section;
-    int line = 0;
-    forEachItemLine(rcm::formatMessage(plan), &section, [&](std::string_view name, std::string_view value) {
-        cells.push_back({ColumnKey{rcm::kUnitKindCount, 0, {}, 0, 0, line++}, std::string(), std::string(value)});
-        cells.back().column = std::string(name);
-    });
-    for (Cell& c : cells)
-        if (std::get<0>(c.key) == rcm::kUnitKindCount)
-            c.column = section + "." + c.column;
+    std::vector<std::pair<std::string, std::string>> lines;
+    forEachItemLine(rcm::formatMessage(plan), &section,
+                    [&](std::string_view name, std::string_view value) { lines.emplace_back(name, value); });
+    for (int i = 0; i < int(lines.size()); ++i)
+        cells.push_back({ColumnKey{rcm::kUnitKindCount, 0, {}, 0, 0, i}, section + "." + lines[i].first,
+                         std::move(lines[i].second)});
     return cells;
 }
 
