@@ -37,11 +37,12 @@
 // starts again at 0, until the receiver acknowledges the plan or the sender
 // gives up after a number of passes. So a lost frame costs one pass, and the
 // receiver knows a section is missing when a later one arrives (the IDs
-// jumped) or the cycle wraps (an ID not above the last one arrived). It keeps
-// every section it has, so one pass after a loss usually completes the plan.
-// A section whose data fails the CRC check is not told apart from the others:
-// on a CRC mismatch the receiver drops all the plan's sections and collects
-// them again on the next pass.
+// jumped) or the cycle wraps (an ID below the last one arrived; the same ID
+// again is a duplicate and harmless). It keeps every section it has, so one
+// pass after a loss usually completes the plan. The CRC covers the whole
+// plan, so a damaged section cannot be told from the others: on a CRC
+// mismatch the receiver drops all the plan's sections and collects them again
+// on the next pass.
 //
 // Reserved section IDs. flight_plan_section_ID 0xFFF0 .. 0xFFFF never carry
 // plan data; they are link control:
