@@ -1,0 +1,312 @@
+// The console's frame log view at the size of a long session: 200,000 frames
+// written with FrameLog and opened by the model; cell text and message IDs
+// made only for the rows asked for; live appends inserted once per pass of
+// the event loop; the direction and status filter counting exactly.
+
+#include "codec/Airframe.h"
+#include "codec/MessageEncoder.h"
+#include "link/FrameLog.h"
+#include "ui/FrameLogFilterModel.h"
+#include "ui/FrameLogModel.h"
+#include "ui/FrameLogView.h"
+
+#include <QApplication>
+#include <QSignalSpy>
+#include <QTableView>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <map>
+
+namespace {
+
+constexpr int kFrames = 200'000;
+constexpr qint64 kT0 = 1795332720000000;  // 2026-11-22T07:32:00Z
+
+// What frame i of the synthetic session is: every other frame one of ours,
+// the aircraft's replies with a sprinkling of corrected, uncorrectable and
+// rejected ones.
+struct Kind {
+    FrameDirection direction;
+    FrameStatus status;
+};
+
+Kind kindOf(int i)
+{
+    if (i % 2 == 0)
+        return {FrameDirection::Sent, FrameStatus::NotChecked};
+    if (i % 50 == 3)
+        return {FrameDirection::Received, FrameStatus::Uncorrectable};
+    if (i % 100 == 7)
+        return {FrameDirection::Received, FrameStatus::Rejected};
+    if (i % 10 == 1)
+        return {FrameDirection::Received, FrameStatus::Corrected};
+    return {FrameDirection::Received, FrameStatus::Decoded};
+}
+
+// Frame i: a real datagram whose ID_msg is i, damaged as its status says.
+FrameRecord frame(int i)
+{
+    static const rcm::Message resting = rcm::restingCommand(rcm::Airframe::wellEquipped());
+    rcm::Message m = resting;
+    m.header.set(rcm::ItemId::ID_msg, i);
+    rcm::Diagnostics errors;
+    const auto datagram = rcm::encodeDatagram(m, errors);
+    Q_ASSERT(datagram);
+    FrameRecord r;
+    r.bytes = QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size()));
+    r.utcMicros = kT0 + qint64(i) * 500'000;
+    r.transport = FrameTransport::Udp;
+    const Kind kind = kindOf(i);
+    r.direction = kind.direction;
+    r.status = kind.status;
+    switch (kind.status) {
+    case FrameStatus::Corrected:
+        r.bytes[10] = char(r.bytes[10] ^ 0x5A);
+        r.bytes[300] = char(r.bytes[300] ^ 0x01);
+        r.correctedSymbols = {1, 1};
+        break;
+    case FrameStatus::Uncorrectable:
+        for (int k = 0; k < 40; ++k)
+            r.bytes[k * 6] = char(r.bytes[k * 6] ^ 0xFF);
+        r.correctedSymbols = {-1, 0};
+        break;
+    case FrameStatus::Decoded:
+    case FrameStatus::Rejected:
+        r.correctedSymbols = {0, 0};
+        break;
+    case FrameStatus::NotChecked:
+        break;
+    }
+    return r;
+}
+
+}  // namespace
+
+class TestFrameLogModel : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase();
+    void opensTheWholeLog();
+    void textIsMadeOnDemand();
+    void appendsAreInsertedOncePerPass();
+    void filterCountsByDirectionAndStatus();
+    void filterFollowsAppends();
+    void viewDecodesOnlyWhatItShows();
+
+private:
+    QTemporaryDir m_dir;
+    QString m_path;
+    std::map<std::pair<FrameDirection, FrameStatus>, int> m_counts;
+};
+
+void TestFrameLogModel::initTestCase()
+{
+    QVERIFY(m_dir.isValid());
+    m_path = m_dir.filePath(QStringLiteral("day.pcapng"));
+    FrameLog log;
+    QString error;
+    QVERIFY2(log.open(m_path, &error), qPrintable(error));
+    for (int i = 0; i < kFrames; ++i) {
+        const FrameRecord r = frame(i);
+        QVERIFY(log.append(r));
+        ++m_counts[{r.direction, r.status}];
+    }
+    log.close();
+}
+
+void TestFrameLogModel::opensTheWholeLog()
+{
+    FrameLogModel model;
+    QSignalSpy reset(&model, &QAbstractItemModel::modelReset);
+    QString error;
+    QVERIFY2(model.openLog(m_path, &error), qPrintable(error));
+    QCOMPARE(reset.count(), 1);
+    QCOMPARE(model.rowCount(), kFrames);
+    QCOMPARE(model.columnCount(), FrameLogModel::kColumnCount);
+    QCOMPARE(model.logPath(), m_path);
+    // Opening reads the index only.
+    QCOMPARE(model.decodedRows(), 0);
+    QCOMPARE(model.direction(0), FrameDirection::Sent);
+    QCOMPARE(model.status(kFrames - 1), kindOf(kFrames - 1).status);
+    QCOMPARE(model.utcMicros(kFrames - 1), kT0 + qint64(kFrames - 1) * 500'000);
+}
+
+void TestFrameLogModel::textIsMadeOnDemand()
+{
+    FrameLogModel model;
+    QVERIFY(model.openLog(m_path));
+    QCOMPARE(model.decodedRows(), 0);
+
+    // A row far from anything displayed: its text and ID exist once asked for.
+    constexpr int kRow = 150'005;  // received, decoded cleanly
+    QCOMPARE(kindOf(kRow).status, FrameStatus::Decoded);
+    const auto cell = [&](int row, int column) { return model.index(row, column).data().toString(); };
+    QCOMPARE(cell(kRow, FrameLogModel::NumberColumn), QStringLiteral("150006"));
+    QCOMPARE(cell(kRow, FrameLogModel::TimeColumn), QStringLiteral("04:22:02.500"));
+    QCOMPARE(cell(kRow, FrameLogModel::DirectionColumn), QStringLiteral("\u2190 received"));
+    QCOMPARE(cell(kRow, FrameLogModel::StatusColumn), QStringLiteral("decoded"));
+    QCOMPARE(model.decodedRows(), 0);  // none of those needed the frame
+    QCOMPARE(cell(kRow, FrameLogModel::MessageIdColumn), QStringLiteral("150005"));
+    QCOMPARE(model.decodedRows(), 1);
+    QCOMPARE(cell(kRow, FrameLogModel::CorrectedColumn), QStringLiteral("0 + 0"));
+    QCOMPARE(model.decodedRows(), 1);  // cached: one read per row
+
+    // The log's own record of corrections; IDs through repairable damage;
+    // none beyond it.
+    QCOMPARE(cell(11, FrameLogModel::CorrectedColumn), QStringLiteral("1 + 1"));
+    QCOMPARE(model.messageId(11), std::optional<quint32>(11));
+    QCOMPARE(cell(3, FrameLogModel::CorrectedColumn), QStringLiteral("beyond"));
+    QCOMPARE(cell(3, FrameLogModel::MessageIdColumn), QStringLiteral("\u2014"));
+    QCOMPARE(model.messageId(3), std::nullopt);
+    QCOMPARE(cell(199'998, FrameLogModel::MessageIdColumn), QStringLiteral("199998"));
+    QCOMPARE(cell(199'998, FrameLogModel::CorrectedColumn), QStringLiteral("\u2014"));  // our own send
+    QCOMPARE(model.decodedRows(), 4);
+
+    // The whole record comes back for the detail pane.
+    const FrameRecord r = model.record(kRow);
+    QCOMPARE(r, frame(kRow));
+}
+
+void TestFrameLogModel::appendsAreInsertedOncePerPass()
+{
+    FrameLogModel model;
+    FrameLogFilterModel filter;
+    filter.setSourceModel(&model);
+    QSignalSpy inserted(&model, &QAbstractItemModel::rowsInserted);
+    QSignalSpy filterInserted(&filter, &QAbstractItemModel::rowsInserted);
+
+    for (int i = 0; i < 1000; ++i)
+        model.appendRecord(frame(i));
+    // Nothing yet: the burst is inserted when the event loop next runs.
+    QCOMPARE(model.rowCount(), 0);
+    QCOMPARE(model.pendingRows(), 1000);
+    QCOMPARE(inserted.count(), 0);
+
+    QTRY_COMPARE(model.rowCount(), 1000);
+    QCOMPARE(inserted.count(), 1);
+    QCOMPARE(inserted.at(0).at(1).toInt(), 0);
+    QCOMPARE(inserted.at(0).at(2).toInt(), 999);
+    QCOMPARE(filterInserted.count(), 1);
+    QCOMPARE(filter.rowCount(), 1000);
+    QCOMPARE(model.pendingRows(), 0);
+
+    // A second burst lands after the first, again as one insertion.
+    for (int i = 1000; i < 1500; ++i)
+        model.appendRecord(frame(i), quint32(i));
+    QTRY_COMPARE(model.rowCount(), 1500);
+    QCOMPARE(inserted.count(), 2);
+    QCOMPARE(inserted.at(1).at(1).toInt(), 1000);
+    QCOMPARE(inserted.at(1).at(2).toInt(), 1499);
+    QCOMPARE(model.messageId(1499), std::optional<quint32>(1499));
+    QCOMPARE(model.record(1234), frame(1234));
+
+    // A frame known only by what the link said of it has no bytes to show.
+    FrameRecord summary;
+    summary.direction = FrameDirection::Sent;
+    summary.utcMicros = kT0;
+    model.appendRecord(summary, 42);
+    model.flushPending();
+    QCOMPARE(model.rowCount(), 1501);
+    QCOMPARE(model.index(1500, FrameLogModel::MessageIdColumn).data().toString(), QStringLiteral("42"));
+    QVERIFY(model.record(1500).bytes.isEmpty());
+}
+
+void TestFrameLogModel::filterCountsByDirectionAndStatus()
+{
+    FrameLogModel model;
+    QVERIFY(model.openLog(m_path));
+    FrameLogFilterModel filter;
+    filter.setSourceModel(&model);
+    QCOMPARE(filter.rowCount(), kFrames);
+
+    const auto count = [&](FrameDirection d, FrameStatus s) {
+        const auto it = m_counts.find({d, s});
+        return it == m_counts.end() ? 0 : it->second;
+    };
+    using F = FrameLogFilterModel;
+    const FrameDirection R = FrameDirection::Received, S = FrameDirection::Sent;
+
+    filter.setDirections(F::bit(S));
+    QCOMPARE(filter.rowCount(), kFrames / 2);
+    filter.setDirections(F::bit(R));
+    QCOMPARE(filter.rowCount(), kFrames / 2);
+
+    int received = 0;
+    for (FrameStatus s : {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable,
+                          FrameStatus::Rejected, FrameStatus::NotChecked}) {
+        filter.setStatuses(F::bit(s));
+        QCOMPARE(filter.rowCount(), count(R, s));
+        received += filter.rowCount();
+    }
+    QCOMPARE(received, kFrames / 2);
+    // The exact figures of this session, counted independently of the table above.
+    QCOMPARE(count(R, FrameStatus::Uncorrectable), kFrames / 50);
+    QCOMPARE(count(R, FrameStatus::Rejected), kFrames / 100);
+
+    filter.setStatuses(F::bit(FrameStatus::Corrected) | F::bit(FrameStatus::Uncorrectable) |
+                       F::bit(FrameStatus::Rejected));
+    const int problems = count(R, FrameStatus::Corrected) + count(R, FrameStatus::Uncorrectable) +
+                         count(R, FrameStatus::Rejected);
+    QCOMPARE(filter.rowCount(), problems);
+    // Every row shown is one the filter asked for, and maps back to itself.
+    for (int row : {0, problems / 2, problems - 1}) {
+        const QModelIndex source = filter.mapToSource(filter.index(row, 0));
+        QCOMPARE(model.direction(source.row()), R);
+        QVERIFY(model.status(source.row()) != FrameStatus::Decoded);
+        QCOMPARE(filter.mapFromSource(source).row(), row);
+    }
+    // A row filtered out maps nowhere.
+    QVERIFY(!filter.mapFromSource(model.index(0, 0)).isValid());
+
+    filter.setDirections(F::kAllDirections);
+    filter.setStatuses(F::bit(FrameStatus::NotChecked));
+    QCOMPARE(filter.rowCount(), count(S, FrameStatus::NotChecked));
+    filter.setStatuses(F::kAllStatuses);
+    QCOMPARE(filter.rowCount(), kFrames);
+}
+
+void TestFrameLogModel::filterFollowsAppends()
+{
+    FrameLogModel model;
+    FrameLogFilterModel filter;
+    filter.setSourceModel(&model);
+    filter.setStatuses(FrameLogFilterModel::bit(FrameStatus::Uncorrectable));
+    QSignalSpy inserted(&filter, &QAbstractItemModel::rowsInserted);
+    int expected = 0;
+    for (int i = 0; i < 500; ++i) {
+        model.appendRecord(frame(i));
+        expected += kindOf(i).status == FrameStatus::Uncorrectable;
+    }
+    QTRY_COMPARE(model.rowCount(), 500);
+    QCOMPARE(filter.rowCount(), expected);
+    QCOMPARE(inserted.count(), 1);
+    QCOMPARE(filter.sourceRow(0), 3);
+}
+
+void TestFrameLogModel::viewDecodesOnlyWhatItShows()
+{
+    FrameLogModel model;
+    QVERIFY(model.openLog(m_path));
+    FrameLogView view(&model);
+    view.resize(1000, 700);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    view.table()->scrollToBottom();
+    QTRY_VERIFY(model.decodedRows() > 0);
+    // A screenful, not the log.
+    QVERIFY2(model.decodedRows() < 500, qPrintable(QString::number(model.decodedRows())));
+
+    // Selecting a frame decodes it in full for the detail panes.
+    view.showSourceRow(150'005);
+    QVERIFY(view.detailText().contains(QStringLiteral("ID_msg 150005")));
+    QVERIFY(view.detailText().contains(QStringLiteral("BEGIN HEADER")));
+    QVERIFY(view.hexText().contains(QStringLiteral("BLOCK 1 data (223 bytes)")));
+    QVERIFY(view.hexText().contains(QStringLiteral("BLOCK 2 parity (32 bytes)")));
+    view.showSourceRow(3);
+    QVERIFY(view.detailText().contains(QStringLiteral("beyond correction")));
+}
+
+QTEST_MAIN(TestFrameLogModel)
+#include "tst_framelogmodel.moc"

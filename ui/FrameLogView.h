@@ -1,0 +1,50 @@
+#pragma once
+
+// The frame log on screen: a filter bar (direction, status), the table of
+// frames, and under it the selected frame decoded into the text format and
+// as a hex dump. Only the selected frame is decoded in full.
+
+#include <QWidget>
+
+class FrameLogFilterModel;
+class FrameLogModel;
+class QCheckBox;
+class QComboBox;
+class QLabel;
+class QPlainTextEdit;
+class QTableView;
+
+class FrameLogView : public QWidget {
+    Q_OBJECT
+
+public:
+    explicit FrameLogView(FrameLogModel* model, QWidget* parent = nullptr);
+
+    FrameLogModel* model() const { return m_model; }
+    FrameLogFilterModel* filter() const { return m_filter; }
+    QTableView* table() const { return m_table; }
+
+    // Keeps the newest frame in view as frames arrive (on by default).
+    void setFollowing(bool on);
+    bool isFollowing() const;
+    // Scrolls to and selects the source row; nothing when it is filtered out.
+    void showSourceRow(int sourceRow);
+
+    QString detailText() const;
+    QString hexText() const;
+
+private:
+    void applyFilter();
+    void showSelected();
+    void updateCount();
+
+    FrameLogModel* m_model;
+    FrameLogFilterModel* m_filter;
+    QComboBox* m_direction;
+    QComboBox* m_status;
+    QCheckBox* m_follow;
+    QLabel* m_count;
+    QTableView* m_table;
+    QPlainTextEdit* m_detail;
+    QPlainTextEdit* m_hex;
+};
