@@ -1,0 +1,755 @@
+// The operator panels, driven as an operator drives them: mouse clicks on
+// buttons, keys in spin boxes, sliders and combo boxes. Each action must
+// change exactly the items it names in the next encoded frame and nothing
+// else, so every check goes through the encoder and back: what the aircraft
+// would read. Status frames come from SimulatedAircraft or are made by hand;
+// no test waits on a clock.
+
+#include "codec/Airframe.h"
+#include "codec/MessageDecoder.h"
+#include "codec/MessageEncoder.h"
+#include "link/SimulatedAircraft.h"
+#include "ui/CameraPanel.h"
+#include "ui/CommandState.h"
+#include "ui/EnginePanel.h"
+#include "ui/FieldButtonGroup.h"
+#include "ui/FieldComboBox.h"
+#include "ui/FlapsPanel.h"
+#include "ui/FuelDumpPanel.h"
+#include "ui/GearPanel.h"
+#include "ui/HeaderPanel.h"
+#include "ui/ItemSlider.h"
+#include "ui/ItemSpinBox.h"
+#include "ui/ItemText.h"
+#include "ui/LightsPanel.h"
+#include "ui/RadioPanel.h"
+#include "ui/ReportedLabel.h"
+#include "ui/ReportedState.h"
+#include "ui/StationEditor.h"
+#include "ui/UnitCard.h"
+
+#include <QAbstractButton>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QSpinBox>
+#include <QTest>
+
+#include <chrono>
+#include <map>
+#include <memory>
+
+using namespace rcm;
+using enum ItemId;
+
+namespace {
+
+const auto kT0 = std::chrono::sys_days{std::chrono::year{2026} / 5 / 14} + std::chrono::hours{12};
+
+// The message as the aircraft would read it: encoded into both blocks and
+// decoded again, every item under "unit item" ("engine 2 eng_prop_pitch").
+std::map<QString, Value> wireItems(const Message& message)
+{
+    Diagnostics errors;
+    const auto blocks = encodeBlocks(message, errors);
+    if (!blocks) {
+        qWarning() << "does not encode:" << QString::fromStdString(errors.empty() ? "" : errors.front().message);
+        return {};
+    }
+    DecodedBlocks decoded;
+    decoded.block1 = blocks->block1;
+    decoded.block2 = blocks->block2;
+    const DecodeResult result = decodeBlocks(decoded);
+    std::map<QString, Value> items;
+    result.message.forEachUnit([&](const Unit& unit) {
+        for (const ItemValue& item : unit.items())
+            items[QString::fromStdString(describeUnit(unit)) + QLatin1Char(' ') + ItemText::name(item.id)] = item.value;
+    });
+    return items;
+}
+
+// The items whose value on the wire differs between two commands, added and removed ones too.
+QStringList changedItems(const Message& before, const Message& after)
+{
+    const auto a = wireItems(before);
+    const auto b = wireItems(after);
+    QStringList changed;
+    for (const auto& [name, value] : a) {
+        const auto it = b.find(name);
+        if (it == b.end() || it->second != value)
+            changed << name;
+    }
+    for (const auto& [name, value] : b)
+        if (!a.count(name))
+            changed << name;
+    changed.sort();
+    return changed;
+}
+
+// One field's code name as the command holds it.
+QString fieldName(const Unit& unit, ItemId id, int field)
+{
+    const Value* v = unit.find(id);
+    return v ? ItemText::fieldValue(id, field, *v) : QString();
+}
+
+// Replaces a spin box's text by typing, then Enter: what an operator does.
+void typeInto(QAbstractSpinBox* spinBox, const QString& text)
+{
+    QTest::keyClick(spinBox, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(spinBox, text);
+    QTest::keyClick(spinBox, Qt::Key_Enter);
+}
+
+void typeInto(QLineEdit* edit, const QString& text)
+{
+    edit->setFocus();
+    QTest::keyClick(edit, Qt::Key_A, Qt::ControlModifier);
+    if (text.isEmpty())
+        QTest::keyClick(edit, Qt::Key_Delete);
+    else
+        QTest::keyClicks(edit, text);
+    QTest::keyClick(edit, Qt::Key_Enter);
+}
+
+template <typename T>
+T* child(QObject* parent, const QString& name)
+{
+    T* found = parent->findChild<T*>(name);
+    if (!found)
+        qWarning() << "no" << T::staticMetaObject.className() << name << "in" << parent->objectName();
+    return found;
+}
+
+QAbstractButton* codeButton(QWidget* within, const QString& field, const QString& code)
+{
+    auto* group = child<FieldButtonGroup>(within, field);
+    return group ? child<QAbstractButton>(group, code) : nullptr;
+}
+
+// One engine, two radios, one camera: a small airframe unlike the default.
+Airframe smallAirframe()
+{
+    Airframe a;
+    a.name = "Small UA";
+    a.engines = {{1, "Engine"}};
+    a.radios = {{"VHF1", "VHF 1"}, {"UHF7", "UHF 7"}};
+    a.cameras = {{"SNY", 4, "Nose camera"}};
+    a.senseAndAvoid = false;
+    return a;
+}
+
+class TestPanels : public QObject {
+    Q_OBJECT
+
+private:
+    template <typename Panel>
+    std::unique_ptr<Panel> shown()
+    {
+        auto panel = std::make_unique<Panel>(&m_command, &m_reported);
+        panel->show();
+        if (!QTest::qWaitForWindowExposed(panel.get()))
+            qWarning() << "panel not exposed";
+        return panel;
+    }
+
+    CommandState m_command;
+    ReportedState m_reported{&m_command};
+
+private slots:
+    void init()
+    {
+        m_command.setAirframe(Airframe::wellEquipped());
+        m_command.editUnit({UnitKind::Header, 0}, [](Unit& header) { header = Unit(UnitKind::Header); });
+        m_reported.clear();
+    }
+
+    void startsAtRestAndEncodes()
+    {
+        QCOMPARE(m_command.message(), restingCommand(Airframe::wellEquipped()));
+        QVERIFY(!wireItems(m_command.message()).empty());
+        QCOMPARE(m_command.unitCount(UnitKind::Engine), 3);
+        QCOMPARE(m_command.unitCount(UnitKind::Radio), 3);
+        QCOMPARE(m_command.unitCount(UnitKind::Camera), 2);
+        QVERIFY(!m_command.unit({UnitKind::Engine, 3}));
+    }
+
+    void commandRefusesWhatWouldNotEncode()
+    {
+        const Message before = m_command.message();
+        QSignalSpy changed(&m_command, &CommandState::changed);
+        QSignalSpy rejected(&m_command, &CommandState::rejected);
+        QVERIFY(!m_command.setNumber({UnitKind::Engine, 0}, eng_prop_pitch, 256));
+        QVERIFY(!m_command.setNumber({UnitKind::Flaps, 0}, F_rudder_set, -128));
+        QVERIFY(!m_command.setFieldCode({UnitKind::Flaps, 0}, FLAP_status, 1, 3));  // 11: corrupt for slave_aileron
+        QVERIFY(!m_command.setNumber({UnitKind::Engine, 1}, eng_ID, 9));            // keys come from the airframe
+        QVERIFY(!m_command.setNumber({UnitKind::Engine, 7}, eng_prop_pitch, 1));    // no such engine
+        QCOMPARE(rejected.count(), 5);
+        QVERIFY(rejected.at(0).at(0).toString().contains(QStringLiteral("above the maximum 255 by 1")));
+        QCOMPARE(changed.count(), 0);
+        QCOMPARE(m_command.message(), before);
+        // The same value again is no change.
+        QVERIFY(m_command.setNumber({UnitKind::Engine, 0}, eng_prop_pitch, 0));
+        QCOMPARE(changed.count(), 0);
+    }
+
+    void controlsTakeTheirTextFromTheItemTable()
+    {
+        auto panel = shown<EnginePanel>();
+        auto* card = child<UnitCard>(panel.get(), QStringLiteral("engine 1"));
+        QVERIFY(card);
+        auto* pitch = child<ItemSpinBox>(card, QStringLiteral("eng_prop_pitch"));
+        QVERIFY(pitch);
+        QCOMPARE(pitch->toolTip(), QStringLiteral("Propeller pitch, 0..255"));
+        QCOMPARE(pitch->minimum(), 0.0);
+        QCOMPARE(pitch->maximum(), 255.0);
+        auto* control = child<FieldComboBox>(card, QStringLiteral("eng_status.control"));
+        QVERIFY(control);
+        QCOMPARE(control->count(), 3);
+        QCOMPARE(control->itemText(0), QStringLiteral("AUTO"));
+        QCOMPARE(control->itemText(1), QStringLiteral("GCS"));
+        QCOMPARE(control->itemText(2), QStringLiteral("RC"));
+        QCOMPARE(control->currentText(), QStringLiteral("AUTO"));
+
+        auto camera = shown<CameraPanel>();
+        auto* compass = child<ItemSpinBox>(camera.get(), QStringLiteral("cam_mag_compass"));
+        QVERIFY(compass);
+        QCOMPARE(compass->toolTip(), QStringLiteral("Compass bearing, 0.00..359.99 deg"));
+        QCOMPARE(compass->decimals(), 2);
+        QCOMPARE(compass->maximum(), 359.99);
+        QCOMPARE(compass->suffix(), QStringLiteral(" deg"));
+    }
+
+    void enginePanel()
+    {
+        auto panel = shown<EnginePanel>();
+        QCOMPARE(panel->findChildren<UnitCard*>().size(), 3);
+        auto* card = child<UnitCard>(panel.get(), QStringLiteral("engine 2"));
+        QVERIFY(card);
+        QCOMPARE(child<QLabel>(card, QStringLiteral("eng_ID"))->text(), QStringLiteral("2"));
+
+        Message before = m_command.message();
+        auto* control = child<FieldComboBox>(card, QStringLiteral("eng_status.control"));
+        QTest::keyClick(control, Qt::Key_Down);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 2 eng_status")});
+        QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 0), QStringLiteral("GCS"));
+        QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 1), QStringLiteral("NO_SLAVE"));
+        QTest::keyClick(control, Qt::Key_End);
+        QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 0), QStringLiteral("RC"));
+
+        before = m_command.message();
+        QTest::keyClick(child<FieldComboBox>(card, QStringLiteral("eng_status.slave")), Qt::Key_Down);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 2 eng_status")});
+        QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 1), QStringLiteral("MASTER_SLAVE"));
+        QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 0), QStringLiteral("RC"));
+
+        before = m_command.message();
+        typeInto(child<ItemSpinBox>(card, QStringLiteral("eng_prop_pitch")), QStringLiteral("120"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 2 eng_prop_pitch")});
+        QCOMPARE(m_command.message().engines[1].number(eng_prop_pitch), 120);
+
+        before = m_command.message();
+        QTest::keyClick(child<ItemSpinBox>(card, QStringLiteral("eng_carb_SET")), Qt::Key_Up);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 2 eng_carb_SET")});
+        QCOMPARE(m_command.message().engines[1].number(eng_carb_SET), 1);
+
+        // Typing does not command each digit on the way: one change for "200".
+        QSignalSpy changed(&m_command, &CommandState::changed);
+        auto* carb = child<ItemSpinBox>(card, QStringLiteral("eng_carb_SET"));
+        QTest::keyClick(carb, Qt::Key_A, Qt::ControlModifier);
+        QTest::keyClicks(carb, QStringLiteral("200"));
+        QCOMPARE(changed.count(), 0);
+        QTest::keyClick(carb, Qt::Key_Enter);
+        QCOMPARE(changed.count(), 1);
+        QCOMPARE(m_command.message().engines[1].number(eng_carb_SET), 200);
+    }
+
+    void flapsPanelSliderAndSpinBoxFollowEachOther()
+    {
+        auto panel = shown<FlapsPanel>();
+        auto* rudderSlider = child<ItemSlider>(panel.get(), QStringLiteral("F_rudder_set.slider"));
+        auto* rudderSpin = child<ItemSpinBox>(panel.get(), QStringLiteral("F_rudder_set"));
+        QVERIFY(rudderSlider && rudderSpin);
+        QCOMPARE(rudderSlider->minimum(), -127);
+        QCOMPARE(rudderSlider->maximum(), 127);
+        QCOMPARE(rudderSpin->toolTip(), QStringLiteral("Rudder, -127..127 deg"));
+
+        Message before = m_command.message();
+        QTest::keyClick(rudderSlider, Qt::Key_PageUp);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps F_rudder_set")});
+        QCOMPARE(m_command.message().flaps.number(F_rudder_set), 10);
+        QCOMPARE(rudderSpin->value(), 10.0);
+
+        before = m_command.message();
+        auto* elevatorSpin = child<ItemSpinBox>(panel.get(), QStringLiteral("F_elev_set"));
+        typeInto(elevatorSpin, QStringLiteral("-20"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps F_elev_set")});
+        QCOMPARE(m_command.message().flaps.number(F_elev_set), -20);
+        QCOMPARE(child<ItemSlider>(panel.get(), QStringLiteral("F_elev_set.slider"))->value(), -20);
+
+        // -128 is not a valid angle: the spin box refuses the key that would make it.
+        typeInto(elevatorSpin, QStringLiteral("-128"));
+        QCOMPARE(m_command.message().flaps.number(F_elev_set), -12);
+
+        before = m_command.message();
+        QTest::keyClick(child<ItemSlider>(panel.get(), QStringLiteral("F_aileron_LHS_set.slider")), Qt::Key_Left);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps F_aileron_LHS_set")});
+        QCOMPARE(m_command.message().flaps.number(F_aileron_LHS_set), -1);
+
+        before = m_command.message();
+        QTest::keyClick(child<FieldComboBox>(panel.get(), QStringLiteral("FLAP_status.slave_aileron")), Qt::Key_Down);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps FLAP_status")});
+        QCOMPARE(fieldName(m_command.message().flaps, FLAP_status, 1), QStringLiteral("MASTER_SLAVE"));
+        QCOMPARE(fieldName(m_command.message().flaps, FLAP_status, 0), QStringLiteral("AUTO"));
+
+        before = m_command.message();
+        QTest::keyClick(child<FieldComboBox>(panel.get(), QStringLiteral("FLAP_status.control")), Qt::Key_Down);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps FLAP_status")});
+        QCOMPARE(fieldName(m_command.message().flaps, FLAP_status, 0), QStringLiteral("GCS"));
+    }
+
+    void gearPanel()
+    {
+        auto panel = shown<GearPanel>();
+        auto* retracted = codeButton(panel.get(), QStringLiteral("land_wheels.NOSE"), QStringLiteral("RETRACTED"));
+        QVERIFY(retracted);
+        QVERIFY(codeButton(panel.get(), QStringLiteral("land_wheels.NOSE"), QStringLiteral("OUT"))->isChecked());
+        const Message before = m_command.message();
+        QTest::mouseClick(retracted, Qt::LeftButton);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("SETTINGS land_wheels")});
+        const Unit& settings = m_command.message().settings;
+        QCOMPARE(fieldName(settings, land_wheels, 2), QStringLiteral("RETRACTED"));
+        for (int wheel : {0, 1, 3})
+            QCOMPARE(fieldName(settings, land_wheels, wheel), QStringLiteral("OUT"));
+        QVERIFY(retracted->isChecked());
+        // Clicking the position the wheel is already commanded to is no change.
+        QSignalSpy changed(&m_command, &CommandState::changed);
+        QTest::mouseClick(retracted, Qt::LeftButton);
+        QCOMPARE(changed.count(), 0);
+    }
+
+    void lightsPanel()
+    {
+        auto panel = shown<LightsPanel>();
+        const Message before = m_command.message();
+        QTest::mouseClick(codeButton(panel.get(), QStringLiteral("lights.wheel_brake"), QStringLiteral("ON")),
+                          Qt::LeftButton);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("SETTINGS lights")});
+        const Unit& settings = m_command.message().settings;
+        QCOMPARE(fieldName(settings, lights, 3), QStringLiteral("ON"));
+        for (int light : {0, 1, 2})
+            QCOMPARE(fieldName(settings, lights, light), QStringLiteral("OFF"));
+
+        const Message beforeTail = m_command.message();
+        QTest::mouseClick(codeButton(panel.get(), QStringLiteral("lights.tail"), QStringLiteral("ON")), Qt::LeftButton);
+        QCOMPARE(changedItems(beforeTail, m_command.message()), QStringList{QStringLiteral("SETTINGS lights")});
+        QCOMPARE(fieldName(m_command.message().settings, lights, 2), QStringLiteral("ON"));
+        QCOMPARE(fieldName(m_command.message().settings, lights, 3), QStringLiteral("ON"));
+    }
+
+    void fuelDumpNeedsConfirmation()
+    {
+        auto panel = shown<FuelDumpPanel>();
+        QStringList questions;
+        bool answer = false;
+        panel->setConfirmer([&](QWidget*, const QString& question) {
+            questions << question;
+            return answer;
+        });
+        auto* dump2 = codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.tank2"), QStringLiteral("DUMP"));
+        auto* keep2 = codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.tank2"), QStringLiteral("NO_DUMP"));
+        QVERIFY(dump2 && keep2);
+
+        // Cancelled: nothing changes, so the next frame is the same.
+        QSignalSpy changed(&m_command, &CommandState::changed);
+        Message before = m_command.message();
+        QTest::mouseClick(dump2, Qt::LeftButton);
+        QCOMPARE(questions.size(), 1);
+        QVERIFY(questions.last().contains(QStringLiteral("Dump tank 2: DUMP?")));
+        QCOMPARE(changed.count(), 0);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{});
+        QVERIFY(keep2->isChecked());
+        QVERIFY(!dump2->isChecked());
+
+        answer = true;
+        QTest::mouseClick(dump2, Qt::LeftButton);
+        QCOMPARE(questions.size(), 2);
+        QCOMPARE(changedItems(before, m_command.message()),
+                 QStringList{QStringLiteral("FCU_general ENABLE_fuel_dump")});
+        QCOMPARE(fieldName(m_command.message().fuelDump, ENABLE_fuel_dump, 2), QStringLiteral("DUMP"));
+        QCOMPARE(fieldName(m_command.message().fuelDump, ENABLE_fuel_dump, 0), QStringLiteral("DISABLED"));
+
+        before = m_command.message();
+        auto* enable = codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.facility"), QStringLiteral("ENABLED"));
+        QTest::mouseClick(enable, Qt::LeftButton);
+        QCOMPARE(questions.size(), 3);
+        QVERIFY2(questions.last().contains(QStringLiteral("Dump tank 2")), qPrintable(questions.last()));
+        QCOMPARE(changedItems(before, m_command.message()),
+                 QStringList{QStringLiteral("FCU_general ENABLE_fuel_dump")});
+        QCOMPARE(fieldName(m_command.message().fuelDump, ENABLE_fuel_dump, 0), QStringLiteral("ENABLED"));
+
+        // Back to the safe state without a question.
+        before = m_command.message();
+        QTest::mouseClick(
+            codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.facility"), QStringLiteral("DISABLED")),
+            Qt::LeftButton);
+        QCOMPARE(questions.size(), 3);
+        QCOMPARE(fieldName(m_command.message().fuelDump, ENABLE_fuel_dump, 0), QStringLiteral("DISABLED"));
+        QCOMPARE(changedItems(before, m_command.message()),
+                 QStringList{QStringLiteral("FCU_general ENABLE_fuel_dump")});
+    }
+
+    void radioPanel()
+    {
+        auto panel = shown<RadioPanel>();
+        QCOMPARE(panel->findChildren<UnitCard*>().size(), 3);
+        auto* card = child<UnitCard>(panel.get(), QStringLiteral("radio VHF2"));
+        QVERIFY(card);
+        // The system ID is the key: shown, not editable.
+        auto* systemId = child<QLabel>(card, QStringLiteral("system_ID"));
+        QCOMPARE(systemId->text(), QStringLiteral("VHF2"));
+        QVERIFY(!card->findChild<QLineEdit*>(QStringLiteral("system_ID")));
+
+        Message before = m_command.message();
+        QTest::mouseClick(codeButton(card, QStringLiteral("receiver_control.receiver"), QStringLiteral("ON")),
+                          Qt::LeftButton);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("radio VHF2 receiver_control")});
+        QCOMPARE(fieldName(m_command.message().radios[1], receiver_control, 0), QStringLiteral("ON"));
+        QCOMPARE(fieldName(m_command.message().radios[1], receiver_control, 1), QStringLiteral("OFF"));
+
+        before = m_command.message();
+        auto* rx = child<ItemSpinBox>(card, QStringLiteral("Rx_freq"));
+        QCOMPARE(rx->suffix(), QStringLiteral(" kHz"));
+        typeInto(rx, QStringLiteral("127712"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("radio VHF2 Rx_freq")});
+        QCOMPARE(m_command.message().radios[1].number(Rx_freq), 127712);
+
+        // Frequencies are 32-bit: beyond what an int spin box holds.
+        before = m_command.message();
+        typeInto(child<ItemSpinBox>(card, QStringLiteral("Tx_freq")), QStringLiteral("4000000000"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("radio VHF2 Tx_freq")});
+        QCOMPARE(m_command.message().radios[1].number(Tx_freq), 4000000000LL);
+
+        before = m_command.message();
+        typeInto(child<ItemSpinBox>(card, QStringLiteral("Tx_OP_power")), QStringLiteral("37"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("radio VHF2 Tx_OP_power")});
+        QCOMPARE(m_command.message().radios[1].number(Tx_OP_power), 37);
+    }
+
+    void cameraPanel()
+    {
+        auto panel = shown<CameraPanel>();
+        auto* sense = child<UnitCard>(panel.get(), QStringLiteral("SENSE"));
+        QVERIFY(sense);
+        Message before = m_command.message();
+        typeInto(child<ItemSpinBox>(sense, QStringLiteral("SA_zoom_FWD_cam")), QStringLiteral("105"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("SENSE SA_zoom_FWD_cam")});
+        QCOMPARE(m_command.message().sense.number(SA_zoom_FWD_cam), 105);
+
+        auto* card = child<UnitCard>(panel.get(), QStringLiteral("camera NIK 2"));
+        QVERIFY(card);
+        QCOMPARE(child<QLabel>(card, QStringLiteral("cam_ID"))->text(), QStringLiteral("NIK 2"));
+
+        before = m_command.message();
+        typeInto(child<ItemSpinBox>(card, QStringLiteral("cam_mag_compass")), QStringLiteral("264.95"));
+        QCOMPARE(changedItems(before, m_command.message()),
+                 QStringList{QStringLiteral("camera NIK 2 cam_mag_compass")});
+        QCOMPARE(m_command.message().cameras[1].number(cam_mag_compass), 26495);
+
+        before = m_command.message();
+        typeInto(child<ItemSpinBox>(card, QStringLiteral("cam_elev")), QStringLiteral("-54.64"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("camera NIK 2 cam_elev")});
+        QCOMPARE(m_command.message().cameras[1].number(cam_elev), -5464);
+
+        before = m_command.message();
+        QTest::keyClick(child<ItemSpinBox>(card, QStringLiteral("cam_zoom_set")), Qt::Key_Up);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("camera NIK 2 cam_zoom_set")});
+
+        before = m_command.message();
+        auto* destination = child<StationEditor>(card, QStringLiteral("ID_GCS_destination"));
+        typeInto(destination->countryEdit(), QStringLiteral("GB"));
+        typeInto(destination->unitSpinBox(), QStringLiteral("30226"));
+        QCOMPARE(changedItems(before, m_command.message()),
+                 QStringList{QStringLiteral("camera NIK 2 ID_GCS_destination")});
+        QCOMPARE(*m_command.message().cameras[1].find(cam_GCS_destination), Value::station({44, 30226}));
+    }
+
+    void takeOnePhotoIsOneShot()
+    {
+        auto panel = shown<CameraPanel>();
+        auto* card = child<UnitCard>(panel.get(), QStringLiteral("camera NIK 1"));
+        auto* photo = child<QPushButton>(card, QStringLiteral("take_one_photo"));
+        QVERIFY(photo);
+        QVERIFY(photo->isEnabled());
+
+        const Message atRest = m_command.message();
+        QTest::mouseClick(photo, Qt::LeftButton);
+        QCOMPARE(changedItems(atRest, m_command.message()), QStringList{QStringLiteral("camera NIK 1 take_one_photo")});
+        QCOMPARE(fieldName(m_command.message().cameras[0], take_one_photo, 0), QStringLiteral("TAKE"));
+        QVERIFY(m_command.oneShotPending());
+        QVERIFY(!photo->isEnabled());  // one photograph per frame
+
+        QSignalSpy changed(&m_command, &CommandState::changed);
+        m_command.frameSent();
+        QCOMPARE(changed.count(), 1);
+        QCOMPARE(fieldName(m_command.message().cameras[0], take_one_photo, 0), QStringLiteral("NONE"));
+        QCOMPARE(changedItems(atRest, m_command.message()), QStringList{});
+        QVERIFY(!m_command.oneShotPending());
+        QVERIFY(photo->isEnabled());
+
+        // The next frame sent changes nothing more.
+        m_command.frameSent();
+        QCOMPARE(changed.count(), 1);
+
+        // The simulated aircraft takes exactly one photograph for the click.
+        SimulatedAircraft aircraft;
+        QTest::mouseClick(photo, Qt::LeftButton);
+        aircraft.apply(m_command.message());
+        m_command.frameSent();
+        aircraft.apply(m_command.message());
+        aircraft.apply(m_command.message());
+        QCOMPARE(aircraft.photoCount(0), 1);
+        QCOMPARE(aircraft.photoCount(1), 0);
+    }
+
+    void headerPanel()
+    {
+        auto panel = shown<HeaderPanel>();
+        auto* source = child<StationEditor>(panel.get(), QStringLiteral("ID_UA_source"));
+        QVERIFY(source);
+        QVERIFY(!m_command.message().header.has(ID_UA_source));
+
+        Message before = m_command.message();
+        typeInto(source->countryEdit(), QStringLiteral("gb"));
+        typeInto(source->unitSpinBox(), QStringLiteral("133"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("HEADER ID_UA_source")});
+        QCOMPARE(*m_command.message().header.find(ID_UA_source), Value::station({44, 133}));
+        QCOMPARE(source->countryEdit()->text(), QStringLiteral("GB"));
+
+        // A dialling code is as good as the two letters.
+        before = m_command.message();
+        auto* backup = child<StationEditor>(panel.get(), QStringLiteral("ID_GCS_backup"));
+        typeInto(backup->unitSpinBox(), QStringLiteral("41251"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{});  // no country yet: not sent
+        typeInto(backup->countryEdit(), QStringLiteral("49"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("HEADER ID_GCS_backup")});
+        QCOMPARE(*m_command.message().header.find(ID_GCS_backup), Value::station({49, 41251}));
+        QCOMPARE(backup->countryEdit()->text(), QStringLiteral("DE"));
+
+        // No such country: refused where it was typed, the command keeps its value.
+        before = m_command.message();
+        QSignalSpy changed(&m_command, &CommandState::changed);
+        typeInto(source->countryEdit(), QStringLiteral("XX"));
+        QCOMPARE(changed.count(), 0);
+        QVERIFY(source->countryEdit()->property("invalid").toBool());
+        QCOMPARE(source->countryEdit()->text(), QStringLiteral("XX"));
+        typeInto(source->countryEdit(), QStringLiteral("2000"));  // above the table's 1929
+        QCOMPARE(changed.count(), 0);
+        QCOMPARE(m_command.message(), before);
+
+        // An empty country: the item is no longer sent.
+        typeInto(source->countryEdit(), QString());
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("HEADER ID_UA_source")});
+        QVERIFY(!m_command.message().header.has(ID_UA_source));
+        QVERIFY(!source->countryEdit()->property("invalid").toBool());
+    }
+
+    void statusFramesFillTheReportedValues()
+    {
+        auto engines = shown<EnginePanel>();
+        auto radios = shown<RadioPanel>();
+        auto header = shown<HeaderPanel>();
+        auto* pitch = child<ReportedLabel>(child<UnitCard>(engines.get(), QStringLiteral("engine 3")),
+                                           QStringLiteral("reported:eng_prop_pitch"));
+        QVERIFY(pitch);
+        QCOMPARE(pitch->text(), QStringLiteral("\u2014"));
+
+        SimulatedAircraft aircraft;
+        m_command.setNumber({UnitKind::Engine, 2}, eng_prop_pitch, 77);
+        m_command.setNumber({UnitKind::Radio, 0}, Rx_freq, 127712);
+        aircraft.apply(m_command.message());
+        QSignalSpy updated(&m_reported, &ReportedState::updated);
+        m_reported.onStatus(aircraft.status(kT0));
+        QCOMPARE(updated.count(), 1);
+        QCOMPARE(m_reported.statusFrames(), 1);
+        QCOMPARE(pitch->text(), QStringLiteral("77"));
+        QVERIFY(!pitch->mismatch());
+        auto* rx = child<ReportedLabel>(child<UnitCard>(radios.get(), QStringLiteral("radio VHF1")),
+                                        QStringLiteral("reported:Rx_freq"));
+        QCOMPARE(rx->text(), QStringLiteral("127712 kHz"));
+        auto* receiver = child<ReportedLabel>(child<UnitCard>(radios.get(), QStringLiteral("radio VHF1")),
+                                              QStringLiteral("reported:receiver_control.receiver"));
+        QCOMPARE(receiver->text(), QStringLiteral("OFF"));
+        // The aircraft's identity, though the console has not commanded one.
+        QCOMPARE(child<ReportedLabel>(header.get(), QStringLiteral("reported:ID_UA_source"))->text(),
+                 QStringLiteral("GB_133"));
+        QCOMPARE(*m_reported.value({UnitKind::Header, 0}, ID_msg), Value::of(0));
+    }
+
+    void unitsAreMatchedByKeyNotByPosition()
+    {
+        Message status = m_command.message();
+        std::swap(status.radios[0], status.radios[2]);  // VHF3, VHF2, VHF1
+        status.radios[0].set(Tx_OP_power, 33);          // VHF3
+        m_reported.onStatus(status);
+        QCOMPARE(*m_reported.value({UnitKind::Radio, 2}, Tx_OP_power), Value::of(33));
+        QCOMPARE(*m_reported.value({UnitKind::Radio, 0}, Tx_OP_power), Value::of(0));
+        QCOMPARE(m_reported.mismatchFrames({UnitKind::Radio, 2}, Tx_OP_power), 1);
+        QCOMPARE(m_reported.mismatchFrames({UnitKind::Radio, 0}, Tx_OP_power), 0);
+    }
+
+    void mismatchHighlightedOnlyWhenItPersists()
+    {
+        auto panel = shown<FlapsPanel>();
+        auto* rudder = child<ReportedLabel>(panel.get(), QStringLiteral("reported:F_rudder_set"));
+        QVERIFY(rudder);
+        const UnitRef flaps{UnitKind::Flaps, 0};
+
+        // One frame off (a surface on its way): not highlighted.
+        Message status = m_command.message();
+        status.flaps.set(F_rudder_set, 5);
+        m_reported.onStatus(status);
+        QCOMPARE(rudder->text(), QStringLiteral("5 deg"));
+        QCOMPARE(m_reported.mismatchFrames(flaps, F_rudder_set), 1);
+        QVERIFY(!rudder->mismatch());
+        m_reported.onStatus(m_command.message());
+        QCOMPARE(m_reported.mismatchFrames(flaps, F_rudder_set), 0);
+        QVERIFY(!rudder->mismatch());
+
+        // Three frames off: highlighted, with what was commanded and what is reported.
+        for (int frame = 1; frame <= 3; ++frame) {
+            m_reported.onStatus(status);
+            QCOMPARE(rudder->mismatch(), frame == 3);
+            QCOMPARE(m_reported.mismatchPersistent(flaps, F_rudder_set), frame == 3);
+        }
+        QVERIFY(rudder->styleSheet().contains(QStringLiteral("background")));
+        QVERIFY2(rudder->toolTip().contains(QStringLiteral("commanded 0 deg, reported 5 deg")),
+                 qPrintable(rudder->toolTip()));
+
+        // A new command restarts the count: the aircraft has not had a frame to answer it.
+        m_command.setNumber(flaps, F_rudder_set, 3);
+        QVERIFY(!rudder->mismatch());
+        QCOMPARE(m_reported.mismatchFrames(flaps, F_rudder_set), 0);
+        // The report agrees: the highlight has gone.
+        m_command.setNumber(flaps, F_rudder_set, 5);
+        m_reported.onStatus(status);
+        QVERIFY(!rudder->mismatch());
+        QVERIFY(rudder->styleSheet().isEmpty());
+
+        // A frame without the item ends the run.
+        Message other = status;
+        other.flaps.set(F_rudder_set, 9);
+        m_reported.onStatus(other);
+        m_reported.onStatus(other);
+        other.flaps.erase(F_rudder_set);
+        m_reported.onStatus(other);
+        QCOMPARE(m_reported.mismatchFrames(flaps, F_rudder_set), 0);
+        QCOMPARE(rudder->text(), QStringLiteral("9 deg"));  // still the last value reported
+    }
+
+    void gearInTransitIsHighlightedPerWheel()
+    {
+        auto panel = shown<GearPanel>();
+        const UnitRef settings{UnitKind::Settings, 0};
+        auto* nose = child<ReportedLabel>(panel.get(), QStringLiteral("reported:land_wheels.NOSE"));
+        auto* tail = child<ReportedLabel>(panel.get(), QStringLiteral("reported:land_wheels.TAIL"));
+        QVERIFY(nose && tail);
+
+        SimulatedAircraft aircraft;
+        QTest::mouseClick(codeButton(panel.get(), QStringLiteral("land_wheels.NOSE"), QStringLiteral("RETRACTED")),
+                          Qt::LeftButton);
+        // A frame a second: the command goes out, the aircraft moves, its status comes back.
+        auto frame = [&](int n) {
+            aircraft.apply(m_command.message());
+            m_command.frameSent();
+            aircraft.advance(std::chrono::seconds(1));
+            m_reported.onStatus(aircraft.status(kT0 + std::chrono::seconds(n)));
+            aircraft.statusSent();
+        };
+        frame(1);
+        QCOMPARE(nose->text(), QStringLiteral("OUT"));
+        QVERIFY(!nose->mismatch());
+        frame(2);
+        QVERIFY(!nose->mismatch());
+        frame(3);
+        QVERIFY(aircraft.gearMoving());
+        QVERIFY(nose->mismatch());
+        QVERIFY(m_reported.mismatchPersistent(settings, land_wheels, 2));
+        QVERIFY(m_reported.mismatchPersistent(settings, land_wheels));
+        QVERIFY2(nose->toolTip().contains(QStringLiteral("commanded RETRACTED, reported OUT")),
+                 qPrintable(nose->toolTip()));
+        QVERIFY(!tail->mismatch());  // the other wheels agree
+        QVERIFY(!m_reported.mismatchPersistent(settings, land_wheels, 3));
+        frame(4);
+        QVERIFY(!aircraft.gearMoving());
+        QCOMPARE(nose->text(), QStringLiteral("RETRACTED"));
+        QVERIFY(!nose->mismatch());
+    }
+
+    void panelsFollowTheAirframe()
+    {
+        auto engines = shown<EnginePanel>();
+        auto radios = shown<RadioPanel>();
+        auto cameras = shown<CameraPanel>();
+        auto header = shown<HeaderPanel>();
+        m_command.setNumber({UnitKind::Header, 0}, ID_UA_source, 0);  // refused: country 0
+        m_command.setItem({UnitKind::Header, 0}, ID_UA_source, Value::station({44, 133}));
+        SimulatedAircraft aircraft;
+        aircraft.apply(m_command.message());
+        m_reported.onStatus(aircraft.status(kT0));
+
+        QSignalSpy airframeChanged(&m_command, &CommandState::airframeChanged);
+        m_command.setAirframe(smallAirframe());
+        QCOMPARE(airframeChanged.count(), 1);
+        QCOMPARE(m_reported.statusFrames(), 0);  // another aircraft: nothing reported yet
+
+        QCOMPARE(engines->findChildren<UnitCard*>().size(), 1);
+        QCOMPARE(radios->findChildren<UnitCard*>().size(), 2);
+        QCOMPARE(cameras->findChildren<UnitCard*>().size(), 1);  // no sense and avoid on this one
+        QVERIFY(child<UnitCard>(radios.get(), QStringLiteral("radio UHF7")));
+        QVERIFY(child<UnitCard>(cameras.get(), QStringLiteral("camera SNY 4")));
+        QVERIFY(!cameras->findChild<UnitCard*>(QStringLiteral("SENSE")));
+        QCOMPARE(m_command.message().engines.size(), std::size_t(1));
+        // The header names who talks to whom, not what the aircraft carries: kept.
+        QCOMPARE(*m_command.message().header.find(ID_UA_source), Value::station({44, 133}));
+
+        // The new cards command the new airframe's units, once the layout has shown them.
+        Message before = m_command.message();
+        auto* uhf = child<UnitCard>(radios.get(), QStringLiteral("radio UHF7"));
+        auto* transmitterOn = codeButton(uhf, QStringLiteral("receiver_control.transmitter"), QStringLiteral("ON"));
+        QTRY_VERIFY(transmitterOn->isVisible() && !transmitterOn->rect().isEmpty());
+        QTest::mouseClick(transmitterOn, Qt::LeftButton);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("radio UHF7 receiver_control")});
+
+        before = m_command.message();
+        typeInto(child<ItemSpinBox>(engines.get(), QStringLiteral("eng_prop_pitch")), QStringLiteral("42"));
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 1 eng_prop_pitch")});
+
+        before = m_command.message();
+        auto* photo = child<QPushButton>(cameras.get(), QStringLiteral("take_one_photo"));
+        QTRY_VERIFY(photo->isVisible() && !photo->rect().isEmpty());
+        QTest::mouseClick(photo, Qt::LeftButton);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("camera SNY 4 take_one_photo")});
+
+        // And the reports of the new aircraft reach them.
+        SimulatedAircraft small(smallAirframe());
+        small.apply(m_command.message());
+        m_reported.onStatus(small.status(kT0));
+        QCOMPARE(child<ReportedLabel>(engines.get(), QStringLiteral("reported:eng_prop_pitch"))->text(),
+                 QStringLiteral("42"));
+        QCOMPARE(child<ReportedLabel>(uhf, QStringLiteral("reported:receiver_control.transmitter"))->text(),
+                 QStringLiteral("ON"));
+
+        // Back to the big one.
+        m_command.setAirframe(Airframe::wellEquipped());
+        QCOMPARE(engines->findChildren<UnitCard*>().size(), 3);
+        QCOMPARE(radios->findChildren<UnitCard*>().size(), 3);
+        QCOMPARE(cameras->findChildren<UnitCard*>().size(), 3);
+    }
+};
+
+}  // namespace
+
+QTEST_MAIN(TestPanels)
+#include "tst_panels.moc"
