@@ -8,6 +8,7 @@
 // commands received before it (a one-frame indication such as a photograph
 // taken cannot be cleared by a frame that did not carry it).
 #include "codec/Airframe.h"
+#include "link/AirframeFile.h"
 #include "codec/ItemTable.h"
 #include "link/FaultInjector.h"
 #include "link/FrameLog.h"
@@ -106,64 +107,6 @@ private:
     FaultInjector m_faults;
     QElapsedTimer m_clock;
 };
-
-// --airframe FILE: the Airframe struct as JSON.
-std::optional<Airframe> loadAirframe(const QString& path, QString* error)
-{
-    QFile file(path);
-    if (!file.open(QIODevice::ReadOnly)) {
-        *error = QStringLiteral("%1: %2").arg(path, file.errorString());
-        return std::nullopt;
-    }
-    QJsonParseError parseError;
-    const QJsonDocument doc = QJsonDocument::fromJson(file.readAll(), &parseError);
-    if (!doc.isObject()) {
-        *error = QStringLiteral("%1: not a JSON object: %2").arg(path, parseError.errorString());
-        return std::nullopt;
-    }
-    const QJsonObject root = doc.object();
-    const auto ascii = [](const QString& s, qsizetype min, qsizetype max) {
-        if (s.size() < min || s.size() > max)
-            return false;
-        for (QChar c : s)
-            if (c.unicode() < 0x20 || c.unicode() > 0x7E)
-                return false;
-        return true;
-    };
-    const auto fail = [&](const QString& what) {
-        *error = QStringLiteral("%1: %2").arg(path, what);
-        return std::nullopt;
-    };
-
-    Airframe a;
-    a.name = root.value(QStringLiteral("name")).toString(QStringLiteral("Airframe")).toStdString();
-    a.senseAndAvoid = root.value(QStringLiteral("senseAndAvoid")).toBool(true);
-    for (const QJsonValue& v : root.value(QStringLiteral("engines")).toArray()) {
-        const int id = v.toObject().value(QStringLiteral("id")).toInt(-1);
-        if (id < 0 || id > 255)
-            return fail(QStringLiteral("engine id must be 0..255"));
-        for (const EngineSpec& e : a.engines)
-            if (e.id == id)
-                return fail(QStringLiteral("engine %1 given twice").arg(id));
-        a.engines.push_back(
-            {static_cast<std::uint8_t>(id), v.toObject().value(QStringLiteral("name")).toString().toStdString()});
-    }
-    for (const QJsonValue& v : root.value(QStringLiteral("radios")).toArray()) {
-        const QString id = v.toObject().value(QStringLiteral("systemId")).toString();
-        if (!ascii(id, 1, 8) || id.endsWith(QLatin1Char(' ')))
-            return fail(QStringLiteral("radio systemId \"%1\" must be 1..8 ASCII characters").arg(id));
-        a.radios.push_back({id.toStdString(), v.toObject().value(QStringLiteral("name")).toString().toStdString()});
-    }
-    for (const QJsonValue& v : root.value(QStringLiteral("cameras")).toArray()) {
-        const QString maker = v.toObject().value(QStringLiteral("maker")).toString();
-        const int number = v.toObject().value(QStringLiteral("number")).toInt(-1);
-        if (!ascii(maker, 3, 3) || number < 0 || number > 255)
-            return fail(QStringLiteral("camera needs a 3-character maker and a number 0..255"));
-        a.cameras.push_back({maker.toStdString(), static_cast<std::uint8_t>(number),
-                             v.toObject().value(QStringLiteral("name")).toString().toStdString()});
-    }
-    return a;
-}
 
 // "OUT/OUT/RETRACTED/OUT": a Fields item's codes by name; "?" for a corrupt field.
 QString fieldsText(const Unit& unit, ItemId id)

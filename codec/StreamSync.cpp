@@ -409,7 +409,7 @@ void StreamSync::flush()
 {
     process(true);
     if (hasPending_)
-        emitPending();
+        reportPending();
     const std::uint64_t end = base_ + len_;
     accountSkippedUpTo(end);
     base_ = end;
@@ -482,7 +482,7 @@ void StreamSync::process(bool final)
         // Only a good frame whose preamble covers the failed start can show
         // that start was false; once scanning is past that, report it.
         if (hasPending_ && scan_ >= pendingC_ + kPreambleSize)
-            emitPending();
+            reportPending();
         if (q > end)
             return;
 
@@ -585,7 +585,7 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
     const std::uint64_t p = cands[0].c;
     if (p >= failEnd_) {
         if (hasPending_)
-            emitPending();
+            reportPending();
         hasPending_ = true;
         pendingC_ = p;
         pendingDistance_ = cands[0].distance;
@@ -600,11 +600,11 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
 {
     if (hasPending_) {
         if (c >= pendingC_ + kPreambleSize)
-            emitPending();
+            reportPending();
         else
             hasPending_ = false;  // a false start inside this frame's preamble
     }
-    emit(c, distance, blocks);
+    emitFrame(c, distance, blocks);
     if (blocks.corrected2 >= 0 || blocks.corrected1 < 0) {
         scan_ = c + kDatagramSize;
         expect_ = c + kFrameSize;
@@ -616,13 +616,13 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
     }
 }
 
-void StreamSync::emitPending()
+void StreamSync::reportPending()
 {
     hasPending_ = false;
-    emit(pendingC_, pendingDistance_, pendingBlocks_);
+    emitFrame(pendingC_, pendingDistance_, pendingBlocks_);
 }
 
-void StreamSync::emit(std::uint64_t c, int distance, const DecodedBlocks& blocks)
+void StreamSync::emitFrame(std::uint64_t c, int distance, const DecodedBlocks& blocks)
 {
     const std::uint64_t start = preambleStart(c);
     const std::uint64_t end = c + kDatagramSize;

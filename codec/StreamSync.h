@@ -113,8 +113,8 @@ private:
     bool tryExpected(std::uint64_t c);
     bool decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::uint64_t end);
     void confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks);
-    void emit(std::uint64_t c, int distance, const DecodedBlocks& blocks);
-    void emitPending();
+    void emitFrame(std::uint64_t c, int distance, const DecodedBlocks& blocks);
+    void reportPending();
     void accountSkippedUpTo(std::uint64_t offset);
     void compact();
     std::uint64_t keepFrom() const;

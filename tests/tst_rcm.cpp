@@ -1,0 +1,264 @@
+// The rcm command-line tool, run as a user runs it: bytes in, bytes and text
+// out, exit status and error messages.
+#include "codec/MessageDecoder.h"
+#include "codec/TextFormat.h"
+
+#include <QtTest>
+
+namespace {
+
+struct Run {
+    int exitCode = -1;
+    QByteArray out;
+    QByteArray err;
+};
+
+Run runRcm(const QStringList& args, const QByteArray& input = {})
+{
+    QProcess p;
+    p.start(QStringLiteral(RCM_BIN_DIR "/rcm"), args);
+    if (!p.waitForStarted())
+        qFatal("cannot start rcm");
+    p.write(input);
+    p.closeWriteChannel();
+    p.waitForFinished(60000);
+    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(),
+            p.readAllStandardError()};
+}
+
+QByteArray vector(const char* name)
+{
+    QFile f(QStringLiteral(RCM_VECTORS_DIR "/rcm/") + QLatin1String(name));
+    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+}
+
+std::span<const std::uint8_t> bytesOf(const QByteArray& a)
+{
+    return {reinterpret_cast<const std::uint8_t*>(a.constData()), static_cast<std::size_t>(a.size())};
+}
+
+}  // namespace
+
+class TestRcm : public QObject {
+    Q_OBJECT
+private slots:
+    void encodeGivesTheSeedsBytes();
+    void encodeKeepsGivenFieldsAndFillsOnlyTheHeaderClock();
+    void encodeDatagram();
+    void encodeReportsLineAndColumn();
+    void encodeRefusesWhatDoesNotFit();
+    void decodeVectorsToText();
+    void decodeStreamAmidGarbage();
+    void decodeReportsUncorrectable();
+    void decodeFindsNothing();
+    void decodeSummary();
+    void decodeDatagram();
+    void roundTripThroughTheTool();
+    void misuse_data();
+    void misuse();
+    void helpExplainsWithAnExample();
+    void dissectorMatchesTheShippedCopy();
+};
+
+void TestRcm::encodeGivesTheSeedsBytes()
+{
+    const Run r = runRcm({"encode"}, "ID_msg 133\nID_UA_source GB_133\ntime_UTC 16:35:23\ndate_UTC 071114\n"
+                                  "ID_BLK12_format 5 15\nSA_zoom_LHS_cam 35\n");
+    QCOMPARE(r.exitCode, 0);
+    QCOMPARE(r.err, QByteArray());
+    QCOMPARE(r.out.size(), 600);
+    QCOMPARE(r.out.left(90), QByteArray(88, '\x55') + QByteArray(2, '\x0F'));
+    // BLOCK 1 ends with the items in canonical order, after padding.
+    const QByteArray items = QByteArray::fromHex("0300008504002C008505027EC3060115CA07050FB023");
+    QCOMPARE(r.out.mid(90, 223).right(items.size()), items);
+    QCOMPARE(r.out.mid(90, 223 - items.size()), QByteArray(223 - items.size(), '\x55'));
+}
+
+void TestRcm::encodeKeepsGivenFieldsAndFillsOnlyTheHeaderClock()
+{
+    Run r = runRcm({"encode"}, "SA_zoom_FWD_cam 105\n");
+    QCOMPARE(r.exitCode, 0);
+    rcm::DecodeResult d = rcm::decodeFrame(bytesOf(r.out));
+    QVERIFY(d.ok());
+    QCOMPARE(d.message.header.number(rcm::ItemId::ID_msg, -1), 0);
+    QVERIFY(d.message.header.has(rcm::ItemId::time_UTC));
+    QVERIFY(d.message.header.has(rcm::ItemId::date_UTC));
+    const QDate today = QDateTime::currentDateTimeUtc().date();
+    const qint64 yymmdd = (today.year() % 100) * 10000 + today.month() * 100 + today.day();
+    // Midnight may pass between the tool's clock and ours.
+    QVERIFY(std::abs(d.message.header.number(rcm::ItemId::date_UTC) - yymmdd) <= 100);
+    QVERIFY(!d.message.header.has(rcm::ItemId::ID_UA_source));
+    QCOMPARE(d.message.header.items().size(), std::size_t{3});
+    QVERIFY(d.message.engines.empty() && d.message.radios.empty() && d.message.cameras.empty());
+    QCOMPARE(d.message.sense.items().size(), std::size_t{1});
+
+    r = runRcm({"encode"}, "ID_msg 7\ntime_UTC 01:02:03\ndate_UTC 991231\n");
+    d = rcm::decodeFrame(bytesOf(r.out));
+    QCOMPARE(d.message.header.number(rcm::ItemId::ID_msg), 7);
+    QCOMPARE(d.message.header.number(rcm::ItemId::time_UTC), 10203);
+    QCOMPARE(d.message.header.number(rcm::ItemId::date_UTC), 991231);
+}
+
+void TestRcm::encodeDatagram()
+{
+    const Run frame = runRcm({"encode"}, "ID_msg 1\ntime_UTC 00:00:00\ndate_UTC 261122\n");
+    const Run datagram = runRcm({"encode", "--datagram", "-"}, "ID_msg 1\ntime_UTC 00:00:00\ndate_UTC 261122\n");
+    QCOMPARE(datagram.exitCode, 0);
+    QCOMPARE(datagram.out.size(), 510);
+    QCOMPARE(datagram.out, frame.out.mid(90));
+}
+
+void TestRcm::encodeReportsLineAndColumn()
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath("bad.txt");
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write("ID_msg 133\nF_rudder_set 300\nlights wing_RHS=ON\nno_such_item 1\n");
+    f.close();
+    const Run r = runRcm({"encode", path});
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.out, QByteArray());
+    const QList<QByteArray> lines = r.err.trimmed().split('\n');
+    // Every error in the text, each at its line and column; three for the
+    // three fields missing from `lights`.
+    QCOMPARE(lines.size(), 5);
+    QCOMPARE(lines[0], (path + ":2:14: F_rudder_set: 300 is above the maximum 127 by 173").toUtf8());
+    QVERIFY2(lines[1].startsWith((path + ":3:20: lights: ").toUtf8()) && lines[1].contains("wing_LHS"), lines[1]);
+    QVERIFY2(lines[4].startsWith((path + ":4:1: no_such_item: ").toUtf8()), lines[4]);
+}
+
+void TestRcm::encodeRefusesWhatDoesNotFit()
+{
+    QByteArray text;
+    for (int i = 0; i < 10; ++i)
+        text += "system_ID R" + QByteArray::number(i) + "\nRx_freq 1\nTx_freq 1\nTx_OP_power 1\nreceiver_control "
+                "receiver=ON transmitter=ON\n";
+    const Run r = runRcm({"encode"}, text);
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.out, QByteArray());
+    QVERIFY2(r.err.contains("<stdin>: block 1: BLOCK 1: the items need 242 bytes, 19 more than the 223 a block holds"),
+             r.err);
+}
+
+void TestRcm::decodeVectorsToText()
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath("we.bin");
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(vector("well-equipped.errors.bin"));
+    f.close();
+    const Run r = runRcm({"decode", path});
+    QCOMPARE(r.exitCode, 0);
+    QCOMPARE(r.err, QByteArray());
+    QVERIFY(r.out.startsWith("# frame 1 at byte offset 0\n# block1 corrected 16\n# block2 corrected 16\nBEGIN HEADER\n"
+                             "ID_msg 4508515\n"));
+    QVERIFY(r.out.contains("\nF_aileron_RHS_set -19\n"));
+    QVERIFY(r.out.contains("\nsystem_ID VHF3\n"));
+    QVERIFY(r.out.contains("\ncam_elev -54.64\n"));
+}
+
+void TestRcm::decodeStreamAmidGarbage()
+{
+    const Run r = runRcm({"decode"}, vector("stream.bin"));
+    QCOMPARE(r.exitCode, 0);
+    QCOMPARE(r.out.count("# frame "), 3);
+    QCOMPARE(r.out.count("# block1 corrected 0\n"), 3);
+    QVERIFY(r.out.contains("flight_plan_ID 0xDEADBEEF\n"));
+}
+
+void TestRcm::decodeReportsUncorrectable()
+{
+    QByteArray bytes = vector("seed-example.bin") + vector("well-equipped.bin");
+    for (int i = 0; i < 20; ++i)  // 20 bad bytes in the second frame's BLOCK 2
+        bytes[600 + 345 + i * 12] = static_cast<char>(bytes[600 + 345 + i * 12] ^ 0x5A);
+    const Run r = runRcm({"decode"}, bytes);
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.out.count("# frame "), 1);
+    QVERIFY(r.out.startsWith("# frame 1 at byte offset 0\n"));
+    QCOMPARE(r.err,
+             QByteArray("rcm: frame 2 at byte offset 600: uncorrectable (block 1 good, block 2 beyond correction)\n"));
+}
+
+void TestRcm::decodeFindsNothing()
+{
+    const Run r = runRcm({"decode"}, QByteArray(5000, '\x55'));
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.out, QByteArray());
+    QCOMPARE(r.err, QByteArray("rcm: no frame found\n"));
+}
+
+void TestRcm::decodeSummary()
+{
+    const Run r = runRcm({"decode", "--summary"}, vector("stream.bin") + vector("well-equipped.errors.bin"));
+    QCOMPARE(r.exitCode, 0);
+    QCOMPARE(r.out, QByteArray("frames 4\ndecoded 4\nuncorrectable 0\ncorrected block1 16\ncorrected block2 16\n"
+                               "bytes read 3100\nbytes skipped 700\n"));
+}
+
+void TestRcm::decodeDatagram()
+{
+    const Run ok = runRcm({"decode", "--datagram"}, vector("flight-plan.bin").mid(90));
+    QCOMPARE(ok.exitCode, 0);
+    QVERIFY(ok.out.contains("flight_plan_section_ID 3\n"));
+    const Run wrong = runRcm({"decode", "--datagram"}, vector("flight-plan.bin"));
+    QCOMPARE(wrong.exitCode, 1);
+    QCOMPARE(wrong.err, QByteArray("rcm: a datagram is 510 bytes; read 600\n"));
+}
+
+void TestRcm::roundTripThroughTheTool()
+{
+    QFile sample(QStringLiteral(RCM_SOURCE_DIR "/resources/samples/well-equipped.txt"));
+    QVERIFY(sample.open(QIODevice::ReadOnly));
+    const Run encoded = runRcm({"encode"}, sample.readAll());
+    QCOMPARE(encoded.exitCode, 0);
+    const Run decoded = runRcm({"decode"}, encoded.out);
+    QCOMPARE(decoded.exitCode, 0);
+    // The decoder's text, with its comment lines, encodes back to the same frame.
+    const Run again = runRcm({"encode"}, decoded.out);
+    QCOMPARE(again.exitCode, 0);
+    QCOMPARE(again.out, encoded.out);
+}
+
+void TestRcm::misuse_data()
+{
+    QTest::addColumn<QStringList>("args");
+    QTest::addColumn<QByteArray>("message");
+    QTest::newRow("no command") << QStringList{} << QByteArray("rcm: no command given\n");
+    QTest::newRow("unknown command") << QStringList{"fly"} << QByteArray("rcm: unknown command fly\n");
+    QTest::newRow("unknown option") << QStringList{"decode", "--fast"} << QByteArray("rcm: unknown option --fast\n");
+    QTest::newRow("two files") << QStringList{"decode", "a", "b"} << QByteArray("rcm: too many arguments: b\n");
+    QTest::newRow("summary on encode") << QStringList{"encode", "--summary"}
+                                       << QByteArray("rcm: --summary applies to decode only\n");
+}
+
+void TestRcm::misuse()
+{
+    QFETCH(QStringList, args);
+    QFETCH(QByteArray, message);
+    const Run r = runRcm(args);
+    QCOMPARE(r.exitCode, 2);
+    QCOMPARE(r.err, message + "Try 'rcm --help'.\n");
+}
+
+void TestRcm::helpExplainsWithAnExample()
+{
+    const Run r = runRcm({"--help"});
+    QCOMPARE(r.exitCode, 0);
+    for (const char* needle : {"rcm encode [FILE] [--datagram]", "rcm decode [FILE] [--datagram] [--summary]",
+                               "# block1 corrected N", "Exit status", "Example:", "rcm encode cmd.txt > cmd.bin"})
+        QVERIFY2(r.out.contains(needle), needle);
+}
+
+void TestRcm::dissectorMatchesTheShippedCopy()
+{
+    QFile shipped(QStringLiteral(RCM_SOURCE_DIR "/resources/wireshark/rcm.lua"));
+    QVERIFY(shipped.open(QIODevice::ReadOnly));
+    const Run r = runRcm({"dissector"});
+    QCOMPARE(r.exitCode, 0);
+    QVERIFY2(r.out == shipped.readAll(), "regenerate: build/bin/rcm dissector > resources/wireshark/rcm.lua");
+}
+
+QTEST_GUILESS_MAIN(TestRcm)
+#include "tst_rcm.moc"
