@@ -64,6 +64,21 @@ int hexDigit(char c)
     return -1;
 }
 
+// Value bytes after each Item_ID, -1 for bytes that are not items (padding,
+// BEGIN, END, unused IDs). Built once from the item table, so the structure
+// walk of every received BLOCK 1 is a table lookup per item.
+const std::array<std::int8_t, 256>& itemSizes()
+{
+    static const std::array<std::int8_t, 256> sizes = [] {
+        std::array<std::int8_t, 256> a;
+        a.fill(-1);
+        for (const ItemInfo& item : itemTable())
+            a[static_cast<std::uint8_t>(item.id)] = static_cast<std::int8_t>(item.size);
+        return a;
+    }();
+    return sizes;
+}
+
 std::string directionSuffix(Direction d) { return d == Direction::GcsToUa ? "gcs-to-ua" : "ua-to-gcs"; }
 
 // The state files of ReplayGuard and MessageCounter: three lines,
@@ -346,36 +361,34 @@ bool checkBlock1Structure(const Block& plain, HeaderStamp& stamp, std::string& w
     while (i < kBlockSize && plain[i] == kPad55)
         ++i;
     // Then only items, back to back, as the encoder writes them: padding
-    // (55, AA), BEGIN and END are not items here, so findItem refuses them.
+    // (55, AA), BEGIN and END are not items here.
+    const std::array<std::int8_t, 256>& sizes = itemSizes();
     bool haveId = false, haveTime = false, haveDate = false;
     while (i < kBlockSize) {
-        const ItemInfo* info = findItem(plain[i]);
-        if (!info) {
+        const std::uint8_t id = plain[i];
+        const int size = sizes[id];
+        if (size < 0) {
             why = "BLOCK 1 has a byte that is not an Item_ID where an item belongs";
             return false;
         }
-        if (i + 1 + info->size > kBlockSize) {
+        if (i + 1 + static_cast<std::size_t>(size) > kBlockSize) {
             why = "BLOCK 1 has an item that runs past the end of the block";
             return false;
         }
-        const std::uint8_t* v = &plain[i + 1];
-        switch (info->id) {
-        case ItemId::ID_msg:
-            stamp.messageId = be24(v);
-            haveId = true;
-            break;
-        case ItemId::time_UTC:
-            stamp.timeUtc = be24(v);
-            haveTime = true;
-            break;
-        case ItemId::date_UTC:
-            stamp.dateUtc = be24(v);
-            haveDate = true;
-            break;
-        default:
-            break;
+        if (id <= static_cast<std::uint8_t>(ItemId::date_UTC)) {  // 03, 05, 06 among the first IDs
+            const std::uint8_t* v = &plain[i + 1];
+            if (id == static_cast<std::uint8_t>(ItemId::ID_msg)) {
+                stamp.messageId = be24(v);
+                haveId = true;
+            } else if (id == static_cast<std::uint8_t>(ItemId::time_UTC)) {
+                stamp.timeUtc = be24(v);
+                haveTime = true;
+            } else if (id == static_cast<std::uint8_t>(ItemId::date_UTC)) {
+                stamp.dateUtc = be24(v);
+                haveDate = true;
+            }
         }
-        i += 1 + info->size;
+        i += 1 + static_cast<std::size_t>(size);
     }
     if (!haveId || !haveTime || !haveDate) {
         why = "BLOCK 1 lacks ID_msg, time_UTC or date_UTC, which the secure link requires";
@@ -470,54 +483,62 @@ std::optional<EncodedBlocks> SecureCodec::encode(const Message& message, Diagnos
 
 Authenticated SecureCodec::decryptBlocks(const DecodedBlocks& in) const
 {
+    // Every return is `return a`, so the result is built in place.
     Authenticated a;
-    a.decoded.corrected1 = in.corrected1;
-    a.decoded.corrected2 = in.corrected2;
+    DecodeResult& r = a.decoded;
+    r.corrected1 = in.corrected1;
+    r.corrected2 = in.corrected2;
     if (in.corrected1 < 0) {
         // BLOCK 2's tweak comes from BLOCK 1, so nothing can be checked.
-        a.decoded.diagnostics.push_back({Diagnostic::Kind::Uncorrectable, 1, -1, "",
-                                         "more than 16 byte errors in the codeword; frame not read"});
+        r.diagnostics.push_back({Diagnostic::Kind::Uncorrectable, 1, -1, "",
+                                 "more than 16 byte errors in the codeword; frame not read"});
         a.detail = "BLOCK 1 beyond correction";
         return a;
     }
+    // Nothing read from a refused frame is passed on: not its items, and not
+    // the decoder's diagnostics, whose text would describe bytes of an
+    // attacker's deciphered block.
     auto refuse = [&](std::string why) {
+        r.message = Message{};
+        r.diagnostics.clear();
         a.rejection = looksLikePlaintext(in) ? Rejection::Plaintext : Rejection::Forged;
         a.detail = a.rejection == Rejection::Plaintext
                        ? "an unencrypted message on a keyed link"
                        : std::move(why) + " after deciphering (" + std::string(directionName(m_direction)) + ")";
-        return a;
     };
 
     Block p1;
     m_cipher->decrypt(block1Tweak(m_direction), in.block1, p1);
     HeaderStamp stamp;
     std::string why;
-    if (!checkBlock1Structure(p1, stamp, why))
-        return refuse(std::move(why));
-    Message message;
-    Diagnostics diagnostics;
-    decodeBlock1(p1, message, diagnostics);
+    if (!checkBlock1Structure(p1, stamp, why)) {
+        refuse(std::move(why));
+        return a;
+    }
     // Our encoder validates every value, so any diagnostic means the block
-    // was not written by a key holder. Its text would describe bytes of an
-    // attacker's deciphered block, so it is not passed on.
-    if (!diagnostics.empty())
-        return refuse("BLOCK 1 items do not decode cleanly");
-
+    // was not written by a key holder.
+    decodeBlock1(p1, r.message, r.diagnostics);
+    if (!r.diagnostics.empty()) {
+        refuse("BLOCK 1 items do not decode cleanly");
+        return a;
+    }
     if (in.corrected2 >= 0) {
         Block p2;
         m_cipher->decrypt(block2Tweak(m_direction, stamp), in.block2, p2);
-        if (!checkBlock2Structure(p2, why))
-            return refuse(std::move(why));
-        decodeBlock2(p2, message.flightPlan, diagnostics);
-        if (!diagnostics.empty())
-            return refuse("BLOCK 2 does not decode cleanly");
+        if (!checkBlock2Structure(p2, why)) {
+            refuse(std::move(why));
+            return a;
+        }
+        decodeBlock2(p2, r.message.flightPlan, r.diagnostics);
+        if (!r.diagnostics.empty()) {
+            refuse("BLOCK 2 does not decode cleanly");
+            return a;
+        }
     } else {
-        diagnostics.push_back({Diagnostic::Kind::Uncorrectable, 2, -1, "",
-                               "more than 16 byte errors in the codeword; block not read"});
+        r.diagnostics.push_back({Diagnostic::Kind::Uncorrectable, 2, -1, "",
+                                 "more than 16 byte errors in the codeword; block not read"});
     }
     a.authentic = true;
-    a.decoded.message = std::move(message);
-    a.decoded.diagnostics = std::move(diagnostics);
     a.stamp = stamp;
     return a;
 }
