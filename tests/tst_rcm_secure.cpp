@@ -1,0 +1,274 @@
+// rcm with --key, run as a user runs it: keygen, encode and decode on the
+// secure link, rejections on standard error, the replay state, misuse.
+#include "codec/SecureCodec.h"
+
+#include <QtTest>
+
+#include <sys/stat.h>
+
+namespace {
+
+struct Run {
+    int exitCode = -1;
+    QByteArray out;
+    QByteArray err;
+};
+
+Run runRcm(const QStringList& args, const QByteArray& input = {})
+{
+    QProcess p;
+    p.start(QStringLiteral(RCM_BIN_DIR "/rcm"), args);
+    if (!p.waitForStarted())
+        qFatal("cannot start rcm");
+    p.write(input);
+    p.closeWriteChannel();
+    p.waitForFinished(60000);
+    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(),
+            p.readAllStandardError()};
+}
+
+// The key file's hex digits, to check that no output ever contains them.
+QByteArray keyText(const QString& path)
+{
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? f.readAll().trimmed() : QByteArray();
+}
+
+// The UTC clock as the text format writes it, so frames fall in the window.
+QByteArray nowHeader(int id, int offsetSeconds = 0)
+{
+    const QDateTime t = QDateTime::currentDateTimeUtc().addSecs(offsetSeconds);
+    return "ID_msg " + QByteArray::number(id) + "\ntime_UTC " + t.toString("HH:mm:ss").toLatin1() + "\ndate_UTC " +
+           t.toString("yyMMdd").toLatin1() + "\n";
+}
+
+const QByteArray kCommand = "ID_UA_source GB_133\nSA_zoom_FWD_cam 105\n";
+
+}  // namespace
+
+class TestRcmSecure : public QObject {
+    Q_OBJECT
+
+private slots:
+    void init();
+    void keygen();
+    void encodeDecodeRoundTrip();
+    void wrongKeyIsForged();
+    void plaintextFrameIsRefused();
+    void keyFileReadableByOthers();
+    void replayStateRefusesReplayAndStaleTime();
+    void encodeRefusesWhatTheSecureLinkCannotCarry();
+    void misuse_data();
+    void misuse();
+    void helpExplainsKey();
+
+private:
+    QTemporaryDir m_dir;
+    QString path(const char* name) const { return m_dir.filePath(QLatin1String(name)); }
+    QString m_key;
+};
+
+void TestRcmSecure::init()
+{
+    QVERIFY(m_dir.isValid());
+    m_key = path("aircraft.key");
+    if (!QFile::exists(m_key)) {
+        const Run r = runRcm({"keygen", m_key});
+        QCOMPARE(r.exitCode, 0);
+    }
+}
+
+void TestRcmSecure::keygen()
+{
+    const QString k = path("new.key");
+    const Run r = runRcm({"keygen", k});
+    QCOMPARE(r.exitCode, 0);
+    QVERIFY(r.out.startsWith("fingerprint "));
+    QCOMPARE(r.out.trimmed().size(), 12 + 16);
+    struct stat st {};
+    QCOMPARE(::stat(k.toLocal8Bit().constData(), &st), 0);
+    QCOMPARE(st.st_mode & 0777, mode_t(0600));
+    QCOMPARE(keyText(k).size(), 64);
+    QVERIFY(!r.out.contains(keyText(k)));
+
+    // The fingerprint is the one the codec computes for the key.
+    std::string error;
+    const auto key = rcm::secure::readKeyFile(k.toStdString(), error);
+    QVERIFY2(key, error.c_str());
+    QCOMPARE(r.out.trimmed().mid(12).toStdString(), rcm::secure::fingerprint(*key));
+
+    const Run again = runRcm({"keygen", k});
+    QCOMPARE(again.exitCode, 1);
+    QVERIFY(again.err.contains("exists already"));
+}
+
+void TestRcmSecure::encodeDecodeRoundTrip()
+{
+    const QByteArray text = nowHeader(7) + kCommand;
+    for (const char* dir : {"gcs-to-ua", "ua-to-gcs"}) {
+        const Run e = runRcm({"encode", "--key", m_key, "--direction", dir}, text);
+        QCOMPARE(e.exitCode, 0);
+        QCOMPARE(e.out.size(), 600);
+        QVERIFY(!e.out.mid(90, 223).contains(QByteArray(16, '\x55')));  // enciphered
+
+        // Both directions are tried without --direction; the frame names its own.
+        const Run d = runRcm({"decode", "--key", m_key}, e.out);
+        QCOMPARE(d.exitCode, 0);
+        QCOMPARE(d.err, QByteArray());
+        const QByteArray line = QByteArray("# secure ") + (dir[0] == 'g' ? "GCS->UA" : "UA->GCS") + ", authenticated";
+        QVERIFY2(d.out.contains(line), d.out.constData());
+        QVERIFY(d.out.contains("SA_zoom_FWD_cam 105"));
+        QVERIFY(d.out.contains("ID_msg 7"));
+
+        // The other direction only: forged.
+        const Run w = runRcm({"decode", "--key", m_key, "--direction", dir[0] == 'g' ? "ua-to-gcs" : "gcs-to-ua"},
+                             e.out);
+        QCOMPARE(w.exitCode, 1);
+        QVERIFY(w.err.contains("rejected as forged"));
+        QVERIFY(!w.out.contains("SA_zoom_FWD_cam"));
+
+        // Datagrams too.
+        const Run ed = runRcm({"encode", "--key", m_key, "--direction", dir, "--datagram"}, text);
+        QCOMPARE(ed.out.size(), 510);
+        QCOMPARE(ed.out, e.out.mid(90));
+        const Run dd = runRcm({"decode", "--key", m_key, "--datagram", "--summary"}, ed.out);
+        QCOMPARE(dd.exitCode, 0);
+        QVERIFY(dd.out.contains("decoded 1\n"));
+        QVERIFY(dd.out.contains("rejected forged 0\n"));
+    }
+}
+
+void TestRcmSecure::wrongKeyIsForged()
+{
+    const QString other = path("other.key");
+    QCOMPARE(runRcm({"keygen", other}).exitCode, 0);
+    const Run e = runRcm({"encode", "--key", m_key}, nowHeader(1) + kCommand);
+    QByteArray stream;
+    for (int i = 0; i < 3; ++i)
+        stream += e.out;
+    const Run d = runRcm({"decode", "--key", other, "--summary"}, stream);
+    QCOMPARE(d.exitCode, 1);
+    QVERIFY(d.out.contains("frames 3\n"));
+    QVERIFY(d.out.contains("decoded 0\n"));
+    QVERIFY(d.out.contains("rejected forged 3\n"));
+    QCOMPARE(d.err.count("rejected as forged: sent neither GCS->UA nor UA->GCS with this key"), 3);
+    QVERIFY(!d.err.contains(keyText(m_key)) && !d.err.contains(keyText(other)));
+}
+
+// No downgrade: a keyed decoder refuses an unencrypted frame, and says so.
+void TestRcmSecure::plaintextFrameIsRefused()
+{
+    const Run e = runRcm({"encode"}, nowHeader(1) + kCommand);
+    QCOMPARE(e.exitCode, 0);
+    const Run d = runRcm({"decode", "--key", m_key}, e.out);
+    QCOMPARE(d.exitCode, 1);
+    QVERIFY(d.err.contains("frame 1 at byte offset 0: rejected as plaintext: an unencrypted message on a keyed link"));
+    QCOMPARE(d.out, QByteArray());
+}
+
+void TestRcmSecure::keyFileReadableByOthers()
+{
+    const QString k = path("shared.key");
+    QCOMPARE(runRcm({"keygen", k}).exitCode, 0);
+    QVERIFY(::chmod(k.toLocal8Bit().constData(), 0644) == 0);
+    for (const QStringList& args : {QStringList{"encode", "--key", k}, QStringList{"decode", "--key", k}}) {
+        const Run r = runRcm(args, nowHeader(1) + kCommand);
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("has mode 0644"), r.err.constData());
+        QVERIFY(r.err.contains(("chmod 600 " + k).toLocal8Bit()));
+        QVERIFY(!r.err.contains(keyText(k)));
+        QCOMPARE(r.out, QByteArray());
+    }
+}
+
+void TestRcmSecure::replayStateRefusesReplayAndStaleTime()
+{
+    const QString state = path("aircraft.key.replay-gcs-to-ua");
+    const QStringList decode{"decode", "--key", m_key, "--direction", "gcs-to-ua", "--replay-state", state};
+    const Run e10 = runRcm({"encode", "--key", m_key}, nowHeader(10) + kCommand);
+    const Run e11 = runRcm({"encode", "--key", m_key}, nowHeader(11) + kCommand);
+
+    Run d = runRcm(decode, e10.out);
+    QCOMPARE(d.exitCode, 0);
+    QVERIFY(d.out.contains("ID_msg 10"));
+    QFile f(state);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QVERIFY(f.readAll().contains("last_accepted_id 10\n"));
+
+    // The same frame again, in a later run: the state remembered it.
+    d = runRcm(decode, e10.out);
+    QCOMPARE(d.exitCode, 1);
+    QVERIFY(d.err.contains("rejected as replayed: ID_msg 10 is not ahead of the last accepted 10"));
+    QCOMPARE(d.out, QByteArray());
+
+    // Replay and the next fresh one in one stream.
+    d = runRcm(QStringList(decode) << "--summary", e10.out + e11.out);
+    QCOMPARE(d.exitCode, 1);
+    QVERIFY(d.out.contains("decoded 1\n"));
+    QVERIFY(d.out.contains("rejected replayed 1\n"));
+
+    // Ten minutes old: stale time, with the default window and with --window.
+    const Run old = runRcm({"encode", "--key", m_key}, nowHeader(12, -600) + kCommand);
+    d = runRcm(decode, old.out);
+    QCOMPARE(d.exitCode, 1);
+    QVERIFY2(d.err.contains("rejected as stale time"), d.err.constData());
+    QVERIFY(d.err.contains("behind the receiver's clock; the window is 30 s"));
+    d = runRcm(QStringList(decode) << "--window" << "3600", old.out);
+    QCOMPARE(d.exitCode, 0);
+}
+
+void TestRcmSecure::encodeRefusesWhatTheSecureLinkCannotCarry()
+{
+    // 200 flight plan bytes fit a plain section (215) but not a secure one (199).
+    const QByteArray plan = "BEGIN FLIGHT_PLAN\nflight_plan_ID 1\nflight_plan_section_ID 0\nflight_plan_data " +
+                            QByteArray(200, '\x11').toHex() + "\nEND\n";
+    QCOMPARE(runRcm({"encode"}, nowHeader(1) + plan).exitCode, 0);
+    const Run r = runRcm({"encode", "--key", m_key}, nowHeader(1) + plan);
+    QCOMPARE(r.exitCode, 1);
+    QVERIFY2(r.err.contains("200 data bytes, 1 more than the 199 a section carries"), r.err.constData());
+    QCOMPARE(r.out, QByteArray());
+}
+
+void TestRcmSecure::misuse_data()
+{
+    QTest::addColumn<QStringList>("args");
+    QTest::addColumn<QByteArray>("message");
+    QTest::newRow("key without value") << QStringList{"decode", "--key"} << QByteArray("--key needs a value");
+    QTest::newRow("direction without key") << QStringList{"decode", "--direction", "gcs-to-ua"}
+                                           << QByteArray("need --key");
+    QTest::newRow("bad direction") << QStringList{"decode", "--key", "k", "--direction", "up"}
+                                   << QByteArray("--direction is gcs-to-ua or ua-to-gcs");
+    QTest::newRow("replay without direction") << QStringList{"decode", "--key", "k", "--replay-state", "s"}
+                                              << QByteArray("--replay-state needs --direction");
+    QTest::newRow("window without replay") << QStringList{"decode", "--key", "k", "--window", "5"}
+                                           << QByteArray("--window applies with --replay-state only");
+    QTest::newRow("bad window") << QStringList{"decode", "--key", "k", "--window", "5s"}
+                                << QByteArray("--window takes a number of seconds");
+    QTest::newRow("replay on encode") << QStringList{"encode", "--key", "k", "--direction", "gcs-to-ua",
+                                                     "--replay-state", "s"}
+                                      << QByteArray("--replay-state applies to decode only");
+    QTest::newRow("key on dissector") << QStringList{"dissector", "--key", "k"}
+                                      << QByteArray("--key applies to encode and decode");
+    QTest::newRow("keygen without file") << QStringList{"keygen"} << QByteArray("keygen takes one argument");
+}
+
+void TestRcmSecure::misuse()
+{
+    QFETCH(QStringList, args);
+    QFETCH(QByteArray, message);
+    const Run r = runRcm(args);
+    QCOMPARE(r.exitCode, 2);
+    QVERIFY2(r.err.contains(message), r.err.constData());
+}
+
+void TestRcmSecure::helpExplainsKey()
+{
+    const Run r = runRcm({"--help"});
+    QCOMPARE(r.exitCode, 0);
+    for (const char* s : {"--key KEYFILE", "--direction", "--replay-state STATE", "--window SECONDS", "rcm keygen",
+                          "chmod 600", "forged", "plaintext", "replayed", "stale time"})
+        QVERIFY2(r.out.contains(s), s);
+}
+
+QTEST_APPLESS_MAIN(TestRcmSecure)
+#include "tst_rcm_secure.moc"
