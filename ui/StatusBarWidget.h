@@ -1,0 +1,57 @@
+#pragma once
+
+// The link at a glance, for the main window's status bar: its state, frames
+// sent and received, bytes Reed-Solomon corrected, frames beyond correction,
+// how long ago the last good frame came, and the link-lost alarm. The alarm
+// is a red, blinking "LINK LOST" that stays until a good frame arrives again
+// or the operator disconnects, and a signal, alarm(bool), for whatever else
+// should sound it (a tone, a light).
+
+#include "link/LinkStatistics.h"
+
+#include <QTimer>
+#include <QWidget>
+
+class QLabel;
+
+class StatusBarWidget : public QWidget {
+    Q_OBJECT
+
+public:
+    explicit StatusBarWidget(QWidget* parent = nullptr);
+
+    bool alarmActive() const { return m_alarm; }
+    const LinkStatistics& statistics() const { return m_statistics; }
+    // The texts shown, for tests and screenshots.
+    QString stateText() const;
+    QString ageText() const;
+
+public slots:
+    void setStatistics(const LinkStatistics& statistics);
+    void setState(LinkState state);
+    // What the link is, "UDP 127.0.0.1:5600"; empty when there is none.
+    void setLinkDescription(const QString& description);
+
+signals:
+    // True when the link is lost, false when it is back or was closed.
+    void alarm(bool on);
+
+private:
+    void updateAge();
+    void setAlarm(bool on);
+    void blink();
+
+    LinkStatistics m_statistics;
+    QString m_description;
+    bool m_alarm = false;
+    bool m_blink = false;
+    QTimer m_ageTimer;
+    QTimer m_blinkTimer;
+    QLabel* m_state;
+    QLabel* m_sent;
+    QLabel* m_received;
+    QLabel* m_corrected;
+    QLabel* m_uncorrectable;
+    QLabel* m_age;
+    QLabel* m_lost;
+};
