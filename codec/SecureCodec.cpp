@@ -697,6 +697,48 @@ std::uint32_t MessageCounter::next(std::string* error)
     return id;
 }
 
+// ---------------------------------------------------------------- one end
+
+std::unique_ptr<SecureEndpoint> SecureEndpoint::open(const std::string& keyPath, Direction sends, std::string& error,
+                                                     const Options& options)
+{
+    const std::optional<SecretKey> psk = readKeyFile(keyPath, error);
+    if (!psk)
+        return nullptr;
+    return fromKey(*psk, sends, options.persistState ? keyPath : std::string(), error, options);
+}
+
+std::unique_ptr<SecureEndpoint> SecureEndpoint::fromKey(const SecretKey& psk, Direction sends,
+                                                        const std::string& keyPath, std::string& error,
+                                                        const Options& options)
+{
+    auto e = std::make_unique<SecureEndpoint>();
+    try {
+        e->sends = sends;
+        e->fingerprint = secure::fingerprint(psk);
+        e->sender = std::make_unique<SecureCodec>(psk, sends);
+        e->receiver = std::make_unique<SecureCodec>(psk, opposite(sends));
+        ReplayGuard::Options g;
+        g.windowSeconds = options.windowSeconds;
+        g.keyFingerprint = e->fingerprint;
+        g.clock = options.clock;
+        MessageCounter::Options c;
+        c.keyFingerprint = e->fingerprint;
+        c.clock = options.clock;
+        if (!keyPath.empty()) {
+            g.stateFile = replayStatePath(keyPath, opposite(sends));
+            c.stateFile = counterStatePath(keyPath, sends);
+        }
+        e->guard = std::make_unique<ReplayGuard>(g);
+        e->counter = std::make_unique<MessageCounter>(c);
+        e->notice = e->guard->notice();
+    } catch (const std::exception& x) {
+        error = x.what();
+        return nullptr;
+    }
+    return e;
+}
+
 bool writeFileAtomically(const std::string& path, std::string_view content, std::string& error)
 {
     const std::size_t slash = path.rfind('/');

@@ -346,6 +346,41 @@ private:
     std::uint32_t m_reservedUntil = 0;  // IDs before this (mod 2^24) may be handed out
 };
 
+// ---------------------------------------------------------------- one end
+
+// One end of a keyed link, built from the aircraft's key file: the codec for
+// the direction it sends in, the codec and replay guard for the direction it
+// receives, and its send counter, with their state files beside the key file
+// (replayStatePath, counterStatePath). What a LinkWorker needs. The key
+// itself is not kept: only the derived keys, inside the codecs.
+struct SecureEndpoint {
+    struct Options {
+        std::int64_t windowSeconds = kDefaultWindowSeconds;
+        bool persistState = true;  // false: replay state and counter in memory only (tests)
+        UtcClock clock;            // empty: systemUtcSeconds
+    };
+
+    // Nothing, with the reason in `error` (never key bytes), when the key file
+    // is refused or a state file cannot be read or written.
+    static std::unique_ptr<SecureEndpoint> open(const std::string& keyPath, Direction sends, std::string& error,
+                                                const Options& options);
+    static std::unique_ptr<SecureEndpoint> open(const std::string& keyPath, Direction sends, std::string& error)
+    {
+        return open(keyPath, sends, error, Options{});
+    }
+    // The same from a key in memory; state files only when `keyPath` is not empty.
+    static std::unique_ptr<SecureEndpoint> fromKey(const SecretKey& psk, Direction sends, const std::string& keyPath,
+                                                   std::string& error, const Options& options);
+
+    Direction sends = Direction::GcsToUa;
+    std::string fingerprint;  // of the key, for logs and the status bar
+    std::string notice;       // e.g. a state file from another key was set aside
+    std::unique_ptr<SecureCodec> sender;
+    std::unique_ptr<SecureCodec> receiver;
+    std::unique_ptr<ReplayGuard> guard;
+    std::unique_ptr<MessageCounter> counter;
+};
+
 // Writes `content` to `path` atomically: temporary file in the same
 // directory (mode 0600), fsync, rename over `path`, fsync of the directory.
 bool writeFileAtomically(const std::string& path, std::string_view content, std::string& error);
