@@ -10,6 +10,7 @@
 #include "codec/Airframe.h"
 #include "link/AirframeFile.h"
 #include "codec/ItemTable.h"
+#include "codec/SecureCodec.h"
 #include "link/FaultInjector.h"
 #include "link/FrameLog.h"
 #include "link/LinkWorker.h"
@@ -24,6 +25,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QSet>
 #include <QSocketNotifier>
 #include <QTimer>
 
@@ -252,7 +254,15 @@ int main(int argc, char* argv[])
                                   QStringLiteral("n"), QStringLiteral("1"));
     const QCommandLineOption verbose(QStringLiteral("verbose"),
                                      QStringLiteral("Print one line per command received to stderr."));
-    parser.addOptions({udp, serial, baud, log, airframe, uaId, ber, burst, drop, delay, outage, silent, seed, verbose});
+    const QCommandLineOption key(
+        QStringLiteral("key"),
+        QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex digits, mode 0600. "
+                       "Status frames are enciphered; a command that does not authenticate, repeats an earlier "
+                       "ID_msg or is more than 30 s from this clock is rejected and counted. The replay state and "
+                       "the send counter are kept beside the key file."),
+        QStringLiteral("file"));
+    parser.addOptions(
+        {udp, serial, baud, log, airframe, uaId, ber, burst, drop, delay, outage, silent, seed, verbose, key});
     parser.process(app);
 
     const auto usage = [&](const QString& message) {
@@ -360,9 +370,21 @@ int main(int argc, char* argv[])
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);
 
+    LinkWorker::Options workerOptions;
+    if (parser.isSet(key)) {
+        std::string error;
+        std::unique_ptr<secure::SecureEndpoint> endpoint =
+            secure::SecureEndpoint::open(parser.value(key).toStdString(), secure::Direction::UaToGcs, error);
+        if (!endpoint) {
+            say(QString::fromStdString(error));
+            return kRunError;
+        }
+        workerOptions.secure = std::move(endpoint);
+    }
+
     const bool isVerbose = parser.isSet(verbose);
     SimulatedAircraft aircraft(frame, identity);
-    LinkWorker worker(std::move(link), std::move(frameLog));
+    LinkWorker worker(std::move(link), std::move(frameLog), workerOptions);
     QElapsedTimer simulationClock;
     simulationClock.start();
 
@@ -379,6 +401,15 @@ int main(int argc, char* argv[])
         offerStatus();
     });
     QObject::connect(&worker, &LinkWorker::errorOccurred, &worker, [](const QString& message) { say(message); });
+    // Every rejection with --verbose; otherwise the first of each kind, then
+    // only the counts when uasim stops: a forger must not flood the terminal.
+    QSet<QString> rejectionKinds;
+    QObject::connect(&worker, &LinkWorker::frameRejected, &worker, [&](const QString& reason) {
+        const QString kind = reason.section(QLatin1Char(':'), 0, 0);
+        if (isVerbose || !rejectionKinds.contains(kind))
+            say(QStringLiteral("command rejected: ") + reason);
+        rejectionKinds.insert(kind);
+    });
     QObject::connect(&worker, &LinkWorker::commandRejected, &worker, [](const QString& reasons) {
         say(QStringLiteral("status frame refused by the encoder: ") + reasons);
     });
@@ -386,6 +417,12 @@ int main(int argc, char* argv[])
         char c;
         [[maybe_unused]] const ssize_t n = ::read(g_signalPipe[1], &c, 1);
         worker.stop();
+        if (const LinkStatistics& s = worker.statistics(); s.secure)
+            say(QStringLiteral("rejected commands: %1 forged, %2 replayed, %3 stale time, %4 plaintext")
+                    .arg(s.rejectedForged)
+                    .arg(s.rejectedReplayed)
+                    .arg(s.rejectedStaleTime)
+                    .arg(s.rejectedPlaintext));
         if (isVerbose && faultyLink) {
             const FaultInjector::Counters& n = faultyLink->faults().counters();
             say(QStringLiteral("faults: %1 frames offered, %2 sent (%3 damaged, %4 bits flipped, %5 bursts), "
@@ -410,6 +447,9 @@ int main(int argc, char* argv[])
         return kRunError;  // the worker said why
     if (isVerbose)
         say(QStringLiteral("%1 on %2").arg(QString::fromStdString(frame.name), worker.link()->description()));
+    if (workerOptions.secure)
+        say(QStringLiteral("secure link: encrypted and authenticated, key fingerprint %1")
+                .arg(QString::fromStdString(workerOptions.secure->fingerprint)));
     return app.exec();
 }
 

@@ -28,6 +28,14 @@ struct LinkStatistics {
     quint64 uncorrectableFrames = 0;    // full-size frames a codeword of which was beyond correction
     quint64 wrongSizeDatagrams = 0;     // datagrams that are not 510 bytes
     quint64 bytesSkipped = 0;           // stream bytes the synchroniser found no frame in
+    // Secure link: frames are enciphered and authenticated ("encrypted and
+    // authenticated" in the status bar); frames that decoded but were
+    // refused, by reason (codec/SecureCodec.h, secure::Rejection).
+    bool secure = false;
+    quint64 rejectedForged = 0;     // did not authenticate: not sent with this key and direction
+    quint64 rejectedReplayed = 0;   // authentic, but its ID_msg was not ahead of the last accepted
+    quint64 rejectedStaleTime = 0;  // authentic and new, but its time was outside the window
+    quint64 rejectedPlaintext = 0;  // an unencrypted frame on a keyed link
     qint64 lastGoodFrameUtcMicros = 0;  // 0: none yet
 
     // Delay from each ideal tick to the frame handed to the transport; the

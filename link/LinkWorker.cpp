@@ -5,6 +5,7 @@
 
 #include "codec/MessageDecoder.h"
 #include "codec/MessageEncoder.h"
+#include "codec/SecureCodec.h"
 
 #include <QStringList>
 
@@ -79,6 +80,7 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
     Q_ASSERT(m_link);
     // A child, so that moveToThread() takes the link and its sockets along.
     m_link->setParent(this);
+    m_statistics.secure = m_options.secure != nullptr;
 
     m_tickTimer.setTimerType(Qt::PreciseTimer);
     m_tickTimer.setSingleShot(true);
@@ -133,6 +135,8 @@ void LinkWorker::start()
     m_silenceTimer.start();
     m_statisticsTimer.start();
     armTick();
+    if (m_options.secure && !m_options.secure->notice.empty())
+        reportError(QString::fromStdString(m_options.secure->notice));
     emit started();
     emit statisticsChanged(m_statistics);
     m_statisticsDirty = false;
@@ -162,7 +166,8 @@ void LinkWorker::setCommand(const rcm::Message& command)
     rcm::Message probe = command;
     probe.header.set(rcm::ItemId::ID_msg, std::int64_t(0));
     setTimeItems(probe, 0);
-    const rcm::Diagnostics errors = rcm::validate(probe);
+    const rcm::Diagnostics errors =
+        rcm::validate(probe, m_options.secure ? rcm::secure::encodeOptions() : rcm::EncodeOptions{});
     if (!errors.empty()) {
         emit commandRejected(joinDiagnostics(errors));
         return;
@@ -211,7 +216,17 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
         if (std::optional<rcm::FlightPlanSection> section = m_options.block2Source())
             message.flightPlan = std::move(*section);
     }
-    const std::uint32_t id = m_nextMessageId;
+    std::uint32_t id = m_nextMessageId;
+    if (m_options.secure) {
+        // Never reused under the key, across restarts too: the aircraft
+        // would reject a reused ID as replayed.
+        std::string error;
+        id = m_options.secure->counter->next(&error);
+        if (!error.empty() && QString::fromStdString(error) != m_lastEncodeError) {
+            m_lastEncodeError = QString::fromStdString(error);
+            reportError(m_lastEncodeError);
+        }
+    }
     message.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
     setTimeItems(message, utcMicrosNow());
     const std::optional<QByteArray> bytes = encode(message);
@@ -231,6 +246,14 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
 std::optional<QByteArray> LinkWorker::encode(rcm::Message& message)
 {
     const auto attempt = [this](const rcm::Message& m, rcm::Diagnostics& errors) -> std::optional<QByteArray> {
+        if (m_options.secure) {
+            const std::optional<rcm::EncodedBlocks> b = m_options.secure->sender->encode(m, errors);
+            if (!b)
+                return std::nullopt;
+            if (m_link->isStream())
+                return toByteArray(rcm::makeFrame(b->block1, b->block2));
+            return toByteArray(rcm::makeDatagram(b->block1, b->block2));
+        }
         if (m_link->isStream()) {
             if (auto frame = rcm::encodeFrame(m, errors))
                 return toByteArray(*frame);
@@ -294,7 +317,23 @@ void LinkWorker::receiveDatagram(const QByteArray& datagram)
 
 void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks)
 {
-    rcm::DecodeResult result = rcm::decodeBlocks(blocks);
+    rcm::DecodeResult result;
+    if (m_options.secure) {
+        rcm::secure::Opened opened =
+            rcm::secure::openFrame(*m_options.secure->receiver, m_options.secure->guard.get(), blocks);
+        if (!opened.persistError.empty() && QString::fromStdString(opened.persistError) != m_lastPersistError) {
+            m_lastPersistError = QString::fromStdString(opened.persistError);
+            reportError(m_lastPersistError);
+        }
+        if (!opened.accepted) {
+            // Not a good frame: it neither counts as received nor keeps the link connected.
+            receiveRejected(raw, blocks, opened.rejection.value_or(rcm::secure::Rejection::Forged), opened.detail);
+            return;
+        }
+        result = std::move(opened.decoded);
+    } else {
+        result = rcm::decodeBlocks(blocks);
+    }
     const bool clean = blocks.corrected1 == 0 && blocks.corrected2 == 0;
     log(FrameDirection::Received, toByteArray(raw), clean ? FrameStatus::Decoded : FrameStatus::Corrected,
         {blocks.corrected1, blocks.corrected2});
@@ -326,6 +365,32 @@ void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::Deco
     received.utcMicros = now;
     received.transport = m_link->transport();
     emit messageReceived(received);
+}
+
+void LinkWorker::receiveRejected(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks,
+                                  rcm::secure::Rejection rejection, const std::string& detail)
+{
+    using rcm::secure::Rejection;
+    switch (rejection) {
+    case Rejection::Forged:
+        ++m_statistics.rejectedForged;
+        break;
+    case Rejection::Replayed:
+        ++m_statistics.rejectedReplayed;
+        break;
+    case Rejection::StaleTime:
+        ++m_statistics.rejectedStaleTime;
+        break;
+    case Rejection::Plaintext:
+        ++m_statistics.rejectedPlaintext;
+        break;
+    }
+    // The bytes as they arrived: the ciphertext, which `rcm decode --key` reads again.
+    log(FrameDirection::Received, toByteArray(raw), FrameStatus::Rejected, {blocks.corrected1, blocks.corrected2});
+    statisticsDirty();
+    const std::string_view name = rcm::secure::rejectionName(rejection);
+    emit frameRejected(QString::fromLatin1(name.data(), qsizetype(name.size())) + QStringLiteral(": ") +
+                       QString::fromStdString(detail));
 }
 
 void LinkWorker::receiveUncorrectable(std::span<const std::uint8_t> raw, int corrected1, int corrected2)

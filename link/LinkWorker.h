@@ -29,6 +29,10 @@
 namespace rcm {
 class StreamSync;
 struct DecodedBlocks;
+namespace secure {
+struct SecureEndpoint;
+enum class Rejection : std::uint8_t;
+}  // namespace secure
 }  // namespace rcm
 
 Q_DECLARE_METATYPE(rcm::Message)
@@ -57,6 +61,14 @@ public:
         std::uint32_t firstMessageId = 0;
         Block2Source block2Source;
         Block2Reply block2Reply;
+        // The secure link (codec/SecureCodec.h, docs/security.md): null for
+        // the plain link. With it every frame sent is enciphered, its ID_msg
+        // taken from the endpoint's send counter (firstMessageId is then
+        // unused); every frame received must authenticate, be new and be
+        // within the time window, or it is rejected: counted by reason in
+        // the statistics, logged as Rejected with its bytes as received, and
+        // reported by frameRejected(). Used by the link thread only.
+        std::shared_ptr<rcm::secure::SecureEndpoint> secure;
     };
 
     static constexpr std::uint32_t kMessageIdModulus = 1u << 24;
@@ -99,6 +111,8 @@ signals:
     // Transport and frame log failures, once each; see Link::errorOccurred.
     void errorOccurred(const QString& message);
     void commandRejected(const QString& reasons);
+    // Secure link: a frame that decoded was refused; "forged: ..." and so on.
+    void frameRejected(const QString& reason);
 
 private:
     void armTick();
@@ -109,6 +123,8 @@ private:
     void receiveDatagram(const QByteArray& datagram);
     void receiveFrame(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks);
     void receiveUncorrectable(std::span<const std::uint8_t> raw, int corrected1, int corrected2);
+    void receiveRejected(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks,
+                         rcm::secure::Rejection rejection, const std::string& detail);
     void transportClosed();
     void silenceElapsed();
     void setState(LinkState state);
@@ -132,4 +148,5 @@ private:
     std::uint32_t m_nextMessageId;
     std::int64_t m_idealTickMicros = 0;  // UTC of the tick the timer is armed for
     QString m_lastEncodeError;           // so a bad BLOCK 2 source is reported once, not every second
+    QString m_lastPersistError;          // secure link: a replay state that cannot be written, once
 };
