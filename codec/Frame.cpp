@@ -45,13 +45,25 @@ FrameBytes makeFrame(const Block& block1, const Block& block2)
 DecodedBlocks decodeCodewords(std::span<const std::uint8_t, kDatagramSize> codewords)
 {
     DecodedBlocks out;
-    std::uint8_t cw[kCodewordSize];
+    const std::uint8_t* cw1 = codewords.data();
+    const std::uint8_t* cw2 = codewords.data() + kCodewordSize;
+    bool clean[2];
+    rs::checkCodewords(cw1, cw2, &clean[0], &clean[1]);
+    std::uint8_t copy[kCodewordSize];
     for (int b = 0; b < 2; ++b) {
-        std::memcpy(cw, codewords.data() + b * kCodewordSize, kCodewordSize);
-        const int corrected = rs::decode(cw);
+        const std::uint8_t* cw = b == 0 ? cw1 : cw2;
         Block& block = b == 0 ? out.block1 : out.block2;
-        std::memcpy(block.data(), cw, kBlockSize);
-        (b == 0 ? out.corrected1 : out.corrected2) = corrected;
+        int& corrected = b == 0 ? out.corrected1 : out.corrected2;
+        if (clean[b]) {
+            std::memcpy(block.data(), cw, kBlockSize);
+            corrected = 0;
+            continue;
+        }
+        // libfec corrects; a failure leaves the block as received.
+        std::memcpy(copy, cw, kCodewordSize);
+        const int n = rs::decodeLibfec(copy);
+        corrected = n < 0 ? -1 : n;
+        std::memcpy(block.data(), n < 0 ? cw : copy, kBlockSize);
     }
     return out;
 }

@@ -21,9 +21,8 @@ Diagnostics validate(const Message& message, const EncodeOptions& options)
 {
     Diagnostics errors;
     message.forEachUnit([&](const Unit& unit) {
-        const std::string unitName = describeUnit(unit);
         if (const auto key = unitKey(unit.kind()); key && !unit.has(*key)) {
-            errors.push_back({Diagnostic::Kind::MissingKey, 1, -1, unitName,
+            errors.push_back({Diagnostic::Kind::MissingKey, 1, -1, describeUnit(unit),
                               "a " + std::string(sectionName(unit.kind())) + " needs its key item " +
                                   std::string(itemInfo(*key).name) + " to be sent"});
         }
@@ -31,7 +30,7 @@ Diagnostics validate(const Message& message, const EncodeOptions& options)
             const ItemInfo& info = itemInfo(item.id);
             std::string reason = checkValue(info, item.value);
             if (!reason.empty())
-                errors.push_back({Diagnostic::Kind::OutOfRange, 1, -1, unitName + " " + std::string(info.name),
+                errors.push_back({Diagnostic::Kind::OutOfRange, 1, -1, describeUnit(unit) + " " + std::string(info.name),
                                   std::move(reason)});
         }
     });

@@ -50,12 +50,17 @@ void encode(const std::uint8_t* data, std::uint8_t* parity)
     encode_rs_ccsds(const_cast<unsigned char*>(data), parity, 0);
 }
 
-bool isCodeword(const std::uint8_t* codeword)
-{
-    const ParityTable& tab = table();
+namespace {
+
+// The parity register after the data bytes, conventional basis, big-endian
+// words. Feeding byte i needs the register after byte i-1: a chain of
+// dependent loads. Two codewords go through together so that their two chains
+// overlap in the processor.
+struct Register {
     std::uint64_t r0 = 0, r1 = 0, r2 = 0, r3 = 0;
-    for (std::size_t i = 0; i < kDataSize; ++i) {
-        const unsigned fb = tab.dualToConv[codeword[i]] ^ static_cast<unsigned>(r0 >> 56);
+    void feed(const ParityTable& tab, std::uint8_t dualByte)
+    {
+        const unsigned fb = tab.dualToConv[dualByte] ^ static_cast<unsigned>(r0 >> 56);
         const auto& row = tab.t[fb];
         r0 = ((r0 << 8) | (r1 >> 56)) ^ row[0];
         r1 = ((r1 << 8) | (r2 >> 56)) ^ row[1];
@@ -63,16 +68,41 @@ bool isCodeword(const std::uint8_t* codeword)
         r3 = (r3 << 8) ^ row[3];
     }
     // Compare in the conventional basis: convert the received parity.
-    const std::uint64_t regs[4] = {r0, r1, r2, r3};
-    const std::uint8_t* parity = codeword + kDataSize;
-    for (int w = 0; w < 4; ++w) {
-        std::uint64_t word = 0;
-        for (int b = 0; b < 8; ++b)
-            word = (word << 8) | tab.dualToConv[parity[w * 8 + b]];
-        if (word != regs[w])
-            return false;
+    bool matches(const ParityTable& tab, const std::uint8_t* parity) const
+    {
+        const std::uint64_t regs[4] = {r0, r1, r2, r3};
+        for (int w = 0; w < 4; ++w) {
+            std::uint64_t word = 0;
+            for (int b = 0; b < 8; ++b)
+                word = (word << 8) | tab.dualToConv[parity[w * 8 + b]];
+            if (word != regs[w])
+                return false;
+        }
+        return true;
     }
-    return true;
+};
+
+}  // namespace
+
+bool isCodeword(const std::uint8_t* codeword)
+{
+    const ParityTable& tab = table();
+    Register reg;
+    for (std::size_t i = 0; i < kDataSize; ++i)
+        reg.feed(tab, codeword[i]);
+    return reg.matches(tab, codeword + kDataSize);
+}
+
+void checkCodewords(const std::uint8_t* a, const std::uint8_t* b, bool* aClean, bool* bClean)
+{
+    const ParityTable& tab = table();
+    Register ra, rb;
+    for (std::size_t i = 0; i < kDataSize; ++i) {
+        ra.feed(tab, a[i]);
+        rb.feed(tab, b[i]);
+    }
+    *aClean = ra.matches(tab, a + kDataSize);
+    *bClean = rb.matches(tab, b + kDataSize);
 }
 
 int decode(std::uint8_t* codeword)

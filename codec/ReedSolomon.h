@@ -20,6 +20,9 @@ void encode(const std::uint8_t* data, std::uint8_t* parity);
 // True when `codeword` (255 bytes) is a codeword: its parity matches its data.
 bool isCodeword(const std::uint8_t* codeword);
 
+// isCodeword for two codewords at once, in little more than the time of one.
+void checkCodewords(const std::uint8_t* a, const std::uint8_t* b, bool* aClean, bool* bClean);
+
 // Corrects `codeword` in place. Returns the number of bytes corrected, or -1
 // when the errors are beyond correction (the codeword is then left as it was).
 int decode(std::uint8_t* codeword);

@@ -502,7 +502,9 @@ bool StreamSync::tryExpected(std::uint64_t c)
     if (distance(c) != 0)
         return false;
     const std::uint8_t* cw = at(c);
-    if (!rs::isCodeword(cw) || !rs::isCodeword(cw + kCodewordSize))
+    bool clean1 = false, clean2 = false;
+    rs::checkCodewords(cw, cw + kCodewordSize, &clean1, &clean2);
+    if (!clean1 || !clean2)
         return false;
     DecodedBlocks blocks;
     std::memcpy(blocks.block1.data(), cw, kBlockSize);
