@@ -7,7 +7,6 @@
 #include <QColor>
 #include <QDateTime>
 #include <QFont>
-#include <QFontDatabase>
 #include <QTimeZone>
 
 #include <algorithm>

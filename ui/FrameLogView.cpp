@@ -181,6 +181,13 @@ void FrameLogView::showSourceRow(int sourceRow)
     m_table->scrollTo(index, QAbstractItemView::PositionAtCenter);
 }
 
+void FrameLogView::scrollToSourceRow(int sourceRow)
+{
+    const int row = std::min(m_filter->rowAtOrAfter(sourceRow), m_filter->rowCount() - 1);
+    if (row >= 0)
+        m_table->scrollTo(m_filter->index(row, 0), QAbstractItemView::EnsureVisible);
+}
+
 QString FrameLogView::detailText() const
 {
     return m_detail->toPlainText();

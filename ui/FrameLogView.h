@@ -29,6 +29,8 @@ public:
     bool isFollowing() const;
     // Scrolls to and selects the source row; nothing when it is filtered out.
     void showSourceRow(int sourceRow);
+    // Scrolls the source row (or the next one shown) into view, selecting nothing.
+    void scrollToSourceRow(int sourceRow);
 
     QString detailText() const;
     QString hexText() const;

@@ -9,6 +9,7 @@
 #include <QStyle>
 #include <QTimeZone>
 #include <QToolButton>
+#include <QVBoxLayout>
 
 namespace {
 
@@ -39,15 +40,17 @@ ReplayControls::ReplayControls(QWidget* parent)
     m_speed->setCurrentIndex(m_speed->findData(1.0));
     m_speed->setToolTip(tr("Replay speed: 0.25\u00d7 to 10\u00d7 the logged pace"));
     m_slider->setToolTip(tr("Drag to jump to a time in the log"));
-    m_time->setToolTip(tr("Position in the log / length of the log, and the UTC time of the position"));
-    m_time->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("00:00:00 / 00:00:00  00:00:00 UTC")));
 
-    auto* layout = new QHBoxLayout(this);
+    // Two rows, so that the slider has the dock's whole width however narrow it is.
+    auto* buttons = new QHBoxLayout;
+    buttons->addWidget(m_play);
+    buttons->addWidget(m_speed);
+    buttons->addStretch(1);
+    buttons->addWidget(m_time);
+    auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
-    layout->addWidget(m_play);
-    layout->addWidget(m_speed);
-    layout->addWidget(m_slider, 1);
-    layout->addWidget(m_time);
+    layout->addWidget(m_slider);
+    layout->addLayout(buttons);
 
     connect(m_play, &QToolButton::clicked, this, [this] { emit pauseRequested(!m_paused); });
     connect(m_speed, &QComboBox::currentIndexChanged, this,
@@ -112,5 +115,6 @@ void ReplayControls::setSpeed(double speed)
 void ReplayControls::showTime(qint64 utcMicros)
 {
     const QString utc = QDateTime::fromMSecsSinceEpoch(utcMicros / 1000, QTimeZone::utc()).toString(QStringLiteral("hh:mm:ss"));
-    m_time->setText(QStringLiteral("%1 / %2  %3 UTC").arg(clock(utcMicros - m_start), clock(m_end - m_start), utc));
+    m_time->setText(QStringLiteral("%1 / %2").arg(clock(utcMicros - m_start), clock(m_end - m_start)));
+    m_time->setToolTip(tr("Position in the log / length of the log; the position is %1 UTC").arg(utc));
 }

@@ -1,0 +1,492 @@
+// The operator console as a whole: the window built with the default
+// airframe, airframe files, the `--screenshot` picture made by the real
+// program, the QGroundControl plan import and its bytes, the next-frame
+// preview's marks, the link-lost alarm, a replay, and a rehearsal against the
+// simulated aircraft on loopback carrying status frames and a flight plan.
+// Every wait is a QTRY_* on state the console exposes; the timeouts only bound
+// a broken build.
+
+#include "codec/Airframe.h"
+#include "link/FrameLog.h"
+#include "codec/MessageEncoder.h"
+#include "ui/AirframeLoader.h"
+#include "ui/CommandPreview.h"
+#include "ui/CommandState.h"
+#include "ui/FlightPlanUpload.h"
+#include "ui/FlightPlanWidget.h"
+#include "ui/FrameLogModel.h"
+#include "ui/LinkSettings.h"
+#include "ui/LinkSettingsWidget.h"
+#include "ui/MainWindow.h"
+#include "ui/MissionPlan.h"
+#include "ui/StatusBarWidget.h"
+
+#include <QDockWidget>
+#include <QImage>
+#include <QProcess>
+#include <QSettings>
+#include <QSignalSpy>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <cmath>
+#include <set>
+
+namespace {
+
+const QString kSamplePlan = QStringLiteral(RCM_SOURCE_DIR "/resources/plans/sample.plan");
+const QString kAirframes = QStringLiteral(RCM_SOURCE_DIR "/resources/airframes/");
+constexpr int kProcessTimeoutMs = 60000;
+constexpr int kLinkTimeoutMs = 30000;
+
+void compareAirframes(const rcm::Airframe& a, const rcm::Airframe& b)
+{
+    QCOMPARE(a.name, b.name);
+    QCOMPARE(a.senseAndAvoid, b.senseAndAvoid);
+    QCOMPARE(a.engines.size(), b.engines.size());
+    for (std::size_t i = 0; i < a.engines.size(); ++i) {
+        QCOMPARE(a.engines[i].id, b.engines[i].id);
+        QCOMPARE(a.engines[i].name, b.engines[i].name);
+    }
+    QCOMPARE(a.radios.size(), b.radios.size());
+    for (std::size_t i = 0; i < a.radios.size(); ++i) {
+        QCOMPARE(a.radios[i].systemId, b.radios[i].systemId);
+        QCOMPARE(a.radios[i].name, b.radios[i].name);
+    }
+    QCOMPARE(a.cameras.size(), b.cameras.size());
+    for (std::size_t i = 0; i < a.cameras.size(); ++i) {
+        QCOMPARE(a.cameras[i].maker, b.cameras[i].maker);
+        QCOMPARE(a.cameras[i].number, b.cameras[i].number);
+        QCOMPARE(a.cameras[i].name, b.cameras[i].name);
+    }
+}
+
+QString airframeError(const QByteArray& json)
+{
+    QString error;
+    const auto airframe = AirframeLoader::fromJson(json, QStringLiteral("test.json"), &error);
+    return airframe ? QString() : error;
+}
+
+}  // namespace
+
+class TestMainWindow : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase();
+    void buildsWithTheDefaultAirframe();
+    void airframeFiles();
+    void screenshotOfTheRealProgram();
+    void importsTheSamplePlan();
+    void planBytes();
+    void refusesPlansItCannotSend();
+    void previewMarksChangedItems();
+    void linkLostAlarm();
+    void linkSettingsAreKept();
+    void replaysAFrameLog();
+    void rehearsalAgainstUasim();
+
+private:
+    MainWindow::Options options() const;
+    QTemporaryDir m_dir;
+};
+
+void TestMainWindow::initTestCase()
+{
+    QVERIFY(m_dir.isValid());
+    // Nothing of this run lands in the user's settings.
+    QCoreApplication::setOrganizationName(QStringLiteral("rcm-tests"));
+    QSettings::setDefaultFormat(QSettings::IniFormat);
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, m_dir.filePath(QStringLiteral("settings")));
+}
+
+MainWindow::Options TestMainWindow::options() const
+{
+    MainWindow::Options o;
+    o.restoreSettings = false;
+    o.frameLogDirectory = m_dir.filePath(QStringLiteral("framelogs"));
+    return o;
+}
+
+void TestMainWindow::buildsWithTheDefaultAirframe()
+{
+    MainWindow window(options());
+    compareAirframes(window.command()->airframe(), rcm::Airframe::wellEquipped());
+    QVERIFY(window.windowTitle().contains(QStringLiteral("Well-equipped UA")));
+    // The eight panels, each behind its Alt+digit.
+    auto* panels = window.findChild<QTabWidget*>();
+    QVERIFY(panels);
+    QCOMPARE(panels->count(), 8);
+    window.showPanel(6);
+    QCOMPARE(panels->currentIndex(), 6);
+    // The docks the layout is saved by.
+    std::set<QString> docks;
+    for (QDockWidget* d : window.findChildren<QDockWidget*>())
+        docks.insert(d->objectName());
+    QCOMPARE(docks, (std::set<QString>{QStringLiteral("linkDock"), QStringLiteral("previewDock"),
+                                       QStringLiteral("frameLogDock"), QStringLiteral("flightPlanDock")}));
+    window.resize(1400, 900);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&window));
+    QTest::keyClick(&window, Qt::Key_3, Qt::AltModifier);
+    QCOMPARE(panels->currentIndex(), 2);
+    QTest::keyClick(&window, Qt::Key_8, Qt::AltModifier);
+    QCOMPARE(panels->currentIndex(), 7);
+    QVERIFY(!window.isLinkRunning());
+    QVERIFY(!window.linkStatus()->alarmActive());
+
+    // Another built-in airframe: the command follows it.
+    QVERIFY(window.loadAirframe(QStringLiteral(":/airframes/single-engine.json")));
+    QCOMPARE(window.command()->airframe().engines.size(), std::size_t(1));
+    QCOMPARE(window.command()->message().engines.size(), std::size_t(1));
+}
+
+void TestMainWindow::airframeFiles()
+{
+    QCOMPARE(AirframeLoader::builtIn(),
+             QStringList({QStringLiteral(":/airframes/single-engine.json"),
+                          QStringLiteral(":/airframes/well-equipped.json")}));
+    QString error;
+    const auto builtIn = AirframeLoader::load(AirframeLoader::kDefaultPath, &error);
+    QVERIFY2(builtIn, qPrintable(error));
+    compareAirframes(*builtIn, rcm::Airframe::wellEquipped());
+    // The source tree's copy is the one embedded.
+    const auto file = AirframeLoader::load(kAirframes + QStringLiteral("well-equipped.json"), &error);
+    QVERIFY2(file, qPrintable(error));
+    compareAirframes(*file, rcm::Airframe::wellEquipped());
+    const auto small = AirframeLoader::load(kAirframes + QStringLiteral("single-engine.json"), &error);
+    QVERIFY2(small, qPrintable(error));
+    QCOMPARE(small->engines.size(), std::size_t(1));
+    QVERIFY(!small->senseAndAvoid);
+    // toJson is read back as it was.
+    const auto again = AirframeLoader::fromJson(AirframeLoader::toJson(*small), QStringLiteral("again"), &error);
+    QVERIFY2(again, qPrintable(error));
+    compareAirframes(*again, *small);
+
+    // Clear errors, naming the file and the place.
+    QVERIFY(!AirframeLoader::load(kAirframes + QStringLiteral("missing.json"), &error));
+    QVERIFY(error.contains(QStringLiteral("missing.json")));
+    QCOMPARE(airframeError("{\n  \"name\": \"x\",\n  \"engines\": [ {\"id\": 1,} ]\n}"),
+             QStringLiteral("test.json: line 3, column 26: object is missing after a comma"));
+    QCOMPARE(airframeError(R"({"name": "x", "engine": [{"id": 1}]})"),
+             QStringLiteral("test.json: unknown member \"engine\" (known: name, engines, radios, cameras, "
+                            "senseAndAvoid)"));
+    QCOMPARE(airframeError(R"({"name": "x", "engines": [{"id": 1}, {"id": 1}]})"),
+             QStringLiteral("test.json: engines[1]: engine 1 is listed twice"));
+    QCOMPARE(airframeError(R"({"name": "x", "engines": [{"id": 256}]})"),
+             QStringLiteral("test.json: engines[0]: \"id\" must be a whole number 0..255"));
+    QCOMPARE(airframeError(R"({"name": "x", "radios": [{"systemId": "TOOLONGID"}]})"),
+             QStringLiteral("test.json: radios[0]: \"systemId\" must be 1 to 8 printable ASCII characters, not "
+                            "ending in a space"));
+    QCOMPARE(airframeError(R"({"name": "x", "cameras": [{"maker": "NI", "number": 1}]})"),
+             QStringLiteral("test.json: cameras[0]: \"maker\" must be 3 printable ASCII characters"));
+    QCOMPARE(airframeError(R"({"engines": []})"), QStringLiteral("test.json: \"name\" must be a non-empty string"));
+    // More units than a frame holds.
+    QByteArray many = R"({"name": "x", "radios": [)";
+    for (int i = 0; i < 20; ++i)
+        many += (i ? ", " : "") + QStringLiteral(R"({"systemId": "R%1"})").arg(i).toUtf8();
+    many += "]}";
+    QVERIFY(airframeError(many).startsWith(QStringLiteral("test.json: these units do not fit in one message: ")));
+}
+
+void TestMainWindow::screenshotOfTheRealProgram()
+{
+    const QString png = m_dir.filePath(QStringLiteral("gcs.png"));
+    QProcess gcs;
+    gcs.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+    QProcessEnvironment environment = QProcessEnvironment::systemEnvironment();
+    environment.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
+    gcs.setProcessEnvironment(environment);
+    QSignalSpy finished(&gcs, &QProcess::finished);
+    gcs.start(QStringLiteral(RCM_BIN_DIR "/gcs"), {QStringLiteral("--screenshot"), png});
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kProcessTimeoutMs);
+    QCOMPARE(gcs.exitStatus(), QProcess::NormalExit);
+    QCOMPARE(gcs.exitCode(), 0);
+
+    const QImage image(png);
+    QVERIFY(!image.isNull());
+    QCOMPARE(image.size(), QSize(1600, 1000));
+    QVERIFY2(QFileInfo(png).size() > 30'000, qPrintable(QString::number(QFileInfo(png).size())));
+    // A drawn window, not a blank: many colours, text and frames among them.
+    std::set<QRgb> colours;
+    for (int y = 0; y < image.height(); y += 7)
+        for (int x = 0; x < image.width(); x += 7)
+            colours.insert(image.pixel(x, y));
+    QVERIFY2(colours.size() > 50, qPrintable(QString::number(colours.size())));
+
+    // --help answers and exits 0; a wrong option is a usage error.
+    QProcess help;
+    QSignalSpy helpDone(&help, &QProcess::finished);
+    help.setProcessEnvironment(environment);
+    help.start(QStringLiteral(RCM_BIN_DIR "/gcs"), {QStringLiteral("--help")});
+    QTRY_COMPARE_WITH_TIMEOUT(helpDone.count(), 1, kProcessTimeoutMs);
+    QCOMPARE(help.exitCode(), 0);
+    QVERIFY(help.readAllStandardOutput().contains("--rehearsal"));
+    QProcess wrong;
+    QSignalSpy wrongDone(&wrong, &QProcess::finished);
+    wrong.setProcessEnvironment(environment);
+    wrong.start(QStringLiteral(RCM_BIN_DIR "/gcs"), {QStringLiteral("--udp-remote"), QStringLiteral("nohost")});
+    QTRY_COMPARE_WITH_TIMEOUT(wrongDone.count(), 1, kProcessTimeoutMs);
+    QCOMPARE(wrong.exitCode(), 2);
+}
+
+void TestMainWindow::importsTheSamplePlan()
+{
+    MainWindow window(options());
+    FlightPlanWidget* widget = window.flightPlan();
+    QString error;
+    QVERIFY2(widget->loadPlan(kSamplePlan, &error), qPrintable(error));
+    const MissionPlan& plan = *widget->plan();
+    QCOMPARE(plan.items.size(), 9);
+    QCOMPARE(widget->table()->rowCount(), 9);
+
+    const MissionItem& takeoff = plan.items[0];
+    QCOMPARE(takeoff.seq, quint16(0));
+    QCOMPARE(takeoff.command, quint16(22));
+    QCOMPARE(takeoff.commandName(), QStringLiteral("NAV_TAKEOFF"));
+    QCOMPARE(takeoff.frame, quint8(3));
+    QCOMPARE(takeoff.params[0], 15.0);
+    QVERIFY(std::isnan(takeoff.params[3]));  // null in the plan
+    QCOMPARE(*takeoff.latitude, 52.2093412);
+    QCOMPARE(*takeoff.longitude, 0.1189255);
+    QCOMPARE(*takeoff.altitude, 60.0);
+
+    const MissionItem& speed = plan.items[2];
+    QCOMPARE(speed.command, quint16(178));
+    QCOMPARE(speed.frame, quint8(2));
+    QCOMPARE(speed.params[1], 25.0);
+
+    const MissionItem& loiter = plan.items[5];
+    QCOMPARE(loiter.commandName(), QStringLiteral("NAV_LOITER_TIME"));
+    QCOMPARE(loiter.params[0], 60.0);
+    QCOMPARE(*loiter.altitude, 150.0);
+    QCOMPARE(plan.items[8].commandName(), QStringLiteral("NAV_RETURN_TO_LAUNCH"));
+    QCOMPARE(*plan.homeLatitude, 52.2076813);
+    QCOMPARE(*plan.homeAltitude, 14.2);
+
+    // The table shows what was read.
+    QCOMPARE(widget->table()->item(0, FlightPlanWidget::CommandColumn)->text(), QStringLiteral("NAV_TAKEOFF"));
+    QCOMPARE(widget->table()->item(1, FlightPlanWidget::LatitudeColumn)->text(), QStringLiteral("52.2151260"));
+    QCOMPARE(widget->table()->item(1, FlightPlanWidget::AltitudeColumn)->text(), QStringLiteral("120.0"));
+    QCOMPARE(widget->table()->item(2, FlightPlanWidget::LatitudeColumn)->text(), QStringLiteral("\u2014"));
+}
+
+void TestMainWindow::planBytes()
+{
+    QString error;
+    const auto plan = MissionPlan::load(kSamplePlan, &error);
+    QVERIFY2(plan, qPrintable(error));
+    const QByteArray bytes = plan->toBytes();
+    QCOMPARE(bytes.size(), MissionPlan::kHeaderBytes + 9 * MissionPlan::kItemBytes);
+    QCOMPARE(bytes.size(), 322);
+    // Header: format 1, reserved, N = 9, home 52.2076813 deg = 522076813 = 0x1F1E428D.
+    QCOMPARE(bytes.left(8).toHex(), QByteArray("010000091f1e428d"));
+    // Home altitude 14.2 m = 14200 mm.
+    QCOMPARE(bytes.mid(12, 4).toHex(), QByteArray("00003778"));
+    // Item 0: seq 0, NAV_TAKEOFF (22), frame 3, autocontinue, param1 15.0f, param2 0, param3 0, param4 NaN.
+    QCOMPARE(bytes.mid(16, 22).toHex(), QByteArray("0000001603014170000000000000000000007fc00000"));
+    // Item 2 (DO_CHANGE_SPEED) has no position: x, y, z are params 5-7, all 0.
+    QCOMPARE(bytes.mid(16 + 2 * 34 + 22, 12).toHex(), QByteArray("000000000000000000000000"));
+
+    const auto back = MissionPlan::fromBytes(bytes, &error);
+    QVERIFY2(back, qPrintable(error));
+    QCOMPARE(back->items.size(), plan->items.size());
+    for (qsizetype i = 0; i < plan->items.size(); ++i) {
+        const MissionItem& a = plan->items[i];
+        const MissionItem& b = back->items[i];
+        QCOMPARE(b.seq, a.seq);
+        QCOMPARE(b.command, a.command);
+        QCOMPARE(b.frame, a.frame);
+        QCOMPARE(b.autoContinue, a.autoContinue);
+        for (int p = 0; p < 4; ++p)
+            QVERIFY(std::isnan(a.params[p]) ? std::isnan(b.params[p]) : float(a.params[p]) == float(b.params[p]));
+        QVERIFY(std::abs(*b.latitude - *a.latitude) < 0.6e-7);
+        QVERIFY(std::abs(*b.longitude - *a.longitude) < 0.6e-7);
+        QVERIFY(std::abs(*b.altitude - *a.altitude) < 0.6e-3);
+    }
+    // The plan goes out in two BLOCK 2 sections.
+    FlightPlanUpload upload;
+    QVERIFY(upload.start(bytes));
+    QCOMPARE(upload.progress().total, 2);
+    QVERIFY(!MissionPlan::fromBytes(bytes.left(100), &error));
+    QCOMPARE(error, QStringLiteral("100 bytes for 9 items; expected 322"));
+}
+
+void TestMainWindow::refusesPlansItCannotSend()
+{
+    const auto error = [](const QByteArray& json) {
+        QString e;
+        return MissionPlan::fromQgcJson(json, QStringLiteral("p.plan"), &e) ? QString() : e;
+    };
+    QCOMPARE(error(R"({"fileType": "Plan", "mission": {"items": [{"type": "ComplexItem",
+             "complexItemType": "survey"}]}})"),
+             QStringLiteral("p.plan: mission item 1 is a survey (a ComplexItem); only simple items can be sent, so "
+                            "convert it to waypoints in QGroundControl first"));
+    QCOMPARE(error(R"({"fileType": "Fence"})"),
+             QStringLiteral("p.plan: not a QGroundControl plan (its \"fileType\" is not \"Plan\")"));
+    QCOMPARE(error(R"({"fileType": "Plan", "mission": {"items": [{"type": "SimpleItem", "command": 16,
+             "frame": 3, "params": [0, 0, 0, 0, 95.0, 0, 10]}]}})"),
+             QStringLiteral("p.plan: mission item 1: latitude must be within +-90 and longitude within +-180 "
+                            "degrees"));
+    QCOMPARE(error(R"({"fileType": "Plan", "mission": {"items": [{"type": "SimpleItem", "command": 16,
+             "frame": 3, "params": [0, 0, 0]}]}})"),
+             QStringLiteral("p.plan: mission item 1: \"params\" must hold 7 values (numbers or null)"));
+    QVERIFY2(error("{\n  not json").startsWith(QStringLiteral("p.plan: line 2, column ")),
+             qPrintable(error("{\n  not json")));
+}
+
+void TestMainWindow::previewMarksChangedItems()
+{
+    CommandState command;
+    CommandPreview preview;
+    preview.setCommand(command.message());
+    QCOMPARE(preview.changedItems(), 0);  // nothing sent yet: nothing to compare with
+    QVERIFY(preview.text().contains(QStringLiteral("eng_prop_pitch 0")));
+    QVERIFY(preview.hex().contains(QStringLiteral("BLOCK 1 data (223 bytes)")));
+    QVERIFY(preview.hex().contains(QStringLiteral("Preamble")) == false);  // UDP by default
+
+    preview.frameSent(41);
+    QCOMPARE(preview.changedItems(), 0);
+    QVERIFY(preview.text().contains(QStringLiteral("ID_msg 42")));
+    QVERIFY(command.setNumber(UnitRef{rcm::UnitKind::Engine, 1}, rcm::ItemId::eng_prop_pitch, 200));
+    QVERIFY(command.setNumber(UnitRef{rcm::UnitKind::Flaps, 0}, rcm::ItemId::F_rudder_set, -12));
+    preview.setCommand(command.message());
+    QCOMPARE(preview.changedItems(), 2);
+    preview.frameSent(42);
+    QCOMPARE(preview.changedItems(), 0);
+
+    preview.setDatagram(false);
+    QVERIFY(preview.hex().contains(QStringLiteral("Preamble (90 bytes)")));
+}
+
+void TestMainWindow::linkLostAlarm()
+{
+    StatusBarWidget status;
+    QSignalSpy alarm(&status, &StatusBarWidget::alarm);
+    status.setState(LinkState::Waiting);
+    QCOMPARE(alarm.count(), 0);
+    status.setState(LinkState::Lost);
+    QCOMPARE(alarm.count(), 1);
+    QCOMPARE(alarm.at(0).at(0).toBool(), true);
+    QVERIFY(status.alarmActive());
+    status.setState(LinkState::Lost);
+    QCOMPARE(alarm.count(), 1);  // once per outage
+    LinkStatistics back;
+    back.state = LinkState::Connected;
+    back.framesReceived = 7;
+    back.lastGoodFrameUtcMicros = QDateTime::currentMSecsSinceEpoch() * 1000;
+    status.setStatistics(back);
+    QCOMPARE(alarm.count(), 2);
+    QCOMPARE(alarm.at(1).at(0).toBool(), false);
+    QVERIFY(status.stateText().contains(QStringLiteral("Connected")));
+    QVERIFY(status.ageText().contains(QStringLiteral(" s ago")));
+    // Disconnecting while lost ends the alarm too.
+    status.setState(LinkState::Lost);
+    status.setState(LinkState::Closed);
+    QCOMPARE(alarm.count(), 4);
+    QVERIFY(!status.alarmActive());
+}
+
+void TestMainWindow::linkSettingsAreKept()
+{
+    LinkSettings s;
+    s.transport = LinkSettings::Transport::Serial;
+    s.serialPort = QStringLiteral("/dev/pts/7");
+    s.baudRate = 19200;
+    s.remoteAddress = QStringLiteral("10.0.0.2");
+    s.remotePort = 6000;
+    {
+        QSettings settings(m_dir.filePath(QStringLiteral("link.ini")), QSettings::IniFormat);
+        s.save(settings);
+    }
+    const QSettings settings(m_dir.filePath(QStringLiteral("link.ini")), QSettings::IniFormat);
+    QCOMPARE(LinkSettings::load(settings), s);
+
+    LinkSettingsWidget widget;
+    widget.setSettings(s);
+    QCOMPARE(widget.settings(), s);
+
+    QString error;
+    QVERIFY(!LinkSettings::udpRemote(QStringLiteral("10.0.0.2"), &error));
+    const auto udp = LinkSettings::udpRemote(QStringLiteral("10.0.0.2:5601"), &error);
+    QVERIFY(udp);
+    QCOMPARE(udp->remotePort, quint16(5601));
+    LinkSettings noPort;
+    noPort.transport = LinkSettings::Transport::Serial;
+    QVERIFY(!noPort.createLink(&error));
+    QCOMPARE(error, QStringLiteral("Choose a serial port"));
+}
+
+void TestMainWindow::replaysAFrameLog()
+{
+    // Twenty status frames half a second apart: ten seconds of log, one at 10x.
+    const QString path = m_dir.filePath(QStringLiteral("replay.pcapng"));
+    {
+        FrameLog log;
+        QVERIFY(log.open(path));
+        rcm::Message status = rcm::restingCommand(rcm::Airframe::wellEquipped());
+        for (int i = 0; i < 20; ++i) {
+            status.header.set(rcm::ItemId::ID_msg, i);
+            rcm::Diagnostics errors;
+            const auto datagram = rcm::encodeDatagram(status, errors);
+            QVERIFY(datagram);
+            FrameRecord r;
+            r.bytes = QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size()));
+            r.utcMicros = 1795332720000000 + i * 500'000;
+            r.direction = FrameDirection::Received;
+            r.transport = FrameTransport::Udp;
+            r.status = FrameStatus::Decoded;
+            r.correctedSymbols = {0, 0};
+            QVERIFY(log.append(r));
+        }
+    }
+    MainWindow window(options());
+    QSignalSpy finished(&window, &MainWindow::replayFinished);
+    QVERIFY(window.openFrameLog(path));
+    window.setReplaySpeed(10.0);
+    QCOMPARE(window.frameLog()->rowCount(), 20);
+    QCOMPARE(window.frameLog()->logPath(), path);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
+    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().framesReceived, quint64(20), kLinkTimeoutMs);
+    QCOMPARE(window.frameLog()->playedRows(), 20);
+    QCOMPARE(window.statistics().framesSent, quint64(0));  // a replay sends nothing
+    window.disconnectLink();
+    QVERIFY(!window.isLinkRunning());
+}
+
+void TestMainWindow::rehearsalAgainstUasim()
+{
+    MainWindow window(options());
+    window.show();
+    QVERIFY(window.flightPlan()->loadPlan(kSamplePlan));
+    window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
+    QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    // Status frames come back once a second, each answering a command.
+    QTRY_VERIFY_WITH_TIMEOUT(window.statistics().framesReceived >= 2, kLinkTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(window.linkStatus()->stateText().contains(QStringLiteral("Connected")), kLinkTimeoutMs);
+    QVERIFY(window.statistics().framesSent >= 2);
+    QCOMPARE(window.statistics().uncorrectableFrames, quint64(0));
+    // Both directions reach the frame log view, and the session's log file.
+    QTRY_VERIFY_WITH_TIMEOUT(window.frameLog()->rowCount() >= 4, kLinkTimeoutMs);
+    QVERIFY(QFileInfo::exists(window.sessionLogPath()));
+
+    // The sample plan goes up in BLOCK 2 and the aircraft acknowledges it.
+    auto* upload = window.findChild<FlightPlanUpload*>();
+    QVERIFY(upload);
+    window.flightPlan()->uploadPlan();
+    QCOMPARE(upload->progress().state, FlightPlanUpload::State::Sending);
+    QTRY_COMPARE_WITH_TIMEOUT(upload->progress().state, FlightPlanUpload::State::Acknowledged, kLinkTimeoutMs);
+    QCOMPARE(upload->progress().total, 2);
+
+    window.disconnectLink();
+    QVERIFY(!window.isLinkRunning());
+    QVERIFY(!window.linkStatus()->alarmActive());
+}
+
+QTEST_MAIN(TestMainWindow)
+#include "tst_mainwindow.moc"
