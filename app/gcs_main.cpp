@@ -70,7 +70,9 @@ QString memory()
         return QStringLiteral("?");
     QString rss, anon, file;
     for (const QByteArray& line : status.readAll().split('\n')) {
-        const auto mib = [&] { return QString::number(line.simplified().split(' ').value(1).toDouble() / 1024, 'f', 1); };
+        const auto mib = [&] {
+            return QString::number(line.simplified().split(' ').value(1).toDouble() / 1024, 'f', 1);
+        };
         if (line.startsWith("VmRSS:"))
             rss = mib();
         if (line.startsWith("RssAnon:"))
@@ -191,8 +193,9 @@ public:
         std::sort(m_gaps.begin(), m_gaps.end());
         const auto ms = [](qint64 ns) { return QString::number(double(ns) / 1e6, 'f', 2); };
         const auto over = std::count_if(m_gaps.begin(), m_gaps.end(), [](qint64 g) { return g > 16'000'000; });
-        return QStringLiteral("%1 ticks; gap median %2 ms, 99.9th percentile %3 ms, longest %4 ms (%5 s after the "
-                              "replay started); %6 gaps over 16 ms")
+        return QStringLiteral(
+                   "%1 ticks; gap median %2 ms, 99.9th percentile %3 ms, longest %4 ms (%5 s after the "
+                   "replay started); %6 gaps over 16 ms")
             .arg(m_gaps.size())
             .arg(ms(m_gaps[m_gaps.size() / 2]), ms(m_gaps[m_gaps.size() * 999 / 1000]), ms(m_gaps.back()))
             .arg(double(m_longestAt) / 1e9, 0, 'f', 2)

@@ -61,22 +61,22 @@ FrameRecord frame(int i)
     r.direction = kind.direction;
     r.status = kind.status;
     switch (kind.status) {
-    case FrameStatus::Corrected:
-        r.bytes[10] = char(r.bytes[10] ^ 0x5A);
-        r.bytes[300] = char(r.bytes[300] ^ 0x01);
-        r.correctedSymbols = {1, 1};
-        break;
-    case FrameStatus::Uncorrectable:
-        for (int k = 0; k < 40; ++k)
-            r.bytes[k * 6] = char(r.bytes[k * 6] ^ 0xFF);
-        r.correctedSymbols = {-1, 0};
-        break;
-    case FrameStatus::Decoded:
-    case FrameStatus::Rejected:
-        r.correctedSymbols = {0, 0};
-        break;
-    case FrameStatus::NotChecked:
-        break;
+        case FrameStatus::Corrected:
+            r.bytes[10] = char(r.bytes[10] ^ 0x5A);
+            r.bytes[300] = char(r.bytes[300] ^ 0x01);
+            r.correctedSymbols = {1, 1};
+            break;
+        case FrameStatus::Uncorrectable:
+            for (int k = 0; k < 40; ++k)
+                r.bytes[k * 6] = char(r.bytes[k * 6] ^ 0xFF);
+            r.correctedSymbols = {-1, 0};
+            break;
+        case FrameStatus::Decoded:
+        case FrameStatus::Rejected:
+            r.correctedSymbols = {0, 0};
+            break;
+        case FrameStatus::NotChecked:
+            break;
     }
     return r;
 }
@@ -247,8 +247,8 @@ void TestFrameLogModel::filterCountsByDirectionAndStatus()
 
     filter.setStatuses(F::bit(FrameStatus::Corrected) | F::bit(FrameStatus::Uncorrectable) |
                        F::bit(FrameStatus::Rejected));
-    const int problems = count(R, FrameStatus::Corrected) + count(R, FrameStatus::Uncorrectable) +
-                         count(R, FrameStatus::Rejected);
+    const int problems =
+        count(R, FrameStatus::Corrected) + count(R, FrameStatus::Uncorrectable) + count(R, FrameStatus::Rejected);
     QCOMPARE(filter.rowCount(), problems);
     // Every row shown is one the filter asked for, and maps back to itself.
     for (int row : {0, problems / 2, problems - 1}) {

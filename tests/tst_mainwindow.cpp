@@ -148,9 +148,8 @@ void TestMainWindow::buildsWithTheDefaultAirframe()
 
 void TestMainWindow::airframeFiles()
 {
-    QCOMPARE(AirframeLoader::builtIn(),
-             QStringList({QStringLiteral(":/airframes/single-engine.json"),
-                          QStringLiteral(":/airframes/well-equipped.json")}));
+    QCOMPARE(AirframeLoader::builtIn(), QStringList({QStringLiteral(":/airframes/single-engine.json"),
+                                                     QStringLiteral(":/airframes/well-equipped.json")}));
     QString error;
     const auto builtIn = AirframeLoader::load(AirframeLoader::kDefaultPath, &error);
     QVERIFY2(builtIn, qPrintable(error));

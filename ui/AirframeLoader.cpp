@@ -80,8 +80,8 @@ std::optional<rcm::Airframe> AirframeLoader::fromJson(const QByteArray& json, co
     const QJsonObject root = doc.object();
     if (const QString key = unknownMember(root, {"name", "engines", "radios", "cameras", "senseAndAvoid"});
         !key.isEmpty())
-        return fail(QStringLiteral("unknown member \"%1\" (known: name, engines, radios, cameras, senseAndAvoid)")
-                        .arg(key));
+        return fail(
+            QStringLiteral("unknown member \"%1\" (known: name, engines, radios, cameras, senseAndAvoid)").arg(key));
 
     rcm::Airframe a;
     const QJsonValue name = root.value(QStringLiteral("name"));
@@ -172,8 +172,8 @@ QByteArray AirframeLoader::toJson(const rcm::Airframe& airframe)
 {
     QJsonArray engines, radios, cameras;
     for (const rcm::EngineSpec& e : airframe.engines)
-        engines.append(QJsonObject{{QStringLiteral("id"), int(e.id)},
-                                   {QStringLiteral("name"), QString::fromStdString(e.name)}});
+        engines.append(
+            QJsonObject{{QStringLiteral("id"), int(e.id)}, {QStringLiteral("name"), QString::fromStdString(e.name)}});
     for (const rcm::RadioSpec& r : airframe.radios)
         radios.append(QJsonObject{{QStringLiteral("systemId"), QString::fromStdString(r.systemId)},
                                   {QStringLiteral("name"), QString::fromStdString(r.name)}});

@@ -18,8 +18,7 @@ namespace {
 // next whole second, as LinkWorker stamps them.
 void stampAsLink(rcm::Message& message, quint32 messageId)
 {
-    const QDateTime next =
-        QDateTime::fromSecsSinceEpoch(QDateTime::currentSecsSinceEpoch() + 1, QTimeZone::utc());
+    const QDateTime next = QDateTime::fromSecsSinceEpoch(QDateTime::currentSecsSinceEpoch() + 1, QTimeZone::utc());
     const QTime t = next.time();
     const QDate d = next.date();
     message.header.set(rcm::ItemId::ID_msg, std::int64_t(messageId));
@@ -172,9 +171,9 @@ void CommandPreview::refresh()
         QString reasons;
         for (const rcm::Diagnostic& d : errors)
             reasons += QStringLiteral("<li>%1</li>").arg(QString::fromStdString(d.toString()).toHtmlEscaped());
-        m_hex->setHtml(QStringLiteral("<p style=\"color:#b01c1c\"><b>%1</b></p><ul>%2</ul>")
-                           .arg(tr("This command cannot be encoded; the link keeps sending the last good one."),
-                                reasons));
+        m_hex->setHtml(
+            QStringLiteral("<p style=\"color:#b01c1c\"><b>%1</b></p><ul>%2</ul>")
+                .arg(tr("This command cannot be encoded; the link keeps sending the last good one."), reasons));
         m_summary->setText(QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(tr("Not encodable")));
         return;
     }
@@ -186,16 +185,16 @@ void CommandPreview::refresh()
             if (part.title.endsWith(QLatin1String("data")))  // parity changes with any data byte
                 for (qsizetype i = part.offset; i < part.offset + part.length; ++i)
                     marked[i] = bytes[i] != previousBytes[i];
-    m_hex->setHtml(QStringLiteral("<pre style=\"margin:0\">%1</pre>").arg(hexDump(bytes, frameParts(bytes.size()), &marked)));
+    m_hex->setHtml(
+        QStringLiteral("<pre style=\"margin:0\">%1</pre>").arg(hexDump(bytes, frameParts(bytes.size()), &marked)));
 
-    const QString framing = m_datagram ? tr("%1-byte UDP datagram").arg(bytes.size())
-                                       : tr("%1-byte serial frame").arg(bytes.size());
+    const QString framing =
+        m_datagram ? tr("%1-byte UDP datagram").arg(bytes.size()) : tr("%1-byte serial frame").arg(bytes.size());
     if (!before)
         m_summary->setText(tr("Next frame: ID_msg %1, %2. No frame sent yet.").arg(m_nextId).arg(framing));
     else if (m_changedItems == 0)
-        m_summary->setText(tr("Next frame: ID_msg %1, %2. Same command as the last frame sent.")
-                               .arg(m_nextId)
-                               .arg(framing));
+        m_summary->setText(
+            tr("Next frame: ID_msg %1, %2. Same command as the last frame sent.").arg(m_nextId).arg(framing));
     else
         m_summary->setText(
             tr("Next frame: ID_msg %1, %2. <span style=\"%3\"><b>%n item(s) changed</b></span> since the last "

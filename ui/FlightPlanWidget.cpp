@@ -173,29 +173,30 @@ void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
     m_progress->setRange(0, std::max(progress.total, 1));
     m_progress->setValue(progress.state == FlightPlanUpload::State::Acknowledged ? progress.total : progress.sent);
     switch (progress.state) {
-    case FlightPlanUpload::State::Idle:
-        m_state->setText(tr("Not sent"));
-        break;
-    case FlightPlanUpload::State::Sending:
-        m_state->setText(progress.pass == 0
-                             ? tr("Plan %1: waiting for the next frame").arg(progress.planId, 8, 16, QLatin1Char('0'))
-                             : tr("Pass %1 of %2: waiting for the aircraft's acknowledgement")
-                                   .arg(progress.pass)
-                                   .arg(progress.maxPasses));
-        break;
-    case FlightPlanUpload::State::Acknowledged:
-        m_state->setText(QStringLiteral("<span style=\"color:#1d7a35\"><b>%1</b></span>")
-                             .arg(tr("Acknowledged by the aircraft")));
-        emit message(tr("Flight plan acknowledged by the aircraft"));
-        break;
-    case FlightPlanUpload::State::GaveUp:
-        m_state->setText(QStringLiteral("<span style=\"color:#b01c1c\"><b>%1</b></span>")
-                             .arg(tr("Not acknowledged after %1 passes").arg(progress.maxPasses)));
-        emit message(tr("Flight plan upload gave up: no acknowledgement"));
-        break;
-    case FlightPlanUpload::State::Cancelled:
-        m_state->setText(tr("Cancelled"));
-        break;
+        case FlightPlanUpload::State::Idle:
+            m_state->setText(tr("Not sent"));
+            break;
+        case FlightPlanUpload::State::Sending:
+            m_state->setText(
+                progress.pass == 0
+                    ? tr("Plan %1: waiting for the next frame").arg(progress.planId, 8, 16, QLatin1Char('0'))
+                    : tr("Pass %1 of %2: waiting for the aircraft's acknowledgement")
+                          .arg(progress.pass)
+                          .arg(progress.maxPasses));
+            break;
+        case FlightPlanUpload::State::Acknowledged:
+            m_state->setText(QStringLiteral("<span style=\"color:#1d7a35\"><b>%1</b></span>")
+                                 .arg(tr("Acknowledged by the aircraft")));
+            emit message(tr("Flight plan acknowledged by the aircraft"));
+            break;
+        case FlightPlanUpload::State::GaveUp:
+            m_state->setText(QStringLiteral("<span style=\"color:#b01c1c\"><b>%1</b></span>")
+                                 .arg(tr("Not acknowledged after %1 passes").arg(progress.maxPasses)));
+            emit message(tr("Flight plan upload gave up: no acknowledgement"));
+            break;
+        case FlightPlanUpload::State::Cancelled:
+            m_state->setText(tr("Cancelled"));
+            break;
     }
     updateButtons();
 }

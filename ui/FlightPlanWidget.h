@@ -20,8 +20,15 @@ class FlightPlanWidget : public QWidget {
     Q_OBJECT
 
 public:
-    enum Column { SeqColumn, CommandColumn, FrameColumn, LatitudeColumn, LongitudeColumn, AltitudeColumn,
-                  Param1Column };
+    enum Column {
+        SeqColumn,
+        CommandColumn,
+        FrameColumn,
+        LatitudeColumn,
+        LongitudeColumn,
+        AltitudeColumn,
+        Param1Column
+    };
     static constexpr int kColumnCount = Param1Column + 4;
 
     // `upload` carries the plan to the link; it must outlive this widget.

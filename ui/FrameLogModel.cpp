@@ -64,20 +64,28 @@ QVariant FrameLogModel::headerData(int section, Qt::Orientation orientation, int
         return {};
     if (role == Qt::DisplayRole) {
         switch (section) {
-        case NumberColumn: return tr("No.");
-        case TimeColumn: return tr("Time (UTC)");
-        case DirectionColumn: return tr("Direction");
-        case MessageIdColumn: return tr("Message ID");
-        case CorrectedColumn: return tr("Corrected bytes");
-        case StatusColumn: return tr("Status");
+            case NumberColumn:
+                return tr("No.");
+            case TimeColumn:
+                return tr("Time (UTC)");
+            case DirectionColumn:
+                return tr("Direction");
+            case MessageIdColumn:
+                return tr("Message ID");
+            case CorrectedColumn:
+                return tr("Corrected bytes");
+            case StatusColumn:
+                return tr("Status");
         }
     }
     if (role == Qt::ToolTipRole) {
         switch (section) {
-        case MessageIdColumn: return tr("ID_msg of the frame, decoded when the row is shown");
-        case CorrectedColumn:
-            return tr("Bytes Reed-Solomon corrected in BLOCK 1 + BLOCK 2; \"beyond\" when a codeword could not be "
-                      "corrected");
+            case MessageIdColumn:
+                return tr("ID_msg of the frame, decoded when the row is shown");
+            case CorrectedColumn:
+                return tr(
+                    "Bytes Reed-Solomon corrected in BLOCK 1 + BLOCK 2; \"beyond\" when a codeword could not be "
+                    "corrected");
         }
     }
     return {};
@@ -89,35 +97,36 @@ QVariant FrameLogModel::data(const QModelIndex& index, int role) const
         return {};
     const Row& r = m_rows[std::size_t(index.row())];
     switch (role) {
-    case Qt::DisplayRole:
-        return cellText(index.row(), r, index.column());
-    case Qt::ToolTipRole:
-        if (index.column() == TimeColumn)
-            return isoTime(r.utcMicros);
-        if (index.column() == StatusColumn)
-            return tr("%1 bytes over %2").arg(r.length).arg(frameTransportName(r.transport));
-        return {};
-    case Qt::TextAlignmentRole:
-        if (index.column() == NumberColumn || index.column() == MessageIdColumn || index.column() == CorrectedColumn)
-            return QVariant::fromValue(Qt::AlignRight | Qt::AlignVCenter);
-        return QVariant::fromValue(Qt::AlignLeft | Qt::AlignVCenter);
-    case Qt::ForegroundRole:
-        if (m_played >= 0 && index.row() >= m_played)
-            return QBrush(QColor(0x9a, 0x9a, 0x9a));
-        if (index.column() == StatusColumn || index.column() == CorrectedColumn) {
-            if (r.status == FrameStatus::Uncorrectable || r.status == FrameStatus::Rejected)
-                return QBrush(QColor(0xb0, 0x1c, 0x1c));
-            if (r.status == FrameStatus::Corrected)
-                return QBrush(QColor(0x9a, 0x5b, 0x00));
-        }
-        return {};
-    case Qt::FontRole:
-        if (index.row() == m_played - 1) {
-            QFont bold;
-            bold.setBold(true);
-            return bold;
-        }
-        return {};
+        case Qt::DisplayRole:
+            return cellText(index.row(), r, index.column());
+        case Qt::ToolTipRole:
+            if (index.column() == TimeColumn)
+                return isoTime(r.utcMicros);
+            if (index.column() == StatusColumn)
+                return tr("%1 bytes over %2").arg(r.length).arg(frameTransportName(r.transport));
+            return {};
+        case Qt::TextAlignmentRole:
+            if (index.column() == NumberColumn || index.column() == MessageIdColumn ||
+                index.column() == CorrectedColumn)
+                return QVariant::fromValue(Qt::AlignRight | Qt::AlignVCenter);
+            return QVariant::fromValue(Qt::AlignLeft | Qt::AlignVCenter);
+        case Qt::ForegroundRole:
+            if (m_played >= 0 && index.row() >= m_played)
+                return QBrush(QColor(0x9a, 0x9a, 0x9a));
+            if (index.column() == StatusColumn || index.column() == CorrectedColumn) {
+                if (r.status == FrameStatus::Uncorrectable || r.status == FrameStatus::Rejected)
+                    return QBrush(QColor(0xb0, 0x1c, 0x1c));
+                if (r.status == FrameStatus::Corrected)
+                    return QBrush(QColor(0x9a, 0x5b, 0x00));
+            }
+            return {};
+        case Qt::FontRole:
+            if (index.row() == m_played - 1) {
+                QFont bold;
+                bold.setBold(true);
+                return bold;
+            }
+            return {};
     }
     return {};
 }
@@ -125,24 +134,24 @@ QVariant FrameLogModel::data(const QModelIndex& index, int role) const
 QString FrameLogModel::cellText(int row, const Row& r, int column) const
 {
     switch (column) {
-    case NumberColumn:
-        return QString::number(row + 1);
-    case TimeColumn:
-        return timeOfDay(r.utcMicros);
-    case DirectionColumn:
-        return r.direction == FrameDirection::Sent ? tr("\u2192 sent") : tr("\u2190 received");
-    case MessageIdColumn:
-        decodeRow(r);
-        return r.hasMessageId ? QString::number(r.messageId) : QStringLiteral("\u2014");
-    case CorrectedColumn:
-        decodeRow(r);
-        if (r.corrected1 == kNotKnown || r.corrected2 == kNotKnown)
-            return QStringLiteral("\u2014");
-        if (r.corrected1 < 0 || r.corrected2 < 0)
-            return tr("beyond");
-        return QStringLiteral("%1 + %2").arg(r.corrected1).arg(r.corrected2);
-    case StatusColumn:
-        return frameStatusName(r.status);
+        case NumberColumn:
+            return QString::number(row + 1);
+        case TimeColumn:
+            return timeOfDay(r.utcMicros);
+        case DirectionColumn:
+            return r.direction == FrameDirection::Sent ? tr("\u2192 sent") : tr("\u2190 received");
+        case MessageIdColumn:
+            decodeRow(r);
+            return r.hasMessageId ? QString::number(r.messageId) : QStringLiteral("\u2014");
+        case CorrectedColumn:
+            decodeRow(r);
+            if (r.corrected1 == kNotKnown || r.corrected2 == kNotKnown)
+                return QStringLiteral("\u2014");
+            if (r.corrected1 < 0 || r.corrected2 < 0)
+                return tr("beyond");
+            return QStringLiteral("%1 + %2").arg(r.corrected1).arg(r.corrected2);
+        case StatusColumn:
+            return frameStatusName(r.status);
     }
     return {};
 }

@@ -39,13 +39,14 @@ QPlainTextEdit* makeDetailPane(const QString& placeholder)
 QString describeFrame(int number, const FrameRecord& record, std::optional<quint32> messageId)
 {
     const QDateTime time = QDateTime::fromMSecsSinceEpoch(record.utcMicros / 1000, QTimeZone::utc());
-    QString text = QStringLiteral("# Frame %1: %2 %3 UTC, %4, %5 bytes, %6\n")
-                       .arg(number)
-                       .arg(record.direction == FrameDirection::Sent ? QStringLiteral("sent") : QStringLiteral("received"))
-                       .arg(time.toString(QStringLiteral("yyyy-MM-dd hh:mm:ss.zzz")))
-                       .arg(frameTransportName(record.transport))
-                       .arg(record.bytes.size())
-                       .arg(frameStatusName(record.status));
+    QString text =
+        QStringLiteral("# Frame %1: %2 %3 UTC, %4, %5 bytes, %6\n")
+            .arg(number)
+            .arg(record.direction == FrameDirection::Sent ? QStringLiteral("sent") : QStringLiteral("received"))
+            .arg(time.toString(QStringLiteral("yyyy-MM-dd hh:mm:ss.zzz")))
+            .arg(frameTransportName(record.transport))
+            .arg(record.bytes.size())
+            .arg(frameStatusName(record.status));
     if (record.bytes.isEmpty()) {
         text += QStringLiteral("# The bytes of this frame are in the session's frame log, not in memory.\n");
         if (messageId)
@@ -87,9 +88,9 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
     m_direction->setToolTip(tr("Show frames sent to the aircraft, received from it, or both"));
     using F = FrameLogFilterModel;
     m_status->addItem(tr("Any status"), F::kAllStatuses);
-    m_status->addItem(tr("Problems (corrected, uncorrectable, rejected)"),
-                      F::bit(FrameStatus::Corrected) | F::bit(FrameStatus::Uncorrectable) |
-                          F::bit(FrameStatus::Rejected));
+    m_status->addItem(tr("Problems (corrected, uncorrectable, rejected)"), F::bit(FrameStatus::Corrected) |
+                                                                               F::bit(FrameStatus::Uncorrectable) |
+                                                                               F::bit(FrameStatus::Rejected));
     for (FrameStatus s : {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable,
                           FrameStatus::Rejected, FrameStatus::NotChecked})
         m_status->addItem(frameStatusName(s), F::bit(s));

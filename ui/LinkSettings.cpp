@@ -77,8 +77,8 @@ LinkSettings LinkSettings::load(const QSettings& settings)
         return settings.value(QStringLiteral("link/") + QLatin1String(key), fallback);
     };
     LinkSettings s;
-    s.transport = value("transport", QString()).toString() == QLatin1String("serial") ? Transport::Serial
-                                                                                       : Transport::Udp;
+    s.transport =
+        value("transport", QString()).toString() == QLatin1String("serial") ? Transport::Serial : Transport::Udp;
     s.serialPort = value("serialPort", defaults.serialPort).toString();
     s.baudRate = value("baudRate", defaults.baudRate).toInt();
     s.localAddress = value("localAddress", defaults.localAddress).toString();

@@ -19,10 +19,10 @@ struct LinkSettings {
     static constexpr quint16 kDefaultRemotePort = 5600;
 
     Transport transport = Transport::Udp;
-    QString serialPort;       // "ttyUSB0" or a path such as /dev/pts/3
+    QString serialPort;  // "ttyUSB0" or a path such as /dev/pts/3
     qint32 baudRate = 9600;
     QString localAddress = QStringLiteral("0.0.0.0");
-    quint16 localPort = 0;    // 0: any free port
+    quint16 localPort = 0;  // 0: any free port
     QString remoteAddress = QStringLiteral("127.0.0.1");
     quint16 remotePort = kDefaultRemotePort;
 

@@ -147,9 +147,9 @@ void LinkSettingsWidget::refreshPorts()
     const QString chosen = settings().serialPort;
     m_port->clear();
     for (const auto& info : SerialLink::availablePorts()) {
-        const QString description = info.description().isEmpty() ? info.portName()
-                                                                  : info.portName() + QStringLiteral(" \u2013 ") +
-                                                                        info.description();
+        const QString description = info.description().isEmpty()
+                                        ? info.portName()
+                                        : info.portName() + QStringLiteral(" \u2013 ") + info.description();
         m_port->addItem(description, info.portName());
     }
     const int index = m_port->findData(chosen);

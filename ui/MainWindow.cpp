@@ -80,8 +80,7 @@ QDockWidget* dock(const QString& title, const QString& name, QWidget* content, Q
     heading.setBold(true);
     d->setFont(heading);
     d->setWidget(content);
-    d->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
-                   QDockWidget::DockWidgetClosable);
+    d->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable | QDockWidget::DockWidgetClosable);
     return d;
 }
 
@@ -116,9 +115,8 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     statusBar()->setSizeGripEnabled(true);
 
     connect(m_command, &CommandState::changed, this, &MainWindow::commandChanged);
-    connect(m_command, &CommandState::rejected, this, [this](const QString& reason) {
-        statusBar()->showMessage(tr("Not commanded: %1").arg(reason), 8000);
-    });
+    connect(m_command, &CommandState::rejected, this,
+            [this](const QString& reason) { statusBar()->showMessage(tr("Not commanded: %1").arg(reason), 8000); });
     connect(m_command, &CommandState::airframeChanged, this, [this] {
         m_reported->clear();
         updateTitle();
@@ -200,8 +198,9 @@ void MainWindow::buildDocks()
     buttons->addWidget(m_disconnectButton);
     linkLayout->addLayout(buttons);
     m_rehearsalButton = new QPushButton(tr("Start rehearsal"));
-    m_rehearsalButton->setToolTip(tr("Start the simulated aircraft (uasim) on this computer and connect to it "
-                                     "(Ctrl+R)"));
+    m_rehearsalButton->setToolTip(
+        tr("Start the simulated aircraft (uasim) on this computer and connect to it "
+           "(Ctrl+R)"));
     linkLayout->addWidget(m_rehearsalButton);
     m_linkNote = new QLabel;
     m_linkNote->setWordWrap(true);
@@ -281,8 +280,8 @@ void MainWindow::buildMenus()
     m_rehearsalAction = linkMenu->addAction(tr("Start &rehearsal with uasim"), this, &MainWindow::startRehearsal);
     m_rehearsalAction->setShortcut(QKeySequence(tr("Ctrl+R")));
     linkMenu->addSeparator();
-    m_pauseAction = linkMenu->addAction(tr("&Pause or resume replay"), this,
-                                        [this] { setReplayPaused(!m_replayPaused); });
+    m_pauseAction =
+        linkMenu->addAction(tr("&Pause or resume replay"), this, [this] { setReplayPaused(!m_replayPaused); });
     m_pauseAction->setShortcut(QKeySequence(tr("Ctrl+P")));
     m_pauseAction->setEnabled(false);
     linkMenu->addAction(tr("Refresh serial ports"), m_linkSettings, &LinkSettingsWidget::refreshPorts);
@@ -569,9 +568,8 @@ void MainWindow::statisticsChanged(const LinkStatistics& statistics)
             m_logModel->appendRecord(r);
         }
     };
-    const quint64 rejected = statistics.wrongSizeDatagrams + statistics.rejectedForged +
-                             statistics.rejectedReplayed + statistics.rejectedStaleTime +
-                             statistics.rejectedPlaintext;
+    const quint64 rejected = statistics.wrongSizeDatagrams + statistics.rejectedForged + statistics.rejectedReplayed +
+                             statistics.rejectedStaleTime + statistics.rejectedPlaintext;
     addRows(statistics.uncorrectableFrames - std::min(statistics.uncorrectableFrames, m_uncorrectableSeen),
             FrameStatus::Uncorrectable);
     addRows(rejected - std::min(rejected, m_rejectedSeen), FrameStatus::Rejected);
@@ -617,8 +615,9 @@ void MainWindow::setLinkControlsRunning(bool running)
     m_disconnectButton->setEnabled(running || m_rehearsal->isRunning());
     m_disconnectAction->setEnabled(running || m_rehearsal->isRunning());
     if (!running && !m_rehearsal->isRunning())
-        m_linkNote->setText(tr("Not connected. Connect to the aircraft's link, start a rehearsal against the "
-                               "simulated aircraft, or open a frame log to replay it (Ctrl+O)."));
+        m_linkNote->setText(
+            tr("Not connected. Connect to the aircraft's link, start a rehearsal against the "
+               "simulated aircraft, or open a frame log to replay it (Ctrl+O)."));
 }
 
 void MainWindow::updateTitle()
@@ -644,9 +643,9 @@ void MainWindow::exportCsv()
         showError(tr("No frame log to export: connect, or open a log first"));
         return;
     }
-    const QString target = QFileDialog::getSaveFileName(
-        this, tr("Export the frame log as CSV"), QFileInfo(source).completeBaseName() + QStringLiteral(".csv"),
-        tr("CSV files (*.csv)"));
+    const QString target = QFileDialog::getSaveFileName(this, tr("Export the frame log as CSV"),
+                                                        QFileInfo(source).completeBaseName() + QStringLiteral(".csv"),
+                                                        tr("CSV files (*.csv)"));
     if (target.isEmpty())
         return;
     // A day's log takes seconds to export: a thread of its own, so the
@@ -676,8 +675,8 @@ void MainWindow::exportCsv()
 
 void MainWindow::chooseAirframe()
 {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open an airframe"), QString(),
-                                                      tr("Airframes (*.json);;All files (*)"));
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Open an airframe"), QString(), tr("Airframes (*.json);;All files (*)"));
     if (!path.isEmpty())
         loadAirframe(path);
 }

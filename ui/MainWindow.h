@@ -94,8 +94,7 @@ private:
     void restoreSession(const Options& options);
     void saveSession() const;
 
-    void startController(std::unique_ptr<class Link> link, bool datagram, const QString& description,
-                         bool keepLog);
+    void startController(std::unique_ptr<class Link> link, bool datagram, const QString& description, bool keepLog);
     void stopController();
     void commandChanged();
     void statisticsChanged(const LinkStatistics& statistics);

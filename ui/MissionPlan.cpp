@@ -63,25 +63,44 @@ T take(const char*& at)
 QString MissionItem::commandName() const
 {
     switch (command) {
-    case 16: return QStringLiteral("NAV_WAYPOINT");
-    case 17: return QStringLiteral("NAV_LOITER_UNLIM");
-    case 18: return QStringLiteral("NAV_LOITER_TURNS");
-    case 19: return QStringLiteral("NAV_LOITER_TIME");
-    case 20: return QStringLiteral("NAV_RETURN_TO_LAUNCH");
-    case 21: return QStringLiteral("NAV_LAND");
-    case 22: return QStringLiteral("NAV_TAKEOFF");
-    case 31: return QStringLiteral("NAV_LOITER_TO_ALT");
-    case 84: return QStringLiteral("NAV_VTOL_TAKEOFF");
-    case 85: return QStringLiteral("NAV_VTOL_LAND");
-    case 112: return QStringLiteral("CONDITION_DELAY");
-    case 177: return QStringLiteral("DO_JUMP");
-    case 178: return QStringLiteral("DO_CHANGE_SPEED");
-    case 189: return QStringLiteral("DO_LAND_START");
-    case 201: return QStringLiteral("DO_SET_ROI");
-    case 203: return QStringLiteral("DO_DIGICAM_CONTROL");
-    case 206: return QStringLiteral("DO_SET_CAM_TRIGG_DIST");
-    case 2000: return QStringLiteral("IMAGE_START_CAPTURE");
-    case 2001: return QStringLiteral("IMAGE_STOP_CAPTURE");
+        case 16:
+            return QStringLiteral("NAV_WAYPOINT");
+        case 17:
+            return QStringLiteral("NAV_LOITER_UNLIM");
+        case 18:
+            return QStringLiteral("NAV_LOITER_TURNS");
+        case 19:
+            return QStringLiteral("NAV_LOITER_TIME");
+        case 20:
+            return QStringLiteral("NAV_RETURN_TO_LAUNCH");
+        case 21:
+            return QStringLiteral("NAV_LAND");
+        case 22:
+            return QStringLiteral("NAV_TAKEOFF");
+        case 31:
+            return QStringLiteral("NAV_LOITER_TO_ALT");
+        case 84:
+            return QStringLiteral("NAV_VTOL_TAKEOFF");
+        case 85:
+            return QStringLiteral("NAV_VTOL_LAND");
+        case 112:
+            return QStringLiteral("CONDITION_DELAY");
+        case 177:
+            return QStringLiteral("DO_JUMP");
+        case 178:
+            return QStringLiteral("DO_CHANGE_SPEED");
+        case 189:
+            return QStringLiteral("DO_LAND_START");
+        case 201:
+            return QStringLiteral("DO_SET_ROI");
+        case 203:
+            return QStringLiteral("DO_DIGICAM_CONTROL");
+        case 206:
+            return QStringLiteral("DO_SET_CAM_TRIGG_DIST");
+        case 2000:
+            return QStringLiteral("IMAGE_START_CAPTURE");
+        case 2001:
+            return QStringLiteral("IMAGE_STOP_CAPTURE");
     }
     return QStringLiteral("MAV_CMD %1").arg(command);
 }
@@ -89,13 +108,20 @@ QString MissionItem::commandName() const
 QString MissionItem::frameName() const
 {
     switch (frame) {
-    case 0: return QStringLiteral("AMSL");
-    case 2: return QStringLiteral("mission");
-    case 3: return QStringLiteral("above home");
-    case 5: return QStringLiteral("AMSL (int)");
-    case 6: return QStringLiteral("above home (int)");
-    case 10: return QStringLiteral("above terrain");
-    case 11: return QStringLiteral("above terrain (int)");
+        case 0:
+            return QStringLiteral("AMSL");
+        case 2:
+            return QStringLiteral("mission");
+        case 3:
+            return QStringLiteral("above home");
+        case 5:
+            return QStringLiteral("AMSL (int)");
+        case 6:
+            return QStringLiteral("above home (int)");
+        case 10:
+            return QStringLiteral("above terrain");
+        case 11:
+            return QStringLiteral("above terrain (int)");
     }
     return QStringLiteral("MAV_FRAME %1").arg(frame);
 }
@@ -190,10 +216,10 @@ std::optional<MissionPlan> MissionPlan::fromQgcJson(const QByteArray& json, cons
         item.latitude = given(4);
         item.longitude = given(5);
         item.altitude = given(6);
-        if (isGlobalFrame(item.frame) && ((item.latitude && std::abs(*item.latitude) > 90) ||
-                                          (item.longitude && std::abs(*item.longitude) > 180)))
-            return fail(QStringLiteral("%1: latitude must be within +-90 and longitude within +-180 degrees")
-                            .arg(where));
+        if (isGlobalFrame(item.frame) &&
+            ((item.latitude && std::abs(*item.latitude) > 90) || (item.longitude && std::abs(*item.longitude) > 180)))
+            return fail(
+                QStringLiteral("%1: latitude must be within +-90 and longitude within +-180 degrees").arg(where));
         if ((item.latitude && !fitsInt32(*item.latitude, kDegreeSteps)) ||
             (item.longitude && !fitsInt32(*item.longitude, kDegreeSteps)) ||
             (item.altitude && !fitsInt32(*item.altitude, kMillimetres)))
@@ -219,8 +245,8 @@ QByteArray MissionPlan::toBytes() const
         put<quint8>(out, item.frame);
         put<quint8>(out, item.autoContinue ? 1 : 0);
         for (double p : item.params)
-            put<quint32>(out, std::bit_cast<quint32>(std::isnan(p) ? std::numeric_limits<float>::quiet_NaN()
-                                                                  : float(p)));
+            put<quint32>(out,
+                         std::bit_cast<quint32>(std::isnan(p) ? std::numeric_limits<float>::quiet_NaN() : float(p)));
         put<qint32>(out, toFixed(item.latitude, kDegreeSteps));
         put<qint32>(out, toFixed(item.longitude, kDegreeSteps));
         put<qint32>(out, toFixed(item.altitude, kMillimetres));

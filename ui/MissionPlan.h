@@ -58,10 +58,10 @@ struct MissionItem {
     quint16 command = 0;
     quint8 frame = 0;
     bool autoContinue = true;
-    std::array<double, 4> params{};      // NaN: null in the plan
-    std::optional<double> latitude;      // degrees
-    std::optional<double> longitude;     // degrees
-    std::optional<double> altitude;      // metres, in the item's frame
+    std::array<double, 4> params{};   // NaN: null in the plan
+    std::optional<double> latitude;   // degrees
+    std::optional<double> longitude;  // degrees
+    std::optional<double> altitude;   // metres, in the item's frame
 
     // "NAV_WAYPOINT" for the commands a console shows often, else "MAV_CMD 1234".
     QString commandName() const;

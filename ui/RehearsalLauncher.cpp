@@ -26,7 +26,8 @@ void RehearsalLauncher::start(const rcm::Airframe& airframe, const QString& prog
     m_program = program;
     m_attempt = 0;
     m_confirmed = false;
-    m_airframeFile = std::make_unique<QTemporaryFile>(QDir::temp().filePath(QStringLiteral("gcs-airframe-XXXXXX.json")));
+    m_airframeFile =
+        std::make_unique<QTemporaryFile>(QDir::temp().filePath(QStringLiteral("gcs-airframe-XXXXXX.json")));
     if (!m_airframeFile->open() || m_airframeFile->write(AirframeLoader::toJson(airframe)) < 0 ||
         !m_airframeFile->flush()) {
         emit failed(tr("Cannot write the airframe for uasim: %1").arg(m_airframeFile->errorString()));

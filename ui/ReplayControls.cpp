@@ -114,7 +114,8 @@ void ReplayControls::setSpeed(double speed)
 
 void ReplayControls::showTime(qint64 utcMicros)
 {
-    const QString utc = QDateTime::fromMSecsSinceEpoch(utcMicros / 1000, QTimeZone::utc()).toString(QStringLiteral("hh:mm:ss"));
+    const QString utc =
+        QDateTime::fromMSecsSinceEpoch(utcMicros / 1000, QTimeZone::utc()).toString(QStringLiteral("hh:mm:ss"));
     m_time->setText(QStringLiteral("%1 / %2").arg(clock(utcMicros - m_start), clock(m_end - m_start)));
     m_time->setToolTip(tr("Position in the log / length of the log; the position is %1 UTC").arg(utc));
 }

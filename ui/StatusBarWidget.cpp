@@ -41,7 +41,8 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
       m_lost(new QLabel(tr("LINK LOST")))
 {
     m_state->setTextFormat(Qt::RichText);
-    m_state->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535")));
+    m_state->setMinimumWidth(
+        fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535")));
     m_lost->setToolTip(tr("No good frame from the aircraft within the silence timeout"));
     m_lost->setAlignment(Qt::AlignCenter);
     m_lost->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("  LINK LOST  ")) + 16);
@@ -86,22 +87,22 @@ void StatusBarWidget::setState(LinkState state)
     m_statistics.state = state;
     QString name, colour;
     switch (state) {
-    case LinkState::Closed:
-        name = tr("Not connected");
-        colour = QStringLiteral("#8a8a8a");
-        break;
-    case LinkState::Waiting:
-        name = tr("Waiting for the aircraft");
-        colour = QStringLiteral("#c98a00");
-        break;
-    case LinkState::Connected:
-        name = tr("Connected");
-        colour = QStringLiteral("#1d7a35");
-        break;
-    case LinkState::Lost:
-        name = tr("Lost");
-        colour = QStringLiteral("#b01c1c");
-        break;
+        case LinkState::Closed:
+            name = tr("Not connected");
+            colour = QStringLiteral("#8a8a8a");
+            break;
+        case LinkState::Waiting:
+            name = tr("Waiting for the aircraft");
+            colour = QStringLiteral("#c98a00");
+            break;
+        case LinkState::Connected:
+            name = tr("Connected");
+            colour = QStringLiteral("#1d7a35");
+            break;
+        case LinkState::Lost:
+            name = tr("Lost");
+            colour = QStringLiteral("#b01c1c");
+            break;
     }
     QString text = QStringLiteral("<span style=\"color:%1\">\u25cf</span> <b>%2</b>").arg(colour, name);
     if (!m_description.isEmpty() && state != LinkState::Closed)
@@ -125,10 +126,9 @@ void StatusBarWidget::setStatistics(const LinkStatistics& statistics)
     m_corrected->setText(field(tr("Corrected bytes"),
                                locale.toString(statistics.correctedBytesBlock1 + statistics.correctedBytesBlock2)));
     const QString bad = locale.toString(statistics.uncorrectableFrames);
-    m_uncorrectable->setText(field(tr("Uncorrectable"), statistics.uncorrectableFrames
-                                                            ? QStringLiteral("<span style=\"color:#b01c1c\">%1</span>")
-                                                                  .arg(bad)
-                                                            : bad));
+    m_uncorrectable->setText(field(
+        tr("Uncorrectable"),
+        statistics.uncorrectableFrames ? QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(bad) : bad));
     if (stateChanged || statistics.state == LinkState::Closed)
         setState(statistics.state);
     else
@@ -137,8 +137,7 @@ void StatusBarWidget::setStatistics(const LinkStatistics& statistics)
 
 void StatusBarWidget::updateAge()
 {
-    const qint64 age =
-        m_statistics.lastGoodFrameAgeMicros(QDateTime::currentDateTimeUtc().toMSecsSinceEpoch() * 1000);
+    const qint64 age = m_statistics.lastGoodFrameAgeMicros(QDateTime::currentDateTimeUtc().toMSecsSinceEpoch() * 1000);
     QString text;
     if (age < 0)
         text = QStringLiteral("\u2014");
