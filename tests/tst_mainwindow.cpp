@@ -7,8 +7,9 @@
 // a broken build.
 
 #include "codec/Airframe.h"
-#include "link/FrameLog.h"
+#include "codec/MessageDecoder.h"
 #include "codec/MessageEncoder.h"
+#include "link/FrameLog.h"
 #include "ui/AirframeLoader.h"
 #include "ui/CommandPreview.h"
 #include "ui/CommandState.h"
@@ -473,6 +474,22 @@ void TestMainWindow::rehearsalAgainstUasim()
     // Both directions reach the frame log view, and the session's log file.
     QTRY_VERIFY_WITH_TIMEOUT(window.frameLog()->rowCount() >= 4, kLinkTimeoutMs);
     QVERIFY(QFileInfo::exists(window.sessionLogPath()));
+    // A live row shows the bytes the link logged for it, found in the session's log.
+    FrameLogModel* log = window.frameLog();
+    for (FrameDirection direction : {FrameDirection::Sent, FrameDirection::Received}) {
+        int row = log->rowCount() - 1;
+        while (row >= 0 && log->direction(row) != direction)
+            --row;
+        QVERIFY(row >= 0);
+        const FrameRecord record = log->record(row);
+        QCOMPARE(record.bytes.size(), 510);
+        QCOMPARE(record.direction, direction);
+        // The very frame: its ID_msg is the one the link reported for the row.
+        const rcm::DecodeResult decoded = rcm::decodeFrame(std::span<const std::uint8_t>(
+            reinterpret_cast<const std::uint8_t*>(record.bytes.constData()), std::size_t(record.bytes.size())));
+        QVERIFY(log->messageId(row).has_value());
+        QCOMPARE(quint32(decoded.message.header.number(rcm::ItemId::ID_msg)), *log->messageId(row));
+    }
 
     // The sample plan goes up in BLOCK 2 and the aircraft acknowledges it.
     auto* upload = window.findChild<FlightPlanUpload*>();

@@ -10,6 +10,7 @@
 #include <QTimeZone>
 
 #include <algorithm>
+#include <limits>
 #include <span>
 
 namespace {
@@ -232,6 +233,8 @@ bool FrameLogModel::openLog(const QString& path, QString* error)
     }
     m_reader = std::move(reader);
     m_logPath = path;
+    m_sessionLogPath.clear();
+    m_sessionLog.reset();
     m_played = -1;
     m_decodedRows = 0;
     endResetModel();
@@ -248,6 +251,8 @@ void FrameLogModel::clear()
     m_liveBytes.shrink_to_fit();
     m_reader.reset();
     m_logPath.clear();
+    m_sessionLogPath.clear();
+    m_sessionLog.reset();
     m_played = -1;
     m_decodedRows = 0;
     endResetModel();
@@ -258,6 +263,9 @@ FrameRecord FrameLogModel::record(int row) const
     const Row& r = m_rows[std::size_t(row)];
     if (r.fromLog && m_reader)
         return m_reader->recordAt(r.source);
+    if (r.source < 0)
+        if (std::optional<FrameRecord> logged = fromSessionLog(r))
+            return *logged;
     FrameRecord record;
     record.bytes = bytesOf(r);
     record.utcMicros = r.utcMicros;
@@ -268,6 +276,45 @@ FrameRecord FrameLogModel::record(int row) const
     if (r.corrected1 != kNotKnown && r.corrected2 != kNotKnown)
         record.correctedSymbols = {r.corrected1, r.corrected2};
     return record;
+}
+
+void FrameLogModel::setSessionLog(const QString& path)
+{
+    m_sessionLogPath = path;
+    m_sessionLog.reset();
+}
+
+// The logged record of a row appended without bytes: the one of its direction
+// and status nearest in time, within half a second, as the link stamps its log
+// a moment before it tells the GUI of a frame.
+std::optional<FrameRecord> FrameLogModel::fromSessionLog(const Row& row) const
+{
+    constexpr qint64 kWindowMicros = 500'000;
+    if (m_sessionLogPath.isEmpty())
+        return std::nullopt;
+    const auto latest = [this] {
+        return m_sessionLog && m_sessionLog->count() ? m_sessionLog->index().constLast().utcMicros
+                                                     : std::numeric_limits<qint64>::min();
+    };
+    if (latest() < row.utcMicros + kWindowMicros) {
+        // The log has grown since: index it again (a day of frames takes tens of ms, on a click).
+        m_sessionLog = std::make_unique<FrameLogReader>();
+        m_sessionLog->open(m_sessionLogPath);
+    }
+    const QVector<FrameIndexEntry>& index = m_sessionLog->index();
+    int best = -1;
+    qint64 bestDistance = kWindowMicros + 1;
+    for (int i = m_sessionLog->indexAtOrAfter(row.utcMicros - kWindowMicros);
+         i < index.size() && index[i].utcMicros <= row.utcMicros + kWindowMicros; ++i) {
+        const qint64 distance = std::abs(index[i].utcMicros - row.utcMicros);
+        if (index[i].direction == row.direction && index[i].status == row.status && distance < bestDistance) {
+            best = i;
+            bestDistance = distance;
+        }
+    }
+    if (best < 0)
+        return std::nullopt;
+    return m_sessionLog->recordAt(best);
 }
 
 std::optional<quint32> FrameLogModel::messageId(int row) const

@@ -45,6 +45,12 @@ public:
     void clear();
     QString logPath() const { return m_logPath; }
 
+    // The log file a live link is writing. A frame appended without its
+    // bytes is looked up there, by direction and time, when record() is
+    // asked for it: the log view shows the bytes the link logged without the
+    // model holding a copy of every frame. Cleared by clear() and openLog().
+    void setSessionLog(const QString& path);
+
     // What a filter needs, without building any text.
     FrameDirection direction(int row) const { return m_rows[std::size_t(row)].direction; }
     FrameStatus status(int row) const { return m_rows[std::size_t(row)].status; }
@@ -99,12 +105,15 @@ private:
     void decodeRow(const Row& row) const;
     QByteArray bytesOf(const Row& row) const;
     QString cellText(int row, const Row& r, int column) const;
+    std::optional<FrameRecord> fromSessionLog(const Row& row) const;
 
     std::vector<Row> m_rows;
     std::vector<Row> m_pending;
     std::vector<QByteArray> m_liveBytes;  // appended frames' bytes, by Row::source
     std::unique_ptr<FrameLogReader> m_reader;
     QString m_logPath;
+    QString m_sessionLogPath;
+    mutable std::unique_ptr<FrameLogReader> m_sessionLog;  // indexed again when a row is newer than its end
     int m_played = -1;
     mutable int m_decodedRows = 0;
     bool m_flushQueued = false;

@@ -48,7 +48,7 @@ QString describeFrame(int number, const FrameRecord& record, std::optional<quint
             .arg(record.bytes.size())
             .arg(frameStatusName(record.status));
     if (record.bytes.isEmpty()) {
-        text += QStringLiteral("# The bytes of this frame are in the session's frame log, not in memory.\n");
+        text += QStringLiteral("# No bytes for this frame: this session keeps no frame log, or the log lacks it.\n");
         if (messageId)
             text += QStringLiteral("# ID_msg %1\n").arg(*messageId);
         return text;

@@ -490,13 +490,14 @@ void MainWindow::startController(std::unique_ptr<Link> link, bool datagram, cons
         const QString path =
             QDir(m_frameLogDirectory).filePath(FrameLog::sessionFileName(QDateTime::currentDateTimeUtc()));
         QString error;
+        m_logModel->clear();
         if (log->open(path, &error)) {
             m_sessionLogPath = path;
+            m_logModel->setSessionLog(path);
         } else {
             showError(tr("No frame log for this session: %1").arg(error));
             log.reset();
         }
-        m_logModel->clear();
     }
     m_uncorrectableSeen = 0;
     m_rejectedSeen = 0;
