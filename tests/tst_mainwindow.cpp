@@ -196,6 +196,7 @@ void TestMainWindow::airframeFiles()
 
 void TestMainWindow::screenshotOfTheRealProgram()
 {
+    QVERIFY2(QFileInfo(QStringLiteral(RCM_BIN_DIR "/gcs")).isExecutable(), "build the gcs target first");
     const QString png = m_dir.filePath(QStringLiteral("gcs.png"));
     QProcess gcs;
     gcs.setProcessChannelMode(QProcess::ForwardedErrorChannel);
@@ -461,6 +462,7 @@ void TestMainWindow::replaysAFrameLog()
 
 void TestMainWindow::rehearsalAgainstUasim()
 {
+    QVERIFY2(QFileInfo(QStringLiteral(RCM_BIN_DIR "/uasim")).isExecutable(), "build the uasim target first");
     MainWindow window(options());
     window.show();
     QVERIFY(window.flightPlan()->loadPlan(kSamplePlan));
