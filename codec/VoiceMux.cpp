@@ -68,10 +68,12 @@ void VoiceMultiplexer::multiplex(std::span<const std::uint8_t> voice, std::span<
 {
     assert(out.size() == 2 * voice.size());
     for (std::size_t i = 0; i < voice.size(); ++i) {
-        if (m_position == kFrameSize)
+        if (m_position == kFrameSize && (m_frameJustEnded || !m_holdFill))
             startNext();
+        m_frameJustEnded = false;
         if (m_position < kFrameSize) {
             out[2 * i] = m_current[m_position++];
+            m_frameJustEnded = m_position == kFrameSize;
         } else {
             out[2 * i] = kControlFillByte;
             ++m_stats.fillBytes;

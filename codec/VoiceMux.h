@@ -43,9 +43,9 @@ std::array<std::uint8_t, kMuxedFrameSize> multiplexFrame(std::span<const std::ui
 // phase carries kControlFillByte and the voice goes on.
 class VoiceMultiplexer {
 public:
-    // Enough to ride out a sender that is briefly late and then catches up;
-    // more would only age the commands.
-    static constexpr std::size_t kMaxQueuedFrames = 2;
+    // Enough to ride out a sender that is late and then catches up; more
+    // would only age the commands.
+    static constexpr std::size_t kMaxQueuedFrames = 4;
 
     struct Stats {
         std::uint64_t pairs = 0;          // byte pairs produced
@@ -60,6 +60,11 @@ public:
     bool queueFrame(std::span<const std::uint8_t, kFrameSize> frame);
     // The next voice.size() byte pairs into out (2 x voice.size() bytes).
     void multiplex(std::span<const std::uint8_t> voice, std::span<std::uint8_t> out);
+    // While set, a queued frame does not end fill: the serial link holds the
+    // first frame after a pause a little, so that the frame after it, due a
+    // second later from a sender whose ticks wobble, is there in time to
+    // follow it with no gap. A frame that follows another is never held.
+    void setHoldFill(bool hold) { m_holdFill = hold; }
 
     // A frame is part sent: the next pair continues it.
     bool sendingFrame() const { return m_position < kFrameSize; }
@@ -73,6 +78,8 @@ private:
 
     FrameBytes m_current{};
     std::size_t m_position = kFrameSize;  // next byte of m_current; kFrameSize: none
+    bool m_frameJustEnded = false;        // the last pair ended a frame: the next may follow it
+    bool m_holdFill = false;
     std::array<FrameBytes, kMaxQueuedFrames> m_queue{};
     std::size_t m_head = 0;
     std::size_t m_queued = 0;

@@ -147,6 +147,7 @@ private slots:
     void streamingFormMatchesBlockForm();
     void framesBackToBackAndFill();
     void queueDropsOldest();
+    void holdDelaysOnlyTheStartAfterFill();
     void startAtOddByte_data();
     void startAtOddByte();
     void lostBytes_data();
@@ -269,20 +270,53 @@ void TestVoiceMux::framesBackToBackAndFill()
 
 void TestVoiceMux::queueDropsOldest()
 {
+    constexpr std::size_t n = VoiceMultiplexer::kMaxQueuedFrames + 1;
     std::mt19937 rng(4);
-    const ControlStream c = controlStream(rng, 3);
+    const ControlStream c = controlStream(rng, n);
     VoiceMultiplexer mux;
-    for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t i = 0; i < n; ++i)
         QCOMPARE(mux.queueFrame(std::span<const std::uint8_t, kFrameSize>(c.bytes.data() + i * kFrameSize, kFrameSize)),
                  i < VoiceMultiplexer::kMaxQueuedFrames);
     QCOMPARE(mux.stats().framesDropped, std::uint64_t(1));
-    Bytes out(2 * 2 * kFrameSize);
-    mux.multiplex(Bytes(2 * kFrameSize, 0xA5), out);
+    Bytes out(2 * (n - 1) * kFrameSize);
+    mux.multiplex(Bytes((n - 1) * kFrameSize, 0xA5), out);
     Receiver r;
     r.feed(out, rng);
+    QCOMPARE(r.frames.size(), n - 1);
+    for (std::size_t i = 0; i + 1 < n; ++i)
+        QVERIFY(r.frames[i].blocks.block1 == c.block1[i + 1]);
+}
+
+// Held, a queued frame waits while fill goes on; a frame that follows
+// another is not held.
+void TestVoiceMux::holdDelaysOnlyTheStartAfterFill()
+{
+    std::mt19937 rng(6);
+    const ControlStream c = controlStream(rng, 2);
+    VoiceMultiplexer mux;
+    Bytes line;
+    const auto produce = [&](std::size_t pairs) {
+        Bytes out(2 * pairs);
+        mux.multiplex(Bytes(pairs, 0xA5), out);
+        line.insert(line.end(), out.begin(), out.end());
+    };
+    mux.queueFrame(std::span<const std::uint8_t, kFrameSize>(c.bytes.data(), kFrameSize));
+    mux.queueFrame(std::span<const std::uint8_t, kFrameSize>(c.bytes.data() + kFrameSize, kFrameSize));
+    mux.setHoldFill(true);
+    produce(100);
+    QVERIFY(!mux.sendingFrame());
+    QCOMPARE(mux.stats().fillBytes, std::uint64_t(100));
+    mux.setHoldFill(false);
+    produce(kFrameSize);
+    mux.setHoldFill(true);  // frame 1 follows frame 0 all the same
+    produce(kFrameSize + 10);
+    QCOMPARE(mux.stats().framesStarted, std::uint64_t(2));
+    QCOMPARE(mux.stats().fillBytes, std::uint64_t(110));
+    Receiver r;
+    r.feed(line, rng);
     QCOMPARE(r.frames.size(), std::size_t(2));
-    QVERIFY(r.frames[0].blocks.block1 == c.block1[1]);
-    QVERIFY(r.frames[1].blocks.block1 == c.block1[2]);
+    QCOMPARE(r.frames[0].offset, std::int64_t(100));
+    QCOMPARE(r.frames[1].offset, std::int64_t(100 + kFrameSize));
 }
 
 void TestVoiceMux::startAtOddByte_data()

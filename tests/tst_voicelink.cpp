@@ -1,0 +1,379 @@
+// The voice links: commands and voice on one serial line, 1,200 bytes a
+// second, C V C V ..., over a pseudo-terminal; voice in datagrams of its own
+// beside the commands over UDP on loopback. What the far end receives is
+// counted in bytes and frames, and the phrase it hears is compared by its
+// band energies. Time enters only through QTRY's patience.
+
+// First: it names a member emit(), which Qt's headers define as a macro.
+#include "codec/StreamSync.h"
+
+#include "BandEnergy.h"
+
+#include "codec/MessageDecoder.h"
+#include "codec/MessageEncoder.h"
+#include "codec/VoiceCodec.h"
+#include "codec/VoiceMux.h"
+#include "codec/WavFile.h"
+#include "link/LinkWorker.h"
+#include "link/SerialLink.h"
+#include "link/UdpLink.h"
+#include "link/VoiceDecoderSink.h"
+#include "link/VoiceEncoderSource.h"
+#include "link/VoiceSerialLink.h"
+#include "link/VoiceUdpLink.h"
+
+#include <QSignalSpy>
+#include <QSocketNotifier>
+#include <QTest>
+
+#include <cerrno>
+#include <fcntl.h>
+#include <pty.h>
+#include <unistd.h>
+
+using namespace std::chrono_literals;
+
+namespace {
+
+constexpr int kPatience = 20000;  // ms QTRY waits for what a loaded machine may delay
+constexpr double kToleranceDb = 6.0;  // as tst_voicecodec's, which says why
+
+using Pcm = std::vector<std::int16_t>;
+
+Pcm phrase()
+{
+    std::string error;
+    const auto audio = rcm::WavFile::read(RCM_SOURCE_DIR "/resources/voice/phrase.wav", error);
+    if (!audio)
+        qFatal("phrase.wav: %s", error.c_str());
+    return audio->samples;
+}
+
+std::size_t phraseFrames()
+{
+    return (phrase().size() + rcm::voice::kFrameSamples - 1) / rcm::voice::kFrameSamples;
+}
+
+QByteArray commandFrame(std::uint32_t id)
+{
+    rcm::Message m;
+    m.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
+    m.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
+    rcm::Diagnostics errors;
+    const auto frame = rcm::encodeFrame(m, errors).value();
+    return QByteArray(reinterpret_cast<const char*>(frame.data()), qsizetype(frame.size()));
+}
+
+// The aircraft's end of a pseudo-terminal: the master side, keeping every
+// byte the line carried.
+class PtyLine {
+public:
+    ~PtyLine()
+    {
+        m_notifier.reset();
+        if (m_master >= 0)
+            ::close(m_master);
+        if (m_slave >= 0)
+            ::close(m_slave);
+    }
+
+    bool open()
+    {
+        char name[256] = {};
+        if (::openpty(&m_master, &m_slave, name, nullptr, nullptr) != 0)
+            return false;
+        ::fcntl(m_master, F_SETFL, ::fcntl(m_master, F_GETFL) | O_NONBLOCK);
+        m_slavePath = QString::fromLocal8Bit(name);
+        m_notifier = std::make_unique<QSocketNotifier>(m_master, QSocketNotifier::Read);
+        QObject::connect(m_notifier.get(), &QSocketNotifier::activated, [this] {
+            char buffer[4096];
+            for (ssize_t n; (n = ::read(m_master, buffer, sizeof buffer)) > 0;)
+                m_bytes.append(buffer, n);
+        });
+        return true;
+    }
+
+    QString slavePath() const { return m_slavePath; }
+    const QByteArray& bytes() const { return m_bytes; }
+
+private:
+    int m_master = -1;
+    int m_slave = -1;  // held so the master never sees "no slave" before the port opens
+    QString m_slavePath;
+    std::unique_ptr<QSocketNotifier> m_notifier;
+    QByteArray m_bytes;
+};
+
+// What the far end makes of the line: frames (with their line offsets) and
+// the voice, decoded.
+struct Heard {
+    std::vector<std::int64_t> frameOffsets;  // line offset of each good frame's preamble
+    std::vector<std::int64_t> frameIds;
+    Pcm pcm;
+    rcm::voice::VoiceDecoder::Stats voice;
+    std::uint64_t phaseChanges = 0;
+    int controlPhase = 0;
+};
+
+Heard hear(const QByteArray& line)
+{
+    Heard h;
+    rcm::voice::VoiceDecoder decoder;
+    rcm::StreamSync sync([&](const rcm::SyncedFrame& f) {
+        if (!f.ok())
+            return;
+        // One control byte per line pair, control first: with no phase
+        // change, control offset k is line offset 2k.
+        h.frameOffsets.push_back(2 * f.offset);
+        const rcm::DecodeResult r = rcm::decodeBlocks(f.blocks);
+        h.frameIds.push_back(r.message.header.number(rcm::ItemId::ID_msg, -1));
+    });
+    rcm::VoiceDemultiplexer demux([&](std::span<const std::uint8_t> b) { sync.feed(b); },
+                                  [&](std::span<const std::uint8_t> b) { decoder.decode(b, h.pcm); });
+    demux.feed({reinterpret_cast<const std::uint8_t*>(line.constData()), std::size_t(line.size())});
+    sync.flush();
+    h.voice = decoder.stats();
+    h.phaseChanges = demux.stats().phaseChanges;
+    h.controlPhase = demux.controlPhase();
+    return h;
+}
+
+// The 20 ms slots of `pcm` that are not all silence, as [first, last + 1).
+std::pair<std::size_t, std::size_t> soundingSlots(const Pcm& pcm)
+{
+    constexpr std::size_t n = rcm::voice::kFrameSamples;
+    std::size_t first = pcm.size() / n;
+    std::size_t end = 0;
+    for (std::size_t s = 0; s < pcm.size() / n; ++s) {
+        if (std::any_of(pcm.begin() + std::ptrdiff_t(s * n), pcm.begin() + std::ptrdiff_t((s + 1) * n),
+                        [](std::int16_t x) { return x != 0; })) {
+            first = std::min(first, s);
+            end = s + 1;
+        }
+    }
+    return {first, std::max(first, end)};
+}
+
+// The phrase came out as long as it went in (whole frames), in one piece,
+// with its energy in the same bands.
+void verifyPhrase(const Pcm& out)
+{
+    const Pcm in = phrase();
+    const auto [first, end] = soundingSlots(out);
+    QCOMPARE(end - first, phraseFrames());
+    const Pcm speech(out.begin() + std::ptrdiff_t(first * rcm::voice::kFrameSamples),
+                     out.begin() + std::ptrdiff_t(end * rcm::voice::kFrameSamples));
+    const auto a = rcm::test::bandEnergyDb(in);
+    const auto b = rcm::test::bandEnergyDb(speech);
+    for (std::size_t i = 0; i < rcm::test::kBands; ++i)
+        QVERIFY2(std::abs(a[i] - b[i]) <= kToleranceDb,
+                 qPrintable(QStringLiteral("band %1: %2 dB in, %3 dB out").arg(i).arg(a[i]).arg(b[i])));
+}
+
+VoiceSerialLink::Options fastLine()
+{
+    VoiceSerialLink::Options o;
+    o.bytesPerSecond = 12000;  // ten times the modem: a frame period is 100 ms
+    o.lead = 240;
+    return o;
+}
+
+}  // namespace
+
+class TestVoiceLink : public QObject {
+    Q_OBJECT
+
+private slots:
+    void framesQueuedTogetherGoBackToBack();
+    void workerCadenceGives1200BytesASecond();
+    void phraseOverTheSerialLine();
+    void writesOnlyWholeFrames();
+    void voiceDatagramFormat();
+    void phraseOverUdpBesideCommands();
+};
+
+// Four frames written at once go out back to back: their preambles stand
+// exactly 1,200 line bytes apart, each frame interleaved with 600 voice
+// bytes, and fill before the first.
+void TestVoiceLink::framesQueuedTogetherGoBackToBack()
+{
+    PtyLine far;
+    QVERIFY(far.open());
+    VoiceSerialLink link(std::make_unique<SerialLink>(far.slavePath()), nullptr, nullptr, fastLine());
+    QSignalSpy opened(&link, &Link::opened);
+    link.open();
+    QVERIFY(link.isOpen());
+    QCOMPARE(opened.count(), 1);
+    for (std::uint32_t id = 1; id <= 4; ++id)
+        QVERIFY(link.write(commandFrame(id)));
+    QTRY_COMPARE_WITH_TIMEOUT(hear(far.bytes()).frameIds.size(), std::size_t(4), kPatience);
+
+    const Heard h = hear(far.bytes());
+    QCOMPARE(h.phaseChanges, std::uint64_t(0));
+    QCOMPARE(h.frameIds, (std::vector<std::int64_t>{1, 2, 3, 4}));
+    for (std::size_t i = 1; i < h.frameOffsets.size(); ++i)
+        QCOMPARE(h.frameOffsets[i] - h.frameOffsets[i - 1], std::int64_t(rcm::kMuxedFrameSize));
+    // Voice (idle) all along, in step from the first byte.
+    QCOMPARE(h.voice.resyncs, std::uint64_t(0));
+    QCOMPARE(h.voice.lostFrames, std::uint64_t(0));
+    QVERIFY(h.voice.idleFrames * rcm::voice::kFrameBytes + rcm::voice::kFrameBytes >= std::uint64_t(far.bytes().size() / 2));
+    QCOMPARE(link.multiplexer().stats().framesStarted, std::uint64_t(4));
+}
+
+// The link worker at its real cadence, a frame a second, over the voice
+// line at its real rate: the line carries exactly 1,200 bytes from one
+// preamble to the next, every second.
+void TestVoiceLink::workerCadenceGives1200BytesASecond()
+{
+    PtyLine far;
+    QVERIFY(far.open());
+    auto link = std::make_unique<VoiceSerialLink>(std::make_unique<SerialLink>(far.slavePath()), nullptr, nullptr);
+    LinkWorker worker(std::move(link), nullptr);
+    rcm::Message command;
+    command.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
+    worker.setCommand(command);
+    QSignalSpy sent(&worker, &LinkWorker::frameSent);
+    worker.start();
+    QTRY_VERIFY_WITH_TIMEOUT(hear(far.bytes()).frameOffsets.size() >= 4, kPatience);
+    worker.stop();
+
+    const Heard h = hear(far.bytes());
+    QCOMPARE(h.phaseChanges, std::uint64_t(0));
+    for (std::size_t i = 1; i < h.frameOffsets.size(); ++i)
+        QCOMPARE(h.frameOffsets[i] - h.frameOffsets[i - 1], std::int64_t(rcm::kMuxedFrameSize));
+    for (std::size_t i = 1; i < h.frameIds.size(); ++i)
+        QCOMPARE(h.frameIds[i], h.frameIds[i - 1] + 1);
+    QCOMPARE(h.voice.resyncs, std::uint64_t(0));
+}
+
+// Commands and the phrase at once: the far end finds the frames in the
+// control phase and hears the phrase, whole, in the voice phase.
+void TestVoiceLink::phraseOverTheSerialLine()
+{
+    PtyLine far;
+    QVERIFY(far.open());
+    auto source = std::make_shared<VoiceEncoderSource>(0ms);
+    const Pcm in = phrase();
+    source->pushPcm(in);
+    source->endTalk();
+    VoiceSerialLink link(std::make_unique<SerialLink>(far.slavePath()), source, nullptr, fastLine());
+    link.open();
+    QVERIFY(link.write(commandFrame(7)));
+    QVERIFY(link.write(commandFrame(8)));
+    QTRY_COMPARE_WITH_TIMEOUT(source->speechFramesSent(), std::uint64_t(phraseFrames()), kPatience);
+    QTRY_COMPARE_WITH_TIMEOUT(hear(far.bytes()).frameIds.size(), std::size_t(2), kPatience);
+    // Then a little idle, so the far end has the last voice frame whole.
+    const qsizetype enough = far.bytes().size() + 4 * qsizetype(rcm::voice::kFrameBytes);
+    QTRY_VERIFY_WITH_TIMEOUT(far.bytes().size() >= enough, kPatience);
+
+    const Heard h = hear(far.bytes());
+    QCOMPARE(h.frameIds, (std::vector<std::int64_t>{7, 8}));
+    QCOMPARE(h.voice.speechFrames, std::uint64_t(phraseFrames()));
+    QCOMPARE(h.voice.lostFrames, std::uint64_t(0));
+    verifyPhrase(h.pcm);
+}
+
+void TestVoiceLink::writesOnlyWholeFrames()
+{
+    PtyLine far;
+    QVERIFY(far.open());
+    VoiceSerialLink link(std::make_unique<SerialLink>(far.slavePath()), nullptr, nullptr, fastLine());
+    QVERIFY(!link.write(commandFrame(1)));  // closed
+    link.open();
+    QVERIFY(!link.write(QByteArray(599, 'x')));
+    QVERIFY(!link.write(commandFrame(1).left(510)));
+    QVERIFY(link.write(commandFrame(1)));
+    QVERIFY(link.isStream());
+    QCOMPARE(link.transport(), FrameTransport::Serial);
+    QVERIFY(link.description().contains(QStringLiteral("voice multiplexed")));
+}
+
+// As a plain UDP peer sees it: "RCMV" and one 12-byte voice frame per
+// datagram, beside the 510-byte command datagrams; and what the voice link
+// takes for voice and what it passes on.
+void TestVoiceLink::voiceDatagramFormat()
+{
+    UdpLink peer(QHostAddress::LocalHost, 0);
+    QSignalSpy fromVoiceLink(&peer, &Link::datagramReceived);
+    peer.open();
+    QVERIFY(peer.isOpen());
+    VoiceUdpLink link(std::make_unique<UdpLink>(QHostAddress::LocalHost, 0, QHostAddress::LocalHost, peer.boundPort()),
+                      std::make_shared<VoiceEncoderSource>(), nullptr);
+    QSignalSpy commands(&link, &Link::datagramReceived);
+    link.open();
+    QVERIFY(link.isOpen());
+    QVERIFY(!link.isStream());
+    const QByteArray command = commandFrame(3).mid(rcm::kPreambleSize);
+    QVERIFY(link.write(command));
+    QTRY_VERIFY_WITH_TIMEOUT(fromVoiceLink.count() >= 10, kPatience);
+    int voice = 0;
+    int commandsSeen = 0;
+    for (const QList<QVariant>& args : fromVoiceLink) {
+        const QByteArray d = args.at(0).toByteArray();
+        if (d == command) {
+            ++commandsSeen;
+            continue;
+        }
+        QCOMPARE(d.size(), qsizetype(16));
+        QVERIFY(d.startsWith("RCMV"));
+        QVERIFY(VoiceUdpLink::isVoiceDatagram(d));
+        rcm::voice::VoiceFrame f;
+        QVERIFY(rcm::voice::parseFrame(std::span<const std::uint8_t, 12>(
+                                           reinterpret_cast<const std::uint8_t*>(d.constData()) + 4, 12),
+                                       f));
+        QCOMPARE(f.kind, rcm::voice::FrameKind::Idle);
+        ++voice;
+    }
+    QCOMPARE(commandsSeen, 1);
+    QVERIFY(voice >= 9);
+
+    // The other way: voice is taken, commands and anything else pass on.
+    peer.setRemote(QHostAddress::LocalHost, qobject_cast<UdpLink*>(link.inner())->boundPort());
+    QVERIFY(peer.write(command));
+    QVERIFY(peer.write(QByteArray("RCMV") + QByteArray(5, '\0')));  // not whole frames
+    QVERIFY(peer.write(fromVoiceLink.last().at(0).toByteArray()));  // a voice frame
+    QTRY_COMPARE_WITH_TIMEOUT(commands.count(), 2, kPatience);
+    QCOMPARE(commands.at(0).at(0).toByteArray(), command);
+    QCOMPARE(commands.at(1).at(0).toByteArray().size(), qsizetype(9));
+    QTRY_COMPARE_WITH_TIMEOUT(link.voiceDatagramsReceived(), std::uint64_t(1), kPatience);
+    QVERIFY(!VoiceUdpLink::isVoiceDatagram(command));
+}
+
+// The phrase from one voice link to another over UDP, with a command
+// datagram each way: the commands arrive as commands, the phrase whole.
+void TestVoiceLink::phraseOverUdpBesideCommands()
+{
+    Pcm heard;
+    auto sink = std::make_shared<VoiceDecoderSink>([&](std::span<const std::int16_t> pcm) {
+        heard.insert(heard.end(), pcm.begin(), pcm.end());
+    });
+    auto aircraftUdp = std::make_unique<UdpLink>(QHostAddress::LocalHost, 0);
+    aircraftUdp->setReplyToSender(true);
+    VoiceUdpLink aircraft(std::move(aircraftUdp), std::make_shared<VoiceEncoderSource>(), sink);
+    QSignalSpy aircraftCommands(&aircraft, &Link::datagramReceived);
+    aircraft.open();
+    const quint16 port = qobject_cast<UdpLink*>(aircraft.inner())->boundPort();
+
+    auto source = std::make_shared<VoiceEncoderSource>(0ms);
+    VoiceUdpLink console(std::make_unique<UdpLink>(QHostAddress::LocalHost, 0, QHostAddress::LocalHost, port), source,
+                         nullptr);
+    QSignalSpy consoleCommands(&console, &Link::datagramReceived);
+    console.open();
+    const QByteArray command = commandFrame(5).mid(rcm::kPreambleSize);
+    QVERIFY(console.write(command));
+    QTRY_COMPARE_WITH_TIMEOUT(aircraftCommands.count(), 1, kPatience);
+    QCOMPARE(aircraftCommands.at(0).at(0).toByteArray(), command);
+    QVERIFY(aircraft.write(command));  // to whoever sent the last datagram
+    QTRY_COMPARE_WITH_TIMEOUT(consoleCommands.count(), 1, kPatience);
+
+    source->pushPcm(phrase());
+    source->endTalk();
+    QTRY_COMPARE_WITH_TIMEOUT(sink->speechFrames(), std::uint64_t(phraseFrames()), kPatience);
+    const std::uint64_t enough = sink->samplesOut() + 2 * rcm::voice::kFrameSamples;
+    QTRY_VERIFY_WITH_TIMEOUT(sink->samplesOut() >= enough, kPatience);
+    QCOMPARE(aircraftCommands.count(), 1);  // voice never passed for a command
+    verifyPhrase(heard);
+}
+
+QTEST_GUILESS_MAIN(TestVoiceLink)
+#include "tst_voicelink.moc"
