@@ -11,12 +11,16 @@
 #include "link/AirframeFile.h"
 #include "codec/ItemTable.h"
 #include "codec/SecureCodec.h"
+#include "codec/WavFile.h"
 #include "link/FaultInjector.h"
 #include "link/FrameLog.h"
 #include "link/LinkWorker.h"
 #include "link/SerialLink.h"
 #include "link/SimulatedAircraft.h"
 #include "link/UdpLink.h"
+#include "link/VoiceDecoderSink.h"
+#include "link/VoiceEncoderSource.h"
+#include "link/WithVoice.h"
 
 #include <QCommandLineParser>
 #include <QCoreApplication>
@@ -205,7 +209,8 @@ int main(int argc, char* argv[])
         "\n"
         "Examples:\n"
         "  uasim --udp 5600 --verbose\n"
-        "  uasim --serial /dev/pts/3 --baud 9600 --log uasim.pcapng --ber 1e-4 --drop 0.05 --outage 60:10"));
+        "  uasim --serial /dev/pts/3 --baud 9600 --log uasim.pcapng --ber 1e-4 --drop 0.05 --outage 60:10\n"
+        "  uasim --serial /dev/pts/3 --voice-out heard.wav --voice-in reply.wav"));
     parser.addHelpOption();
     const QCommandLineOption udp(QStringLiteral("udp"),
                                  QStringLiteral("Listen on 127.0.0.1:<port>; reply to whoever sent the last command."),
@@ -261,8 +266,17 @@ int main(int argc, char* argv[])
                        "ID_msg or is more than 30 s from this clock is rejected and counted. The replay state and "
                        "the send counter are kept beside the key file."),
         QStringLiteral("file"));
-    parser.addOptions(
-        {udp, serial, baud, log, airframe, uaId, ber, burst, drop, delay, outage, silent, seed, verbose, key});
+    const QCommandLineOption voiceOut(
+        QStringLiteral("voice-out"),
+        QStringLiteral("Voice (docs/protocol.md section 7): take the voice beside the commands, decode it and write "
+                       "what the VHF radio would transmit to a WAV file (8 kHz, 16-bit mono), silence included."),
+        QStringLiteral("file.wav"));
+    const QCommandLineOption voiceIn(
+        QStringLiteral("voice-in"),
+        QStringLiteral("Voice: speak a WAV file (16-bit PCM, any rate) back to the console, from the start."),
+        QStringLiteral("file.wav"));
+    parser.addOptions({udp, serial, baud, log, airframe, uaId, ber, burst, drop, delay, outage, silent, seed, verbose,
+                       key, voiceOut, voiceIn});
     parser.process(app);
 
     const auto usage = [&](const QString& message) {
@@ -340,6 +354,24 @@ int main(int argc, char* argv[])
         if (!ok || rate <= 0)
             return usage(QStringLiteral("--baud wants a bit rate, not %1").arg(parser.value(baud)));
         link = std::make_unique<SerialLink>(parser.value(serial), rate);
+    }
+    // Voice goes inside the faults, which spoil whole status frames.
+    WavFile voiceRecord;
+    if (parser.isSet(voiceOut) || parser.isSet(voiceIn)) {
+        std::string error;
+        std::shared_ptr<VoiceDecoderSink> sink;
+        if (parser.isSet(voiceOut)) {
+            if (!voiceRecord.create(parser.value(voiceOut).toStdString(), voice::kSampleRate, error)) {
+                say(QStringLiteral("cannot write the voice: %1").arg(QString::fromStdString(error)));
+                return kRunError;
+            }
+            sink = std::make_shared<VoiceDecoderSink>(
+                [&voiceRecord](std::span<const std::int16_t> pcm) { voiceRecord.append(pcm); });
+        }
+        auto source = std::make_shared<VoiceEncoderSource>(std::chrono::milliseconds(0));
+        if (parser.isSet(voiceIn) && !source->speakFile(parser.value(voiceIn).toStdString(), error))
+            return usage(QStringLiteral("--voice-in: %1").arg(QString::fromStdString(error)));
+        link = withVoice(std::move(link), std::move(source), std::move(sink));
     }
     FaultyLink* faultyLink = nullptr;
     if (faults.any()) {

@@ -1,5 +1,8 @@
 #include "link/VoiceEncoderSource.h"
 
+#include "codec/Resample.h"
+#include "codec/WavFile.h"
+
 #include <algorithm>
 
 using namespace rcm::voice;
@@ -19,6 +22,18 @@ void VoiceEncoderSource::pushPcm(std::span<const std::int16_t> pcm)
         m_pcm.erase(m_pcm.begin(), m_pcm.begin() + static_cast<std::ptrdiff_t>(drop));
         m_dropped += drop;
     }
+}
+
+bool VoiceEncoderSource::speakFile(const std::string& path, std::string& error)
+{
+    const std::optional<rcm::PcmAudio> audio = rcm::WavFile::read(path, error);
+    if (!audio)
+        return false;
+    const std::vector<std::int16_t> pcm = rcm::resample(audio->samples, audio->sampleRate, kSampleRate);
+    const std::lock_guard lock(m_mutex);
+    m_pcm.insert(m_pcm.end(), pcm.begin(), pcm.end());
+    m_talkEnded = true;
+    return true;
 }
 
 void VoiceEncoderSource::endTalk()

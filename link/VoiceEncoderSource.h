@@ -22,6 +22,7 @@
 #include <deque>
 #include <mutex>
 #include <span>
+#include <string>
 
 class VoiceEncoderSource : public VoiceSource {
 public:
@@ -32,6 +33,9 @@ public:
 
     // Any thread.
     void pushPcm(std::span<const std::int16_t> pcm);
+    // A 16-bit PCM WAV file at any rate, resampled to 8 kHz, pushed whole
+    // and ended: it goes out at the line's pace, whatever the backlog limit.
+    bool speakFile(const std::string& path, std::string& error);
     void endTalk();
     // Drops what waits, at once: a new talk starts afresh.
     void clear();

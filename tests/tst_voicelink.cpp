@@ -22,12 +22,15 @@
 #include "link/VoiceSerialLink.h"
 #include "link/VoiceUdpLink.h"
 
+#include <QProcess>
 #include <QSignalSpy>
 #include <QSocketNotifier>
+#include <QTemporaryDir>
 #include <QTest>
 
 #include <cerrno>
 #include <fcntl.h>
+#include <poll.h>
 #include <pty.h>
 #include <unistd.h>
 
@@ -170,6 +173,80 @@ void verifyPhrase(const Pcm& out)
                  qPrintable(QStringLiteral("band %1: %2 dB in, %3 dB out").arg(i).arg(a[i]).arg(b[i])));
 }
 
+// Two pseudo-terminals joined master to master: a null-modem cable between
+// two programs that each open a serial device.
+class PtyBridge {
+public:
+    ~PtyBridge()
+    {
+        for (End& e : m_ends) {
+            e.notifier.reset();
+            if (e.master >= 0)
+                ::close(e.master);
+            if (e.slave >= 0)
+                ::close(e.slave);
+        }
+    }
+
+    bool open()
+    {
+        for (std::size_t i = 0; i < 2; ++i) {
+            End& e = m_ends[i];
+            char name[256] = {};
+            if (::openpty(&e.master, &e.slave, name, nullptr, nullptr) != 0)
+                return false;
+            ::fcntl(e.master, F_SETFL, ::fcntl(e.master, F_GETFL) | O_NONBLOCK);
+            e.path = QString::fromLocal8Bit(name);
+            e.notifier = std::make_unique<QSocketNotifier>(e.master, QSocketNotifier::Read);
+            QObject::connect(e.notifier.get(), &QSocketNotifier::activated, [this, i] { carry(i); });
+        }
+        return true;
+    }
+
+    QString path(std::size_t end) const { return m_ends[end].path; }
+    // What the program on `end` sent.
+    qsizetype bytesFrom(std::size_t end) const { return m_ends[end].carried; }
+
+private:
+    struct End {
+        int master = -1;
+        int slave = -1;  // held so the master never sees "no slave" before the program opens it
+        QString path;
+        std::unique_ptr<QSocketNotifier> notifier;
+        qsizetype carried = 0;
+    };
+
+    void carry(std::size_t from)
+    {
+        const int to = m_ends[1 - from].master;
+        char buffer[4096];
+        for (ssize_t n; (n = ::read(m_ends[from].master, buffer, sizeof buffer)) > 0;) {
+            m_ends[from].carried += n;
+            for (ssize_t done = 0; done < n;) {
+                const ssize_t w = ::write(to, buffer + done, std::size_t(n - done));
+                if (w > 0) {
+                    done += w;
+                } else if (errno == EAGAIN) {
+                    pollfd p{to, POLLOUT, 0};
+                    ::poll(&p, 1, -1);
+                } else if (errno != EINTR) {
+                    return;
+                }
+            }
+        }
+    }
+
+    std::array<End, 2> m_ends;
+};
+
+// How many 20 ms slots of a WAV file sound, and the samples of those slots.
+Pcm soundingPart(const Pcm& pcm)
+{
+    const auto [first, end] = soundingSlots(pcm);
+    return Pcm(pcm.begin() + std::ptrdiff_t(first * rcm::voice::kFrameSamples),
+               pcm.begin() + std::ptrdiff_t(end * rcm::voice::kFrameSamples));
+}
+
 VoiceSerialLink::Options fastLine()
 {
     VoiceSerialLink::Options o;
@@ -190,6 +267,7 @@ private slots:
     void writesOnlyWholeFrames();
     void voiceDatagramFormat();
     void phraseOverUdpBesideCommands();
+    void uasimRecordsThePhraseAndSpeaksBack();
 };
 
 // Four frames written at once go out back to back: their preambles stand
@@ -373,6 +451,64 @@ void TestVoiceLink::phraseOverUdpBesideCommands()
     QTRY_VERIFY_WITH_TIMEOUT(sink->samplesOut() >= enough, kPatience);
     QCOMPARE(aircraftCommands.count(), 1);  // voice never passed for a command
     verifyPhrase(heard);
+}
+
+// The console's side, a link worker on a voice line with the phrase to say,
+// against uasim --voice-out --voice-in on the other end of a null modem:
+// uasim's WAV holds the phrase, as long as it went in, with its energy in the
+// same bands; and the console hears uasim's phrase likewise.
+void TestVoiceLink::uasimRecordsThePhraseAndSpeaksBack()
+{
+    PtyBridge cable;
+    QVERIFY(cable.open());
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    const QString heardPath = dir.filePath(QStringLiteral("heard.wav"));
+    QProcess uasim;
+    uasim.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+    uasim.start(QStringLiteral(RCM_BIN_DIR "/uasim"),
+                {QStringLiteral("--serial"), cable.path(1), QStringLiteral("--voice-out"), heardPath,
+                 QStringLiteral("--voice-in"), QStringLiteral(RCM_SOURCE_DIR "/resources/voice/phrase.wav")});
+    QVERIFY2(uasim.waitForStarted(), "build uasim first");
+    // uasim's line is running: from here on the console's bytes all reach it.
+    QTRY_VERIFY_WITH_TIMEOUT(cable.bytesFrom(1) > 0, kPatience);
+
+    Pcm consoleHeard;
+    auto sink = std::make_shared<VoiceDecoderSink>([&](std::span<const std::int16_t> pcm) {
+        consoleHeard.insert(consoleHeard.end(), pcm.begin(), pcm.end());
+    });
+    auto source = std::make_shared<VoiceEncoderSource>(0ms);
+    source->pushPcm(phrase());
+    source->endTalk();
+    LinkWorker worker(std::make_unique<VoiceSerialLink>(std::make_unique<SerialLink>(cable.path(0)), source, sink),
+                      nullptr);
+    rcm::Message command;
+    command.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
+    worker.setCommand(command);
+    QSignalSpy replies(&worker, &LinkWorker::messageReceived);
+    worker.start();
+
+    // uasim answers the commands, and says its phrase.
+    QTRY_VERIFY_WITH_TIMEOUT(replies.count() >= 2, kPatience);
+    QTRY_COMPARE_WITH_TIMEOUT(sink->speechFrames(), std::uint64_t(phraseFrames()), kPatience);
+    QCOMPARE(sink->stats().lostFrames, std::uint64_t(0));
+    verifyPhrase(consoleHeard);
+
+    // uasim's record of what it would put on the VHF radio.
+    std::string error;
+    const auto heardSoFar = [&] {
+        const auto wav = rcm::WavFile::read(heardPath.toStdString(), error);
+        return wav ? soundingPart(wav->samples).size() / rcm::voice::kFrameSamples : 0;
+    };
+    QTRY_COMPARE_WITH_TIMEOUT(heardSoFar(), phraseFrames(), kPatience);
+    worker.stop();
+    uasim.terminate();
+    QVERIFY(uasim.waitForFinished(kPatience));
+    QCOMPARE(uasim.exitStatus(), QProcess::NormalExit);
+    const auto heard = rcm::WavFile::read(heardPath.toStdString(), error);
+    QVERIFY2(heard, error.c_str());
+    QCOMPARE(heard->sampleRate, rcm::voice::kSampleRate);
+    verifyPhrase(heard->samples);
 }
 
 QTEST_GUILESS_MAIN(TestVoiceLink)
