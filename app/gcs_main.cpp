@@ -17,7 +17,7 @@
 #include "codec/Airframe.h"
 #include "codec/MessageEncoder.h"
 #include "link/FrameLog.h"
-#include "ui/AirframeLoader.h"
+#include "link/AirframeLoader.h"
 #include "ui/FrameLogModel.h"
 #include "ui/LinkSettings.h"
 #include "ui/MainWindow.h"

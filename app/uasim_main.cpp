@@ -8,7 +8,7 @@
 // commands received before it (a one-frame indication such as a photograph
 // taken cannot be cleared by a frame that did not carry it).
 #include "codec/Airframe.h"
-#include "link/AirframeFile.h"
+#include "link/AirframeLoader.h"
 #include "codec/ItemTable.h"
 #include "codec/SecureCodec.h"
 #include "codec/WavFile.h"
@@ -335,7 +335,7 @@ int main(int argc, char* argv[])
     Airframe frame = Airframe::wellEquipped();
     if (parser.isSet(airframe)) {
         QString error;
-        const auto loaded = loadAirframe(parser.value(airframe), &error);
+        const auto loaded = AirframeLoader::load(parser.value(airframe), &error);
         if (!loaded)
             return usage(error);
         frame = *loaded;

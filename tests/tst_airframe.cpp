@@ -1,5 +1,5 @@
-// Airframe files: what the console and the simulated aircraft both read.
-#include "link/AirframeFile.h"
+// Airframe files: the one reader the console and the simulated aircraft share.
+#include "link/AirframeLoader.h"
 
 #include <QtTest>
 
@@ -10,7 +10,8 @@ class TestAirframe : public QObject {
 private slots:
     void roundTripsTheDefault();
     void readsAMinimalFile();
-    void shippedAirframesLoad();
+    void builtInAirframesLoad();
+    void shippedFilesMatchTheBuiltIns();
     void errorsSayWhatAndWhere_data();
     void errorsSayWhatAndWhere();
 };
@@ -19,7 +20,7 @@ void TestAirframe::roundTripsTheDefault()
 {
     const Airframe a = Airframe::wellEquipped();
     QString error;
-    const auto back = parseAirframe(airframeToJson(a), "mem", &error);
+    const auto back = AirframeLoader::fromJson(AirframeLoader::toJson(a), "mem", &error);
     QVERIFY2(back, qPrintable(error));
     QCOMPARE(back->name, a.name);
     QCOMPARE(back->engines.size(), std::size_t{3});
@@ -32,20 +33,36 @@ void TestAirframe::roundTripsTheDefault()
 void TestAirframe::readsAMinimalFile()
 {
     QString error;
-    const auto a = parseAirframe(R"({"name": "Glider", "senseAndAvoid": false, "engines": []})", "g.json", &error);
+    const auto a = AirframeLoader::fromJson(R"({"name": "Glider", "senseAndAvoid": false})", "g.json", &error);
     QVERIFY2(a, qPrintable(error));
     QCOMPARE(a->name, std::string("Glider"));
     QVERIFY(a->engines.empty() && a->radios.empty() && a->cameras.empty());
     QCOMPARE(a->senseAndAvoid, false);
 }
 
-void TestAirframe::shippedAirframesLoad()
+void TestAirframe::builtInAirframesLoad()
+{
+    const QStringList paths = AirframeLoader::builtIn();
+    QVERIFY(paths.contains(AirframeLoader::kDefaultPath));
+    for (const QString& path : paths) {
+        QString error;
+        QVERIFY2(AirframeLoader::load(path, &error), qPrintable(error));
+    }
+    const auto def = AirframeLoader::load(AirframeLoader::kDefaultPath);
+    QVERIFY(def);
+    QCOMPARE(AirframeLoader::toJson(*def), AirframeLoader::toJson(Airframe::wellEquipped()));
+}
+
+void TestAirframe::shippedFilesMatchTheBuiltIns()
 {
     const QDir dir(QStringLiteral(RCM_SOURCE_DIR "/resources/airframes"));
-    const QStringList files = dir.entryList({"*.json"});
-    for (const QString& f : files) {
+    for (const QString& f : dir.entryList({"*.json"})) {
         QString error;
-        QVERIFY2(loadAirframe(dir.filePath(f), &error), qPrintable(error));
+        const auto fromFile = AirframeLoader::load(dir.filePath(f), &error);
+        QVERIFY2(fromFile, qPrintable(error));
+        const auto builtIn = AirframeLoader::load(":/airframes/" + f, &error);
+        QVERIFY2(builtIn, qPrintable(error));
+        QCOMPARE(AirframeLoader::toJson(*fromFile), AirframeLoader::toJson(*builtIn));
     }
 }
 
@@ -53,18 +70,24 @@ void TestAirframe::errorsSayWhatAndWhere_data()
 {
     QTest::addColumn<QByteArray>("json");
     QTest::addColumn<QString>("error");
-    QTest::newRow("not json") << QByteArray("{\"name\": ") << "a.json: invalid JSON at byte offset 9: ";
-    QTest::newRow("array") << QByteArray("[]") << "a.json: the top level must be a JSON object";
-    QTest::newRow("engine id") << QByteArray(R"({"engines": [{"id": 1}, {"id": 300}]})")
-                               << "a.json: engines[1].id must be 0..255";
-    QTest::newRow("engine twice") << QByteArray(R"({"engines": [{"id": 2}, {"id": 2}]})")
-                                  << "a.json: engines[1].id 2 is given twice";
-    QTest::newRow("radio id") << QByteArray(R"({"radios": [{"systemId": "TOOLONGID"}]})")
-                              << "a.json: radios[0].systemId \"TOOLONGID\" must be 1..8 printable ASCII characters";
-    QTest::newRow("camera maker") << QByteArray(R"({"cameras": [{"maker": "NIKON", "number": 1}]})")
-                                  << "a.json: cameras[0].maker \"NIKON\" must be 3 printable ASCII characters";
-    QTest::newRow("camera number") << QByteArray(R"({"cameras": [{"maker": "NIK"}]})")
-                                   << "a.json: cameras[0].number must be 0..255";
+    QTest::newRow("not json") << QByteArray("{\"name\": ") << "a.json: line 1";
+    QTest::newRow("array") << QByteArray("[]") << "a.json: an airframe is a JSON object";
+    QTest::newRow("typo") << QByteArray(R"({"name": "A", "engine": []})")
+                          << "a.json: unknown member \"engine\" (known: name, engines, radios, cameras, senseAndAvoid)";
+    QTest::newRow("engine id") << QByteArray(R"({"name": "A", "engines": [{"id": 1}, {"id": 300}]})")
+                               << "a.json: engines[1]: \"id\" must be a whole number 0..255";
+    QTest::newRow("engine twice") << QByteArray(R"({"name": "A", "engines": [{"id": 2}, {"id": 2}]})")
+                                  << "a.json: engines[1]: engine 2 is listed twice";
+    QTest::newRow("radio id") << QByteArray(R"({"name": "A", "radios": [{"systemId": "TOOLONGID"}]})")
+                              << "a.json: radios[0]: \"systemId\" must be 1 to 8 printable ASCII characters";
+    QTest::newRow("camera maker") << QByteArray(R"({"name": "A", "cameras": [{"maker": "NIKON", "number": 1}]})")
+                                  << "a.json: cameras[0]: \"maker\" must be 3 printable ASCII characters";
+    QTest::newRow("camera number") << QByteArray(R"({"name": "A", "cameras": [{"maker": "NIK"}]})")
+                                   << "a.json: cameras[0]: \"number\" must be a whole number 0..255";
+    QByteArray many = R"({"name": "A", "radios": [)";
+    for (int i = 0; i < 10; ++i)
+        many += (i ? "," : "") + QByteArray(R"({"systemId": "R)") + QByteArray::number(i) + "\"}";
+    QTest::newRow("does not fit") << many + "]}" << "a.json: these units do not fit in one message: ";
 }
 
 void TestAirframe::errorsSayWhatAndWhere()
@@ -72,7 +95,7 @@ void TestAirframe::errorsSayWhatAndWhere()
     QFETCH(QByteArray, json);
     QFETCH(QString, error);
     QString got;
-    QVERIFY(!parseAirframe(json, "a.json", &got));
+    QVERIFY(!AirframeLoader::fromJson(json, "a.json", &got));
     QVERIFY2(got.startsWith(error), qPrintable(got));
 }
 

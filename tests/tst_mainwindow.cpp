@@ -10,7 +10,7 @@
 #include "codec/MessageDecoder.h"
 #include "codec/MessageEncoder.h"
 #include "link/FrameLog.h"
-#include "ui/AirframeLoader.h"
+#include "link/AirframeLoader.h"
 #include "ui/CommandPreview.h"
 #include "ui/CommandState.h"
 #include "ui/FlightPlanUpload.h"

@@ -3,7 +3,7 @@
 #include "link/FrameLogCsv.h"
 #include "link/LinkController.h"
 #include "link/ReplayLink.h"
-#include "ui/AirframeLoader.h"
+#include "link/AirframeLoader.h"
 #include "ui/CameraPanel.h"
 #include "ui/CommandPreview.h"
 #include "ui/CommandState.h"

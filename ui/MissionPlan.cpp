@@ -1,6 +1,6 @@
 #include "ui/MissionPlan.h"
 
-#include "ui/JsonPosition.h"
+#include "link/JsonPosition.h"
 
 #include <QDir>
 #include <QFile>

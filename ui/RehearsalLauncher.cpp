@@ -1,6 +1,6 @@
 #include "ui/RehearsalLauncher.h"
 
-#include "ui/AirframeLoader.h"
+#include "link/AirframeLoader.h"
 
 #include <QCoreApplication>
 #include <QDir>

@@ -1,7 +1,7 @@
-#include "ui/AirframeLoader.h"
+#include "link/AirframeLoader.h"
 
 #include "codec/MessageEncoder.h"
-#include "ui/JsonPosition.h"
+#include "link/JsonPosition.h"
 
 #include <QDir>
 #include <QFile>

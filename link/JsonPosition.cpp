@@ -1,4 +1,4 @@
-#include "ui/JsonPosition.h"
+#include "link/JsonPosition.h"
 
 QString jsonPosition(const QByteArray& text, int offset)
 {
