@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cstddef>
 #include <cstring>
 #include <functional>
@@ -43,31 +44,62 @@ namespace rcm {
 namespace {
 
 constexpr std::size_t kBlock = 16;
-constexpr std::size_t kPowers = 8;      // POLYVAL blocks per reduction
+// POLYVAL blocks per reduction: the 13 blocks of the secure link's 207-byte
+// message part make one chunk.
+constexpr std::size_t kPowers = 16;
 constexpr std::size_t kXctrBatch = 16;  // XCTR counter blocks per AES call
 
 std::atomic<bool> g_forcePortable{false};
 
+static_assert(std::endian::native == std::endian::little || std::endian::native == std::endian::big,
+              "Hctr2: mixed-endian hosts are not supported");
+
+constexpr std::uint64_t bswap64(std::uint64_t v)
+{
+    v = ((v & 0x00FF00FF00FF00FFu) << 8) | ((v >> 8) & 0x00FF00FF00FF00FFu);
+    v = ((v & 0x0000FFFF0000FFFFu) << 16) | ((v >> 16) & 0x0000FFFF0000FFFFu);
+    return (v << 32) | (v >> 32);
+}
+
+// HCTR2's integers (bin(i), the POLYVAL state) are little-endian. memcpy
+// compiles to one unaligned load or store; the swap only exists on
+// big-endian hosts.
 inline std::uint64_t load64le(const std::uint8_t* p)
 {
-    std::uint64_t v = 0;
-    for (int i = 7; i >= 0; --i)
-        v = (v << 8) | p[i];
+    std::uint64_t v;
+    std::memcpy(&v, p, 8);
+    if constexpr (std::endian::native == std::endian::big)
+        v = bswap64(v);
     return v;
 }
 
 inline void store64le(std::uint8_t* p, std::uint64_t v)
 {
-    for (int i = 0; i < 8; ++i) {
-        p[i] = static_cast<std::uint8_t>(v);
-        v >>= 8;
+    if constexpr (std::endian::native == std::endian::big)
+        v = bswap64(v);
+    std::memcpy(p, &v, 8);
+}
+
+// d = a xor b over n bytes, a word at a time. XOR is bytewise, so byte order
+// does not matter here. d may equal a or b.
+inline void xorBytes(std::uint8_t* d, const std::uint8_t* a, const std::uint8_t* b,
+                     std::size_t n)
+{
+    std::size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        std::uint64_t x, y;
+        std::memcpy(&x, a + i, 8);
+        std::memcpy(&y, b + i, 8);
+        x ^= y;
+        std::memcpy(d + i, &x, 8);
     }
+    for (; i < n; ++i)
+        d[i] = a[i] ^ b[i];
 }
 
 inline void xor16(std::uint8_t* d, const std::uint8_t* a, const std::uint8_t* b)
 {
-    for (std::size_t i = 0; i < kBlock; ++i)
-        d[i] = a[i] ^ b[i];
+    xorBytes(d, a, b, kBlock);
 }
 
 // ---------------------------------------------------------------- POLYVAL key
@@ -163,42 +195,67 @@ void makeKey(const std::uint8_t h[16], PolyKey& k)
     OPENSSL_cleanse(cur, sizeof cur);
 }
 
-// Absorbs nfull whole blocks from data, then the 16-byte block tail if it is
-// not null, into the state st = {lo, hi}.
-void polyvalPortable(std::uint64_t st[2], const PolyKey& k,
-                     const std::uint8_t* data, std::size_t nfull,
-                     const std::uint8_t* tail)
+// The blocks one POLYVAL call absorbs: three runs of whole blocks, in order,
+// any of them empty (the tweak's hash: its length block, its whole blocks,
+// its padded last block; a message's: its whole blocks, its padded last
+// block), so that nothing is copied to make them contiguous. Where a block
+// comes from depends only on lengths, never on secret data.
+struct Blocks {
+    struct Run {
+        const std::uint8_t* p = nullptr;
+        std::size_t n = 0;
+    };
+    Run runs[3];
+
+    std::size_t count() const { return runs[0].n + runs[1].n + runs[2].n; }
+};
+
+// Both implementations walk the runs the same way: chunks of at most kPowers
+// blocks, counted from the first block across run boundaries; within a chunk
+// of m blocks the i-th takes key power m-1-i, the chunk's first block has the
+// state folded in, and each chunk ends with one reduction. The inner loops
+// run over contiguous blocks, so they carry no per-block bookkeeping.
+
+void polyvalPortable(std::uint64_t st[2], const PolyKey& k, const Blocks& in)
 {
-    const std::size_t total = nfull + (tail ? 1 : 0);
     std::uint64_t s0 = st[0], s1 = st[1];
-    std::size_t j = 0;
-    while (j < total) {
-        const std::size_t m = std::min(total - j, kPowers);
-        // Karatsuba: l/r = low halves / bit-reversed high halves of
-        // lo*lo, hi*hi and (lo^hi)*(lo^hi), summed over the chunk (the
-        // carry-less product is bilinear, so the reversal of the high halves
-        // can wait until the end of the chunk).
-        std::uint64_t l0 = 0, l1 = 0, l2 = 0, r0 = 0, r1 = 0, r2 = 0;
-        for (std::size_t i = 0; i < m; ++i, ++j) {
-            const std::uint8_t* p = j < nfull ? data + kBlock * j : tail;
-            std::uint64_t a0 = load64le(p), a1 = load64le(p + 8);
-            if (i == 0) {
-                a0 ^= s0;
-                a1 ^= s1;
+    std::size_t left = in.count(); // blocks not yet absorbed
+    std::size_t chunk = 0;         // blocks left in the current chunk
+    // Karatsuba: l/r = low halves / bit-reversed high halves of lo*lo, hi*hi
+    // and (lo^hi)*(lo^hi), summed over the chunk (the carry-less product is
+    // bilinear, so the reversal of the high halves can wait until the end of
+    // the chunk).
+    std::uint64_t l0 = 0, l1 = 0, l2 = 0, r0 = 0, r1 = 0, r2 = 0;
+    for (const Blocks::Run& run : in.runs) {
+        const std::uint8_t* p = run.p;
+        for (std::size_t n = run.n; n > 0;) {
+            if (chunk == 0) {
+                chunk = std::min(left, kPowers);
+                l0 = l1 = l2 = r0 = r1 = r2 = 0;
             }
-            const KeyPower& hp = k.p[m - 1 - i];
-            const std::uint64_t ra0 = rev64(a0), ra1 = rev64(a1);
-            l0 ^= bmul64(a0, hp.w[0]);
-            l1 ^= bmul64(a1, hp.w[1]);
-            l2 ^= bmul64(a0 ^ a1, hp.w[2]);
-            r0 ^= bmul64(ra0, hp.r[0]);
-            r1 ^= bmul64(ra1, hp.r[1]);
-            r2 ^= bmul64(ra0 ^ ra1, hp.r[2]);
+            const std::size_t take = std::min(n, chunk);
+            for (std::size_t i = 0; i < take; ++i, p += kBlock) {
+                const std::uint64_t a0 = load64le(p) ^ s0, a1 = load64le(p + 8) ^ s1;
+                s0 = s1 = 0; // only the chunk's first block carries the state
+                const KeyPower& hp = k.p[chunk - 1 - i];
+                const std::uint64_t ra0 = rev64(a0), ra1 = rev64(a1);
+                l0 ^= bmul64(a0, hp.w[0]);
+                l1 ^= bmul64(a1, hp.w[1]);
+                l2 ^= bmul64(a0 ^ a1, hp.w[2]);
+                r0 ^= bmul64(ra0, hp.r[0]);
+                r1 ^= bmul64(ra1, hp.r[1]);
+                r2 ^= bmul64(ra0 ^ ra1, hp.r[2]);
+            }
+            n -= take;
+            left -= take;
+            chunk -= take;
+            if (chunk == 0) {
+                const std::uint64_t h0 = rev64(r0) >> 1, h1 = rev64(r1) >> 1,
+                                    h2 = rev64(r2) >> 1;
+                const std::uint64_t m0 = l2 ^ l0 ^ l1, m1 = h2 ^ h0 ^ h1;
+                reduce(l0, h0 ^ m0, l1 ^ m1, h1, s0, s1);
+            }
         }
-        const std::uint64_t h0 = rev64(r0) >> 1, h1 = rev64(r1) >> 1,
-                            h2 = rev64(r2) >> 1;
-        const std::uint64_t m0 = l2 ^ l0 ^ l1, m1 = h2 ^ h0 ^ h1;
-        reduce(l0, h0 ^ m0, l1 ^ m1, h1, s0, s1);
     }
     st[0] = s0;
     st[1] = s1;
@@ -207,39 +264,54 @@ void polyvalPortable(std::uint64_t st[2], const PolyKey& k,
 // ------------------------------------------------------------- PCLMULQDQ
 
 #if RCM_HCTR2_PCLMUL
+// x86 is little-endian, so st[] and the key words load straight into lanes.
 __attribute__((target("pclmul,sse4.1")))
-void polyvalPclmul(std::uint64_t st[2], const PolyKey& k,
-                   const std::uint8_t* data, std::size_t nfull,
-                   const std::uint8_t* tail)
+void polyvalPclmul(std::uint64_t st[2], const PolyKey& k, const Blocks& in)
 {
-    const std::size_t total = nfull + (tail ? 1 : 0);
     // x^57 + x^62 + x^63: the low part of P above x^0, shifted down by 64.
     const __m128i poly = _mm_set_epi64x(0, static_cast<long long>(0xC200000000000000u));
+    const __m128i zero = _mm_setzero_si128();
     __m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i*>(st));
-    std::size_t j = 0;
-    while (j < total) {
-        const std::size_t m = std::min(total - j, kPowers);
-        __m128i lo = _mm_setzero_si128(), mid = lo, hi = lo;
-        for (std::size_t i = 0; i < m; ++i, ++j) {
-            const std::uint8_t* p = j < nfull ? data + kBlock * j : tail;
-            __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
-            if (i == 0)
-                x = _mm_xor_si128(x, s);
-            const __m128i hk = _mm_loadu_si128(
-                reinterpret_cast<const __m128i*>(k.p[m - 1 - i].w));
-            lo = _mm_xor_si128(lo, _mm_clmulepi64_si128(x, hk, 0x00));
-            hi = _mm_xor_si128(hi, _mm_clmulepi64_si128(x, hk, 0x11));
-            mid = _mm_xor_si128(mid, _mm_clmulepi64_si128(x, hk, 0x01));
-            mid = _mm_xor_si128(mid, _mm_clmulepi64_si128(x, hk, 0x10));
+    std::size_t left = in.count();
+    std::size_t chunk = 0;
+    // Karatsuba, as in the portable code: three products per block, the
+    // middle term corrected once per chunk.
+    __m128i lo = zero, mid = zero, hi = zero;
+    for (const Blocks::Run& run : in.runs) {
+        const std::uint8_t* p = run.p;
+        for (std::size_t n = run.n; n > 0;) {
+            if (chunk == 0) {
+                chunk = std::min(left, kPowers);
+                lo = mid = hi = zero;
+            }
+            const std::size_t take = std::min(n, chunk);
+            for (std::size_t i = 0; i < take; ++i, p += kBlock) {
+                const __m128i x = _mm_xor_si128(
+                    _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), s);
+                s = zero;
+                const std::uint64_t* w = k.p[chunk - 1 - i].w;
+                const __m128i hk = _mm_loadu_si128(reinterpret_cast<const __m128i*>(w));
+                const __m128i hm = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(w + 2));
+                const __m128i xm = _mm_xor_si128(x, _mm_shuffle_epi32(x, 0x4E));
+                lo = _mm_xor_si128(lo, _mm_clmulepi64_si128(x, hk, 0x00));
+                hi = _mm_xor_si128(hi, _mm_clmulepi64_si128(x, hk, 0x11));
+                mid = _mm_xor_si128(mid, _mm_clmulepi64_si128(xm, hm, 0x00));
+            }
+            n -= take;
+            left -= take;
+            chunk -= take;
+            if (chunk == 0) {
+                mid = _mm_xor_si128(mid, _mm_xor_si128(lo, hi));
+                lo = _mm_xor_si128(lo, _mm_slli_si128(mid, 8));
+                hi = _mm_xor_si128(hi, _mm_srli_si128(mid, 8));
+                // Montgomery reduction, the same two steps as reduce() above.
+                __m128i t = _mm_clmulepi64_si128(lo, poly, 0x00);
+                lo = _mm_xor_si128(_mm_shuffle_epi32(lo, 0x4E), t);
+                t = _mm_clmulepi64_si128(lo, poly, 0x00);
+                lo = _mm_xor_si128(_mm_shuffle_epi32(lo, 0x4E), t);
+                s = _mm_xor_si128(hi, lo);
+            }
         }
-        lo = _mm_xor_si128(lo, _mm_slli_si128(mid, 8));
-        hi = _mm_xor_si128(hi, _mm_srli_si128(mid, 8));
-        // Montgomery reduction, the same two steps as reduce() above.
-        __m128i t = _mm_clmulepi64_si128(lo, poly, 0x00);
-        lo = _mm_xor_si128(_mm_shuffle_epi32(lo, 0x4E), t);
-        t = _mm_clmulepi64_si128(lo, poly, 0x00);
-        lo = _mm_xor_si128(_mm_shuffle_epi32(lo, 0x4E), t);
-        s = _mm_xor_si128(hi, lo);
     }
     _mm_storeu_si128(reinterpret_cast<__m128i*>(st), s);
 }
@@ -256,8 +328,7 @@ bool cpuHasPclmul() noexcept
 bool cpuHasPclmul() noexcept { return false; }
 #endif
 
-using PolyvalFn = void (*)(std::uint64_t*, const PolyKey&, const std::uint8_t*,
-                           std::size_t, const std::uint8_t*);
+using PolyvalFn = void (*)(std::uint64_t*, const PolyKey&, const Blocks&);
 
 PolyvalFn pickPolyval(bool pclmul)
 {
@@ -290,6 +361,22 @@ struct CipherFree {
 
 // ====================================================================== Hctr2
 
+// What one call derives from the message and the key: kept together on the
+// stack so that a single wipe covers it, also when OpenSSL throws midway.
+// Left uninitialised: every byte is written before it is read.
+struct Scratch {
+    std::uint8_t a[kBlock], b[kBlock], s[kBlock];
+    std::uint8_t pad[kBlock];                // a partial last block, padded
+    std::uint8_t ks[kXctrBatch * kBlock];    // XCTR keystream
+    std::uint64_t st[2];                     // POLYVAL state
+    std::uint64_t tweakState[2];
+
+    Scratch() = default;
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+    ~Scratch() { OPENSSL_cleanse(this, sizeof *this); }
+};
+
 struct Hctr2::Impl {
     PolyKey key{};
     std::uint8_t l[kBlock] = {}; // L = E_K(bin(1))
@@ -305,7 +392,8 @@ struct Hctr2::Impl {
         // EVP_CIPHER_CTX_free (via CtxPtr) wipes the AES key schedules.
     }
 
-    // AES-ECB over whole blocks; in and out may be the same buffer.
+    // AES-ECB over whole blocks; in and out may be the same buffer. The
+    // contexts are keyed once in the constructor, so this is only the update.
     void ecb(EVP_CIPHER_CTX* ctx, bool encrypt, const std::uint8_t* in,
              std::uint8_t* out, std::size_t len)
     {
@@ -317,102 +405,87 @@ struct Hctr2::Impl {
             throwOpenSsl(encrypt ? "AES encrypt" : "AES decrypt");
     }
 
-    // State after bin(2|T| + 2 + partial) || pad(T).
+    // st = state after bin(2|T| + 2 + partial) || pad(T), in one POLYVAL call
+    // so that short tweaks cost a single reduction.
     void hashTweak(std::span<const std::uint8_t> tweak, bool partial,
-                   std::uint64_t st[2]) const
+                   std::uint64_t st[2], Scratch& sc) const
     {
-        std::uint8_t buf[kBlock] = {};
+        std::uint8_t lenBlock[kBlock] = {};
         const std::uint64_t bits = static_cast<std::uint64_t>(tweak.size()) * 8u;
-        store64le(buf, 2u * bits + 2u + (partial ? 1u : 0u));
-        st[0] = st[1] = 0;
-        polyval(st, key, buf, 1, nullptr);
+        store64le(lenBlock, 2u * bits + 2u + (partial ? 1u : 0u));
         const std::size_t full = tweak.size() / kBlock, rem = tweak.size() % kBlock;
-        const std::uint8_t* tail = nullptr;
+        Blocks in{{{lenBlock, 1}, {tweak.data(), full}, {sc.pad, 0}}};
         if (rem) {
-            std::memset(buf, 0, sizeof buf);
-            std::memcpy(buf, tweak.data() + full * kBlock, rem);
-            tail = buf;
+            std::memset(sc.pad, 0, kBlock);
+            std::memcpy(sc.pad, tweak.data() + full * kBlock, rem);
+            in.runs[2].n = 1;
         }
-        if (full || tail)
-            polyval(st, key, tweak.data(), full, tail);
+        st[0] = st[1] = 0;
+        polyval(st, key, in);
     }
 
-    // out = block xor H(T, msg), H continued from the tweak state st.
-    void hashMessage(const std::uint64_t tweakState[2],
-                     const std::uint8_t* msg, std::size_t len,
-                     const std::uint8_t* block, std::uint8_t* out) const
+    // out = block xor H(T, msg), H continued from the tweak state.
+    void hashMessage(const std::uint64_t tweakState[2], const std::uint8_t* msg,
+                     std::size_t len, const std::uint8_t* block, std::uint8_t* out,
+                     Scratch& sc) const
     {
-        std::uint64_t st[2] = {tweakState[0], tweakState[1]};
+        sc.st[0] = tweakState[0];
+        sc.st[1] = tweakState[1];
         const std::size_t full = len / kBlock, rem = len % kBlock;
-        std::uint8_t buf[kBlock] = {};
-        const std::uint8_t* tail = nullptr;
+        Blocks in{{{msg, full}, {sc.pad, 0}, {}}};
         if (rem) {
-            std::memcpy(buf, msg + full * kBlock, rem);
-            buf[rem] = 0x01;
-            tail = buf;
+            std::memset(sc.pad, 0, kBlock);
+            std::memcpy(sc.pad, msg + full * kBlock, rem);
+            sc.pad[rem] = 0x01;
+            in.runs[1].n = 1;
         }
-        if (full || tail)
-            polyval(st, key, msg, full, tail);
-        std::uint8_t hash[kBlock];
-        store64le(hash, st[0]);
-        store64le(hash + 8, st[1]);
-        xor16(out, block, hash);
-        OPENSSL_cleanse(buf, sizeof buf);
+        polyval(sc.st, key, in);
+        store64le(out, load64le(block) ^ sc.st[0]);
+        store64le(out + 8, load64le(block + 8) ^ sc.st[1]);
     }
 
-    // out = in xor XCTR_K(s); in and out may be the same buffer.
+    // out = in xor XCTR_K(s); in and out may be the same buffer. bin(i) only
+    // touches the low 8 bytes of S for any i a message can reach.
     void xctr(const std::uint8_t s[kBlock], const std::uint8_t* in,
-              std::uint8_t* out, std::size_t len)
+              std::uint8_t* out, std::size_t len, Scratch& sc)
     {
-        std::uint8_t ks[kXctrBatch * kBlock];
+        const std::uint64_t s0 = load64le(s);
         std::uint64_t ctr = 1;
         std::size_t off = 0;
         while (off < len) {
             const std::size_t nb = std::min(kXctrBatch, (len - off + kBlock - 1) / kBlock);
             for (std::size_t b = 0; b < nb; ++b, ++ctr) {
-                std::uint8_t* blk = ks + b * kBlock;
-                std::memcpy(blk, s, kBlock);
-                std::uint8_t c[8];
-                store64le(c, ctr);
-                for (int i = 0; i < 8; ++i)
-                    blk[i] ^= c[i];
+                store64le(sc.ks + b * kBlock, s0 ^ ctr);
+                std::memcpy(sc.ks + b * kBlock + 8, s + 8, 8);
             }
-            ecb(enc.get(), true, ks, ks, nb * kBlock);
+            ecb(enc.get(), true, sc.ks, sc.ks, nb * kBlock);
             const std::size_t n = std::min(len - off, nb * kBlock);
-            for (std::size_t i = 0; i < n; ++i)
-                out[off + i] = in[off + i] ^ ks[i];
+            xorBytes(out + off, in + off, sc.ks, n);
             off += n;
         }
-        OPENSSL_cleanse(ks, sizeof ks);
     }
 
     // The two halves of HCTR2 are the same shape; `forward` selects E or D.
     //   forward:  first = M,  rest = N;  MM = M ^ H(N), UU = E(MM), ...
     //   backward: first = U,  rest = V;  UU = U ^ H(V), MM = D(UU), ...
+    // In-place works: in's first block is read (first hash) before out's
+    // first block is written (last step), and XCTR reads each byte of the
+    // rest before writing it.
     void run(bool forward, std::span<const std::uint8_t> tweak,
              std::span<const std::uint8_t> in, std::span<std::uint8_t> out)
     {
+        Scratch sc;
         const std::size_t restLen = in.size() - kBlock;
-        std::uint64_t tweakState[2];
-        hashTweak(tweak, restLen % kBlock != 0, tweakState);
-
-        std::uint8_t first[kBlock], a[kBlock], b[kBlock], s[kBlock];
-        std::memcpy(first, in.data(), kBlock);
+        hashTweak(tweak, restLen % kBlock != 0, sc.tweakState, sc);
         // a = first ^ H(T, rest_in); b = E(a) or D(a)
-        hashMessage(tweakState, in.data() + kBlock, restLen, first, a);
-        ecb(forward ? enc.get() : dec.get(), forward, a, b, kBlock);
+        hashMessage(sc.tweakState, in.data() + kBlock, restLen, in.data(), sc.a, sc);
+        ecb(forward ? enc.get() : dec.get(), forward, sc.a, sc.b, kBlock);
         // S = MM ^ UU ^ L (symmetric in a and b)
-        xor16(s, a, b);
-        xor16(s, s, l);
-        xctr(s, in.data() + kBlock, out.data() + kBlock, restLen);
+        xor16(sc.s, sc.a, sc.b);
+        xor16(sc.s, sc.s, l);
+        xctr(sc.s, in.data() + kBlock, out.data() + kBlock, restLen, sc);
         // first_out = b ^ H(T, rest_out)
-        hashMessage(tweakState, out.data() + kBlock, restLen, b, out.data());
-
-        OPENSSL_cleanse(first, sizeof first);
-        OPENSSL_cleanse(a, sizeof a);
-        OPENSSL_cleanse(b, sizeof b);
-        OPENSSL_cleanse(s, sizeof s);
-        OPENSSL_cleanse(tweakState, sizeof tweakState);
+        hashMessage(sc.tweakState, out.data() + kBlock, restLen, sc.b, out.data(), sc);
     }
 };
 
@@ -511,7 +584,7 @@ void polyval(PolyvalImpl impl, std::span<const std::uint8_t, 16> h,
     std::uint64_t st[2] = {0, 0};
     const std::size_t n = blocks.size() / kBlock;
     if (n)
-        pickPolyval(impl == PolyvalImpl::Pclmul)(st, key, blocks.data(), n, nullptr);
+        pickPolyval(impl == PolyvalImpl::Pclmul)(st, key, Blocks{{{blocks.data(), n}, {}, {}}});
     store64le(out.data(), st[0]);
     store64le(out.data() + 8, st[1]);
     OPENSSL_cleanse(&key, sizeof key);

@@ -12,6 +12,8 @@
 #include <QString>
 #include <QtTest>
 
+#include <openssl/evp.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -54,6 +56,70 @@ const char* implName(rcm::detail::PolyvalImpl i)
     return i == rcm::detail::PolyvalImpl::Pclmul ? "pclmul" : "portable";
 }
 
+QByteArray aesEcb(const QByteArray& key, const QByteArray& in, bool encrypt)
+{
+    EVP_CIPHER_CTX* ctx = EVP_CIPHER_CTX_new();
+    const EVP_CIPHER* cipher = key.size() == 16 ? EVP_aes_128_ecb() : EVP_aes_256_ecb();
+    QByteArray out(in.size(), '\0');
+    int outl = 0;
+    const auto* k = reinterpret_cast<const unsigned char*>(key.constData());
+    const bool ok = EVP_CipherInit_ex2(ctx, cipher, k, nullptr, encrypt ? 1 : 0, nullptr) == 1
+                    && EVP_CIPHER_CTX_set_padding(ctx, 0) == 1
+                    && EVP_CipherUpdate(ctx, reinterpret_cast<unsigned char*>(out.data()), &outl,
+                                        reinterpret_cast<const unsigned char*>(in.constData()),
+                                        static_cast<int>(in.size()))
+                           == 1;
+    EVP_CIPHER_CTX_free(ctx);
+    return ok && outl == in.size() ? out : QByteArray();
+}
+
+QByteArray xorBlocks(QByteArray a, const QByteArray& b)
+{
+    for (qsizetype i = 0; i < a.size(); ++i)
+        a[i] = static_cast<char>(a[i] ^ b[i]);
+    return a;
+}
+
+// bin(i): i as a 128-bit little-endian integer.
+QByteArray bin(quint64 i)
+{
+    QByteArray b(16, '\0');
+    for (int k = 0; k < 8; ++k)
+        b[k] = static_cast<char>(i >> (8 * k));
+    return b;
+}
+
+// HCTR2 encryption written straight from the paper's definition, each hash
+// one contiguous POLYVAL input. The cipher hashes its length block, tweak,
+// message and padding as separate runs, folded in chunks of key powers; the
+// official vectors (tweaks of at most 47 bytes) never put a chunk boundary
+// inside a tweak or between runs, this does.
+QByteArray referenceEncrypt(rcm::detail::PolyvalImpl impl, const QByteArray& key,
+                            const QByteArray& tweak, const QByteArray& plaintext)
+{
+    const QByteArray hl = aesEcb(key, bin(0) + bin(1), true);
+    const QByteArray h = hl.left(16), l = hl.mid(16);
+    auto hash = [&](const QByteArray& m) {
+        QByteArray in = bin(2 * 8 * static_cast<quint64>(tweak.size()) + (m.size() % 16 ? 3 : 2));
+        in += tweak + QByteArray((16 - tweak.size() % 16) % 16, '\0');
+        in += m;
+        if (m.size() % 16)
+            in += '\x01' + QByteArray(15 - m.size() % 16, '\0');
+        QByteArray out(16, '\0');
+        rcm::detail::polyval(impl, bytes(h).first<16>(), bytes(in), bytes(out).first<16>());
+        return out;
+    };
+    const QByteArray m = plaintext.left(16), n = plaintext.mid(16);
+    const QByteArray mm = xorBlocks(m, hash(n));
+    const QByteArray uu = aesEcb(key, mm, true);
+    const QByteArray s = xorBlocks(xorBlocks(mm, uu), l);
+    QByteArray counters;
+    for (qsizetype i = 1; 16 * (i - 1) < n.size(); ++i)
+        counters += xorBlocks(s, bin(static_cast<quint64>(i)));
+    const QByteArray v = xorBlocks(n, aesEcb(key, counters, true).left(n.size()));
+    return xorBlocks(uu, hash(v)) + v;
+}
+
 } // namespace
 
 class TestHctr2 : public QObject {
@@ -68,6 +134,7 @@ private slots:
     void polyvalRfc8452();
     void polyvalImplementationsAgree();
     void roundTripOddLengths();
+    void matchesReferenceAcrossChunks();
     void rejectsShortMessage();
     void rejectsSizeMismatchAndOverlap();
     void rejectsBadKeyLength();
@@ -246,6 +313,42 @@ void TestHctr2::roundTripOddLengths()
             QCOMPARE(back, msg);
             portable.decrypt(bytes(tweak), bytes(c1), bytes(back));
             QCOMPARE(back, msg);
+        }
+    }
+}
+
+void TestHctr2::matchesReferenceAcrossChunks()
+{
+    // 16 key powers: a chunk boundary falls after the length block plus 15
+    // tweak blocks (tweak 240), inside the tweak or its padded block (241..
+    // 256, 300), inside or at the end of a message's run (17 * 16 + 16 and
+    // around), and on a padded last block (+5).
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> byte(0, 255);
+    for (const int keyLen : {16, 32}) {
+        QByteArray key(keyLen, '\0');
+        for (auto& c : key)
+            c = static_cast<char>(byte(rng));
+        for (const int tlen : {0, 6, 15, 239, 240, 241, 255, 256, 257, 300}) {
+            for (const int len : {16, 223, 16 + 255, 16 + 256, 16 + 257, 16 + 16 * 17, 16 + 16 * 32 + 5}) {
+                QByteArray msg(len, '\0'), tweak(tlen, '\0');
+                for (auto& c : msg)
+                    c = static_cast<char>(byte(rng));
+                for (auto& c : tweak)
+                    c = static_cast<char>(byte(rng));
+                const QString where = QStringLiteral("key %1, tweak %2, message %3").arg(keyLen).arg(tlen).arg(len);
+                for (const auto impl : impls()) {
+                    const QByteArray expected = referenceEncrypt(impl, key, tweak, msg);
+                    QCOMPARE(expected.size(), len);
+                    rcm::detail::setForcePortablePolyval(impl == rcm::detail::PolyvalImpl::Portable);
+                    const rcm::Hctr2 cipher(bytes(key));
+                    QByteArray out(len, '\0'), back(len, '\0');
+                    cipher.encrypt(bytes(tweak), bytes(msg), bytes(out));
+                    QVERIFY2(out == expected, qPrintable(where + QLatin1String(", POLYVAL ") + implName(impl)));
+                    cipher.decrypt(bytes(tweak), bytes(out), bytes(back));
+                    QVERIFY2(back == msg, qPrintable(where + QLatin1String(", POLYVAL ") + implName(impl)));
+                }
+            }
         }
     }
 }
