@@ -226,6 +226,7 @@ bool FrameLog::open(const QString& path, QString* error)
     m_interfaceOf.fill(-1);
     m_interfaces = 0;
     m_records = 0;
+    m_written = 0;
     m_failed = false;
     m_error.clear();
 
@@ -257,7 +258,7 @@ bool FrameLog::open(const QString& path, QString* error)
     return true;
 }
 
-bool FrameLog::append(const FrameRecord& record)
+bool FrameLog::append(const FrameRecord& record, qint64* offset)
 {
     if (!m_file.isOpen()) {
         m_error = QStringLiteral("frame log is not open");
@@ -284,11 +285,14 @@ bool FrameLog::append(const FrameRecord& record)
     // the file never holds a packet whose interface is missing.
     if (newInterface)
         appendInterface(m_buffer, record.transport);
+    const qint64 packetAt = m_written + m_buffer.size();
     appendPacket(m_buffer, newInterface ? m_interfaces : m_interfaceOf[t], record);
     if (!writeBlocks(m_buffer)) {
         fail(m_error);
         return false;
     }
+    if (offset)
+        *offset = packetAt;
     if (newInterface)
         m_interfaceOf[t] = m_interfaces++;
     ++m_records;
@@ -307,6 +311,7 @@ bool FrameLog::writeBlocks(const QByteArray& blocks)
             return false;
         }
         done += n;
+        m_written += n;
     }
     if (m_sync) {
 #if defined(Q_OS_WIN)

@@ -91,13 +91,17 @@ public:
     // Returns false if the record was not logged. After a write failure the
     // log stays failed (a torn block must stay the last one in the file) and
     // the error handler is called once, not for every following frame.
-    bool append(const FrameRecord& record);
+    // `offset`, when given, receives where the record's Enhanced Packet Block
+    // starts in the file (FrameIndexEntry::offset), so that whoever shows the
+    // frame can read it back from there rather than keep a copy.
+    bool append(const FrameRecord& record, qint64* offset = nullptr);
     void close();
 
     bool isOpen() const { return m_file.isOpen(); }
     bool hasFailed() const { return m_failed; }
     QString errorString() const { return m_error; }
     qint64 recordsWritten() const { return m_records; }
+    qint64 bytesWritten() const { return m_written; }
     QString fileName() const { return m_file.fileName(); }
 
     // Off by default: the records already reach the kernel with each write,
@@ -117,6 +121,7 @@ private:
     std::array<int, 4> m_interfaceOf{-1, -1, -1, -1};  // by FrameTransport
     int m_interfaces = 0;
     qint64 m_records = 0;
+    qint64 m_written = 0;  // the file's size: what every complete write added
     bool m_failed = false;
     bool m_sync = false;
     QString m_error;

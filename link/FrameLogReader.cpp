@@ -121,6 +121,32 @@ bool FrameLogReader::open(const QString& path)
     return ok;
 }
 
+bool FrameLogReader::openLive(const QString& path)
+{
+    close();
+    m_file.setFileName(path);
+    if (!m_file.open(QIODevice::ReadOnly)) {
+        m_error = QStringLiteral("cannot open frame log %1: %2").arg(path, m_file.errorString());
+        return false;
+    }
+    // FrameLog writes its section header before anything else, in one write.
+    uchar header[12];
+    if (m_file.read(reinterpret_cast<char*>(header), sizeof header) != qint64(sizeof header) ||
+        qFromLittleEndian<quint32>(header) != pcapng::kSectionHeader) {
+        m_error = QStringLiteral("frame log %1 does not start with a section header block").arg(path);
+        m_file.close();
+        return false;
+    }
+    const quint32 magic = qFromLittleEndian<quint32>(header + 8);
+    if (magic != pcapng::kByteOrderMagic && magic != qbswap(pcapng::kByteOrderMagic)) {
+        m_error = QStringLiteral("frame log %1: section header has byte-order magic %2").arg(path, hex32(magic));
+        m_file.close();
+        return false;
+    }
+    m_sections.append({0, magic != pcapng::kByteOrderMagic});
+    return true;
+}
+
 void FrameLogReader::close()
 {
     if (m_file.isOpen())
@@ -128,6 +154,7 @@ void FrameLogReader::close()
     m_data = nullptr;
     m_size = 0;
     m_copy.clear();
+    m_block.clear();
     m_index.clear();
     m_latestSoFar.clear();
     m_sections.clear();
@@ -323,19 +350,79 @@ FrameRecord FrameLogReader::recordAt(int i) const
     const FrameIndexEntry& e = m_index[i];
     const uchar* p = m_data + e.offset;
     const bool be = sectionIsBigEndian(e.offset);
-    r.bytes = QByteArray(reinterpret_cast<const char*>(p + 28), qsizetype(e.length));
     r.utcMicros = e.utcMicros;
     r.direction = e.direction;
     r.transport = e.transport;
     r.status = e.status;
-    const quint32 blockLength = rd32(p + 4, be);
+    // Validated while indexing, so the block needs no check here.
+    readPacket(p, rd32(p + 4, be), be, e.length, r);
+    return r;
+}
+
+void FrameLogReader::readPacket(const uchar* block, quint32 length, bool be, quint32 captured, FrameRecord& r)
+{
+    r.bytes = QByteArray(reinterpret_cast<const char*>(block + 28), qsizetype(captured));
+    r.correctedSymbols.clear();
     bool found = false;
-    // Validated while indexing, so the result needs no check here.
-    forEachOption(p + 28 + padded4(e.length), p + blockLength - 4, be, [&](quint16 code, QByteArrayView value) {
+    forEachOption(block + 28 + padded4(captured), block + length - 4, be, [&](quint16 code, QByteArrayView value) {
         if (code == pcapng::kOptComment && !found) {
             found = parseFrameStatusComment(value, nullptr, &r.correctedSymbols);
         }
     });
+}
+
+std::optional<FrameRecord> FrameLogReader::recordAt(const FrameIndexEntry& entry)
+{
+    const auto refuse = [&](const QString& what) -> std::optional<FrameRecord> {
+        m_error = QStringLiteral("frame log %1: no frame of %2 bytes at byte offset %3: %4")
+                      .arg(m_file.fileName())
+                      .arg(entry.length)
+                      .arg(entry.offset)
+                      .arg(what);
+        return std::nullopt;
+    };
+    if (!m_file.isOpen())
+        return refuse(QStringLiteral("the log is not open"));
+    if (entry.offset < 0)
+        return refuse(QStringLiteral("no such offset"));
+    const bool be = sectionIsBigEndian(entry.offset);
+    const uchar* block = nullptr;
+    qint64 available = 0;  // bytes of the file from entry.offset on that block may use
+    if (m_data && entry.offset <= m_size - 12) {
+        block = m_data + entry.offset;
+        available = m_size - entry.offset;
+    } else {
+        // Not mapped (openLive), or past the mapping: the header, then the
+        // rest of the block once its length is known.
+        m_block.resize(8);
+        if (!m_file.seek(entry.offset) || m_file.read(m_block.data(), 8) != 8)
+            return refuse(QStringLiteral("past the end of the file"));
+        const quint32 length = rd32(reinterpret_cast<const uchar*>(m_block.constData()) + 4, be);
+        if (length < 32 || length % 4 != 0 || length > kMaxTornBlock)
+            return refuse(QStringLiteral("block length %1").arg(length));
+        m_block.resize(length);
+        if (m_file.read(m_block.data() + 8, length - 8) != qint64(length) - 8)
+            return refuse(QStringLiteral("the block is cut short"));
+        block = reinterpret_cast<const uchar*>(m_block.constData());
+        available = length;
+    }
+    const quint32 type = rd32(block, be);
+    const quint32 length = rd32(block + 4, be);
+    if (type != pcapng::kEnhancedPacket)
+        return refuse(QStringLiteral("block type %1 is not an enhanced packet").arg(hex32(type)));
+    if (length < 32 || length % 4 != 0 || length > available)
+        return refuse(QStringLiteral("block length %1").arg(length));
+    if (rd32(block + length - 4, be) != length)
+        return refuse(QStringLiteral("the block's trailing length differs"));
+    const quint32 captured = rd32(block + 20, be);
+    if (captured != entry.length || 32 + padded4(captured) > qint64(length))
+        return refuse(QStringLiteral("the packet there has %1 bytes").arg(captured));
+    FrameRecord r;
+    r.utcMicros = entry.utcMicros;
+    r.direction = entry.direction;
+    r.transport = entry.transport;
+    r.status = entry.status;
+    readPacket(block, length, be, captured, r);
     return r;
 }
 

@@ -4,12 +4,16 @@
 // packets on interfaces named after a transport). open() maps the file and
 // indexes it in one pass over the block headers; payloads are copied only by
 // recordAt(), so the console's log view can page through a day of frames.
+// openLive() is for a log still being written: no mapping and no index, only
+// records read one at a time where FrameLog::append() said it put them.
 
 #include "link/FrameLog.h"
 
 #include <QFile>
 #include <QString>
 #include <QVector>
+
+#include <optional>
 
 struct FrameIndexEntry {
     qint64 offset = 0;  // of the Enhanced Packet Block in the file
@@ -32,6 +36,11 @@ public:
     // errorString() names the byte offset and the fault, and index() keeps the
     // records before it. Big-endian sections are read as well.
     bool open(const QString& path);
+    // A log another thread or process is still appending to (the console's
+    // own session): checks the section header and stops there. The file is
+    // read, not mapped, so memory does not grow with the session; count()
+    // stays 0 and records come only from recordAt(entry).
+    bool openLive(const QString& path);
     void close();
 
     QString errorString() const { return m_error; }
@@ -45,6 +54,11 @@ public:
     // Copies one frame out of the file; i must be in [0, count()).
     FrameRecord recordAt(int i) const;
     QVector<FrameRecord> readAll() const;
+    // The record whose Enhanced Packet Block starts at entry.offset: its bytes
+    // and corrections from the file, the rest from `entry`. Works after open()
+    // and openLive(). Nothing, with errorString() saying why, when no packet of
+    // entry.length bytes starts there (a wrong offset, another file).
+    std::optional<FrameRecord> recordAt(const FrameIndexEntry& entry);
 
     // First record at or after utcMicros, count() if none. The wall clock may
     // step backwards mid-session, so this searches the running maximum of the
@@ -69,6 +83,8 @@ private:
     bool parsePacket(qint64 at, quint32 length, bool be, const QVector<Interface>& interfaces);
     bool corrupt(qint64 at, const QString& what);
     bool sectionIsBigEndian(qint64 offset) const;
+    // Fills r's bytes and correctedSymbols from a validated packet block.
+    static void readPacket(const uchar* block, quint32 length, bool be, quint32 captured, FrameRecord& r);
 
     QFile m_file;
     const uchar* m_data = nullptr;  // the mapping, or m_copy's bytes
@@ -78,6 +94,7 @@ private:
     QVector<qint64> m_latestSoFar;  // running max of utcMicros, for seeking
     QVector<Section> m_sections;
     QString m_error;
+    QByteArray m_block;  // openLive(): the one block read last, reused
     bool m_truncatedTail = false;
     int m_foreignPackets = 0;
 };

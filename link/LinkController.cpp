@@ -16,6 +16,7 @@ LinkController::LinkController(std::unique_ptr<Link> link, std::unique_ptr<Frame
     connect(m_worker, &LinkWorker::stopped, this, &LinkController::stopped);
     connect(m_worker, &LinkWorker::messageReceived, this, &LinkController::messageReceived);
     connect(m_worker, &LinkWorker::frameSent, this, &LinkController::frameSent);
+    connect(m_worker, &LinkWorker::frameLogged, this, &LinkController::frameLogged);
     connect(m_worker, &LinkWorker::statisticsChanged, this, [this](const LinkStatistics& statistics) {
         m_statistics = statistics;
         emit statisticsChanged(statistics);

@@ -43,6 +43,8 @@ signals:
     void stopped();
     void messageReceived(const ReceivedMessage& received);
     void frameSent(quint32 messageId);
+    // LinkWorker::frameLogged, queued to this thread: one per frame logged.
+    void frameLogged(const LoggedFrame& frame);
     void statisticsChanged(const LinkStatistics& statistics);
     void stateChanged(LinkState state);
     void linkLost();

@@ -122,6 +122,7 @@ void LinkWorker::registerMetaTypes()
     qRegisterMetaType<LinkState>();
     qRegisterMetaType<LinkStatistics>();
     qRegisterMetaType<ReceivedMessage>();
+    qRegisterMetaType<LoggedFrame>();
     qRegisterMetaType<rcm::Message>();
 }
 
@@ -238,7 +239,7 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
     m_statistics.addSendDelay(utcMicrosNow() - idealTickMicros);
     ++m_statistics.framesSent;
     m_nextMessageId = (id + 1) % kMessageIdModulus;
-    log(FrameDirection::Sent, *bytes, FrameStatus::NotChecked);
+    log(FrameDirection::Sent, *bytes, FrameStatus::NotChecked, {}, id);
     emit frameSent(id);
     statisticsDirty();
 }
@@ -335,8 +336,11 @@ void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::Deco
         result = rcm::decodeBlocks(blocks);
     }
     const bool clean = blocks.corrected1 == 0 && blocks.corrected2 == 0;
+    const rcm::Unit& header = result.message.header;
     log(FrameDirection::Received, toByteArray(raw), clean ? FrameStatus::Decoded : FrameStatus::Corrected,
-        {blocks.corrected1, blocks.corrected2});
+        {blocks.corrected1, blocks.corrected2},
+        header.has(rcm::ItemId::ID_msg) ? std::optional<quint32>(quint32(header.number(rcm::ItemId::ID_msg)))
+                                        : std::nullopt);
 
     const std::int64_t now = utcMicrosNow();
     ++m_statistics.framesReceived;
@@ -433,10 +437,9 @@ void LinkWorker::setState(LinkState state)
     emit stateChanged(state);
 }
 
-void LinkWorker::log(FrameDirection direction, QByteArray bytes, FrameStatus status, QList<int> corrected)
+void LinkWorker::log(FrameDirection direction, QByteArray bytes, FrameStatus status, QList<int> corrected,
+                     std::optional<quint32> messageId)
 {
-    if (!m_log || !m_log->isOpen())
-        return;
     FrameRecord record;
     record.bytes = std::move(bytes);
     record.utcMicros = utcMicrosNow();
@@ -444,7 +447,23 @@ void LinkWorker::log(FrameDirection direction, QByteArray bytes, FrameStatus sta
     record.transport = m_link->transport();
     record.status = status;
     record.correctedSymbols = std::move(corrected);
-    m_log->append(record);
+
+    LoggedFrame logged;
+    logged.entry.offset = -1;
+    logged.entry.utcMicros = record.utcMicros;
+    logged.entry.length = quint32(record.bytes.size());
+    logged.entry.direction = direction;
+    logged.entry.transport = record.transport;
+    logged.entry.status = status;
+    logged.messageId = messageId;
+    if (m_log && m_log->isOpen())
+        m_log->append(record, &logged.entry.offset);
+    // A frame that is in no file (no log, or the log failed) carries its
+    // bytes: the signal is then their only copy.
+    if (!logged.inLog())
+        logged.bytes = std::move(record.bytes);
+    logged.correctedSymbols = std::move(record.correctedSymbols);
+    emit frameLogged(logged);
 }
 
 void LinkWorker::statisticsDirty()

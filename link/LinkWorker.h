@@ -14,6 +14,7 @@
 #include "link/FrameLog.h"
 #include "link/Link.h"
 #include "link/LinkStatistics.h"
+#include "link/LoggedFrame.h"
 #include "link/ReceivedMessage.h"
 
 #include <QObject>
@@ -102,6 +103,10 @@ signals:
     void stopped();
     void messageReceived(const ReceivedMessage& received);
     void frameSent(quint32 messageId);
+    // Every frame the worker logs, once, just after it went into the frame log:
+    // sent, received good or corrected, uncorrectable, rejected (secure link,
+    // wrong-size datagram). What the console's frame log view is built from.
+    void frameLogged(const LoggedFrame& frame);
     void statisticsChanged(const LinkStatistics& statistics);
     void stateChanged(LinkState state);
     // Each once per outage: lost after the silence timeout or when the
@@ -128,7 +133,8 @@ private:
     void transportClosed();
     void silenceElapsed();
     void setState(LinkState state);
-    void log(FrameDirection direction, QByteArray bytes, FrameStatus status, QList<int> corrected = {});
+    void log(FrameDirection direction, QByteArray bytes, FrameStatus status, QList<int> corrected = {},
+             std::optional<quint32> messageId = std::nullopt);
     void statisticsDirty();
     void reportError(const QString& message);
 

@@ -25,6 +25,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <map>
 #include <fcntl.h>
 #include <pty.h>
 #include <unistd.h>
@@ -102,6 +103,21 @@ void verifyStamped(const rcm::Message& m)
 ReceivedMessage receivedAt(const QSignalSpy& spy, int i)
 {
     return spy.at(i).at(0).value<ReceivedMessage>();
+}
+
+LoggedFrame loggedAt(const QSignalSpy& spy, int i)
+{
+    return spy.at(i).at(0).value<LoggedFrame>();
+}
+
+void compareEntries(const FrameIndexEntry& a, const FrameIndexEntry& b)
+{
+    QCOMPARE(a.offset, b.offset);
+    QCOMPARE(a.utcMicros, b.utcMicros);
+    QCOMPARE(a.length, b.length);
+    QCOMPARE(a.direction, b.direction);
+    QCOMPARE(a.transport, b.transport);
+    QCOMPARE(a.status, b.status);
 }
 
 QVector<FrameRecord> readLog(const QString& path)
@@ -241,6 +257,8 @@ private slots:
     void udpFramesArriveDecodeAndCountUp();
     void messageIdWrapsAt24Bits();
     void wrongSizeAndUndecodableDatagramsAreCountedNotFatal();
+    void everyLoggedFrameIsSignalledWithItsOffset();
+    void withoutALogTheSignalCarriesTheBytes();
     void commandFromGuiThreadReachesTheFrames();
     void silenceReportsLostOnceThenRegained();
     void silenceBeforeAnyFrameIsLost();
@@ -420,6 +438,136 @@ void TestLink::wrongSizeAndUndecodableDatagramsAreCountedNotFatal()
     QCOMPARE(got[2].status, FrameStatus::Uncorrectable);
     QVERIFY(got[2].correctedSymbols.contains(-1));
     QCOMPARE(got[3].status, FrameStatus::Decoded);
+}
+
+void TestLink::everyLoggedFrameIsSignalledWithItsOffset()
+{
+    QTemporaryDir dir;
+    const QString logPath = dir.filePath(QStringLiteral("session.pcapng"));
+    UdpFarEnd far;
+    QByteArray corrected = aircraftDatagram(6);
+    for (int at : {5, 300})
+        corrected[at] = char(corrected[at] ^ 0x33);
+    QByteArray garbage(510, '\0');
+    for (int i = 0; i < garbage.size(); ++i)
+        garbage[i] = char((i * 89 + 7) & 0xFF);
+    const QByteArray shortOne(100, '\x55');
+
+    LinkController controller(udpTo(far.port()), openLog(logPath), fastOptions());
+    QSignalSpy logged(&controller, &LinkController::frameLogged);
+    QSignalSpy stopped(&controller, &LinkController::stopped);
+    controller.setCommand(command(2));
+    controller.start();
+    QTRY_VERIFY_WITH_TIMEOUT(far.datagrams.count() >= 1, kPatience);
+    for (const QByteArray& datagram : {aircraftDatagram(5), corrected, garbage, shortOne})
+        QVERIFY(far.link.write(datagram));
+    QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().wrongSizeDatagrams == 1, kPatience);
+
+    // While the link is still writing the log, the last frame signalled is
+    // already there to read at its offset.
+    {
+        const LoggedFrame last = loggedAt(logged, int(logged.count()) - 1);
+        QVERIFY(last.inLog());
+        QVERIFY(last.bytes.isEmpty());
+        FrameLogReader live;
+        QVERIFY2(live.openLive(logPath), qPrintable(live.errorString()));
+        const std::optional<FrameRecord> record = live.recordAt(last.entry);
+        QVERIFY2(record, qPrintable(live.errorString()));
+        QCOMPARE(record->bytes.size(), qsizetype(last.entry.length));
+        QCOMPARE(record->direction, last.entry.direction);
+        QCOMPARE(record->correctedSymbols, last.correctedSymbols);
+        // An offset where no such frame starts is refused, not misread.
+        FrameIndexEntry wrong = last.entry;
+        wrong.offset += 4;
+        QVERIFY(!live.recordAt(wrong));
+        QVERIFY(!live.errorString().isEmpty());
+    }
+
+    // Every signal before stopped() has arrived once stopped() has: same sender, same receiver.
+    controller.stop();
+    QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 1, kPatience);
+    FrameLogReader reader;
+    QVERIFY2(reader.open(logPath), qPrintable(reader.errorString()));
+    QCOMPARE(int(logged.count()), reader.count());
+    // Every frame sent has reached the far end.
+    QTRY_COMPARE_WITH_TIMEOUT(far.datagrams.count(), only(reader.readAll(), FrameDirection::Sent).size(), kPatience);
+    std::map<FrameStatus, int> statuses;
+    int sent = 0;
+    for (int i = 0; i < reader.count(); ++i) {
+        const LoggedFrame frame = loggedAt(logged, i);
+        compareEntries(frame.entry, reader.index()[i]);
+        QVERIFY(frame.bytes.isEmpty());  // they are in the file
+        const std::optional<FrameRecord> record = reader.recordAt(frame.entry);
+        QVERIFY2(record, qPrintable(reader.errorString()));
+        QCOMPARE(*record, reader.recordAt(i));
+        QCOMPARE(frame.correctedSymbols, record->correctedSymbols);
+        ++statuses[frame.entry.status];
+        if (frame.entry.direction == FrameDirection::Sent) {
+            QCOMPARE(record->bytes, far.datagram(sent++));
+            QVERIFY(frame.messageId);
+            QCOMPARE(std::int64_t(*frame.messageId), messageId(decode(record->bytes).message));
+        }
+        switch (frame.entry.status) {
+            case FrameStatus::Decoded:
+                QCOMPARE(record->bytes, aircraftDatagram(5));
+                QCOMPARE(frame.messageId, std::optional<quint32>(5));
+                break;
+            case FrameStatus::Corrected:
+                QCOMPARE(record->bytes, corrected);
+                QCOMPARE(frame.messageId, std::optional<quint32>(6));
+                QCOMPARE(frame.correctedSymbols, QList<int>({1, 1}));
+                break;
+            case FrameStatus::Uncorrectable:
+                QCOMPARE(record->bytes, garbage);
+                QVERIFY(frame.correctedSymbols.contains(-1));
+                QCOMPARE(frame.messageId, std::nullopt);
+                break;
+            case FrameStatus::Rejected:
+                QCOMPARE(record->bytes, shortOne);
+                QCOMPARE(frame.messageId, std::nullopt);
+                break;
+            case FrameStatus::NotChecked:
+                QCOMPARE(frame.entry.direction, FrameDirection::Sent);
+                break;
+        }
+    }
+    for (FrameStatus s :
+         {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable, FrameStatus::Rejected})
+        QCOMPARE(statuses[s], 1);
+    QCOMPARE(statuses[FrameStatus::NotChecked], sent);
+}
+
+void TestLink::withoutALogTheSignalCarriesTheBytes()
+{
+    UdpFarEnd far;
+    LinkController controller(udpTo(far.port()), nullptr, fastOptions());
+    QSignalSpy logged(&controller, &LinkController::frameLogged);
+    QSignalSpy stopped(&controller, &LinkController::stopped);
+    controller.setCommand(command(2));
+    controller.start();
+    QTRY_VERIFY_WITH_TIMEOUT(far.datagrams.count() >= 2, kPatience);
+    QVERIFY(far.link.write(aircraftDatagram(9)));
+    QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().framesReceived == 1, kPatience);
+    controller.stop();
+    QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 1, kPatience);
+    QTRY_COMPARE_WITH_TIMEOUT(quint64(far.datagrams.count()), controller.statistics().framesSent, kPatience);
+
+    int sent = 0, received = 0;
+    for (int i = 0; i < logged.count(); ++i) {
+        const LoggedFrame frame = loggedAt(logged, i);
+        QVERIFY(!frame.inLog());
+        QCOMPARE(frame.entry.offset, qint64(-1));
+        QCOMPARE(qsizetype(frame.entry.length), frame.bytes.size());
+        if (frame.entry.direction == FrameDirection::Sent) {
+            QCOMPARE(frame.bytes, far.datagram(sent++));
+        } else {
+            QCOMPARE(frame.bytes, aircraftDatagram(9));
+            QCOMPARE(frame.entry.status, FrameStatus::Decoded);
+            ++received;
+        }
+    }
+    QCOMPARE(quint64(sent), controller.statistics().framesSent);
+    QCOMPARE(received, 1);
 }
 
 void TestLink::commandFromGuiThreadReachesTheFrames()
