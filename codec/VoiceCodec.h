@@ -41,10 +41,10 @@ struct CODEC2;
 
 namespace rcm::voice {
 
-inline constexpr int kSampleRate = 8000;                  // 16-bit mono PCM in and out
-inline constexpr std::size_t kFrameSamples = 160;         // 20 ms
-inline constexpr std::size_t kFrameBytes = 12;            // on the link
-inline constexpr std::size_t kCodec2Bytes = 8;            // Codec 2 3200: 64 bits per 20 ms
+inline constexpr int kSampleRate = 8000;           // 16-bit mono PCM in and out
+inline constexpr std::size_t kFrameSamples = 160;  // 20 ms
+inline constexpr std::size_t kFrameBytes = 12;     // on the link
+inline constexpr std::size_t kCodec2Bytes = 8;     // Codec 2 3200: 64 bits per 20 ms
 inline constexpr std::size_t kFramesPerSecond = 50;
 inline constexpr std::size_t kBytesPerSecond = kFrameBytes * kFramesPerSecond;  // 600
 inline constexpr std::uint8_t kSyncByte = 0xA2;
@@ -139,14 +139,14 @@ private:
 
     std::unique_ptr<CODEC2, void (*)(CODEC2*)> m_codec2;
     std::vector<std::uint8_t> m_buffer;
-    std::uint64_t m_base = 0;      // stream offset of m_buffer[0]
+    std::uint64_t m_base = 0;  // stream offset of m_buffer[0]
     bool m_tracking = false;
-    bool m_hasLast = false;        // a frame has been taken
-    std::uint64_t m_lastEnd = 0;   // stream offset just after the last frame taken
+    bool m_hasLast = false;       // a frame has been taken
+    std::uint64_t m_lastEnd = 0;  // stream offset just after the last frame taken
     std::uint8_t m_lastSequence = 0;
-    std::uint64_t m_expect = 0;    // in step: where the next frame should start
+    std::uint64_t m_expect = 0;  // in step: where the next frame should start
     int m_misses = 0;
-    std::uint64_t m_scan = 0;      // hunting: the next offset to try
+    std::uint64_t m_scan = 0;  // hunting: the next offset to try
     Stats m_stats;
 };
 

@@ -48,7 +48,7 @@ public:
     static constexpr std::size_t kMaxQueuedFrames = 4;
 
     struct Stats {
-        std::uint64_t pairs = 0;          // byte pairs produced
+        std::uint64_t pairs = 0;  // byte pairs produced
         std::uint64_t framesStarted = 0;
         std::uint64_t framesDropped = 0;  // queued while kMaxQueuedFrames already waited: the oldest goes
         std::uint64_t fillBytes = 0;      // control bytes that were fill
@@ -132,8 +132,8 @@ private:
         std::uint64_t windowLo = 0;  // last 16 bytes, oldest in the top byte of windowHi
         std::uint64_t windowHi = 0;
         std::array<std::uint8_t, kPreambleSize> history{};  // ring of the last 90 bytes
-        std::size_t next = 0;                              // where the next byte goes in history
-        std::size_t count = 0;                             // bytes in history
+        std::size_t next = 0;                               // where the next byte goes in history
+        std::size_t count = 0;                              // bytes in history
     };
 
     void swapPhases(int control);

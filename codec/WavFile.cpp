@@ -82,7 +82,8 @@ std::optional<PcmAudio> WavFile::read(const std::string& path, std::string& erro
         error = path + ": " + systemError();
         return std::nullopt;
     }
-    if (bytes.size() < 12 || std::memcmp(bytes.data(), "RIFF", 4) != 0 || std::memcmp(bytes.data() + 8, "WAVE", 4) != 0) {
+    if (bytes.size() < 12 || std::memcmp(bytes.data(), "RIFF", 4) != 0 ||
+        std::memcmp(bytes.data() + 8, "WAVE", 4) != 0) {
         error = path + ": not a WAV file (no RIFF/WAVE header)";
         return std::nullopt;
     }

@@ -4,6 +4,7 @@
 #include "codec/WavFile.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 using namespace rcm::voice;
 
@@ -100,5 +101,9 @@ void VoiceEncoderSource::nextFrame()
         m_encoder.speechFrame(pcm, m_frame);
     else
         m_encoder.idleFrame(m_frame);
+    int peak = 0;
+    for (const std::int16_t s : pcm)
+        peak = std::max(peak, std::abs(int(s)));
+    m_sentLevel = float(peak) / 32768.0f;
     m_framePosition = 0;
 }

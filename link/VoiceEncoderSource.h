@@ -17,6 +17,7 @@
 #include "codec/VoiceCodec.h"
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -42,6 +43,9 @@ public:
     std::size_t backlogSamples() const;
     std::uint64_t samplesDropped() const;
     std::uint64_t speechFramesSent() const;
+    // Peak magnitude of the last frame sent, 0..1 (0 for idle): what the
+    // operator's level meter shows. Any thread.
+    float sentLevel() const { return m_sentLevel.load(); }
 
     // The link's thread.
     void readVoice(std::span<std::uint8_t> out) override;
@@ -59,4 +63,5 @@ private:
     rcm::voice::VoiceEncoder m_encoder;  // the link's thread only
     std::array<std::uint8_t, rcm::voice::kFrameBytes> m_frame{};
     std::size_t m_framePosition = rcm::voice::kFrameBytes;
+    std::atomic<float> m_sentLevel{0};
 };

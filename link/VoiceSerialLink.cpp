@@ -90,8 +90,7 @@ VoiceSerialLink::~VoiceSerialLink()
 
 QString VoiceSerialLink::description() const
 {
-    return m_inner->description() +
-           QStringLiteral(", voice multiplexed at %1 bit/s").arg(m_options.bytesPerSecond * 8);
+    return m_inner->description() + QStringLiteral(", voice multiplexed at %1 bit/s").arg(m_options.bytesPerSecond * 8);
 }
 
 void VoiceSerialLink::open()

@@ -55,10 +55,9 @@ public:
 
     // `inner` a stream transport, moved in and made a child. A null source
     // sends idle voice; a null sink drops what is received.
-    VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
-                    std::shared_ptr<VoiceSink> sink, Options options, QObject* parent = nullptr);
-    VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
-                    std::shared_ptr<VoiceSink> sink);
+    VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink,
+                    Options options, QObject* parent = nullptr);
+    VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink);
     ~VoiceSerialLink() override;
 
     FrameTransport transport() const override { return m_inner->transport(); }
@@ -92,8 +91,8 @@ private:
     std::unique_ptr<rcm::VoiceMultiplexer> m_mux;
     std::unique_ptr<rcm::VoiceDemultiplexer> m_demux;
     QTimer m_timer;
-    QElapsedTimer m_clock;          // since the port opened
-    std::uint64_t m_written = 0;    // line bytes written since then
-    std::uint64_t m_skipped = 0;    // line bytes never written: the event loop stalled
-    std::int64_t m_holdUntil = 0;   // m_clock ns: the first frame after fill waits until then
+    QElapsedTimer m_clock;         // since the port opened
+    std::uint64_t m_written = 0;   // line bytes written since then
+    std::uint64_t m_skipped = 0;   // line bytes never written: the event loop stalled
+    std::int64_t m_holdUntil = 0;  // m_clock ns: the first frame after fill waits until then
 };

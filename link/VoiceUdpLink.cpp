@@ -90,7 +90,8 @@ void VoiceUdpLink::pace()
     using rcm::voice::kFrameBytes;
     using rcm::voice::kFramesPerSecond;
     // The frame whose 20 ms has begun goes now.
-    const auto due = static_cast<std::uint64_t>(m_clock.nsecsElapsed() / 1000 * std::int64_t(kFramesPerSecond) / 1000000) + 1;
+    const auto due =
+        static_cast<std::uint64_t>(m_clock.nsecsElapsed() / 1000 * std::int64_t(kFramesPerSecond) / 1000000) + 1;
     if (due > m_frames + kMaxCatchUp)
         m_frames = due - kMaxCatchUp;
     QByteArray datagram(kMagicSize + qsizetype(kFrameBytes), Qt::Uninitialized);

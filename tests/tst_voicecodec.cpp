@@ -97,8 +97,9 @@ void compareBands(const Pcm& in, const Pcm& out, double tolerance)
         if (a[i] < strongest - kWeakBandDb)
             QVERIFY2(b[i] < strongest - kWeakBandDb + tolerance, qPrintable(detail));
         else
-            QVERIFY2(std::abs(a[i] - b[i]) <= tolerance,
-                     qPrintable(QStringLiteral("band %1 (%2-%3 Hz)\n").arg(i).arg(i * 500).arg(i * 500 + 500) + detail));
+            QVERIFY2(
+                std::abs(a[i] - b[i]) <= tolerance,
+                qPrintable(QStringLiteral("band %1 (%2-%3 Hz)\n").arg(i).arg(i * 500).arg(i * 500 + 500) + detail));
     }
 }
 
@@ -129,7 +130,8 @@ void TestVoiceCodec::frameLayout()
     const Pcm tone = [] {
         Pcm p(kFrameSamples);
         for (std::size_t i = 0; i < p.size(); ++i)
-            p[i] = static_cast<std::int16_t>(8000 * std::sin(2 * std::numbers::pi * 440 * static_cast<double>(i) / kSampleRate));
+            p[i] = static_cast<std::int16_t>(
+                8000 * std::sin(2 * std::numbers::pi * 440 * static_cast<double>(i) / kSampleRate));
         return p;
     }();
     encoder.speechFrame(PcmFrame(tone.data(), kFrameSamples), speech);
@@ -216,10 +218,8 @@ void TestVoiceCodec::phraseThroughTheStream_data()
     QTest::addRow("clean, whole") << 0.0 << QList<int>{} << 0 << kToleranceDb;
     QTest::addRow("clean, byte by byte") << 0.0 << QList<int>{} << 1 << kToleranceDb;
     QTest::addRow("BER 1e-3") << 1e-3 << QList<int>{} << 50 << kToleranceDb;
-    QTest::addRow("lost bytes") << 0.0 << QList<int>{1000, 1, 2003, 5, 3500, 30, 5001, 12} << 13
-                                << kToleranceDb;
-    QTest::addRow("BER 1e-3 and lost bytes") << 1e-3 << QList<int>{1500, 3, 4000, 100} << 64
-                                             << kToleranceDb;
+    QTest::addRow("lost bytes") << 0.0 << QList<int>{1000, 1, 2003, 5, 3500, 30, 5001, 12} << 13 << kToleranceDb;
+    QTest::addRow("BER 1e-3 and lost bytes") << 1e-3 << QList<int>{1500, 3, 4000, 100} << 64 << kToleranceDb;
 }
 
 // The phrase through bit errors and lost bytes: as long as it went in
@@ -242,10 +242,9 @@ void TestVoiceCodec::phraseThroughTheStream()
 
     VoiceDecoder::Stats stats;
     const Pcm out = decodeAll(bytes, static_cast<std::size_t>(piece), &stats);
-    qInfo("%zu samples in, %zu out; %llu speech frames, %llu lost, %llu corrected, %llu resyncs", in.size(),
-          out.size(), static_cast<unsigned long long>(stats.speechFrames),
-          static_cast<unsigned long long>(stats.lostFrames), static_cast<unsigned long long>(stats.correctedFrames),
-          static_cast<unsigned long long>(stats.resyncs));
+    qInfo("%zu samples in, %zu out; %llu speech frames, %llu lost, %llu corrected, %llu resyncs", in.size(), out.size(),
+          static_cast<unsigned long long>(stats.speechFrames), static_cast<unsigned long long>(stats.lostFrames),
+          static_cast<unsigned long long>(stats.correctedFrames), static_cast<unsigned long long>(stats.resyncs));
     QVERIFY2(out.size() + kFrameSamples >= in.size() && out.size() <= in.size() + kFrameSamples,
              qPrintable(QStringLiteral("%1 samples in, %2 out").arg(in.size()).arg(out.size())));
     compareBands(in, out, tolerance);
@@ -304,8 +303,8 @@ void TestVoiceCodec::wrongPhaseForASecond()
     QCOMPARE(stats.lostFrames, std::uint64_t(kFramesPerSecond));
     QCOMPARE(stats.resyncs, std::uint64_t(1));
     const auto silent = [&](std::size_t from, std::size_t to) {
-        return std::all_of(out.begin() + static_cast<std::ptrdiff_t>(from), out.begin() + static_cast<std::ptrdiff_t>(to),
-                           [](std::int16_t s) { return s == 0; });
+        return std::all_of(out.begin() + static_cast<std::ptrdiff_t>(from),
+                           out.begin() + static_cast<std::ptrdiff_t>(to), [](std::int16_t s) { return s == 0; });
     };
     const std::size_t resume = 100 * kFrameSamples + kSampleRate;
     QVERIFY(!silent(100 * kFrameSamples - kFrameSamples, 100 * kFrameSamples));

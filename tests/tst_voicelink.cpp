@@ -38,7 +38,7 @@ using namespace std::chrono_literals;
 
 namespace {
 
-constexpr int kPatience = 20000;  // ms QTRY waits for what a loaded machine may delay
+constexpr int kPatience = 20000;      // ms QTRY waits for what a loaded machine may delay
 constexpr double kToleranceDb = 6.0;  // as tst_voicecodec's, which says why
 
 using Pcm = std::vector<std::int16_t>;
@@ -294,7 +294,8 @@ void TestVoiceLink::framesQueuedTogetherGoBackToBack()
     // Voice (idle) all along, in step from the first byte.
     QCOMPARE(h.voice.resyncs, std::uint64_t(0));
     QCOMPARE(h.voice.lostFrames, std::uint64_t(0));
-    QVERIFY(h.voice.idleFrames * rcm::voice::kFrameBytes + rcm::voice::kFrameBytes >= std::uint64_t(far.bytes().size() / 2));
+    QVERIFY(h.voice.idleFrames * rcm::voice::kFrameBytes + rcm::voice::kFrameBytes >=
+            std::uint64_t(far.bytes().size() / 2));
     QCOMPARE(link.multiplexer().stats().framesStarted, std::uint64_t(4));
 }
 
@@ -396,9 +397,8 @@ void TestVoiceLink::voiceDatagramFormat()
         QVERIFY(d.startsWith("RCMV"));
         QVERIFY(VoiceUdpLink::isVoiceDatagram(d));
         rcm::voice::VoiceFrame f;
-        QVERIFY(rcm::voice::parseFrame(std::span<const std::uint8_t, 12>(
-                                           reinterpret_cast<const std::uint8_t*>(d.constData()) + 4, 12),
-                                       f));
+        QVERIFY(rcm::voice::parseFrame(
+            std::span<const std::uint8_t, 12>(reinterpret_cast<const std::uint8_t*>(d.constData()) + 4, 12), f));
         QCOMPARE(f.kind, rcm::voice::FrameKind::Idle);
         ++voice;
     }
@@ -422,9 +422,8 @@ void TestVoiceLink::voiceDatagramFormat()
 void TestVoiceLink::phraseOverUdpBesideCommands()
 {
     Pcm heard;
-    auto sink = std::make_shared<VoiceDecoderSink>([&](std::span<const std::int16_t> pcm) {
-        heard.insert(heard.end(), pcm.begin(), pcm.end());
-    });
+    auto sink = std::make_shared<VoiceDecoderSink>(
+        [&](std::span<const std::int16_t> pcm) { heard.insert(heard.end(), pcm.begin(), pcm.end()); });
     auto aircraftUdp = std::make_unique<UdpLink>(QHostAddress::LocalHost, 0);
     aircraftUdp->setReplyToSender(true);
     VoiceUdpLink aircraft(std::move(aircraftUdp), std::make_shared<VoiceEncoderSource>(), sink);
@@ -474,9 +473,8 @@ void TestVoiceLink::uasimRecordsThePhraseAndSpeaksBack()
     QTRY_VERIFY_WITH_TIMEOUT(cable.bytesFrom(1) > 0, kPatience);
 
     Pcm consoleHeard;
-    auto sink = std::make_shared<VoiceDecoderSink>([&](std::span<const std::int16_t> pcm) {
-        consoleHeard.insert(consoleHeard.end(), pcm.begin(), pcm.end());
-    });
+    auto sink = std::make_shared<VoiceDecoderSink>(
+        [&](std::span<const std::int16_t> pcm) { consoleHeard.insert(consoleHeard.end(), pcm.begin(), pcm.end()); });
     auto source = std::make_shared<VoiceEncoderSource>(0ms);
     source->pushPcm(phrase());
     source->endTalk();

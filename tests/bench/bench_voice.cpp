@@ -164,9 +164,10 @@ int main(int argc, char** argv)
     QTimer::singleShot((bursts + 4) * kBurstIntervalMs + 3000, [] { QCoreApplication::quit(); });
     app.exec();
 
-    std::printf("voice latency added by the link: frame complete -> frame decoded (the codec's 20 ms frame time "
-                "excluded), %d bursts of 20 ms\n",
-                bursts);
+    std::printf(
+        "voice latency added by the link: frame complete -> frame decoded (the codec's 20 ms frame time "
+        "excluded), %d bursts of 20 ms\n",
+        bursts);
     printSpread("pty", overPty);
     printSpread("line", onLine);
     if (std::int64_t(overPty.size()) != bursts)
