@@ -1,0 +1,188 @@
+// Push to talk on the console: the button and the F12 key, the microphone
+// or a WAV file, the level meters, and received voice on its way to the
+// speaker. No sound card is needed: the rehearsal file stands in for the
+// microphone, and what would be played is read from the playback FIFO.
+#include "codec/VoiceCodec.h"
+#include "codec/WavFile.h"
+#include "link/SerialLink.h"
+#include "link/UdpLink.h"
+#include "link/VoiceEncoderSource.h"
+#include "link/VoiceSerialLink.h"
+#include "link/VoiceUdpLink.h"
+#include "ui/PcmFifo.h"
+#include "ui/PushToTalkWidget.h"
+#include "ui/VoiceChannel.h"
+
+#include <QCheckBox>
+#include <QMainWindow>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QTest>
+
+namespace {
+
+constexpr int kPatience = 10000;  // ms QTRY waits for what a loaded machine may delay
+const QString kPhrase = QStringLiteral(RCM_SOURCE_DIR "/resources/voice/phrase.wav");
+
+std::size_t phraseSamples()
+{
+    std::string error;
+    return rcm::WavFile::read(kPhrase.toStdString(), error)->samples.size();
+}
+
+// A transport that is only a replay: voice must leave it alone.
+class FakeReplay : public Link {
+public:
+    FrameTransport transport() const override { return FrameTransport::Replay; }
+    bool isStream() const override { return false; }
+    bool isOpen() const override { return false; }
+    QString description() const override { return QStringLiteral("replay"); }
+    void open() override {}
+    void close() override {}
+    bool write(const QByteArray&) override { return false; }
+};
+
+struct Console {
+    QMainWindow window;
+    VoiceChannel* channel = new VoiceChannel(&window);
+    PushToTalkWidget* widget = new PushToTalkWidget(channel);
+    QCheckBox* voiceOn = widget->findChild<QCheckBox*>(QStringLiteral("voiceOn"));
+    QPushButton* talk = widget->findChild<QPushButton*>(QStringLiteral("pushToTalk"));
+
+    Console()
+    {
+        window.setCentralWidget(widget);
+        window.show();
+    }
+};
+
+}  // namespace
+
+class TestPushToTalk : public QObject {
+    Q_OBJECT
+
+private slots:
+    void voiceIsOffUntilTurnedOn();
+    void buttonAndKeyTalk();
+    void attachWrapsTheTransport();
+    void rehearsalFileGoesOutWithItsLevel();
+    void receivedVoiceIsPlayedAndMetered();
+};
+
+void TestPushToTalk::voiceIsOffUntilTurnedOn()
+{
+    Console c;
+    QVERIFY(c.voiceOn && c.talk);
+    QVERIFY(!c.channel->isEnabled());
+    QVERIFY(!c.talk->isEnabled());
+    c.channel->startTalking();
+    QVERIFY(!c.channel->isTalking());
+    auto udp = std::make_unique<UdpLink>(QHostAddress::LocalHost, 0);
+    Link* plain = udp.get();
+    QCOMPARE(c.channel->attach(std::move(udp)).get(), plain);  // unchanged
+    QTest::mouseClick(c.voiceOn, Qt::LeftButton);
+    QVERIFY(c.channel->isEnabled());
+    QVERIFY(c.talk->isEnabled());
+}
+
+void TestPushToTalk::buttonAndKeyTalk()
+{
+    Console c;
+    c.voiceOn->setChecked(true);
+    QSignalSpy talking(c.channel, &VoiceChannel::talkingChanged);
+    QTest::mousePress(c.talk, Qt::LeftButton);
+    QVERIFY(c.channel->isTalking());
+    QTest::mouseRelease(c.talk, Qt::LeftButton);
+    QVERIFY(!c.channel->isTalking());
+
+    // F12 held anywhere in the window: here, on the check box.
+    QTest::keyPress(c.voiceOn, PushToTalkWidget::kTalkKey);
+    QVERIFY(c.channel->isTalking());
+    QKeyEvent repeat(QEvent::KeyPress, PushToTalkWidget::kTalkKey, Qt::NoModifier, QString(), true);
+    QApplication::sendEvent(c.voiceOn, &repeat);  // the key's auto-repeat changes nothing
+    QVERIFY(c.channel->isTalking());
+    QTest::keyRelease(c.voiceOn, PushToTalkWidget::kTalkKey);
+    QVERIFY(!c.channel->isTalking());
+    QCOMPARE(talking.count(), 4);
+    QVERIFY(c.voiceOn->isChecked());  // F12 was not taken for anything else
+
+    // Turning voice off stops the talk.
+    QTest::keyPress(c.talk, PushToTalkWidget::kTalkKey);
+    QVERIFY(c.channel->isTalking());
+    c.voiceOn->setChecked(false);
+    QVERIFY(!c.channel->isTalking());
+}
+
+void TestPushToTalk::attachWrapsTheTransport()
+{
+    VoiceChannel channel;
+    channel.setEnabled(true);
+    auto serial = channel.attach(std::make_unique<SerialLink>(QStringLiteral("/dev/null-voice")));
+    QVERIFY(qobject_cast<VoiceSerialLink*>(serial.get()));
+    QVERIFY(serial->isStream());
+    auto udp = channel.attach(std::make_unique<UdpLink>(QHostAddress::LocalHost, 0));
+    QVERIFY(qobject_cast<VoiceUdpLink*>(udp.get()));
+    auto replay = std::make_unique<FakeReplay>();
+    Link* plain = replay.get();
+    QCOMPARE(channel.attach(std::move(replay)).get(), plain);
+}
+
+// Pushing to talk with a WAV file chosen sends the file: the link's reads
+// from the source are the phrase, then idle once the key is let go; the
+// "out" meter moves while it goes.
+void TestPushToTalk::rehearsalFileGoesOutWithItsLevel()
+{
+    Console c;
+    c.voiceOn->setChecked(true);
+    c.widget->setRehearsalFile(kPhrase);
+    QCOMPARE(c.channel->rehearsalFile(), kPhrase);
+    const auto source = c.channel->source();
+    QTest::mousePress(c.talk, Qt::LeftButton);
+    QTRY_COMPARE_WITH_TIMEOUT(source->backlogSamples(), phraseSamples(), kPatience);
+
+    // The link's side: a second of the voice stream, decoded.
+    std::vector<std::uint8_t> bytes(rcm::voice::kBytesPerSecond);
+    source->readVoice(bytes);
+    rcm::voice::VoiceDecoder decoder;
+    std::vector<std::int16_t> pcm;
+    decoder.decode(bytes, pcm);
+    QCOMPARE(decoder.stats().speechFrames, std::uint64_t(rcm::voice::kFramesPerSecond));
+    QTRY_VERIFY_WITH_TIMEOUT(c.widget->sentMeter() > 0, kPatience);
+
+    QTest::mouseRelease(c.talk, Qt::LeftButton);
+    QCOMPARE(source->backlogSamples(), std::size_t(0));
+    source->readVoice(bytes);
+    decoder.decode(bytes, pcm);
+    QVERIFY(decoder.stats().idleFrames >= rcm::voice::kFramesPerSecond - 1);
+    source->readVoice(bytes);
+    QTRY_COMPARE_WITH_TIMEOUT(c.widget->sentMeter(), 0, kPatience);
+}
+
+// Voice arriving over the link goes to the playback FIFO, and the "in"
+// meter moves.
+void TestPushToTalk::receivedVoiceIsPlayedAndMetered()
+{
+    Console c;
+    c.voiceOn->setChecked(true);
+    std::unique_ptr<Link> link = c.channel->attach(std::make_unique<UdpLink>(QHostAddress::LocalHost, 0));
+    link->open();
+    QVERIFY(link->isOpen());
+    const quint16 port = qobject_cast<UdpLink*>(qobject_cast<VoiceUdpLink*>(link.get())->inner())->boundPort();
+
+    VoiceEncoderSource aircraft(std::chrono::milliseconds(0));
+    std::string error;
+    QVERIFY(aircraft.speakFile(kPhrase.toStdString(), error));
+    UdpLink peer(QHostAddress::LocalHost, 0, QHostAddress::LocalHost, port);
+    peer.open();
+    for (int i = 0; i < 25; ++i) {
+        QByteArray datagram("RCMV");
+        datagram.resize(4 + qsizetype(rcm::voice::kFrameBytes));
+        aircraft.readVoice({reinterpret_cast<std::uint8_t*>(datagram.data()) + 4, rcm::voice::kFrameBytes});
+        QVERIFY(peer.write(datagram));
+    }
+    QTRY_VERIFY_WITH_TIMEOUT(c.channel->samplesReceived() >= 24 * rcm::voice::kFrameSamples, kPatience);
+    QTRY_VERIFY_WITH_TIMEOUT(c.widget->receivedMeter() > 0, kPatience);
+}
+
+QTEST_MAIN(TestPushToTalk)
+#include "tst_pushtotalk.moc"
