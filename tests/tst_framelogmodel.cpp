@@ -1,11 +1,15 @@
 // The console's frame log view at the size of a long session: 200,000 frames
 // written with FrameLog and opened by the model; cell text and message IDs
 // made only for the rows asked for; live appends inserted once per pass of
-// the event loop; the direction and status filter counting exactly.
+// the event loop; the direction and status filter counting exactly; and the
+// rows of a real link session (UDP on loopback) matching its log file record
+// for record, with no frame's bytes held in memory while the file has them.
 
 #include "codec/Airframe.h"
 #include "codec/MessageEncoder.h"
 #include "link/FrameLog.h"
+#include "link/LinkController.h"
+#include "link/UdpLink.h"
 #include "ui/FrameLogFilterModel.h"
 #include "ui/FrameLogModel.h"
 #include "ui/FrameLogView.h"
@@ -17,6 +21,8 @@
 #include <QTest>
 
 #include <map>
+
+using namespace std::chrono_literals;
 
 namespace {
 
@@ -81,6 +87,40 @@ FrameRecord frame(int i)
     return r;
 }
 
+// A session against a far end on loopback that answers with one frame of
+// each kind the link logs differently: clean, corrected, beyond correction,
+// and a datagram of the wrong size. Rows reach `model` from frameLogged();
+// `sent` gets the datagrams the far end received, in order.
+void runSession(FrameLogModel& model, std::unique_ptr<FrameLog> log, QList<QByteArray>& sent)
+{
+    UdpLink far(QHostAddress::LocalHost, 0);
+    far.setReplyToSender(true);
+    far.open();
+    QSignalSpy farReceived(&far, &Link::datagramReceived);
+    LinkWorker::Options options;
+    options.interval = 50ms;  // quick; nothing here depends on the pace
+    options.statisticsInterval = 20ms;
+    LinkController controller(
+        std::make_unique<UdpLink>(QHostAddress::LocalHost, 0, QHostAddress::LocalHost, far.boundPort()), std::move(log),
+        options);
+    QObject::connect(&controller, &LinkController::frameLogged, &model, &FrameLogModel::appendLogged);
+    QSignalSpy stopped(&controller, &LinkController::stopped);
+    controller.setCommand(rcm::restingCommand(rcm::Airframe::wellEquipped()));
+    controller.start();
+    QTRY_VERIFY_WITH_TIMEOUT(farReceived.count() >= 1, 10000);
+    for (int i : {5, 11, 3})  // decoded, corrected, uncorrectable: see kindOf()
+        far.write(frame(i).bytes);
+    far.write(QByteArray(100, '\x55'));
+    QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().wrongSizeDatagrams == 1, 10000);
+    controller.stop();
+    // Every frameLogged() emitted before stopped() has arrived with it.
+    QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 1, 10000);
+    QTRY_COMPARE_WITH_TIMEOUT(quint64(farReceived.count()), controller.statistics().framesSent, 10000);
+    for (const QList<QVariant>& arguments : farReceived)
+        sent.append(arguments.at(0).toByteArray());
+    model.flushPending();
+}
+
 }  // namespace
 
 class TestFrameLogModel : public QObject {
@@ -94,6 +134,8 @@ private slots:
     void filterCountsByDirectionAndStatus();
     void filterFollowsAppends();
     void viewDecodesOnlyWhatItShows();
+    void liveRowsMatchTheSessionLog();
+    void liveRowsWithoutALogKeepTheirBytes();
 
 private:
     QTemporaryDir m_dir;
@@ -306,6 +348,80 @@ void TestFrameLogModel::viewDecodesOnlyWhatItShows()
     QVERIFY(view.hexText().contains(QStringLiteral("BLOCK 2 parity (32 bytes)")));
     view.showSourceRow(3);
     QVERIFY(view.detailText().contains(QStringLiteral("beyond correction")));
+}
+
+void TestFrameLogModel::liveRowsMatchTheSessionLog()
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("session.pcapng"));
+    auto log = std::make_unique<FrameLog>();
+    QString error;
+    QVERIFY2(log->open(path, &error), qPrintable(error));
+    FrameLogModel model;
+    model.setSessionLog(path);
+    QList<QByteArray> farReceived;
+    runSession(model, std::move(log), farReceived);
+    if (QTest::currentTestFailed())
+        return;
+    QCOMPARE(model.rowsWithBytesInMemory(), 0);  // the log file has them
+
+    FrameLogReader reader;
+    QVERIFY2(reader.open(path), qPrintable(reader.errorString()));
+    QCOMPARE(model.rowCount(), reader.count());
+    std::map<FrameStatus, int> statuses;
+    int sent = 0;
+    for (int row = 0; row < model.rowCount(); ++row) {
+        const FrameRecord logged = reader.recordAt(row);
+        QCOMPARE(model.direction(row), logged.direction);
+        QCOMPARE(model.status(row), logged.status);
+        QCOMPARE(model.utcMicros(row), logged.utcMicros);
+        QCOMPARE(model.record(row), logged);  // bytes and corrections read back at the row's offset
+        ++statuses[logged.status];
+        if (logged.direction == FrameDirection::Sent) {
+            QCOMPARE(logged.bytes, farReceived.value(sent++));
+            QVERIFY(model.messageId(row).has_value());
+        }
+    }
+    QCOMPARE(sent, farReceived.size());
+    for (FrameStatus s :
+         {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable, FrameStatus::Rejected})
+        QCOMPARE(statuses[s], 1);
+
+    // The cells of the aircraft's frames, from what the link reported and the log.
+    const auto rowOf = [&](FrameStatus status) {
+        int row = 0;
+        while (row < model.rowCount() && model.status(row) != status)
+            ++row;
+        return row;
+    };
+    const auto cell = [&](int row, int column) { return model.index(row, column).data().toString(); };
+    QCOMPARE(cell(rowOf(FrameStatus::Decoded), FrameLogModel::MessageIdColumn), QStringLiteral("5"));
+    QCOMPARE(cell(rowOf(FrameStatus::Corrected), FrameLogModel::CorrectedColumn), QStringLiteral("1 + 1"));
+    QCOMPARE(cell(rowOf(FrameStatus::Uncorrectable), FrameLogModel::CorrectedColumn), QStringLiteral("beyond"));
+    QCOMPARE(model.record(rowOf(FrameStatus::Uncorrectable)).bytes, frame(3).bytes);
+    QCOMPARE(model.record(rowOf(FrameStatus::Rejected)).bytes, QByteArray(100, '\x55'));
+    QCOMPARE(cell(rowOf(FrameStatus::Rejected), FrameLogModel::MessageIdColumn), QStringLiteral("\u2014"));
+}
+
+void TestFrameLogModel::liveRowsWithoutALogKeepTheirBytes()
+{
+    FrameLogModel model;
+    QList<QByteArray> farReceived;
+    runSession(model, nullptr, farReceived);
+    if (QTest::currentTestFailed())
+        return;
+    QCOMPARE(model.rowsWithBytesInMemory(), model.rowCount());
+    int sent = 0;
+    for (int row = 0; row < model.rowCount(); ++row) {
+        const FrameRecord r = model.record(row);
+        if (r.direction == FrameDirection::Sent)
+            QCOMPARE(r.bytes, farReceived.value(sent++));
+        else if (r.status == FrameStatus::Uncorrectable)
+            QCOMPARE(r.bytes, frame(3).bytes);
+        else if (r.status == FrameStatus::Rejected)
+            QCOMPARE(r.bytes, QByteArray(100, '\x55'));
+    }
+    QCOMPARE(sent, farReceived.size());
 }
 
 QTEST_MAIN(TestFrameLogModel)

@@ -10,7 +10,6 @@
 #include <QTimeZone>
 
 #include <algorithm>
-#include <limits>
 #include <span>
 
 namespace {
@@ -159,11 +158,19 @@ QString FrameLogModel::cellText(int row, const Row& r, int column) const
 
 QByteArray FrameLogModel::bytesOf(const Row& row) const
 {
-    if (row.source < 0)
-        return {};
-    if (row.fromLog)
-        return m_reader ? m_reader->recordAt(row.source).bytes : QByteArray();
-    return m_liveBytes[std::size_t(row.source)];
+    switch (row.from) {
+        case Source::OpenedLog:
+            return m_reader ? m_reader->recordAt(int(row.source)).bytes : QByteArray();
+        case Source::SessionLog:
+            if (std::optional<FrameRecord> logged = fromSessionLog(row))
+                return logged->bytes;
+            return {};
+        case Source::Memory:
+            return m_liveBytes[std::size_t(row.source)];
+        case Source::None:
+            break;
+    }
+    return {};
 }
 
 // The one place a row's frame is read: once per row, when a view first shows
@@ -176,8 +183,8 @@ void FrameLogModel::decodeRow(const Row& row) const
     row.decoded = true;
     ++m_decodedRows;
     QByteArray bytes;
-    if (row.fromLog) {
-        const FrameRecord record = m_reader->recordAt(row.source);
+    if (row.from == Source::OpenedLog) {
+        const FrameRecord record = m_reader->recordAt(int(row.source));
         if (record.correctedSymbols.size() == 2) {
             row.corrected1 = clampCorrected(record.correctedSymbols[0]);
             row.corrected2 = clampCorrected(record.correctedSymbols[1]);
@@ -227,7 +234,7 @@ bool FrameLogModel::openLog(const QString& path, QString* error)
         row.direction = e.direction;
         row.transport = e.transport;
         row.status = e.status;
-        row.fromLog = true;
+        row.from = Source::OpenedLog;
         row.corrected1 = row.corrected2 = kNotKnown;
         m_rows.push_back(row);
     }
@@ -261,9 +268,9 @@ void FrameLogModel::clear()
 FrameRecord FrameLogModel::record(int row) const
 {
     const Row& r = m_rows[std::size_t(row)];
-    if (r.fromLog && m_reader)
-        return m_reader->recordAt(r.source);
-    if (r.source < 0)
+    if (r.from == Source::OpenedLog && m_reader)
+        return m_reader->recordAt(int(r.source));
+    if (r.from == Source::SessionLog)
         if (std::optional<FrameRecord> logged = fromSessionLog(r))
             return *logged;
     FrameRecord record;
@@ -284,37 +291,31 @@ void FrameLogModel::setSessionLog(const QString& path)
     m_sessionLog.reset();
 }
 
-// The logged record of a row appended without bytes: the one of its direction
-// and status nearest in time, within half a second, as the link stamps its log
-// a moment before it tells the GUI of a frame.
+// A live row's record, read where the link said it wrote it. The reader is
+// opened once, live: no index and no mapping, one block read per call.
 std::optional<FrameRecord> FrameLogModel::fromSessionLog(const Row& row) const
 {
-    constexpr qint64 kWindowMicros = 500'000;
     if (m_sessionLogPath.isEmpty())
         return std::nullopt;
-    const auto latest = [this] {
-        return m_sessionLog && m_sessionLog->count() ? m_sessionLog->index().constLast().utcMicros
-                                                     : std::numeric_limits<qint64>::min();
-    };
-    if (latest() < row.utcMicros + kWindowMicros) {
-        // The log has grown since: index it again (a day of frames takes tens of ms, on a click).
-        m_sessionLog = std::make_unique<FrameLogReader>();
-        m_sessionLog->open(m_sessionLogPath);
-    }
-    const QVector<FrameIndexEntry>& index = m_sessionLog->index();
-    int best = -1;
-    qint64 bestDistance = kWindowMicros + 1;
-    for (int i = m_sessionLog->indexAtOrAfter(row.utcMicros - kWindowMicros);
-         i < index.size() && index[i].utcMicros <= row.utcMicros + kWindowMicros; ++i) {
-        const qint64 distance = std::abs(index[i].utcMicros - row.utcMicros);
-        if (index[i].direction == row.direction && index[i].status == row.status && distance < bestDistance) {
-            best = i;
-            bestDistance = distance;
+    if (!m_sessionLog) {
+        auto reader = std::make_unique<FrameLogReader>();
+        if (!reader->openLive(m_sessionLogPath)) {
+            qWarning("%s", qPrintable(reader->errorString()));
+            return std::nullopt;
         }
+        m_sessionLog = std::move(reader);
     }
-    if (best < 0)
-        return std::nullopt;
-    return m_sessionLog->recordAt(best);
+    FrameIndexEntry entry;
+    entry.offset = row.source;
+    entry.utcMicros = row.utcMicros;
+    entry.length = row.length;
+    entry.direction = row.direction;
+    entry.transport = row.transport;
+    entry.status = row.status;
+    std::optional<FrameRecord> record = m_sessionLog->recordAt(entry);
+    if (!record)
+        qWarning("%s", qPrintable(m_sessionLog->errorString()));
+    return record;
 }
 
 std::optional<quint32> FrameLogModel::messageId(int row) const
@@ -339,30 +340,60 @@ void FrameLogModel::setPlayedRows(int count)
     emit dataChanged(index(from, 0), index(to, kColumnCount - 1), {Qt::ForegroundRole, Qt::FontRole});
 }
 
-void FrameLogModel::appendRecord(const FrameRecord& record, std::optional<quint32> messageId)
+void FrameLogModel::appendLogged(const LoggedFrame& frame)
 {
     Row row;
-    row.utcMicros = record.utcMicros;
-    row.length = quint32(record.bytes.size());
-    row.direction = record.direction;
-    row.transport = record.transport;
-    row.status = record.status;
+    row.utcMicros = frame.entry.utcMicros;
+    row.length = frame.entry.length;
+    row.direction = frame.entry.direction;
+    row.transport = frame.entry.transport;
+    row.status = frame.entry.status;
     row.corrected1 = row.corrected2 = kNotKnown;
-    if (record.correctedSymbols.size() == 2) {
-        row.corrected1 = clampCorrected(record.correctedSymbols[0]);
-        row.corrected2 = clampCorrected(record.correctedSymbols[1]);
+    if (frame.correctedSymbols.size() == 2) {
+        row.corrected1 = clampCorrected(frame.correctedSymbols[0]);
+        row.corrected2 = clampCorrected(frame.correctedSymbols[1]);
     }
-    if (messageId) {
-        row.messageId = *messageId;
+    if (frame.messageId) {
+        row.messageId = *frame.messageId;
         row.hasMessageId = true;
     }
-    if (record.bytes.isEmpty()) {
-        row.source = -1;
-        row.decoded = true;  // nothing to decode: what we were told is all there is
+    if (frame.inLog()) {
+        row.from = Source::SessionLog;
+        row.source = frame.entry.offset;
+    } else if (!frame.bytes.isEmpty()) {
+        row.from = Source::Memory;
+        row.source = qint64(m_liveBytes.size());
+        m_liveBytes.push_back(frame.bytes);
     } else {
-        row.source = qint32(m_liveBytes.size());
-        m_liveBytes.push_back(record.bytes);
+        row.from = Source::None;
     }
+    // What the link told us is all the view needs: no read of the frame for
+    // its ID (a secure link's bytes are ciphertext anyway) or corrections.
+    // A rejected frame's ID is not one to show: it was refused. Frames beyond
+    // correction are still read, for an ID in the codeword that did decode.
+    const bool correctionsKnown = row.direction == FrameDirection::Sent || row.corrected1 != kNotKnown;
+    if (row.from == Source::None || (correctionsKnown && (row.hasMessageId || row.status == FrameStatus::Rejected)))
+        row.decoded = true;
+    queueRow(row);
+}
+
+void FrameLogModel::appendRecord(const FrameRecord& record, std::optional<quint32> messageId)
+{
+    LoggedFrame frame;
+    frame.entry.offset = -1;
+    frame.entry.utcMicros = record.utcMicros;
+    frame.entry.length = quint32(record.bytes.size());
+    frame.entry.direction = record.direction;
+    frame.entry.transport = record.transport;
+    frame.entry.status = record.status;
+    frame.correctedSymbols = record.correctedSymbols;
+    frame.messageId = messageId;
+    frame.bytes = record.bytes;
+    appendLogged(frame);
+}
+
+void FrameLogModel::queueRow(const Row& row)
+{
     m_pending.push_back(row);
     if (!m_flushQueued) {
         m_flushQueued = true;

@@ -8,12 +8,16 @@
 // and cached. So a day of frames costs its index, not its decodes.
 //
 // Rows come from a log file (openLog: indexed by FrameLogReader, the bytes
-// read from the mapping when needed) and from frames appended live
-// (appendRecord). Appends are collected and inserted once per pass of the
-// event loop, so a burst of frames is one rowsInserted(), not one each.
+// read from the mapping when needed) and from frames a live link logged
+// (appendLogged, from LinkController::frameLogged): those hold the offset of
+// their record in the session's log and read it back through the same reader
+// when shown, so a live day costs no more than an opened one. Appends are
+// collected and inserted once per pass of the event loop, so a burst of frames
+// is one rowsInserted(), not one each.
 
 #include "link/FrameLog.h"
 #include "link/FrameLogReader.h"
+#include "link/LoggedFrame.h"
 
 #include <QAbstractTableModel>
 #include <QByteArray>
@@ -45,20 +49,19 @@ public:
     void clear();
     QString logPath() const { return m_logPath; }
 
-    // The log file a live link is writing. A frame appended without its
-    // bytes is looked up there, by direction and time, when record() is
-    // asked for it: the log view shows the bytes the link logged without the
-    // model holding a copy of every frame. Cleared by clear() and openLog().
+    // The log file a live link is writing: the file the offsets of frames
+    // appended with appendLogged() point into. Cleared by clear() and openLog().
     void setSessionLog(const QString& path);
+    QString sessionLog() const { return m_sessionLogPath; }
 
     // What a filter needs, without building any text.
     FrameDirection direction(int row) const { return m_rows[std::size_t(row)].direction; }
     FrameStatus status(int row) const { return m_rows[std::size_t(row)].status; }
     qint64 utcMicros(int row) const { return m_rows[std::size_t(row)].utcMicros; }
 
-    // The whole record: its bytes are copied out of the log file, or out of
-    // memory for an appended frame. Bytes are empty for a frame appended
-    // without them (see appendRecord).
+    // The whole record: its bytes are copied out of the log file (the opened
+    // one, or the session's), or out of memory for a frame that is in no file.
+    // Bytes are empty when they cannot be read (the session's log was removed).
     FrameRecord record(int row) const;
     // The frame's ID_msg, decoded on first use; nothing when it cannot be
     // read (no bytes, beyond correction, no ID_msg item).
@@ -77,24 +80,37 @@ public:
     // of the event loop.
     int pendingRows() const { return int(m_pending.size()); }
 
+    // Rows whose bytes are held in memory: frames that are in no log file.
+    int rowsWithBytesInMemory() const { return int(m_liveBytes.size()); }
+
 public slots:
-    // A frame as it was logged. `messageId`, when given, spares a decode
-    // (and is the only source of the ID for a frame appended without bytes).
+    // A frame a live link logged (LinkController::frameLogged): its bytes are
+    // read from the session log at its offset when needed, or kept when it
+    // carries them, being in no file.
+    void appendLogged(const LoggedFrame& frame);
+    // A frame with its bytes, kept in memory. `messageId`, when given, spares a decode.
     void appendRecord(const FrameRecord& record, std::optional<quint32> messageId = std::nullopt);
     // Inserts what appendRecord() collected now rather than in the next pass.
     void flushPending();
 
 private:
+    // Where a row's bytes are.
+    enum class Source : quint8 {
+        OpenedLog,   // Row::source is the record's index in m_reader
+        SessionLog,  // Row::source is the offset of its block in the session's log
+        Memory,      // Row::source is the index in m_liveBytes
+        None,        // no bytes anywhere
+    };
     // 32 bytes a frame: 172,800 frames (a day, both ways) take 5.5 MB.
     struct Row {
         qint64 utcMicros = 0;
-        qint32 source = 0;  // index in the reader, or in m_liveBytes
+        qint64 source = 0;  // see Source
         quint32 length = 0;
         mutable quint32 messageId = 0;
         FrameDirection direction = FrameDirection::Received;
         FrameTransport transport = FrameTransport::Serial;
         FrameStatus status = FrameStatus::NotChecked;
-        bool fromLog = false;
+        Source from = Source::None;
         mutable qint8 corrected1 = 0;  // kNotKnown until decoded
         mutable qint8 corrected2 = 0;
         mutable bool decoded = false;  // messageId and corrected* are known
@@ -106,6 +122,7 @@ private:
     QByteArray bytesOf(const Row& row) const;
     QString cellText(int row, const Row& r, int column) const;
     std::optional<FrameRecord> fromSessionLog(const Row& row) const;
+    void queueRow(const Row& row);
 
     std::vector<Row> m_rows;
     std::vector<Row> m_pending;
@@ -113,7 +130,7 @@ private:
     std::unique_ptr<FrameLogReader> m_reader;
     QString m_logPath;
     QString m_sessionLogPath;
-    mutable std::unique_ptr<FrameLogReader> m_sessionLog;  // indexed again when a row is newer than its end
+    mutable std::unique_ptr<FrameLogReader> m_sessionLog;  // opened live on first use, never indexed
     int m_played = -1;
     mutable int m_decodedRows = 0;
     bool m_flushQueued = false;
