@@ -1,5 +1,7 @@
 #include "ui/FlightPlanUpload.h"
 
+#include "codec/SecureCodec.h"
+
 #include <QMutexLocker>
 #include <QRandomGenerator>
 
@@ -28,7 +30,7 @@ bool FlightPlanUpload::start(const QByteArray& plan, QString* error)
                 id,
                 std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(plan.constData()),
                                               std::size_t(plan.size())),
-                rcm::FlightPlanSection::kMaxData, kMaxPasses);
+                m_sectionSize, kMaxPasses);
         } catch (const std::invalid_argument& e) {
             if (error)
                 *error = QString::fromStdString(e.what());
@@ -56,6 +58,12 @@ void FlightPlanUpload::cancel()
     emit progressChanged(progress);
 }
 
+int FlightPlanUpload::sectionSize() const
+{
+    QMutexLocker lock(&m_mutex);
+    return int(m_sectionSize);
+}
+
 FlightPlanUpload::Progress FlightPlanUpload::progress() const
 {
     QMutexLocker lock(&m_mutex);
@@ -79,6 +87,10 @@ FlightPlanUpload::Progress FlightPlanUpload::progressLocked() const
 
 LinkWorker::Options FlightPlanUpload::linkOptions(LinkWorker::Options options)
 {
+    {
+        QMutexLocker lock(&m_mutex);
+        m_sectionSize = options.secure ? rcm::secure::kMaxFlightPlanData : rcm::FlightPlanSection::kMaxData;
+    }
     options.block2Source = [this] { return next(); };
     options.block2Reply = [this](const rcm::FlightPlanSection& reply) { handleReply(reply); };
     return options;

@@ -7,7 +7,10 @@
 // neither thread waits on the other for longer than that.
 //
 // Plug it into the link with linkOptions(); the object must outlive the
-// LinkController it was given to.
+// LinkController it was given to. The link decides the section size: 215 data
+// bytes, or 199 on a secure link, whose BLOCK 2 keeps 16 bytes of checked
+// padding (codec/SecureCodec.h); a 215-byte section there would be refused by
+// the encoder, frame after frame, and the upload would never progress.
 
 #include "codec/FlightPlanTransfer.h"
 #include "link/LinkWorker.h"
@@ -48,8 +51,11 @@ public:
     void cancel();
     Progress progress() const;
 
-    // Options whose BLOCK 2 hooks call next() and handleReply() below.
+    // Options whose BLOCK 2 hooks call next() and handleReply() below. Uploads
+    // started from now on use the section size of that link (options.secure).
     LinkWorker::Options linkOptions(LinkWorker::Options options = {});
+    // Data bytes per section for the link last given to linkOptions().
+    int sectionSize() const;
 
     // Link thread: the section for the next frame, and the aircraft's BLOCK 2.
     std::optional<rcm::FlightPlanSection> next();
@@ -66,6 +72,7 @@ private:
     std::unique_ptr<rcm::FlightPlanUploader> m_uploader;
     State m_state = State::Idle;
     quint32 m_lastPlanId = 0;
+    std::size_t m_sectionSize = rcm::FlightPlanSection::kMaxData;
 };
 
 Q_DECLARE_METATYPE(FlightPlanUpload::Progress)

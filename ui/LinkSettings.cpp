@@ -33,9 +33,10 @@ std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
 
 QString LinkSettings::summary() const
 {
-    if (transport == Transport::Serial)
-        return QObject::tr("serial %1 at %2 bit/s").arg(serialPort).arg(baudRate);
-    return QObject::tr("UDP %1:%2").arg(remoteAddress).arg(remotePort);
+    const QString where = transport == Transport::Serial
+                              ? QObject::tr("serial %1 at %2 bit/s").arg(serialPort).arg(baudRate)
+                              : QObject::tr("UDP %1:%2").arg(remoteAddress).arg(remotePort);
+    return keyPath.isEmpty() ? where : QObject::tr("%1, encrypted").arg(where);
 }
 
 std::optional<LinkSettings> LinkSettings::udpRemote(const QString& hostAndPort, QString* error)
@@ -67,6 +68,7 @@ void LinkSettings::save(QSettings& settings) const
     settings.setValue(QStringLiteral("localPort"), localPort);
     settings.setValue(QStringLiteral("remoteAddress"), remoteAddress);
     settings.setValue(QStringLiteral("remotePort"), remotePort);
+    settings.setValue(QStringLiteral("keyPath"), keyPath);  // where the key is; the key stays in its file
     settings.endGroup();
 }
 
@@ -85,5 +87,6 @@ LinkSettings LinkSettings::load(const QSettings& settings)
     s.localPort = quint16(value("localPort", defaults.localPort).toUInt());
     s.remoteAddress = value("remoteAddress", defaults.remoteAddress).toString();
     s.remotePort = quint16(value("remotePort", defaults.remotePort).toUInt());
+    s.keyPath = value("keyPath", defaults.keyPath).toString();
     return s;
 }

@@ -1,7 +1,8 @@
 #pragma once
 
-// What the operator chose for the link: a serial port, or UDP endpoints.
-// A value type: kept in QSettings between sessions, shown and edited by
+// What the operator chose for the link: a serial port, or UDP endpoints, and
+// the aircraft's key file for a secure link. A value type: kept in QSettings
+// between sessions (the key file's path, never the key), shown and edited by
 // LinkSettingsWidget, turned into a transport by createLink().
 
 #include "link/Link.h"
@@ -25,11 +26,13 @@ struct LinkSettings {
     quint16 localPort = 0;  // 0: any free port
     QString remoteAddress = QStringLiteral("127.0.0.1");
     quint16 remotePort = kDefaultRemotePort;
+    // The aircraft's key file (docs/security.md); empty: the plain link.
+    QString keyPath;
 
     // The transport, not yet open (it opens in the link thread). Nothing,
     // with the reason, when the settings are incomplete.
     std::unique_ptr<Link> createLink(QString* error = nullptr) const;
-    // "UDP 127.0.0.1:5600", "serial ttyUSB0 at 9600 bit/s"
+    // "UDP 127.0.0.1:5600", "serial ttyUSB0 at 9600 bit/s"; ", encrypted" with a key file
     QString summary() const;
 
     // "HOST:PORT", as --udp-remote takes it.

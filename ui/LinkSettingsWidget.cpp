@@ -3,6 +3,9 @@
 #include "link/SerialLink.h"
 
 #include <QComboBox>
+#include <QDir>
+#include <QFileDialog>
+#include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QIntValidator>
@@ -44,7 +47,9 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
       m_localAddress(new QLineEdit),
       m_localPort(portBox(0, tr("any"))),
       m_remoteAddress(new QLineEdit),
-      m_remotePort(portBox(1))
+      m_remotePort(portBox(1)),
+      m_keyPath(new QLineEdit),
+      m_chooseKey(new QToolButton)
 {
     m_transport->addItem(tr("UDP"), int(LinkSettings::Transport::Udp));
     m_transport->addItem(tr("Serial modem"), int(LinkSettings::Transport::Serial));
@@ -87,11 +92,24 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     m_pages->addWidget(udpPage);
     m_pages->addWidget(serialPage);
 
+    // The same key file for either transport: it belongs to the aircraft.
+    m_keyPath->setPlaceholderText(tr("none: not encrypted"));
+    m_keyPath->setClearButtonEnabled(true);
+    m_keyPath->setToolTip(
+        tr("The aircraft's key file (64 hex digits, mode 0600, made by rcm keygen) for a link that is "
+           "encrypted and authenticated; empty for the plain link. Only the path is remembered."));
+    m_chooseKey->setText(QStringLiteral("\u2026"));
+    m_chooseKey->setToolTip(tr("Choose the aircraft's key file"));
+    auto* key = new QHBoxLayout;
+    key->addWidget(m_keyPath, 1);
+    key->addWidget(m_chooseKey);
+
     auto* layout = new QFormLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
     layout->addRow(tr("Transport"), m_transport);
     layout->addRow(m_pages);
+    layout->addRow(tr("Key file"), key);
 
     connect(m_transport, &QComboBox::currentIndexChanged, this, [this](int index) {
         m_pages->setCurrentIndex(index);
@@ -100,7 +118,8 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
         emit changed();
     });
     connect(m_refresh, &QToolButton::clicked, this, &LinkSettingsWidget::refreshPorts);
-    for (QLineEdit* edit : {m_localAddress, m_remoteAddress})
+    connect(m_chooseKey, &QToolButton::clicked, this, &LinkSettingsWidget::chooseKeyFile);
+    for (QLineEdit* edit : {m_localAddress, m_remoteAddress, m_keyPath})
         connect(edit, &QLineEdit::textChanged, this, &LinkSettingsWidget::changed);
     for (QSpinBox* box : {m_localPort, m_remotePort})
         connect(box, &QSpinBox::valueChanged, this, &LinkSettingsWidget::changed);
@@ -123,6 +142,7 @@ LinkSettings LinkSettingsWidget::settings() const
     s.localPort = quint16(m_localPort->value());
     s.remoteAddress = m_remoteAddress->text().trimmed();
     s.remotePort = quint16(m_remotePort->value());
+    s.keyPath = m_keyPath->text().trimmed();
     return s;
 }
 
@@ -140,6 +160,17 @@ void LinkSettingsWidget::setSettings(const LinkSettings& s)
     m_localPort->setValue(s.localPort);
     m_remoteAddress->setText(s.remoteAddress);
     m_remotePort->setValue(s.remotePort);
+    m_keyPath->setText(s.keyPath);
+}
+
+void LinkSettingsWidget::chooseKeyFile()
+{
+    const QString current = m_keyPath->text().trimmed();
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("The aircraft's key file"), current.isEmpty() ? QDir::homePath() : QFileInfo(current).absolutePath(),
+        tr("Key files (*.key);;All files (*)"));
+    if (!path.isEmpty())
+        m_keyPath->setText(QDir::toNativeSeparators(path));
 }
 
 void LinkSettingsWidget::refreshPorts()

@@ -2,7 +2,8 @@
 
 // Edits LinkSettings: the transport, then either the serial port (from the
 // system's list, refreshed on demand through SerialLink's helper, or typed,
-// e.g. a pseudo-terminal) and bit rate, or the UDP endpoints.
+// e.g. a pseudo-terminal) and bit rate, or the UDP endpoints; and, for either,
+// the aircraft's key file (typed, or chosen in a file dialog) for a secure link.
 
 #include "ui/LinkSettings.h"
 
@@ -23,9 +24,13 @@ public:
     LinkSettings settings() const;
     void setSettings(const LinkSettings& settings);
 
+    QLineEdit* keyPathEdit() const { return m_keyPath; }
+
 public slots:
     // Lists the serial ports again, keeping the one chosen.
     void refreshPorts();
+    // A file dialog for the key file.
+    void chooseKeyFile();
 
 signals:
     void changed();
@@ -40,4 +45,6 @@ private:
     QSpinBox* m_localPort;
     QLineEdit* m_remoteAddress;
     QSpinBox* m_remotePort;
+    QLineEdit* m_keyPath;
+    QToolButton* m_chooseKey;
 };

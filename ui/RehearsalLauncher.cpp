@@ -20,10 +20,11 @@ QString RehearsalLauncher::defaultProgram()
     return QDir(QCoreApplication::applicationDirPath()).filePath(QStringLiteral("uasim"));
 }
 
-void RehearsalLauncher::start(const rcm::Airframe& airframe, const QString& program)
+void RehearsalLauncher::start(const rcm::Airframe& airframe, const QString& program, const QString& keyPath)
 {
     stop();
     m_program = program;
+    m_keyPath = keyPath;
     m_attempt = 0;
     m_confirmed = false;
     m_airframeFile =
@@ -63,8 +64,11 @@ void RehearsalLauncher::launch()
         if (error == QProcess::FailedToStart)
             emit failed(tr("Cannot start %1: %2").arg(m_program, process->errorString()));
     });
-    m_process->start(m_program, {QStringLiteral("--udp"), QString::number(m_port), QStringLiteral("--airframe"),
-                                 m_airframeFile->fileName()});
+    QStringList arguments{QStringLiteral("--udp"), QString::number(m_port), QStringLiteral("--airframe"),
+                          m_airframeFile->fileName()};
+    if (!m_keyPath.isEmpty())
+        arguments << QStringLiteral("--key") << m_keyPath;
+    m_process->start(m_program, arguments);
     emit ready(m_port);
 }
 

@@ -28,8 +28,10 @@ public:
     // uasim beside the running program.
     static QString defaultProgram();
 
-    // Starts `program` for `airframe`; stops a uasim already running.
-    void start(const rcm::Airframe& airframe, const QString& program = defaultProgram());
+    // Starts `program` for `airframe`; stops a uasim already running. With a
+    // key file, uasim keys its end of the link with it too (uasim --key).
+    void start(const rcm::Airframe& airframe, const QString& program = defaultProgram(),
+               const QString& keyPath = QString());
     // Asks uasim to end (SIGTERM), killing it if it has not within a second.
     void stop();
     // Frames came back: a later exit is a failure, not a port clash to retry.
@@ -51,6 +53,7 @@ private:
     void finished(int exitCode, QProcess::ExitStatus status);
 
     QString m_program;
+    QString m_keyPath;
     std::unique_ptr<QTemporaryFile> m_airframeFile;
     QProcess* m_process = nullptr;
     quint16 m_port = 0;

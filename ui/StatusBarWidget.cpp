@@ -4,6 +4,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLocale>
+#include <QStringList>
 
 namespace {
 
@@ -38,6 +39,13 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
       m_corrected(counter(tr("Bytes Reed-Solomon corrected in the frames received (BLOCK 1 + BLOCK 2)"))),
       m_uncorrectable(counter(tr("Frames received with a codeword beyond correction"))),
       m_age(counter(tr("Time since the last good frame from the aircraft"))),
+      m_security(counter(QString())),
+      m_rejectedSeparator(separator()),
+      m_rejected(counter(tr("Frames that decoded but were refused, by reason:\n"
+                            "forged: not sent with this aircraft's key (a wrong key file, or an injector)\n"
+                            "replayed: authentic, but not newer than the last frame accepted\n"
+                            "stale time: authentic and new, but its time is over 30 s from this computer's clock\n"
+                            "plaintext: an unencrypted frame on a keyed link"))),
       m_lost(new QLabel(tr("LINK LOST")))
 {
     m_state->setTextFormat(Qt::RichText);
@@ -52,10 +60,12 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     layout->setContentsMargins(6, 0, 6, 0);
     layout->setSpacing(12);
     layout->addWidget(m_state);
-    for (QLabel* label : {m_sent, m_received, m_corrected, m_uncorrectable, m_age}) {
+    for (QLabel* label : {m_sent, m_received, m_corrected, m_uncorrectable, m_age, m_security}) {
         layout->addWidget(separator());
         layout->addWidget(label);
     }
+    layout->addWidget(m_rejectedSeparator);
+    layout->addWidget(m_rejected);
     layout->addStretch(1);
     layout->addWidget(m_lost);
 
@@ -74,6 +84,55 @@ QString StatusBarWidget::stateText() const
 QString StatusBarWidget::ageText() const
 {
     return m_age->text();
+}
+
+QString StatusBarWidget::securityText() const
+{
+    return m_statistics.secure ? tr("encrypted and authenticated") : tr("not encrypted");
+}
+
+QString StatusBarWidget::rejectedText() const
+{
+    const QLocale locale;
+    QStringList parts;
+    const auto add = [&](quint64 count, const QString& reason) {
+        if (count)
+            parts << QStringLiteral("%1 %2").arg(reason, locale.toString(count));
+    };
+    add(m_statistics.rejectedForged, tr("forged"));
+    add(m_statistics.rejectedReplayed, tr("replayed"));
+    add(m_statistics.rejectedStaleTime, tr("stale time"));
+    add(m_statistics.rejectedPlaintext, tr("plaintext"));
+    return parts.join(QStringLiteral(", "));
+}
+
+void StatusBarWidget::setKeyFingerprint(const QString& fingerprint)
+{
+    m_fingerprint = fingerprint;
+    updateSecurity();
+}
+
+void StatusBarWidget::updateSecurity()
+{
+    if (m_statistics.secure) {
+        m_security->setText(
+            QStringLiteral("<span style=\"color:#1d7a35\"><b>%1</b></span>").arg(securityText().toHtmlEscaped()));
+        m_security->setToolTip(
+            tr("Every frame sent is enciphered with the aircraft's key and every frame received must "
+               "authenticate, be newer than the last and carry the current time (docs/security.md).") +
+            (m_fingerprint.isEmpty() ? QString() : tr("\nKey fingerprint: %1").arg(m_fingerprint)));
+    } else {
+        m_security->setText(
+            QStringLiteral("<span style=\"color:#6b6b6b\">%1</span>").arg(securityText().toHtmlEscaped()));
+        m_security->setToolTip(
+            tr("No key file: frames go in the clear and are not authenticated. Choose the aircraft's key file "
+               "in the link settings for a secure link."));
+    }
+    const QString rejected = rejectedText();
+    m_rejected->setText(
+        field(tr("Rejected"), QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(rejected.toHtmlEscaped())));
+    m_rejected->setVisible(!rejected.isEmpty());
+    m_rejectedSeparator->setVisible(!rejected.isEmpty());
 }
 
 void StatusBarWidget::setLinkDescription(const QString& description)
@@ -129,6 +188,7 @@ void StatusBarWidget::setStatistics(const LinkStatistics& statistics)
     m_uncorrectable->setText(field(
         tr("Uncorrectable"),
         statistics.uncorrectableFrames ? QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(bad) : bad));
+    updateSecurity();
     if (stateChanged || statistics.state == LinkState::Closed)
         setState(statistics.state);
     else
