@@ -5,13 +5,15 @@
 //   gcs --udp-remote HOST:PORT    connect over UDP at once
 //   gcs --serial DEV [--baud N]   connect over a serial port at once
 //   gcs --replay LOG.pcapng       replay a frame log
+//   gcs ... --key FILE            the secure link with the aircraft's key file
+//                                 (with --rehearsal, uasim gets it too)
 //   gcs --screenshot FILE.png     lay the window out, save a picture of it, exit
 //
 // Hidden, for docs/performance.md (each prints its figures and exits):
 //   gcs --measure-startup         time from process start to the window's first paint
 //   gcs --measure-memory MODE [N] resident memory before and after N frames (default
 //                                 172,800: a day) reach the frame log view; MODE is
-//                                 signals, records or file (see reportMemory)
+//                                 live, records or file (see reportMemory)
 //   gcs --measure-stall [N]       the GUI thread's longest stall while a synthetic
 //                                 log of N frames (default 1,200) replays at 10x
 #include "codec/Airframe.h"
@@ -20,6 +22,7 @@
 #include "link/AirframeLoader.h"
 #include "ui/FrameLogModel.h"
 #include "ui/LinkSettings.h"
+#include "ui/LinkSettingsWidget.h"
 #include "ui/MainWindow.h"
 
 #include <QApplication>
@@ -123,43 +126,79 @@ bool writeSyntheticLog(const QString& path, int frames)
 
 // One way a day of frames can reach the log view, in a fresh process each
 // so that one's freed memory does not hide in the next one's figure:
-//   signals  as a live link feeds it now: a row per frame, bytes left in the log file
-//   records  live frames with their bytes kept in memory
+//   live     as a live link feeds it (LinkWorker::frameLogged): each frame is
+//            written to the session's log and its row holds the offset; the
+//            last rows are then shown, reading their frames back from the file
+//   records  frames that are in no log file, their bytes kept in memory
 //   file     a log file opened for replay: its index, the frames read when shown
-int reportMemory(MainWindow& window, const QString& mode, int frames)
+// ("signals", the name of live before frames carried their offset, still works.)
+int reportMemory(MainWindow& window, QString mode, int frames)
 {
+    if (mode == QLatin1String("signals"))
+        mode = QStringLiteral("live");
     say(QStringLiteral("window shown: %1").arg(memory()));
     QElapsedTimer timer;
     FrameLogModel* model = window.frameLog();
     const qint64 t0 = QDateTime::currentMSecsSinceEpoch() * 1000;
     QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("day.pcapng"));
     if (mode == QLatin1String("file")) {
-        const QString path = dir.filePath(QStringLiteral("day.pcapng"));
         if (!writeSyntheticLog(path, frames))
             return 1;
         say(QStringLiteral("log written: %1").arg(memory()));
         timer.start();
         if (!model->openLog(path))
             return 1;
-    } else if (mode == QLatin1String("signals") || mode == QLatin1String("records")) {
+    } else if (mode == QLatin1String("live")) {
+        FrameLog log;
+        QString error;
+        if (!log.open(path, &error)) {
+            say(error);
+            return 1;
+        }
+        model->setSessionLog(path);
         timer.start();
         for (int i = 0; i < frames; ++i) {
-            FrameRecord r = syntheticFrame(i, t0);
-            if (mode == QLatin1String("signals"))
-                r.bytes.clear();
-            model->appendRecord(r, quint32(i / 2));
+            const FrameRecord r = syntheticFrame(i, t0);
+            LoggedFrame logged;
+            if (!log.append(r, &logged.entry.offset))
+                return 1;
+            logged.entry.utcMicros = r.utcMicros;
+            logged.entry.length = quint32(r.bytes.size());
+            logged.entry.direction = r.direction;
+            logged.entry.transport = r.transport;
+            logged.entry.status = r.status;
+            logged.correctedSymbols = r.correctedSymbols;
+            logged.messageId = quint32(i / 2);
+            model->appendLogged(logged);
             if (i % 1000 == 999)
                 QCoreApplication::processEvents();  // a burst a second at most, live
         }
+        QCoreApplication::processEvents();
+        // What the operator looks at: the newest frames, their bytes read back.
+        for (int row = std::max(0, model->rowCount() - 100); row < model->rowCount(); ++row) {
+            if (model->record(row).bytes.size() != syntheticFrame(row, t0).bytes.size()) {
+                say(QStringLiteral("row %1: the frame could not be read back from the log").arg(row));
+                return 1;
+            }
+        }
+    } else if (mode == QLatin1String("records")) {
+        timer.start();
+        for (int i = 0; i < frames; ++i) {
+            model->appendRecord(syntheticFrame(i, t0), quint32(i / 2));
+            if (i % 1000 == 999)
+                QCoreApplication::processEvents();
+        }
     } else {
-        say(QStringLiteral("--measure-memory wants signals, records or file"));
+        say(QStringLiteral("--measure-memory wants live, records or file"));
         return kUsageError;
     }
     QCoreApplication::processEvents();
-    say(QStringLiteral("%1 frames in the log view (%2) after %3 ms: %4")
+    say(QStringLiteral("%1 frames in the log view (%2) after %3 ms, %4 with their bytes in memory: %5")
             .arg(model->rowCount())
             .arg(mode)
             .arg(timer.elapsed())
+            .arg(model->rowsWithBytesInMemory())
             .arg(memory()));
     return 0;
 }
@@ -249,6 +288,11 @@ int main(int argc, char* argv[])
                                         QStringLiteral("Lay the window out with the default settings, save a "
                                                        "picture of it and exit (works offscreen)."),
                                         QStringLiteral("file.png"));
+    const QCommandLineOption key(QStringLiteral("key"),
+                                 QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex "
+                                                "digits, mode 0600. With --rehearsal, uasim uses it too. Kept in the "
+                                                "link settings (the path, never the key)."),
+                                 QStringLiteral("file"));
     const QCommandLineOption size(QStringLiteral("size"), QStringLiteral("Window size for --screenshot."),
                                   QStringLiteral("WxH"), QStringLiteral("1600x1000"));
     QCommandLineOption measureStartup(QStringLiteral("measure-startup"));
@@ -256,7 +300,7 @@ int main(int argc, char* argv[])
     QCommandLineOption measureStall(QStringLiteral("measure-stall"));
     for (QCommandLineOption* hidden : {&measureStartup, &measureMemory, &measureStall})
         hidden->setFlags(QCommandLineOption::HiddenFromHelp);
-    parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, screenshot, size, measureStartup,
+    parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, measureStartup,
                        measureMemory, measureStall});
     parser.process(app);
 
@@ -287,6 +331,8 @@ int main(int argc, char* argv[])
         if (!link)
             return usage(error);
     }
+    if (parser.isSet(key) && !parser.isSet(rehearsal) && !parser.isSet(udpRemote) && !parser.isSet(serial))
+        return usage(QStringLiteral("--key goes with --rehearsal, --udp-remote or --serial"));
     if (parser.isSet(serial)) {
         bool ok = false;
         link = LinkSettings();
@@ -372,6 +418,16 @@ int main(int argc, char* argv[])
     }
 
     window.show();
+    if (parser.isSet(key)) {
+        // Into the link settings, where the rehearsal takes it from and which keep its path.
+        if (link) {
+            link->keyPath = parser.value(key);
+        } else {
+            LinkSettings settings = window.linkSettings()->settings();
+            settings.keyPath = parser.value(key);
+            window.linkSettings()->setSettings(settings);
+        }
+    }
     if (parser.isSet(rehearsal))
         window.startRehearsal();
     else if (link)

@@ -10,6 +10,7 @@
 #include "codec/MessageDecoder.h"
 #include "codec/MessageEncoder.h"
 #include "link/FrameLog.h"
+#include "link/FrameLogReader.h"
 #include "link/AirframeLoader.h"
 #include "ui/CommandPreview.h"
 #include "ui/CommandState.h"
@@ -476,22 +477,28 @@ void TestMainWindow::rehearsalAgainstUasim()
     // Both directions reach the frame log view, and the session's log file.
     QTRY_VERIFY_WITH_TIMEOUT(window.frameLog()->rowCount() >= 4, kLinkTimeoutMs);
     QVERIFY(QFileInfo::exists(window.sessionLogPath()));
-    // A live row shows the bytes the link logged for it, found in the session's log.
+    // The rows are the log file's records, one for one and in order: each row
+    // reads its frame back from the file at the offset the link reported. The
+    // file may be ahead by the frames still on their way to the view.
     FrameLogModel* log = window.frameLog();
-    for (FrameDirection direction : {FrameDirection::Sent, FrameDirection::Received}) {
-        int row = log->rowCount() - 1;
-        while (row >= 0 && log->direction(row) != direction)
-            --row;
-        QVERIFY(row >= 0);
-        const FrameRecord record = log->record(row);
-        QCOMPARE(record.bytes.size(), 510);
-        QCOMPARE(record.direction, direction);
+    QCOMPARE(log->rowsWithBytesInMemory(), 0);
+    FrameLogReader reader;
+    QVERIFY2(reader.open(window.sessionLogPath()), qPrintable(reader.errorString()));
+    const int rows = log->rowCount();
+    QVERIFY(reader.count() >= rows);
+    std::set<FrameDirection> directions;
+    for (int row = 0; row < rows; ++row) {
+        const FrameRecord logged = reader.recordAt(row);
+        QCOMPARE(log->record(row), logged);
+        QCOMPARE(logged.bytes.size(), 510);
+        directions.insert(logged.direction);
         // The very frame: its ID_msg is the one the link reported for the row.
         const rcm::DecodeResult decoded = rcm::decodeFrame(std::span<const std::uint8_t>(
-            reinterpret_cast<const std::uint8_t*>(record.bytes.constData()), std::size_t(record.bytes.size())));
+            reinterpret_cast<const std::uint8_t*>(logged.bytes.constData()), std::size_t(logged.bytes.size())));
         QVERIFY(log->messageId(row).has_value());
         QCOMPARE(quint32(decoded.message.header.number(rcm::ItemId::ID_msg)), *log->messageId(row));
     }
+    QCOMPARE(directions.size(), std::size_t(2));
 
     // The sample plan goes up in BLOCK 2 and the aircraft acknowledges it.
     auto* upload = window.findChild<FlightPlanUpload*>();

@@ -1,5 +1,6 @@
 #include "ui/MainWindow.h"
 
+#include "codec/SecureCodec.h"
 #include "link/FrameLogCsv.h"
 #include "link/LinkController.h"
 #include "link/ReplayLink.h"
@@ -84,11 +85,6 @@ QDockWidget* dock(const QString& title, const QString& name, QWidget* content, Q
     return d;
 }
 
-qint64 utcMicrosNow()
-{
-    return QDateTime::currentMSecsSinceEpoch() * 1000;
-}
-
 const QString kTitle = QStringLiteral("RCM ground control station");
 
 }  // namespace
@@ -131,12 +127,13 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
         QString error;
         std::unique_ptr<Link> link = s.createLink(&error);
         stopController();
-        startController(std::move(link), true, tr("rehearsal with uasim on %1:%2").arg(s.remoteAddress).arg(port),
-                        true);
+        startController(std::move(link), true, tr("rehearsal with uasim on %1:%2").arg(s.remoteAddress).arg(port), true,
+                        m_rehearsalKey);
         m_rehearsing = true;
         setLinkControlsRunning(true);
     });
     connect(m_rehearsal, &RehearsalLauncher::failed, this, [this](const QString& reason) {
+        m_rehearsalKey.reset();
         showError(tr("Rehearsal: %1").arg(reason));
         if (m_rehearsing)
             disconnectLink();
@@ -386,10 +383,15 @@ bool MainWindow::connectWith(const LinkSettings& settings)
         showError(error);
         return false;
     }
+    bool keyOk = false;
+    std::shared_ptr<rcm::secure::SecureEndpoint> secure = openKey(settings.keyPath, &keyOk);
+    if (!keyOk)
+        return false;
     stopController();
     m_rehearsal->stop();
     m_rehearsing = false;
-    startController(std::move(link), settings.transport == LinkSettings::Transport::Udp, settings.summary(), true);
+    startController(std::move(link), settings.transport == LinkSettings::Transport::Udp, settings.summary(), true,
+                    std::move(secure));
     setLinkControlsRunning(true);
     return true;
 }
@@ -398,8 +400,28 @@ void MainWindow::disconnectLink()
 {
     stopController();
     m_rehearsal->stop();
+    m_rehearsalKey.reset();
     m_rehearsing = false;
     setLinkControlsRunning(false);
+}
+
+std::shared_ptr<rcm::secure::SecureEndpoint> MainWindow::openKey(const QString& keyPath, bool* ok)
+{
+    *ok = true;
+    if (keyPath.isEmpty())
+        return nullptr;
+    // Reads the key and the state files beside it: small local files, once per connection.
+    std::string error;
+    std::shared_ptr<rcm::secure::SecureEndpoint> endpoint = rcm::secure::SecureEndpoint::open(
+        QDir::fromNativeSeparators(keyPath).toStdString(), rcm::secure::Direction::GcsToUa, error);
+    if (!endpoint) {
+        *ok = false;
+        // The reason names the file and the fix ("run: chmod 600 ..."); it never holds key bytes.
+        const QString reason = tr("Not connected: the key file is refused: %1").arg(QString::fromStdString(error));
+        m_linkNote->setText(reason);
+        showError(reason);
+    }
+    return endpoint;
 }
 
 void MainWindow::startRehearsal()
@@ -411,9 +433,16 @@ void MainWindow::startRehearsalWith(const QString& uasimProgram)
 {
     stopController();
     setLinkControlsRunning(false);
+    // The key is checked here, before uasim starts, so a refused key file is
+    // the console's message and not uasim's exit code.
+    const QString keyPath = m_linkSettings->settings().keyPath;
+    bool keyOk = false;
+    m_rehearsalKey = openKey(keyPath, &keyOk);
+    if (!keyOk)
+        return;
     m_linkNote->setText(tr("Starting uasim\u2026"));
     // ready() connects; failed() says why not.
-    m_rehearsal->start(m_command->airframe(), uasimProgram);
+    m_rehearsal->start(m_command->airframe(), uasimProgram, QDir::fromNativeSeparators(keyPath));
 }
 
 bool MainWindow::openFrameLog(const QString& path)
@@ -480,9 +509,9 @@ void MainWindow::showPanel(int index)
         page->setFocus(Qt::ShortcutFocusReason);
 }
 
-void MainWindow::startController(std::unique_ptr<Link> link, bool datagram, const QString& description, bool keepLog)
+void MainWindow::startController(std::unique_ptr<Link> link, bool datagram, const QString& description, bool keepLog,
+                                 std::shared_ptr<rcm::secure::SecureEndpoint> secure)
 {
-    m_transport = link->transport();
     std::unique_ptr<FrameLog> log;
     m_sessionLogPath.clear();
     if (keepLog) {
@@ -499,13 +528,19 @@ void MainWindow::startController(std::unique_ptr<Link> link, bool datagram, cons
             log.reset();
         }
     }
-    m_uncorrectableSeen = 0;
-    m_rejectedSeen = 0;
     m_linkDescription = description;
 
-    m_controller = std::make_unique<LinkController>(std::move(link), std::move(log), m_upload->linkOptions());
+    LinkWorker::Options options;
+    m_status->setKeyFingerprint(secure ? QString::fromStdString(secure->fingerprint) : QString());
+    options.secure = std::move(secure);
+    // The uploader takes the section size of this link: 199 bytes when keyed.
+    m_controller = std::make_unique<LinkController>(std::move(link), std::move(log), m_upload->linkOptions(options));
     LinkController* c = m_controller.get();
-    connect(c, &LinkController::statisticsChanged, this, &MainWindow::statisticsChanged);
+    connect(c, &LinkController::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
+    // A live session's frames become rows as the link logs them; a replay's
+    // rows are its log file, opened already.
+    if (keepLog)
+        connect(c, &LinkController::frameLogged, m_logModel, &FrameLogModel::appendLogged);
     connect(c, &LinkController::stateChanged, m_status, &StatusBarWidget::setState);
     connect(c, &LinkController::messageReceived, this, &MainWindow::messageReceived);
     connect(c, &LinkController::frameSent, this, &MainWindow::frameSent);
@@ -539,6 +574,7 @@ void MainWindow::stopController()
     m_logModel->setPlayedRows(-1);
     m_flightPlan->setLinkReady(false);
     m_status->setLinkDescription(QString());
+    m_status->setKeyFingerprint(QString());
     m_status->setStatistics(LinkStatistics());
     m_linkDescription.clear();
     updateTitle();
@@ -551,61 +587,17 @@ void MainWindow::commandChanged()
         m_controller->setCommand(m_command->message());
 }
 
-void MainWindow::statisticsChanged(const LinkStatistics& statistics)
-{
-    m_status->setStatistics(statistics);
-    // Frames that reach no other signal still get a row in the log view.
-    // ### Until the link reports each logged frame: then these rows, and
-    // those of frameSent() and messageReceived(), carry their bytes.
-    if (m_replay)
-        return;
-    const auto addRows = [this](quint64 count, FrameStatus status) {
-        for (quint64 i = 0; i < count; ++i) {
-            FrameRecord r;
-            r.utcMicros = utcMicrosNow();
-            r.direction = FrameDirection::Received;
-            r.transport = m_transport;
-            r.status = status;
-            m_logModel->appendRecord(r);
-        }
-    };
-    const quint64 rejected = statistics.wrongSizeDatagrams + statistics.rejectedForged + statistics.rejectedReplayed +
-                             statistics.rejectedStaleTime + statistics.rejectedPlaintext;
-    addRows(statistics.uncorrectableFrames - std::min(statistics.uncorrectableFrames, m_uncorrectableSeen),
-            FrameStatus::Uncorrectable);
-    addRows(rejected - std::min(rejected, m_rejectedSeen), FrameStatus::Rejected);
-    m_uncorrectableSeen = statistics.uncorrectableFrames;
-    m_rejectedSeen = rejected;
-}
-
 void MainWindow::messageReceived(const ReceivedMessage& received)
 {
     m_reported->onReceived(received);
     if (m_rehearsing)
         m_rehearsal->confirm();
-    if (m_replay)
-        return;  // the replayed log is already in the view
-    FrameRecord r;
-    r.utcMicros = received.utcMicros;
-    r.direction = FrameDirection::Received;
-    r.transport = received.transport;
-    r.status = received.corrected1 || received.corrected2 ? FrameStatus::Corrected : FrameStatus::Decoded;
-    r.correctedSymbols = {received.corrected1, received.corrected2};
-    const rcm::Unit& header = received.message.header;
-    m_logModel->appendRecord(r, header.has(rcm::ItemId::ID_msg)
-                                    ? std::optional<quint32>(quint32(header.number(rcm::ItemId::ID_msg)))
-                                    : std::nullopt);
 }
 
 void MainWindow::frameSent(quint32 messageId)
 {
     m_command->frameSent();
     m_preview->frameSent(messageId);
-    FrameRecord r;
-    r.utcMicros = utcMicrosNow();
-    r.direction = FrameDirection::Sent;
-    r.transport = m_transport;
-    m_logModel->appendRecord(r, messageId);
 }
 
 void MainWindow::setLinkControlsRunning(bool running)

@@ -16,6 +16,10 @@
 
 #include <memory>
 
+namespace rcm::secure {
+struct SecureEndpoint;
+}
+
 class CommandPreview;
 class CommandState;
 class FlightPlanUpload;
@@ -71,7 +75,8 @@ public slots:
     void connectLink();                              // with the settings shown
     bool connectWith(const LinkSettings& settings);  // shows them, then connects
     void disconnectLink();
-    // uasim on the loopback interface, and a UDP link to it.
+    // uasim on the loopback interface, and a UDP link to it; with the key
+    // file of the link settings, both ends use it.
     void startRehearsal();
     void startRehearsalWith(const QString& uasimProgram);
     bool openFrameLog(const QString& path);
@@ -94,10 +99,14 @@ private:
     void restoreSession(const Options& options);
     void saveSession() const;
 
-    void startController(std::unique_ptr<class Link> link, bool datagram, const QString& description, bool keepLog);
+    void startController(std::unique_ptr<class Link> link, bool datagram, const QString& description, bool keepLog,
+                         std::shared_ptr<rcm::secure::SecureEndpoint> secure = nullptr);
     void stopController();
+    // The console's end of the secure link for the key file at `keyPath`;
+    // null with `ok` true for no key file, null with `ok` false (and the
+    // reason shown) when the key file is refused.
+    std::shared_ptr<rcm::secure::SecureEndpoint> openKey(const QString& keyPath, bool* ok);
     void commandChanged();
-    void statisticsChanged(const LinkStatistics& statistics);
     void messageReceived(const ReceivedMessage& received);
     void frameSent(quint32 messageId);
     void setLinkControlsRunning(bool running);
@@ -137,9 +146,7 @@ private:
     QString m_sessionLogPath;
     QString m_linkDescription;
     QString m_frameLogDirectory;
+    std::shared_ptr<rcm::secure::SecureEndpoint> m_rehearsalKey;  // the console's end, while uasim starts
     bool m_rehearsing = false;
     bool m_replayPaused = false;
-    quint64 m_uncorrectableSeen = 0;  // for the log view's rows of frames beyond correction
-    quint64 m_rejectedSeen = 0;
-    FrameTransport m_transport = FrameTransport::Udp;
 };
