@@ -31,6 +31,8 @@
 #include <QAbstractButton>
 #include <QLabel>
 #include <QLineEdit>
+#include <QStyle>
+#include <QStyleOptionFrame>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QSpinBox>
@@ -519,6 +521,18 @@ private slots:
         auto* source = child<StationEditor>(panel.get(), QStringLiteral("ID_UA_source"));
         QVERIFY(source);
         QVERIFY(!m_command.message().header.has(ID_UA_source));
+        // The field shows its placeholder, "GB" and a four-digit code such as 1929 whole.
+        const QLineEdit* country = source->countryEdit();
+        QStyleOptionFrame frame;
+        frame.initFrom(country);
+        frame.lineWidth = country->style()->pixelMetric(QStyle::PM_DefaultFrameWidth, &frame, country);
+        // Where QLineEdit draws text: the style's contents rectangle, less its 2 px inner margin each side.
+        const QRect text = country->style()
+                               ->subElementRect(QStyle::SE_LineEditContents, &frame, country)
+                               .marginsRemoved(country->textMargins())
+                               .adjusted(2, 0, -2, 0);
+        for (const QString& sample : {country->placeholderText(), QStringLiteral("GB"), QStringLiteral("1929")})
+            QVERIFY2(country->fontMetrics().horizontalAdvance(sample) <= text.width(), qPrintable(sample));
 
         Message before = m_command.message();
         typeInto(source->countryEdit(), QStringLiteral("gb"));

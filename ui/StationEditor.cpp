@@ -10,7 +10,10 @@
 #include <QRegularExpressionValidator>
 #include <QSignalBlocker>
 #include <QSpinBox>
+#include <QStyle>
+#include <QStyleOptionFrame>
 
+#include <algorithm>
 #include <limits>
 
 namespace {
@@ -20,6 +23,24 @@ const QString kInvalidStyle = QStringLiteral("QLineEdit { background-color: #ffb
 QString countryToolTip()
 {
     return StationEditor::tr("ISO 3166 alpha-2 (GB) or dialling code (44); empty: not sent");
+}
+
+// Wide enough for the widest entry the validator lets through ("WW", four
+// digits such as 1929) and for the placeholder, with the frame and margins the
+// style gives a line edit: a fixed guess in pixels cut the placeholder off.
+int countryFieldWidth(const QLineEdit* edit)
+{
+    const QFontMetrics metrics = edit->fontMetrics();
+    int text = 0;
+    for (const QString& sample : {QStringLiteral("WW"), QStringLiteral("0000"), edit->placeholderText()})
+        text = std::max(text, metrics.horizontalAdvance(sample));
+    // QLineEdit's own sizeHint() adds 2 * 2 px of inner margin to the text.
+    const QMargins margins = edit->textMargins() + edit->contentsMargins();
+    QStyleOptionFrame option;
+    option.initFrom(edit);
+    option.lineWidth = edit->style()->pixelMetric(QStyle::PM_DefaultFrameWidth, &option, edit);
+    const QSize content(text + 4 + margins.left() + margins.right(), metrics.height());
+    return edit->style()->sizeFromContents(QStyle::CT_LineEdit, &option, content, edit).width() + 2;
 }
 
 }  // namespace
@@ -36,12 +57,14 @@ StationEditor::StationEditor(CommandState* command, UnitRef ref, rcm::ItemId id,
     setAccessibleName(ItemText::label(id));
     setToolTip(ItemText::toolTip(id));
     m_country->setObjectName(QStringLiteral("country"));
-    m_country->setPlaceholderText(tr("country"));
+    // Empty means the item is not sent, which is what the placeholder says;
+    // the tooltip says what to type.
+    m_country->setPlaceholderText(tr("none"));
     m_country->setToolTip(countryToolTip());
     m_country->setValidator(
         new QRegularExpressionValidator(QRegularExpression(QStringLiteral("[A-Za-z]{0,2}|[0-9]{0,4}")), m_country));
     m_country->setMaxLength(4);
-    m_country->setFixedWidth(m_country->fontMetrics().horizontalAdvance(QStringLiteral("00000")) + 12);
+    m_country->setFixedWidth(countryFieldWidth(m_country));
     m_unit->setObjectName(QStringLiteral("unit"));
     m_unit->setRange(0, std::numeric_limits<std::uint16_t>::max());
     m_unit->setKeyboardTracking(false);
