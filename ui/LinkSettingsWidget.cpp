@@ -93,7 +93,7 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     m_pages->addWidget(serialPage);
 
     // The same key file for either transport: it belongs to the aircraft.
-    m_keyPath->setPlaceholderText(tr("none: not encrypted"));
+    m_keyPath->setPlaceholderText(tr("none"));
     m_keyPath->setClearButtonEnabled(true);
     m_keyPath->setToolTip(
         tr("The aircraft's key file (64 hex digits, mode 0600, made by rcm keygen) for a link that is "
