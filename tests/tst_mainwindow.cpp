@@ -9,9 +9,11 @@
 #include "codec/Airframe.h"
 #include "codec/MessageDecoder.h"
 #include "codec/MessageEncoder.h"
+#include "codec/SecureCodec.h"
 #include "link/FrameLog.h"
 #include "link/FrameLogReader.h"
 #include "link/AirframeLoader.h"
+#include "link/UdpLink.h"
 #include "ui/CommandPreview.h"
 #include "ui/CommandState.h"
 #include "ui/FlightPlanUpload.h"
@@ -23,11 +25,13 @@
 #include "ui/MissionPlan.h"
 #include "ui/StatusBarWidget.h"
 
+#include <QDateTime>
 #include <QDockWidget>
 #include <QImage>
 #include <QProcess>
 #include <QSettings>
 #include <QSignalSpy>
+#include <QStatusBar>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -90,9 +94,15 @@ private slots:
     void linkSettingsAreKept();
     void replaysAFrameLog();
     void rehearsalAgainstUasim();
+    void keyedUploadUses199ByteSections();
+    void refusedKeyFileSaysWhy();
+    void secureRehearsalWithMatchingKeys();
+    void wrongKeyIsRejectedAsForged();
 
 private:
     MainWindow::Options options() const;
+    // A new key file, mode 0600, in the test's directory.
+    QString keyFile(const QString& name) const;
     QTemporaryDir m_dir;
 };
 
@@ -111,6 +121,15 @@ MainWindow::Options TestMainWindow::options() const
     o.restoreSettings = false;
     o.frameLogDirectory = m_dir.filePath(QStringLiteral("framelogs"));
     return o;
+}
+
+QString TestMainWindow::keyFile(const QString& name) const
+{
+    const QString path = m_dir.filePath(name);
+    std::string error;
+    if (!rcm::secure::writeKeyFile(path.toStdString(), rcm::secure::generateKey(), error))
+        qWarning("%s", error.c_str());
+    return path;
 }
 
 void TestMainWindow::buildsWithTheDefaultAirframe()
@@ -402,6 +421,7 @@ void TestMainWindow::linkSettingsAreKept()
     s.baudRate = 19200;
     s.remoteAddress = QStringLiteral("10.0.0.2");
     s.remotePort = 6000;
+    s.keyPath = QStringLiteral("/etc/rcm/aircraft.key");
     {
         QSettings settings(m_dir.filePath(QStringLiteral("link.ini")), QSettings::IniFormat);
         s.save(settings);
@@ -511,6 +531,176 @@ void TestMainWindow::rehearsalAgainstUasim()
     window.disconnectLink();
     QVERIFY(!window.isLinkRunning());
     QVERIFY(!window.linkStatus()->alarmActive());
+}
+
+namespace {
+
+// A message the aircraft would send now, under `endpoint`'s key.
+QByteArray statusDatagram(const rcm::secure::SecureEndpoint& endpoint, std::uint32_t id)
+{
+    const QDateTime now = QDateTime::currentDateTimeUtc();
+    rcm::Message m;
+    m.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
+    m.header.set(rcm::ItemId::ID_UA_source, rcm::Value::station({44, 133}));
+    m.header.set(rcm::ItemId::time_UTC, std::int64_t(now.toString(QStringLiteral("hhmmss")).toInt()));
+    m.header.set(rcm::ItemId::date_UTC, std::int64_t(now.toString(QStringLiteral("yyMMdd")).toInt()));
+    rcm::Diagnostics errors;
+    const std::optional<rcm::EncodedBlocks> blocks = endpoint.sender->encode(m, errors);
+    if (!blocks)
+        return {};
+    const auto datagram = rcm::makeDatagram(blocks->block1, blocks->block2);
+    return QByteArray(reinterpret_cast<const char*>(datagram.data()), qsizetype(datagram.size()));
+}
+
+std::shared_ptr<rcm::secure::SecureEndpoint> endpointInMemory(rcm::secure::Direction sends)
+{
+    std::string error;
+    rcm::secure::SecureEndpoint::Options options;
+    options.persistState = false;
+    std::shared_ptr<rcm::secure::SecureEndpoint> endpoint =
+        rcm::secure::SecureEndpoint::fromKey(rcm::secure::generateKey(), sends, std::string(), error, options);
+    if (!endpoint)
+        qWarning("%s", error.c_str());
+    return endpoint;
+}
+
+}  // namespace
+
+void TestMainWindow::keyedUploadUses199ByteSections()
+{
+    const std::shared_ptr<rcm::secure::SecureEndpoint> endpoint = endpointInMemory(rcm::secure::Direction::GcsToUa);
+    QVERIFY(endpoint);
+    // The frames the link would encode, with each section the uploader hands it.
+    const auto encodes = [&](const rcm::FlightPlanSection& section) {
+        rcm::Message m = rcm::restingCommand(rcm::Airframe::wellEquipped());
+        m.header.set(rcm::ItemId::ID_msg, std::int64_t(1));
+        m.header.set(rcm::ItemId::time_UTC, std::int64_t(120000));
+        m.header.set(rcm::ItemId::date_UTC, std::int64_t(261122));
+        m.flightPlan = section;
+        rcm::Diagnostics errors;
+        return endpoint->sender->encode(m, errors).has_value();
+    };
+    const QByteArray plan(1000, '\x5a');
+
+    // On the plain link, 215-byte sections: one of them the keyed link cannot send.
+    FlightPlanUpload plain;
+    const LinkWorker::Options plainOptions = plain.linkOptions();
+    QCOMPARE(plain.sectionSize(), 215);
+    QVERIFY(plain.start(plan));
+    const std::optional<rcm::FlightPlanSection> big = plainOptions.block2Source();
+    QVERIFY(big);
+    QCOMPARE(big->data.size(), std::size_t(215));
+    QVERIFY(!encodes(*big));
+
+    // Keyed: 199-byte sections, every one of which goes out, so the upload gets through the plan.
+    FlightPlanUpload keyed;
+    LinkWorker::Options options;
+    options.secure = endpoint;
+    options = keyed.linkOptions(options);
+    QCOMPARE(keyed.sectionSize(), int(rcm::secure::kMaxFlightPlanData));
+    QVERIFY(keyed.start(plan));
+    const int total = keyed.progress().total;
+    QVERIFY(total > plain.progress().total);
+    for (int i = 0; i < total; ++i) {
+        const std::optional<rcm::FlightPlanSection> section = options.block2Source();
+        QVERIFY(section);
+        QVERIFY(section->data.size() <= rcm::secure::kMaxFlightPlanData);
+        QVERIFY2(encodes(*section), qPrintable(QStringLiteral("section %1").arg(i)));
+        QCOMPARE(keyed.progress().sent, i + 1);
+    }
+    QCOMPARE(keyed.progress().state, FlightPlanUpload::State::Sending);  // every section out, awaiting the answer
+}
+
+void TestMainWindow::refusedKeyFileSaysWhy()
+{
+    const QString path = keyFile(QStringLiteral("shared.key"));
+    QVERIFY(QFile::setPermissions(path, QFile::ReadOwner | QFile::WriteOwner | QFile::ReadGroup | QFile::ReadOther));
+    MainWindow window(options());
+    LinkSettings s;
+    s.keyPath = path;
+    QVERIFY(!window.connectWith(s));
+    QVERIFY(!window.isLinkRunning());
+    const QString message = window.statusBar()->currentMessage();
+    QVERIFY2(message.contains(QStringLiteral("chmod 600")), qPrintable(message));
+    QVERIFY2(message.contains(QStringLiteral("shared.key")), qPrintable(message));
+    // The rehearsal checks the key before it starts uasim.
+    window.linkSettings()->setSettings(s);
+    window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
+    QVERIFY(!window.isLinkRunning());
+    QVERIFY(window.statusBar()->currentMessage().contains(QStringLiteral("chmod 600")));
+}
+
+void TestMainWindow::secureRehearsalWithMatchingKeys()
+{
+    QVERIFY2(QFileInfo(QStringLiteral(RCM_BIN_DIR "/uasim")).isExecutable(), "build the uasim target first");
+    MainWindow window(options());
+    window.show();
+    LinkSettings s = window.linkSettings()->settings();
+    s.keyPath = keyFile(QStringLiteral("rehearsal.key"));
+    window.linkSettings()->setSettings(s);
+    QVERIFY(window.flightPlan()->loadPlan(kSamplePlan));
+    window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
+    QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(window.statistics().framesReceived >= 2, kLinkTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(window.linkStatus()->stateText().contains(QStringLiteral("Connected")), kLinkTimeoutMs);
+    QVERIFY(window.statistics().secure);
+    QCOMPARE(window.linkStatus()->securityText(), QStringLiteral("encrypted and authenticated"));
+    QCOMPARE(window.linkStatus()->rejectedText(), QString());
+    QCOMPARE(window.statistics().rejectedForged, quint64(0));
+
+    // The flight plan goes up in 199-byte sections and uasim acknowledges it.
+    auto* upload = window.findChild<FlightPlanUpload*>();
+    QVERIFY(upload);
+    QCOMPARE(upload->sectionSize(), int(rcm::secure::kMaxFlightPlanData));
+    window.flightPlan()->uploadPlan();
+    QTRY_COMPARE_WITH_TIMEOUT(upload->progress().state, FlightPlanUpload::State::Acknowledged, kLinkTimeoutMs);
+    window.disconnectLink();
+    QVERIFY(!window.isLinkRunning());
+}
+
+void TestMainWindow::wrongKeyIsRejectedAsForged()
+{
+    // The aircraft, standing in: a bare UDP end answering the console under another key.
+    UdpLink far(QHostAddress::LocalHost, 0);
+    far.setReplyToSender(true);
+    far.open();
+    QSignalSpy farReceived(&far, &Link::datagramReceived);
+    const std::shared_ptr<rcm::secure::SecureEndpoint> aircraft = endpointInMemory(rcm::secure::Direction::UaToGcs);
+    QVERIFY(aircraft);
+
+    MainWindow window(options());
+    LinkSettings s;
+    s.localAddress = QStringLiteral("127.0.0.1");
+    s.remoteAddress = QStringLiteral("127.0.0.1");
+    s.remotePort = far.boundPort();
+    s.keyPath = keyFile(QStringLiteral("console.key"));
+    QVERIFY(window.connectWith(s));
+    QTRY_VERIFY_WITH_TIMEOUT(farReceived.count() >= 1, kLinkTimeoutMs);
+    QList<QByteArray> answers;
+    for (std::uint32_t id = 1; id <= 3; ++id) {
+        answers << statusDatagram(*aircraft, id);
+        QCOMPARE(answers.last().size(), 510);
+        QVERIFY(far.write(answers.last()));
+    }
+    QTRY_COMPARE_WITH_TIMEOUT(window.linkStatus()->rejectedText(), QStringLiteral("forged 3"), kLinkTimeoutMs);
+    QCOMPARE(window.linkStatus()->securityText(), QStringLiteral("encrypted and authenticated"));
+    QCOMPARE(window.statistics().framesReceived, quint64(0));
+    QVERIFY(!window.linkStatus()->stateText().contains(QStringLiteral("Connected")));
+
+    // The log view has them as rejected, with the ciphertext as it arrived.
+    FrameLogModel* log = window.frameLog();
+    QList<QByteArray> rejected;
+    QTRY_VERIFY_WITH_TIMEOUT(
+        [&] {
+            rejected.clear();
+            for (int row = 0; row < log->rowCount(); ++row)
+                if (log->status(row) == FrameStatus::Rejected)
+                    rejected << log->record(row).bytes;
+            return rejected.size() == 3;
+        }(),
+        kLinkTimeoutMs);
+    QCOMPARE(rejected, answers);
+    window.disconnectLink();
 }
 
 QTEST_MAIN(TestMainWindow)
