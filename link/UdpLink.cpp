@@ -33,9 +33,10 @@ static QString endpoint(const QHostAddress& address, quint16 port)
 QString UdpLink::description() const
 {
     const quint16 local = boundPort() ? boundPort() : m_localPort;
-    return QStringLiteral("udp %1 -> %2")
-        .arg(endpoint(m_localAddress, local),
-             m_replyToSender ? QStringLiteral("last sender") : endpoint(m_remoteAddress, m_remotePort));
+    const QString remote = !m_replyToSender        ? endpoint(m_remoteAddress, m_remotePort)
+                           : m_acceptedSendersOnly ? QStringLiteral("last accepted sender")
+                                                   : QStringLiteral("last sender");
+    return QStringLiteral("udp %1 -> %2").arg(endpoint(m_localAddress, local), remote);
 }
 
 void UdpLink::open()
@@ -77,17 +78,27 @@ void UdpLink::setRemote(const QHostAddress& address, quint16 port)
     m_remotePort = port;
 }
 
+void UdpLink::acceptSender()
+{
+    if (!m_replyToSender || m_senderAddress.isNull() || m_senderPort == 0)
+        return;
+    m_remoteAddress = m_senderAddress;
+    m_remotePort = m_senderPort;
+}
+
 void UdpLink::readPending()
 {
     while (m_socket.hasPendingDatagrams()) {
         const QNetworkDatagram datagram = m_socket.receiveDatagram();
         if (!datagram.isValid())
             break;
-        if (m_replyToSender) {
-            m_remoteAddress = datagram.senderAddress();
-            m_remotePort = quint16(datagram.senderPort());
-        }
+        m_senderAddress = datagram.senderAddress();
+        m_senderPort = quint16(datagram.senderPort());
+        if (m_replyToSender && !m_acceptedSendersOnly)
+            acceptSender();
         emit datagramReceived(datagram.data());
+        m_senderAddress.clear();
+        m_senderPort = 0;
     }
 }
 
