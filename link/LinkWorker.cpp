@@ -6,6 +6,7 @@
 #include "codec/MessageDecoder.h"
 #include "codec/MessageEncoder.h"
 #include "codec/SecureCodec.h"
+#include "link/UdpLink.h"
 
 #include <QStringList>
 
@@ -80,6 +81,13 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
     Q_ASSERT(m_link);
     // A child, so that moveToThread() takes the link and its sockets along.
     m_link->setParent(this);
+    // In reply-to-sender mode the link follows only senders of frames
+    // accepted here, so a refused datagram cannot steer the replies.
+    m_udp = qobject_cast<UdpLink*>(m_link.get());
+    if (!m_udp)
+        m_udp = m_link->findChild<UdpLink*>();
+    if (m_udp)
+        m_udp->setFollowAcceptedSendersOnly(true);
     m_statistics.secure = m_options.secure != nullptr;
 
     m_tickTimer.setTimerType(Qt::PreciseTimer);
@@ -335,6 +343,9 @@ void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::Deco
     } else {
         result = rcm::decodeBlocks(blocks);
     }
+    // For a datagram, still inside the link's datagramReceived(): its sender.
+    if (m_udp)
+        m_udp->acceptSender();
     const bool clean = blocks.corrected1 == 0 && blocks.corrected2 == 0;
     const rcm::Unit& header = result.message.header;
     log(FrameDirection::Received, toByteArray(raw), clean ? FrameStatus::Decoded : FrameStatus::Corrected,

@@ -38,6 +38,8 @@ enum class Rejection : std::uint8_t;
 
 Q_DECLARE_METATYPE(rcm::Message)
 
+class UdpLink;
+
 class LinkWorker : public QObject {
     Q_OBJECT
 
@@ -139,6 +141,9 @@ private:
     void reportError(const QString& message);
 
     std::unique_ptr<Link> m_link;
+    // The UDP link under m_link (itself, or wrapped for voice or faults),
+    // told which senders to follow; null for other transports.
+    UdpLink* m_udp = nullptr;
     std::unique_ptr<FrameLog> m_log;
     Options m_options;
     // Held by pointer so that this header does not include StreamSync.h,

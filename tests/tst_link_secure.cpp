@@ -1,8 +1,9 @@
 // The secure link end to end over UDP loopback: two LinkWorkers with keys,
 // then the console's worker against the built `uasim --key`. Matching keys fly
 // a session; different keys, a plaintext sender, replays and stale frames
-// are rejected, and the statistics say why. Waits are on conditions (QTRY),
-// never on time; in-process workers tick every 50 ms so the tests are quick.
+// are rejected, and the statistics say why; a refused datagram does not move
+// where the aircraft answers. Waits are on conditions (QTRY), never on time;
+// in-process workers tick every 50 ms so the tests are quick.
 
 // First: it names a member emit(), which Qt's headers define as a macro.
 #include "codec/StreamSync.h"
@@ -24,6 +25,7 @@
 #include <QUdpSocket>
 
 #include <csignal>
+#include <random>
 
 using namespace std::chrono_literals;
 using namespace rcm;
@@ -202,6 +204,7 @@ private slots:
     void differentKeysRejectEveryFrame();
     void plaintextSenderIsRejected();
     void replayedAndStaleFramesAreRejected();
+    void refusedDatagramsDoNotRedirectTheReplies();
     void commandMustLeaveRoomForTheRedundancy();
     void uasimWithMatchingKey();
     void uasimWithDifferentKey();
@@ -268,6 +271,9 @@ void TestLinkSecure::differentKeysRejectEveryFrame()
     auto log = std::make_unique<FrameLog>();
     QVERIFY(log->open(logPath));
     Session s(endpoint(keyA, Direction::UaToGcs), endpoint(keyB, Direction::GcsToUa), std::move(log));
+    // The aircraft accepts nothing from this console, so it would never learn
+    // where to answer (refusedDatagramsDoNotRedirectTheReplies): told here.
+    static_cast<UdpLink*>(s.ua->link())->setRemote(QHostAddress::LocalHost, portOf(*s.gcs));
     QTRY_VERIFY_WITH_TIMEOUT(s.gcs->statistics().rejectedForged >= 5 && s.ua->statistics().rejectedForged >= 5,
                              kPatience);
     // A rejected frame does not make or keep the link connected.
@@ -352,6 +358,81 @@ void TestLinkSecure::replayedAndStaleFramesAreRejected()
     gcs.stop();
 }
 
+// The aircraft's worker answers whoever sent the last frame it accepted. An
+// injector on another socket sends a forged frame and replays the console's
+// genuine one; both are refused, and the aircraft's next frames still reach
+// the console. The console here is a socket the test drives, which speaks
+// once: a worker would keep sending and so win the address back within a
+// tick, hiding a redirection.
+void TestLinkSecure::refusedDatagramsDoNotRedirectTheReplies()
+{
+    QTemporaryDir dir;
+    const QString key = makeKey(dir, "aircraft.key");
+    auto uaLink = std::make_unique<UdpLink>(QHostAddress::LocalHost, 0);
+    uaLink->setReplyToSender(true);
+    LinkWorker ua(std::move(uaLink), nullptr, options(endpoint(key, Direction::UaToGcs)));
+    QSignalSpy received(&ua, &LinkWorker::messageReceived);
+    QSignalSpy sent(&ua, &LinkWorker::frameSent);
+    ua.setCommand(status());
+    ua.start();
+
+    QUdpSocket console, injector;
+    QVERIFY(console.bind(QHostAddress::LocalHost, 0));
+    QVERIFY(injector.bind(QHostAddress::LocalHost, 0));
+    std::string error;
+    const std::optional<SecretKey> psk = readKeyFile(key.toStdString(), error);
+    const SecureCodec up(*psk, Direction::GcsToUa), down(*psk, Direction::UaToGcs);
+
+    Message m = command(30226);
+    m.header.set(ItemId::ID_msg, 1);
+    stampNow(m);
+    Diagnostics errors;
+    const EncodedBlocks genuine = *up.encode(m, errors);
+    const DatagramBytes genuineBytes = makeDatagram(genuine.block1, genuine.block2);
+    const QByteArray genuineDatagram(reinterpret_cast<const char*>(genuineBytes.data()), qsizetype(kDatagramSize));
+    console.writeDatagram(genuineDatagram, QHostAddress::LocalHost, portOf(ua));
+    QTRY_COMPARE_WITH_TIMEOUT(received.count(), 1, kPatience);
+
+    // True once the console has heard the aircraft's frame with this ID_msg,
+    // or a later one. Stays true: QTRY evaluates it again after it held.
+    std::optional<std::uint32_t> lastHeard;
+    auto consoleHeard = [&](quint32 id) {
+        while (console.hasPendingDatagrams()) {
+            QByteArray d(qsizetype(console.pendingDatagramSize()), '\0');
+            console.readDatagram(d.data(), d.size());
+            const Authenticated a =
+                d.size() == qsizetype(kDatagramSize) ? down.decryptBlocks(blocksOf(d)) : Authenticated{};
+            if (a.authentic)
+                lastHeard = a.stamp.messageId;
+        }
+        return lastHeard && (*lastHeard == id || messageIdAhead(*lastHeard, id));
+    };
+    QTRY_VERIFY_WITH_TIMEOUT(sent.count() >= 1, kPatience);
+    QTRY_VERIFY_WITH_TIMEOUT(consoleHeard(sent.last().at(0).toUInt()), kPatience);
+
+    // Two codewords that decode, around bytes no key holder enciphered.
+    Block forged1, forged2;
+    std::mt19937 rng(5);
+    for (Block* b : {&forged1, &forged2})
+        for (std::uint8_t& byte : *b)
+            byte = static_cast<std::uint8_t>(rng());
+    const DatagramBytes forgedBytes = makeDatagram(forged1, forged2);
+    injector.writeDatagram(QByteArray(reinterpret_cast<const char*>(forgedBytes.data()), qsizetype(kDatagramSize)),
+                           QHostAddress::LocalHost, portOf(ua));
+    QTRY_COMPARE_WITH_TIMEOUT(ua.statistics().rejectedForged, quint64(1), kPatience);
+    injector.writeDatagram(genuineDatagram, QHostAddress::LocalHost, portOf(ua));
+    QTRY_COMPARE_WITH_TIMEOUT(ua.statistics().rejectedReplayed, quint64(1), kPatience);
+
+    // A frame the aircraft sends after both refusals reaches the console...
+    const qsizetype before = sent.count();
+    QTRY_VERIFY_WITH_TIMEOUT(sent.count() > before, kPatience);
+    QTRY_VERIFY_WITH_TIMEOUT(consoleHeard(sent.at(before).at(0).toUInt()), kPatience);
+    // ...and the injector, which would have had it instead, has nothing.
+    QVERIFY(!injector.hasPendingDatagrams());
+    QCOMPARE(received.count(), 1);
+    ua.stop();
+}
+
 // A command that fills BLOCK 1 beyond 223 - 16 bytes is refused when set on
 // a keyed link (it would go out on a plain one).
 void TestLinkSecure::commandMustLeaveRoomForTheRedundancy()
@@ -422,11 +503,12 @@ void TestLinkSecure::uasimWithDifferentKey()
     QSignalSpy received(&gcs, &LinkWorker::messageReceived);
     gcs.setCommand(command(30226));
     gcs.start();
-    QTRY_VERIFY_WITH_TIMEOUT(gcs.statistics().rejectedForged >= 3, kPatience);
+    QTRY_VERIFY_WITH_TIMEOUT(uasim.stderrText().count("command rejected: forged: ") >= 3, kPatience);
     gcs.stop();
+    // uasim answers only a sender whose frames it accepted: not this console.
     QCOMPARE(received.count(), 0);
     QCOMPARE(gcs.statistics().framesReceived, quint64(0));
-    QCOMPARE(gcs.statistics().rejectedForged, rejectedTotal(gcs.statistics()));
+    QCOMPARE(rejectedTotal(gcs.statistics()), quint64(0));
 
     QVERIFY(uasim.stop());
     const QByteArray said = uasim.stderrText();
