@@ -116,6 +116,7 @@ private:
         mutable bool decoded = false;  // messageId and corrected* are known
         mutable bool hasMessageId = false;
     };
+    static_assert(sizeof(Row) == 32, "a day of rows is budgeted at 32 bytes each");
     static constexpr qint8 kNotKnown = -2;
 
     void decodeRow(const Row& row) const;
