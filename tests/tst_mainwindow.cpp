@@ -148,7 +148,8 @@ void TestMainWindow::buildsWithTheDefaultAirframe()
     for (QDockWidget* d : window.findChildren<QDockWidget*>())
         docks.insert(d->objectName());
     QCOMPARE(docks, (std::set<QString>{QStringLiteral("linkDock"), QStringLiteral("previewDock"),
-                                       QStringLiteral("frameLogDock"), QStringLiteral("flightPlanDock")}));
+                                       QStringLiteral("frameLogDock"), QStringLiteral("flightPlanDock"),
+                                       QStringLiteral("voiceDock")}));
     window.resize(1400, 900);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));

@@ -19,11 +19,13 @@
 #include "ui/HeaderPanel.h"
 #include "ui/LightsPanel.h"
 #include "ui/LinkSettingsWidget.h"
+#include "ui/PushToTalkWidget.h"
 #include "ui/RadioPanel.h"
 #include "ui/RehearsalLauncher.h"
 #include "ui/ReplayControls.h"
 #include "ui/ReportedState.h"
 #include "ui/StatusBarWidget.h"
+#include "ui/VoiceChannel.h"
 
 #include <QAction>
 #include <QActionGroup>
@@ -229,11 +231,14 @@ void MainWindow::buildDocks()
     QDockWidget* preview = dock(tr("Next frame"), QStringLiteral("previewDock"), m_preview, this);
     QDockWidget* log = dock(tr("Frame log"), QStringLiteral("frameLogDock"), m_logView, this);
     QDockWidget* plan = dock(tr("Flight plan"), QStringLiteral("flightPlanDock"), m_flightPlan, this);
+    m_voice = new VoiceChannel(this);
+    QDockWidget* voice = dock(tr("Voice"), QStringLiteral("voiceDock"), new PushToTalkWidget(m_voice), this);
     // The panels take the full width they need; the link sits beside them,
     // the log and the next frame share the bottom.
     setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
     setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
     addDockWidget(Qt::LeftDockWidgetArea, link);
+    splitDockWidget(link, voice, Qt::Vertical);
     addDockWidget(Qt::BottomDockWidgetArea, log);
     splitDockWidget(log, preview, Qt::Horizontal);
     tabifyDockWidget(log, plan);
@@ -534,6 +539,7 @@ void MainWindow::startController(std::unique_ptr<Link> link, bool datagram, cons
     m_status->setKeyFingerprint(secure ? QString::fromStdString(secure->fingerprint) : QString());
     options.secure = std::move(secure);
     // The uploader takes the section size of this link: 199 bytes when keyed.
+    link = m_voice->attach(std::move(link));  // when voice is on
     m_controller = std::make_unique<LinkController>(std::move(link), std::move(log), m_upload->linkOptions(options));
     LinkController* c = m_controller.get();
     connect(c, &LinkController::statisticsChanged, m_status, &StatusBarWidget::setStatistics);

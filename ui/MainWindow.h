@@ -38,6 +38,7 @@ class ReplayControls;
 class ReplayLink;
 class ReportedState;
 class StatusBarWidget;
+class VoiceChannel;
 struct ReceivedMessage;
 
 class MainWindow : public QMainWindow {
@@ -123,6 +124,7 @@ private:
     std::unique_ptr<LinkController> m_controller;
     QPointer<ReplayLink> m_replay;  // lives in the link thread; only queued calls
     RehearsalLauncher* m_rehearsal;
+    VoiceChannel* m_voice = nullptr;  // voice beside the commands, when the operator turns it on
 
     QTabWidget* m_panels = nullptr;
     FrameLogView* m_logView = nullptr;
