@@ -238,12 +238,12 @@ void MainWindow::buildDocks()
     setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
     setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
     addDockWidget(Qt::LeftDockWidgetArea, link);
-    splitDockWidget(link, voice, Qt::Vertical);
+    addDockWidget(Qt::RightDockWidgetArea, voice);
     addDockWidget(Qt::BottomDockWidgetArea, log);
     splitDockWidget(log, preview, Qt::Horizontal);
     tabifyDockWidget(log, plan);
     log->raise();
-    resizeDocks({link}, {230}, Qt::Horizontal);
+    resizeDocks({link, voice}, {230, 230}, Qt::Horizontal);
     resizeDocks({log, preview}, {900, 600}, Qt::Horizontal);
     resizeDocks({log}, {540}, Qt::Vertical);
 }

@@ -88,7 +88,8 @@ PushToTalkWidget::PushToTalkWidget(VoiceChannel* channel, QWidget* parent)
     layout->addLayout(file);
     layout->addLayout(levels);
     layout->addWidget(m_note);
-    layout->addStretch(1);
+    // Beside the link's settings, which need the room more.
+    setSizePolicy(QSizePolicy::Preferred, QSizePolicy::Maximum);
 
     connect(m_voiceOn, &QCheckBox::toggled, m_channel, &VoiceChannel::setEnabled);
     connect(m_channel, &VoiceChannel::enabledChanged, this, [this](bool on) {
