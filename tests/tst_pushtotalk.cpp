@@ -150,7 +150,7 @@ void TestPushToTalk::rehearsalFileGoesOutWithItsLevel()
     QTRY_VERIFY_WITH_TIMEOUT(c.widget->sentMeter() > 0, kPatience);
 
     QTest::mouseRelease(c.talk, Qt::LeftButton);
-    QCOMPARE(source->backlogSamples(), std::size_t(0));
+    QTRY_COMPARE_WITH_TIMEOUT(source->backlogSamples(), std::size_t(0), kPatience);
     source->readVoice(bytes);
     decoder.decode(bytes, pcm);
     QVERIFY(decoder.stats().idleFrames >= rcm::voice::kFramesPerSecond - 1);

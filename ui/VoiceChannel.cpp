@@ -107,9 +107,15 @@ void VoiceChannel::stopTalking()
     if (m_rehearsalFile.isEmpty()) {
         QMetaObject::invokeMethod(m_audio, &VoiceAudio::stopCapture, Qt::QueuedConnection);
     } else {
-        // Letting go of the key cuts the recording short, as it would a speaker.
-        m_source->clear();
-        m_source->endTalk();
+        // Letting go of the key cuts the recording short, as it would a
+        // speaker; queued behind speakFile(), which may not have run yet.
+        QMetaObject::invokeMethod(
+            m_audio,
+            [source = m_source] {
+                source->clear();
+                source->endTalk();
+            },
+            Qt::QueuedConnection);
     }
     emit talkingChanged(false);
 }
