@@ -394,6 +394,7 @@ bool MainWindow::connectWith(const LinkSettings& settings)
         return false;
     stopController();
     m_rehearsal->stop();
+    m_rehearsalKey.reset();
     m_rehearsing = false;
     startController(std::move(link), settings.transport == LinkSettings::Transport::Udp, settings.summary(), true,
                     std::move(secure));
