@@ -19,7 +19,12 @@ struct DecodeResult {
     bool ok() const { return corrected1 >= 0 && corrected2 >= 0; }
 };
 
-void decodeBlock1(const Block& block, Message& message, Diagnostics& diagnostics);
+// `looseBytes`, when given, receives the count of bytes after the first item
+// that are not items (padding, BEGIN, END between or after items): 0 means
+// the items run back to back to the end of the block, as an encoder writes
+// them. The secure link requires that.
+void decodeBlock1(const Block& block, Message& message, Diagnostics& diagnostics,
+                  std::size_t* looseBytes = nullptr);
 void decodeBlock2(const Block& block, FlightPlanSection& section, Diagnostics& diagnostics);
 
 // Parses blocks already RS-decoded (and deciphered, on a secure link).

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -509,29 +510,50 @@ Authenticated SecureCodec::decryptBlocks(const DecodedBlocks& in) const
 
     Block p1;
     m_cipher->decrypt(block1Tweak(m_direction), in.block1, p1);
-    HeaderStamp stamp;
-    std::string why;
-    if (!checkBlock1Structure(p1, stamp, why)) {
-        refuse(std::move(why));
+    // The 128 counted bits first: almost every forgery stops here.
+    if (std::any_of(p1.begin(), p1.begin() + kMinBlock1Padding, [](std::uint8_t b) { return b != kPad55; })) {
+        refuse("BLOCK 1 does not start with 16 padding bytes");
         return a;
     }
-    // Our encoder validates every value, so any diagnostic means the block
-    // was not written by a key holder.
-    decodeBlock1(p1, r.message, r.diagnostics);
+    // Then the structure the encoder always writes, read in the decoder's one
+    // walk over the items rather than a second walk of its own (the same
+    // checks as checkBlock1Structure): our encoder validates every value, so
+    // any diagnostic means the block was not written by a key holder; and
+    // items back to back from the end of the padding to the end of the block
+    // leave no byte unaccounted for, where a decoder silently skips padding,
+    // BEGIN and END between items.
+    std::size_t looseBytes = 0;
+    decodeBlock1(p1, r.message, r.diagnostics, &looseBytes);
     if (!r.diagnostics.empty()) {
         refuse("BLOCK 1 items do not decode cleanly");
         return a;
     }
+    if (looseBytes != 0) {
+        refuse("BLOCK 1 has bytes between its items that are not items");
+        return a;
+    }
+    const Unit& header = r.message.header;
+    if (!header.has(ItemId::ID_msg) || !header.has(ItemId::time_UTC) || !header.has(ItemId::date_UTC)) {
+        refuse("BLOCK 1 lacks ID_msg, time_UTC or date_UTC, which the secure link requires");
+        return a;
+    }
+    HeaderStamp stamp;
+    stamp.messageId = static_cast<std::uint32_t>(header.number(ItemId::ID_msg));
+    stamp.timeUtc = static_cast<std::uint32_t>(header.number(ItemId::time_UTC));
+    stamp.dateUtc = static_cast<std::uint32_t>(header.number(ItemId::date_UTC));
+    std::string why;
     if (in.corrected2 >= 0) {
         Block p2;
         m_cipher->decrypt(block2Tweak(m_direction, stamp), in.block2, p2);
-        if (!checkBlock2Structure(p2, why)) {
-            refuse(std::move(why));
+        // The decoder checks the padding and End_Of_String (the counted bits)
+        // as it reads; only the secure link's smaller section limit is extra.
+        if (p2[0] > kMaxFlightPlanData) {
+            refuse("BLOCK 2 carries more than 199 flight plan bytes");
             return a;
         }
         decodeBlock2(p2, r.message.flightPlan, r.diagnostics);
         if (!r.diagnostics.empty()) {
-            refuse("BLOCK 2 does not decode cleanly");
+            refuse("BLOCK 2 padding or End_Of_String is not as sent");
             return a;
         }
     } else {
