@@ -33,11 +33,6 @@ std::span<const std::uint8_t> bytesOf(std::string_view s)
     return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
 }
 
-std::uint32_t be24(const std::uint8_t* p)
-{
-    return (std::uint32_t{p[0]} << 16) | (std::uint32_t{p[1]} << 8) | p[2];
-}
-
 void putBe24(std::uint8_t* p, std::uint32_t v)
 {
     p[0] = static_cast<std::uint8_t>(v >> 16);
@@ -63,21 +58,6 @@ int hexDigit(char c)
     if (c >= 'A' && c <= 'F')
         return c - 'A' + 10;
     return -1;
-}
-
-// Value bytes after each Item_ID, -1 for bytes that are not items (padding,
-// BEGIN, END, unused IDs). Built once from the item table, so the structure
-// walk of every received BLOCK 1 is a table lookup per item.
-const std::array<std::int8_t, 256>& itemSizes()
-{
-    static const std::array<std::int8_t, 256> sizes = [] {
-        std::array<std::int8_t, 256> a;
-        a.fill(-1);
-        for (const ItemInfo& item : itemTable())
-            a[static_cast<std::uint8_t>(item.id)] = static_cast<std::int8_t>(item.size);
-        return a;
-    }();
-    return sizes;
 }
 
 std::string directionSuffix(Direction d) { return d == Direction::GcsToUa ? "gcs-to-ua" : "ua-to-gcs"; }
@@ -349,50 +329,60 @@ Block2Tweak block2Tweak(Direction d, const HeaderStamp& stamp)
 
 // ---------------------------------------------------------------- checks
 
+bool checkBlock1Structure(const Block& plain, Message& message, Diagnostics& diagnostics, HeaderStamp& stamp,
+                          std::string& why)
+{
+    // The 128 counted bits first: almost every forgery stops here.
+    if (std::any_of(plain.begin(), plain.begin() + kMinBlock1Padding, [](std::uint8_t b) { return b != kPad55; })) {
+        why = "BLOCK 1 does not start with 16 padding bytes";
+        return false;
+    }
+    // Then the structure the encoder always writes, read in the decoder's walk
+    // over the items: our encoder validates every value, so any diagnostic
+    // means the block was not written by a key holder; and items back to back
+    // to the end of the block leave no byte unaccounted for, where a decoder
+    // silently skips padding, BEGIN and END between items.
+    const std::size_t before = diagnostics.size();
+    std::size_t looseBytes = 0;
+    decodeBlock1(plain, message, diagnostics, &looseBytes);
+    if (diagnostics.size() != before) {
+        why = "BLOCK 1 items do not decode cleanly";
+        return false;
+    }
+    if (looseBytes != 0) {
+        why = "BLOCK 1 has bytes between its items that are not items";
+        return false;
+    }
+    const Unit& header = message.header;
+    if (!header.has(ItemId::ID_msg) || !header.has(ItemId::time_UTC) || !header.has(ItemId::date_UTC)) {
+        why = "BLOCK 1 lacks ID_msg, time_UTC or date_UTC, which the secure link requires";
+        return false;
+    }
+    stamp.messageId = static_cast<std::uint32_t>(header.number(ItemId::ID_msg));
+    stamp.timeUtc = static_cast<std::uint32_t>(header.number(ItemId::time_UTC));
+    stamp.dateUtc = static_cast<std::uint32_t>(header.number(ItemId::date_UTC));
+    return true;
+}
+
 bool checkBlock1Structure(const Block& plain, HeaderStamp& stamp, std::string& why)
 {
-    // The 128 counted bits: the encoder always writes its padding first.
-    for (std::size_t i = 0; i < kMinBlock1Padding; ++i) {
-        if (plain[i] != kPad55) {
-            why = "BLOCK 1 does not start with 16 padding bytes";
-            return false;
-        }
+    Message message;
+    Diagnostics diagnostics;
+    return checkBlock1Structure(plain, message, diagnostics, stamp, why);
+}
+
+bool checkBlock2Structure(const Block& plain, FlightPlanSection& section, Diagnostics& diagnostics, std::string& why)
+{
+    // The decoder checks the padding and End_Of_String (the counted bits) as
+    // it reads; only the secure link's smaller section limit is extra.
+    if (plain[0] > kMaxFlightPlanData) {
+        why = "BLOCK 2 carries more than 199 flight plan bytes";
+        return false;
     }
-    std::size_t i = kMinBlock1Padding;
-    while (i < kBlockSize && plain[i] == kPad55)
-        ++i;
-    // Then only items, back to back, as the encoder writes them: padding
-    // (55, AA), BEGIN and END are not items here.
-    const std::array<std::int8_t, 256>& sizes = itemSizes();
-    bool haveId = false, haveTime = false, haveDate = false;
-    while (i < kBlockSize) {
-        const std::uint8_t id = plain[i];
-        const int size = sizes[id];
-        if (size < 0) {
-            why = "BLOCK 1 has a byte that is not an Item_ID where an item belongs";
-            return false;
-        }
-        if (i + 1 + static_cast<std::size_t>(size) > kBlockSize) {
-            why = "BLOCK 1 has an item that runs past the end of the block";
-            return false;
-        }
-        if (id <= static_cast<std::uint8_t>(ItemId::date_UTC)) {  // 03, 05, 06 among the first IDs
-            const std::uint8_t* v = &plain[i + 1];
-            if (id == static_cast<std::uint8_t>(ItemId::ID_msg)) {
-                stamp.messageId = be24(v);
-                haveId = true;
-            } else if (id == static_cast<std::uint8_t>(ItemId::time_UTC)) {
-                stamp.timeUtc = be24(v);
-                haveTime = true;
-            } else if (id == static_cast<std::uint8_t>(ItemId::date_UTC)) {
-                stamp.dateUtc = be24(v);
-                haveDate = true;
-            }
-        }
-        i += 1 + static_cast<std::size_t>(size);
-    }
-    if (!haveId || !haveTime || !haveDate) {
-        why = "BLOCK 1 lacks ID_msg, time_UTC or date_UTC, which the secure link requires";
+    const std::size_t before = diagnostics.size();
+    decodeBlock2(plain, section, diagnostics);
+    if (diagnostics.size() != before) {
+        why = "BLOCK 2 padding or End_Of_String is not as sent";
         return false;
     }
     return true;
@@ -400,22 +390,9 @@ bool checkBlock1Structure(const Block& plain, HeaderStamp& stamp, std::string& w
 
 bool checkBlock2Structure(const Block& plain, std::string& why)
 {
-    const std::size_t x = plain[0];
-    if (x > kMaxFlightPlanData) {
-        why = "BLOCK 2 carries more than 199 flight plan bytes";
-        return false;
-    }
-    for (std::size_t i = 7 + x; i < kBlockSize - 1; ++i) {
-        if (plain[i] != kPad55) {
-            why = "BLOCK 2 padding is not all 55";
-            return false;
-        }
-    }
-    if (plain[kBlockSize - 1] != 0x00) {
-        why = "BLOCK 2 End_Of_String is not 00";
-        return false;
-    }
-    return true;
+    FlightPlanSection section;
+    Diagnostics diagnostics;
+    return checkBlock2Structure(plain, section, diagnostics, why);
 }
 
 bool looksLikePlaintext(const DecodedBlocks& blocks)
@@ -510,50 +487,17 @@ Authenticated SecureCodec::decryptBlocks(const DecodedBlocks& in) const
 
     Block p1;
     m_cipher->decrypt(block1Tweak(m_direction), in.block1, p1);
-    // The 128 counted bits first: almost every forgery stops here.
-    if (std::any_of(p1.begin(), p1.begin() + kMinBlock1Padding, [](std::uint8_t b) { return b != kPad55; })) {
-        refuse("BLOCK 1 does not start with 16 padding bytes");
-        return a;
-    }
-    // Then the structure the encoder always writes, read in the decoder's one
-    // walk over the items rather than a second walk of its own (the same
-    // checks as checkBlock1Structure): our encoder validates every value, so
-    // any diagnostic means the block was not written by a key holder; and
-    // items back to back from the end of the padding to the end of the block
-    // leave no byte unaccounted for, where a decoder silently skips padding,
-    // BEGIN and END between items.
-    std::size_t looseBytes = 0;
-    decodeBlock1(p1, r.message, r.diagnostics, &looseBytes);
-    if (!r.diagnostics.empty()) {
-        refuse("BLOCK 1 items do not decode cleanly");
-        return a;
-    }
-    if (looseBytes != 0) {
-        refuse("BLOCK 1 has bytes between its items that are not items");
-        return a;
-    }
-    const Unit& header = r.message.header;
-    if (!header.has(ItemId::ID_msg) || !header.has(ItemId::time_UTC) || !header.has(ItemId::date_UTC)) {
-        refuse("BLOCK 1 lacks ID_msg, time_UTC or date_UTC, which the secure link requires");
-        return a;
-    }
     HeaderStamp stamp;
-    stamp.messageId = static_cast<std::uint32_t>(header.number(ItemId::ID_msg));
-    stamp.timeUtc = static_cast<std::uint32_t>(header.number(ItemId::time_UTC));
-    stamp.dateUtc = static_cast<std::uint32_t>(header.number(ItemId::date_UTC));
     std::string why;
+    if (!checkBlock1Structure(p1, r.message, r.diagnostics, stamp, why)) {
+        refuse(std::move(why));
+        return a;
+    }
     if (in.corrected2 >= 0) {
         Block p2;
         m_cipher->decrypt(block2Tweak(m_direction, stamp), in.block2, p2);
-        // The decoder checks the padding and End_Of_String (the counted bits)
-        // as it reads; only the secure link's smaller section limit is extra.
-        if (p2[0] > kMaxFlightPlanData) {
-            refuse("BLOCK 2 carries more than 199 flight plan bytes");
-            return a;
-        }
-        decodeBlock2(p2, r.message.flightPlan, r.diagnostics);
-        if (!r.diagnostics.empty()) {
-            refuse("BLOCK 2 padding or End_Of_String is not as sent");
+        if (!checkBlock2Structure(p2, r.message.flightPlan, r.diagnostics, why)) {
+            refuse(std::move(why));
             return a;
         }
     } else {

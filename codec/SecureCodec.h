@@ -173,11 +173,16 @@ Block2Tweak block2Tweak(Direction d, const HeaderStamp& stamp);
 // ---------------------------------------------------------------- checks
 
 // The redundancy check of a deciphered (or about to be enciphered) BLOCK 1:
-// padding, structure and the three header items, as listed at the top. It
-// does not decode values; the receiver decodes and requires no diagnostics.
-// Fills `stamp` when it passes; `why` says what failed.
+// 16 leading padding bytes, then items back to back to the end of the block
+// that decode with no diagnostic, ID_msg, time_UTC and date_UTC among them.
+// It decodes into `message` (appending to `diagnostics`): the receiver's one
+// walk over the items is also the check. Fills `stamp` when it passes; `why`
+// says what failed.
+bool checkBlock1Structure(const Block& plain, Message& message, Diagnostics& diagnostics, HeaderStamp& stamp,
+                          std::string& why);
 bool checkBlock1Structure(const Block& plain, HeaderStamp& stamp, std::string& why);
-// BLOCK 2: x <= 199, padding, End_Of_String.
+// BLOCK 2: x <= 199, padding, End_Of_String; decodes into `section`.
+bool checkBlock2Structure(const Block& plain, FlightPlanSection& section, Diagnostics& diagnostics, std::string& why);
 bool checkBlock2Structure(const Block& plain, std::string& why);
 
 // True when `blocks` parse as an unencrypted message with no diagnostic: on a
