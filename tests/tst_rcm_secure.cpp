@@ -2,29 +2,19 @@
 // secure link, rejections on standard error, the replay state, misuse.
 #include "codec/SecureCodec.h"
 
+#include "RunProgram.h"
+
 #include <QtTest>
 
 #include <sys/stat.h>
 
 namespace {
 
-struct Run {
-    int exitCode = -1;
-    QByteArray out;
-    QByteArray err;
-};
+using Run = rcm::test::ProgramRun;
 
 Run runRcm(const QStringList& args, const QByteArray& input = {})
 {
-    QProcess p;
-    p.start(QStringLiteral(RCM_BIN_DIR "/rcm"), args);
-    if (!p.waitForStarted())
-        qFatal("cannot start rcm");
-    p.write(input);
-    p.closeWriteChannel();
-    p.waitForFinished(60000);
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(),
-            p.readAllStandardError()};
+    return rcm::test::runProgram(QStringLiteral("rcm"), args, input);
 }
 
 // The key file's hex digits, to check that no output ever contains them.
