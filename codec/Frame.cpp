@@ -49,7 +49,7 @@ DecodedBlocks decodeCodewords(std::span<const std::uint8_t, kDatagramSize> codew
     const std::uint8_t* cw2 = codewords.data() + kCodewordSize;
     bool clean[2];
     rs::checkCodewords(cw1, cw2, &clean[0], &clean[1]);
-    std::uint8_t copy[kCodewordSize];
+    std::uint8_t work[kCodewordSize];
     for (int b = 0; b < 2; ++b) {
         const std::uint8_t* cw = b == 0 ? cw1 : cw2;
         Block& block = b == 0 ? out.block1 : out.block2;
@@ -59,11 +59,10 @@ DecodedBlocks decodeCodewords(std::span<const std::uint8_t, kDatagramSize> codew
             corrected = 0;
             continue;
         }
-        // libfec corrects; a failure leaves the block as received.
-        std::memcpy(copy, cw, kCodewordSize);
-        const int n = rs::decodeLibfec(copy);
-        corrected = n < 0 ? -1 : n;
-        std::memcpy(block.data(), n < 0 ? cw : copy, kBlockSize);
+        // A failure leaves the codeword, and so the block, as received.
+        std::memcpy(work, cw, kCodewordSize);
+        corrected = rs::correct(work);
+        std::memcpy(block.data(), work, kBlockSize);
     }
     return out;
 }

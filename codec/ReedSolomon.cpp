@@ -105,10 +105,8 @@ void checkCodewords(const std::uint8_t* a, const std::uint8_t* b, bool* aClean, 
     *bClean = rb.matches(tab, b + kDataSize);
 }
 
-int decode(std::uint8_t* codeword)
+int correct(std::uint8_t* codeword)
 {
-    if (isCodeword(codeword))
-        return 0;
     unsigned char copy[kCodewordSize];
     std::memcpy(copy, codeword, kCodewordSize);
     const int corrected = decode_rs_ccsds(copy, nullptr, 0, 0);
@@ -116,6 +114,11 @@ int decode(std::uint8_t* codeword)
         return -1;
     std::memcpy(codeword, copy, kCodewordSize);
     return corrected;
+}
+
+int decode(std::uint8_t* codeword)
+{
+    return isCodeword(codeword) ? 0 : correct(codeword);
 }
 
 int decodeLibfec(std::uint8_t* codeword)

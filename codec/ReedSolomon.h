@@ -27,6 +27,10 @@ void checkCodewords(const std::uint8_t* a, const std::uint8_t* b, bool* aClean, 
 // when the errors are beyond correction (the codeword is then left as it was).
 int decode(std::uint8_t* codeword);
 
+// libfec's correction alone, for a codeword already known not to be clean;
+// same result as decode.
+int correct(std::uint8_t* codeword);
+
 // libfec's decode_rs_ccsds alone, without the clean check; for benchmarks and
 // for tests that compare against it. Any negative return means failure.
 int decodeLibfec(std::uint8_t* codeword);
