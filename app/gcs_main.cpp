@@ -16,14 +16,14 @@
 //                                 live, records or file (see reportMemory)
 //   gcs --measure-stall [N]       the GUI thread's longest stall while a synthetic
 //                                 log of N frames (default 1,200) replays at 10x
-#include "codec/Airframe.h"
-#include "codec/MessageEncoder.h"
-#include "link/FrameLog.h"
-#include "link/AirframeLoader.h"
-#include "ui/FrameLogModel.h"
-#include "ui/LinkSettings.h"
-#include "ui/LinkSettingsWidget.h"
-#include "ui/MainWindow.h"
+#include "codec/message/Airframe.h"
+#include "codec/message/MessageEncoder.h"
+#include "link/framelog/FrameLog.h"
+#include "link/simulation/AirframeLoader.h"
+#include "ui/framelog/FrameLogModel.h"
+#include "ui/window/LinkSettings.h"
+#include "ui/window/LinkSettingsWidget.h"
+#include "ui/window/MainWindow.h"
 
 #include <QApplication>
 #include <QCommandLineParser>

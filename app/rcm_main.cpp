@@ -3,14 +3,14 @@
 //   rcm decode [FILE] [--datagram] [--summary]   bytes -> text
 //   rcm dissector                            the Wireshark dissector, from the item table
 //   rcm keygen FILE                          a new 256-bit key for the secure link
-// encode and decode take --key FILE for the secure link (codec/SecureCodec.h).
+// encode and decode take --key FILE for the secure link (codec/secure/SecureCodec.h).
 // Plain C++ over the codec, so it runs wherever the codec does.
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/SecureCodec.h"
-#include "codec/StreamSync.h"
-#include "codec/TextFormat.h"
-#include "codec/WiresharkDissector.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/secure/SecureCodec.h"
+#include "codec/frame/StreamSync.h"
+#include "codec/message/TextFormat.h"
+#include "codec/dissector/WiresharkDissector.h"
 
 #include <unistd.h>
 

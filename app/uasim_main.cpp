@@ -7,20 +7,20 @@
 // and one thread makes every status frame exactly the state after the
 // commands received before it (a one-frame indication such as a photograph
 // taken cannot be cleared by a frame that did not carry it).
-#include "codec/Airframe.h"
-#include "link/AirframeLoader.h"
-#include "codec/ItemTable.h"
-#include "codec/SecureCodec.h"
-#include "codec/WavFile.h"
-#include "link/FaultInjector.h"
-#include "link/FrameLog.h"
-#include "link/LinkWorker.h"
-#include "link/SerialLink.h"
-#include "link/SimulatedAircraft.h"
-#include "link/UdpLink.h"
-#include "link/VoiceDecoderSink.h"
-#include "link/VoiceEncoderSource.h"
-#include "link/WithVoice.h"
+#include "codec/message/Airframe.h"
+#include "link/simulation/AirframeLoader.h"
+#include "codec/message/ItemTable.h"
+#include "codec/secure/SecureCodec.h"
+#include "codec/voice/WavFile.h"
+#include "link/simulation/FaultInjector.h"
+#include "link/framelog/FrameLog.h"
+#include "link/session/LinkWorker.h"
+#include "link/transport/SerialLink.h"
+#include "link/simulation/SimulatedAircraft.h"
+#include "link/transport/UdpLink.h"
+#include "link/voice/VoiceDecoderSink.h"
+#include "link/voice/VoiceEncoderSource.h"
+#include "link/voice/WithVoice.h"
 
 #include <QCommandLineParser>
 #include <QCoreApplication>

@@ -4,9 +4,9 @@
 // table changes what is generated.
 #pragma once
 
-#include "codec/ItemTable.h"
-#include "codec/Message.h"
-#include "codec/MessageEncoder.h"
+#include "codec/message/ItemTable.h"
+#include "codec/message/Message.h"
+#include "codec/message/MessageEncoder.h"
 
 #include <random>
 #include <string>

@@ -2,11 +2,11 @@
 // against the source document's examples and a separate implementation's frames.
 #include "RandomMessage.h"
 
-#include "codec/Airframe.h"
-#include "codec/Frame.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/ReedSolomon.h"
+#include "codec/message/Airframe.h"
+#include "codec/frame/Frame.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/frame/ReedSolomon.h"
 
 #include <QtTest>
 

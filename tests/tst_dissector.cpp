@@ -2,10 +2,10 @@
 // output byte for byte, and tshark, running it over a frame log of the sample
 // frames, reads the values the samples were made with.
 
-#include "codec/Frame.h"
-#include "codec/ItemTable.h"
-#include "codec/WiresharkDissector.h"
-#include "link/FrameLog.h"
+#include "codec/frame/Frame.h"
+#include "codec/message/ItemTable.h"
+#include "codec/dissector/WiresharkDissector.h"
+#include "link/framelog/FrameLog.h"
 
 #include <QFile>
 #include <QProcess>

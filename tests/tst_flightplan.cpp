@@ -1,9 +1,9 @@
 // Flight plans sent as numbered BLOCK 2 sections: cutting, cycling,
 // reassembly, and what the receiver says about lost, repeated, reordered and
 // damaged sections.
-#include "codec/FlightPlanTransfer.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
+#include "codec/message/FlightPlanTransfer.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
 
 #include <QtTest>
 

@@ -1,8 +1,8 @@
 // The pcapng frame log: round trips, exact bytes, torn tails, corruption,
 // seeking, write failures, and what Wireshark's tshark makes of the file.
 
-#include "link/FrameLog.h"
-#include "link/FrameLogReader.h"
+#include "link/framelog/FrameLog.h"
+#include "link/framelog/FrameLogReader.h"
 
 #include <QDir>
 #include <QFile>

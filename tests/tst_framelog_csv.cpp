@@ -1,13 +1,13 @@
 // A frame log as CSV: the columns, their order and names, the values as the
 // text format prints them, RFC 4180 quoting, and the failures.
 
-#include "codec/Frame.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/TextFormat.h"
-#include "link/FrameLog.h"
-#include "link/FrameLogCsv.h"
-#include "link/FrameLogReader.h"
+#include "codec/frame/Frame.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/message/TextFormat.h"
+#include "link/framelog/FrameLog.h"
+#include "link/framelog/FrameLogCsv.h"
+#include "link/framelog/FrameLogReader.h"
 
 #include <QBuffer>
 #include <QFile>

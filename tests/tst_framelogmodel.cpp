@@ -5,14 +5,14 @@
 // rows of a real link session (UDP on loopback) matching its log file record
 // for record, with no frame's bytes held in memory while the file has them.
 
-#include "codec/Airframe.h"
-#include "codec/MessageEncoder.h"
-#include "link/FrameLog.h"
-#include "link/LinkController.h"
-#include "link/UdpLink.h"
-#include "ui/FrameLogFilterModel.h"
-#include "ui/FrameLogModel.h"
-#include "ui/FrameLogView.h"
+#include "codec/message/Airframe.h"
+#include "codec/message/MessageEncoder.h"
+#include "link/framelog/FrameLog.h"
+#include "link/session/LinkController.h"
+#include "link/transport/UdpLink.h"
+#include "ui/framelog/FrameLogFilterModel.h"
+#include "ui/framelog/FrameLogModel.h"
+#include "ui/framelog/FrameLogView.h"
 
 #include <QApplication>
 #include <QSignalSpy>

@@ -1,7 +1,7 @@
 // AES-HCTR2 against the official known-answer vectors (tests/vectors/hctr2),
 // plus POLYVAL cross-checks and misuse handling.
 
-#include "codec/Hctr2.h"
+#include "codec/secure/Hctr2.h"
 
 #include <QByteArray>
 #include <QFile>

@@ -4,16 +4,16 @@
 // tests are quick, and nothing asserts how long anything took.
 
 // First: it names a member emit(), which Qt's headers define as a macro.
-#include "codec/StreamSync.h"
+#include "codec/frame/StreamSync.h"
 
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "link/FrameLog.h"
-#include "link/FrameLogReader.h"
-#include "link/LinkController.h"
-#include "link/LinkWorker.h"
-#include "link/SerialLink.h"
-#include "link/UdpLink.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "link/framelog/FrameLog.h"
+#include "link/framelog/FrameLogReader.h"
+#include "link/session/LinkController.h"
+#include "link/session/LinkWorker.h"
+#include "link/transport/SerialLink.h"
+#include "link/transport/UdpLink.h"
 
 #include <QDate>
 #include <QDateTime>

@@ -6,16 +6,16 @@
 // in-process workers tick every 50 ms so the tests are quick.
 
 // First: it names a member emit(), which Qt's headers define as a macro.
-#include "codec/StreamSync.h"
+#include "codec/frame/StreamSync.h"
 
-#include "codec/Airframe.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/SecureCodec.h"
-#include "link/FrameLog.h"
-#include "link/FrameLogReader.h"
-#include "link/LinkWorker.h"
-#include "link/UdpLink.h"
+#include "codec/message/Airframe.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/secure/SecureCodec.h"
+#include "link/framelog/FrameLog.h"
+#include "link/framelog/FrameLogReader.h"
+#include "link/session/LinkWorker.h"
+#include "link/transport/UdpLink.h"
 
 #include <QDateTime>
 #include <QProcess>

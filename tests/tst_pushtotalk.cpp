@@ -2,16 +2,16 @@
 // or a WAV file, the level meters, and received voice on its way to the
 // speaker. No sound card is needed: the rehearsal file stands in for the
 // microphone, and what would be played is read from the playback FIFO.
-#include "codec/VoiceCodec.h"
-#include "codec/WavFile.h"
-#include "link/SerialLink.h"
-#include "link/UdpLink.h"
-#include "link/VoiceEncoderSource.h"
-#include "link/VoiceSerialLink.h"
-#include "link/VoiceUdpLink.h"
-#include "ui/PcmFifo.h"
-#include "ui/PushToTalkWidget.h"
-#include "ui/VoiceChannel.h"
+#include "codec/voice/VoiceCodec.h"
+#include "codec/voice/WavFile.h"
+#include "link/transport/SerialLink.h"
+#include "link/transport/UdpLink.h"
+#include "link/voice/VoiceEncoderSource.h"
+#include "link/voice/VoiceSerialLink.h"
+#include "link/voice/VoiceUdpLink.h"
+#include "ui/voice/PcmFifo.h"
+#include "ui/voice/PushToTalkWidget.h"
+#include "ui/voice/VoiceChannel.h"
 
 #include <QCheckBox>
 #include <QMainWindow>

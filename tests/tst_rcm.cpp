@@ -1,7 +1,7 @@
 // The rcm command-line tool, run as a user runs it: bytes in, bytes and text
 // out, exit status and error messages.
-#include "codec/MessageDecoder.h"
-#include "codec/TextFormat.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/TextFormat.h"
 
 #include "RunProgram.h"
 

@@ -1,6 +1,6 @@
 // rcm with --key, run as a user runs it: keygen, encode and decode on the
 // secure link, rejections on standard error, the replay state, misuse.
-#include "codec/SecureCodec.h"
+#include "codec/secure/SecureCodec.h"
 
 #include "RunProgram.h"
 

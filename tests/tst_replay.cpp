@@ -4,10 +4,10 @@
 // show that nothing arrives, a second replay of the same log played to its
 // end is the clock (the paused one would have finished before it).
 
-#include "codec/Frame.h"
-#include "link/FrameLog.h"
-#include "link/LinkWorker.h"
-#include "link/ReplayLink.h"
+#include "codec/frame/Frame.h"
+#include "link/framelog/FrameLog.h"
+#include "link/session/LinkWorker.h"
+#include "link/framelog/ReplayLink.h"
 
 #include <QFile>
 #include <QSignalSpy>

@@ -1,4 +1,4 @@
-// The secure link (codec/SecureCodec.h) against an attacker without the key
+// The secure link (codec/secure/SecureCodec.h) against an attacker without the key
 // who can listen, inject, replay and re-encode Reed-Solomon at will.
 //
 // Because such an attacker re-encodes RS, what reaches the receiver's
@@ -12,10 +12,10 @@
 
 #include "RandomMessage.h"
 
-#include "codec/Frame.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/SecureCodec.h"
+#include "codec/frame/Frame.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/secure/SecureCodec.h"
 
 #include <openssl/evp.h>
 #include <openssl/kdf.h>

@@ -1,8 +1,8 @@
 // StreamSync: frames found in a stream fed in pieces, through garbage, lost
 // and inserted bytes and bit errors, and never at a shifted alignment.
-#include "codec/Frame.h"
-#include "codec/MessageDecoder.h"
-#include "codec/StreamSync.h"
+#include "codec/frame/Frame.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/frame/StreamSync.h"
 
 #include <QtTest>
 

@@ -1,10 +1,10 @@
-// The text format (codec/TextFormat.h) and the country table
-// (codec/CountryCodes.h): the source document's examples, the shared sample
+// The text format (codec/message/TextFormat.h) and the country table
+// (codec/message/CountryCodes.h): the source document's examples, the shared sample
 // frames, random round trips and every parser error.
-#include "codec/CountryCodes.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/TextFormat.h"
+#include "codec/message/CountryCodes.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/message/TextFormat.h"
 
 #include "RandomMessage.h"
 

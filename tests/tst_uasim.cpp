@@ -1,12 +1,12 @@
 // The simulated aircraft: first in process, frame by frame on its own
 // clock; then the built `uasim` program over UDP, spoken to as the console
 // would. The program checks wait on signals and conditions, never on time.
-#include "codec/Airframe.h"
-#include "codec/FlightPlanTransfer.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "link/FrameLogReader.h"
-#include "link/SimulatedAircraft.h"
+#include "codec/message/Airframe.h"
+#include "codec/message/FlightPlanTransfer.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "link/framelog/FrameLogReader.h"
+#include "link/simulation/SimulatedAircraft.h"
 
 #include <QNetworkDatagram>
 #include <QProcess>

@@ -5,10 +5,10 @@
 // in, with its energy in the same frequency bands.
 #include "BandEnergy.h"
 
-#include "codec/Frame.h"
-#include "codec/VoiceCodec.h"
-#include "codec/VoiceMux.h"
-#include "codec/WavFile.h"
+#include "codec/frame/Frame.h"
+#include "codec/voice/VoiceCodec.h"
+#include "codec/voice/VoiceMux.h"
+#include "codec/voice/WavFile.h"
 
 #include <QtTest>
 

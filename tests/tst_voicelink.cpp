@@ -5,22 +5,22 @@
 // band energies. Time enters only through QTRY's patience.
 
 // First: it names a member emit(), which Qt's headers define as a macro.
-#include "codec/StreamSync.h"
+#include "codec/frame/StreamSync.h"
 
 #include "BandEnergy.h"
 
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/VoiceCodec.h"
-#include "codec/VoiceMux.h"
-#include "codec/WavFile.h"
-#include "link/LinkWorker.h"
-#include "link/SerialLink.h"
-#include "link/UdpLink.h"
-#include "link/VoiceDecoderSink.h"
-#include "link/VoiceEncoderSource.h"
-#include "link/VoiceSerialLink.h"
-#include "link/VoiceUdpLink.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/voice/VoiceCodec.h"
+#include "codec/voice/VoiceMux.h"
+#include "codec/voice/WavFile.h"
+#include "link/session/LinkWorker.h"
+#include "link/transport/SerialLink.h"
+#include "link/transport/UdpLink.h"
+#include "link/voice/VoiceDecoderSink.h"
+#include "link/voice/VoiceEncoderSource.h"
+#include "link/voice/VoiceSerialLink.h"
+#include "link/voice/VoiceUdpLink.h"
 
 #include <QProcess>
 #include <QSignalSpy>

@@ -4,10 +4,10 @@
 // come out as they would from the control stream alone.
 
 // First: it names a member emit(), which Qt's headers define as a macro.
-#include "codec/StreamSync.h"
+#include "codec/frame/StreamSync.h"
 
-#include "codec/Frame.h"
-#include "codec/VoiceMux.h"
+#include "codec/frame/Frame.h"
+#include "codec/voice/VoiceMux.h"
 
 #include <QtTest>
 

@@ -1,7 +1,7 @@
 -- Remote Control Message (RCM) dissector for Wireshark 4.0 and later.
 --
--- GENERATED from the item table (codec/ItemTable.cpp) by
--- codec/WiresharkDissector.cpp. Do not edit: regenerate with
+-- GENERATED from the item table (codec/message/ItemTable.cpp) by
+-- codec/dissector/WiresharkDissector.cpp. Do not edit: regenerate with
 --     rcm dissector > resources/wireshark/rcm.lua
 -- so that the names, sizes and codes below never drift from the console's.
 --
@@ -25,7 +25,7 @@ local function field(f)
     return f
 end
 
--- Sizes and marks of the frame and the blocks (codec/Frame.h, codec/ItemTable.h).
+-- Sizes and marks of the frame and the blocks (codec/frame/Frame.h, codec/message/ItemTable.h).
 local PREAMBLE_SIZE = 90
 local PREAMBLE_FILL = 88
 local PREAMBLE_FILL_BYTE = 0x55
@@ -41,7 +41,7 @@ local ID_BEGIN = 0x01
 local ID_END = 0x02
 local ID_MSG = 0x03
 
--- Country dialling code -> the ISO 3166-1 alpha-2 the text format prints (codec/CountryCodes.cpp).
+-- Country dialling code -> the ISO 3166-1 alpha-2 the text format prints (codec/message/CountryCodes.cpp).
 local countries = {
     [1] = "US", [7] = "RU", [20] = "EG", [27] = "ZA", [30] = "GR", [31] = "NL", [32] = "BE", [33] = "FR", [34] = "ES",
     [36] = "HU", [39] = "IT", [40] = "RO", [41] = "CH", [43] = "AT", [44] = "GB", [45] = "DK", [46] = "SE", [47] = "NO",

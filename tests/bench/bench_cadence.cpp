@@ -9,9 +9,9 @@
 //
 //   bench_cadence [ticks] [--pty]      (default: 60 ticks over UDP)
 
-#include "link/LinkController.h"
-#include "link/SerialLink.h"
-#include "link/UdpLink.h"
+#include "link/session/LinkController.h"
+#include "link/transport/SerialLink.h"
+#include "link/transport/UdpLink.h"
 
 #include <QCoreApplication>
 #include <QSocketNotifier>

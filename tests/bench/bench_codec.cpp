@@ -5,11 +5,11 @@
 //
 //   build/bin/bench_codec                 all measurements
 //   build/bin/bench_codec --day FILE      also write a 24-hour recording (86,400 frames)
-#include "codec/Airframe.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/ReedSolomon.h"
-#include "codec/StreamSync.h"
+#include "codec/message/Airframe.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/frame/ReedSolomon.h"
+#include "codec/frame/StreamSync.h"
 
 #include <chrono>
 #include <cmath>

@@ -4,8 +4,8 @@
 //
 //   bench_framelog [directory]    (default: a temporary directory)
 
-#include "link/FrameLog.h"
-#include "link/FrameLogReader.h"
+#include "link/framelog/FrameLog.h"
+#include "link/framelog/FrameLogReader.h"
 
 #include <QDir>
 #include <QElapsedTimer>

@@ -11,7 +11,7 @@
 // processes only ever add time. The four measurements of one cipher are
 // interleaved round by round, so none is favoured by when it ran.
 
-#include "codec/Hctr2.h"
+#include "codec/secure/Hctr2.h"
 
 #include <algorithm>
 #include <array>

@@ -16,11 +16,11 @@
 // Below the table, the receiver's added work is taken apart: HCTR2 alone
 // (two 223-byte decipherings a frame) and the structure checks alone, so
 // that the share of each in the clean frame's overhead can be read off.
-#include "codec/Airframe.h"
-#include "codec/Hctr2.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/SecureCodec.h"
+#include "codec/message/Airframe.h"
+#include "codec/secure/Hctr2.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/secure/SecureCodec.h"
 
 #include <algorithm>
 #include <chrono>

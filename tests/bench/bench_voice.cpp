@@ -19,12 +19,12 @@
 //
 //   bench_voice [bursts]      (default 40, about 20 s)
 
-#include "codec/MessageEncoder.h"
-#include "codec/VoiceCodec.h"
-#include "codec/VoiceMux.h"
-#include "link/SerialLink.h"
-#include "link/VoiceEncoderSource.h"
-#include "link/VoiceSerialLink.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/voice/VoiceCodec.h"
+#include "codec/voice/VoiceMux.h"
+#include "link/transport/SerialLink.h"
+#include "link/voice/VoiceEncoderSource.h"
+#include "link/voice/VoiceSerialLink.h"
 
 #include <QCoreApplication>
 #include <QElapsedTimer>

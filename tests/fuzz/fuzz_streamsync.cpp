@@ -7,10 +7,10 @@
 // argument sets the number of rounds.
 #include "RandomMessage.h"
 
-#include "codec/Frame.h"
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/StreamSync.h"
+#include "codec/frame/Frame.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/frame/StreamSync.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -3,9 +3,9 @@
 // bounds. Fixed seed, bounded work: a CTest target, not an open-ended fuzzer.
 #include "RandomMessage.h"
 
-#include "codec/MessageDecoder.h"
-#include "codec/MessageEncoder.h"
-#include "codec/TextFormat.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/message/TextFormat.h"
 
 #include <cstdio>
 #include <random>

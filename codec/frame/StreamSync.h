@@ -1,0 +1,139 @@
+// Finds 600-byte frames in a byte stream that arrives in pieces of any size,
+// with garbage between frames, lost or inserted bytes and bit errors.
+//
+// Candidate start c (first byte of codeword 1) is scored by the Hamming
+// distance between the 16 bytes before c and the preamble tail 55 x14, 0F,
+// 0F; it qualifies at <= 6 bits. RS decoding confirms it.
+//
+// RS confirmation alone cannot tell a true start from one a few bytes off:
+// RS codes are cyclic, so codewords read k bytes early or late are cyclic
+// shifts with k bytes changed, and for k <= 16 they "decode" into shifted
+// garbage. So:
+// - From the first qualifying candidate q, all qualifying candidates in
+//   q .. q+89 compete, and the winner is the reading that assumes the fewest
+//   bit errors: window distance plus the bits RS corrected (plus 17 for a
+//   codeword beyond correction). A reading one byte off corrects a whole
+//   byte per codeword and its window is 4 bits or more further; by window
+//   distance alone, 3 unlucky bit errors in 16 bytes would decide. The
+//   neighbourhood spans a preamble because any all-55 window is 8 bits away
+//   and qualifies with two bit errors: a shorter one could hold only such a
+//   false start, a few bytes early, and RS would confirm it.
+// - A codeword whose decoding shows it was displaced by a byte slip (its
+//   ends, or its corrections, match a rotation of it better than where it
+//   was read) counts as beyond correction; so does codeword 1 after a slip
+//   inside it, unless its corrections show the slip left it whole.
+// - One codeword alone confirms a start only under a window within 3 bits
+//   and outside the codewords of a frame that failed: padding lines up with
+//   padding and with the next preamble, so a failed frame holds windows from
+//   which a codeword reads as a rotation of real data and decodes.
+// These stop short of the impossible: a slip inside repeated data that
+// leaves the received bytes a codeword, or that changes no byte RS can see,
+// is not detected.
+//
+// When nothing in a neighbourhood confirms, one "uncorrectable" frame is
+// reported at the lowest-distance candidate, and later failing candidates
+// that start inside its codewords are dropped silently; one there that
+// confirms is still emitted, which is how the frame after lost bytes is
+// found. That report waits until scanning is 90 bytes past it: if a good
+// frame's preamble turns out to cover it, it was a false start and is
+// dropped.
+//
+// Plain C++20, no Qt. Not thread-safe; the handler must not call back into the
+// synchroniser. Memory is fixed: an 8 KiB buffer allocated once.
+#pragma once
+
+#include "codec/frame/Frame.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace rcm {
+
+struct SyncedFrame {
+    // Stream offset of the frame's first preamble byte, i.e. codeword 1's
+    // offset - 90. Negative when the stream began inside this frame's
+    // preamble (at least its last 16 bytes must have been received).
+    std::int64_t offset = 0;
+    // The frame as received: 600 bytes, or fewer when offset < 0 (then it
+    // starts at stream offset 0). The last 510 bytes are always the two
+    // codewords. Valid only during the callback.
+    std::span<const std::uint8_t> raw;
+    DecodedBlocks blocks;       // corrected1/2 = -1 where a codeword is beyond correction
+    int preambleBitErrors = 0;  // bits the 16 bytes before codeword 1 differ from 55 x14, 0F, 0F
+    bool ok() const { return blocks.ok(); }
+};
+
+class StreamSync {
+public:
+    using Handler = std::function<void(const SyncedFrame&)>;
+
+    static constexpr std::size_t kWindowSize = 16;
+    static constexpr int kMaxWindowBitErrors = 6;
+    static constexpr std::size_t kNeighbourhood = kPreambleSize;  // candidates q .. q+89
+    // Upper bound of bufferedBytes() between feed() calls: a neighbourhood,
+    // the frame after it and 16 bytes beyond (to see whether codeword 2 was
+    // displaced by a slip in codeword 1), plus the preamble of a failed frame
+    // whose report waits to see whether it was only a false start inside a
+    // real preamble.
+    static constexpr std::size_t kMaxCarried = 2 * kPreambleSize + kFrameSize + rs::kMaxCorrectable;
+
+    struct Stats {
+        std::uint64_t bytesIn = 0;
+        std::uint64_t bytesSkipped = 0;  // in no emitted frame (good or uncorrectable)
+        std::uint64_t framesDecoded = 0;        // both codewords decoded
+        std::uint64_t framesUncorrectable = 0;  // emitted with at least one codeword beyond correction
+        std::uint64_t corrected1 = 0;           // bytes RS corrected in codeword 1, summed over frames
+        std::uint64_t corrected2 = 0;
+    };
+
+    explicit StreamSync(Handler onFrame);
+
+    // Frames are reported in stream order, each as soon as the bytes that
+    // decide it have arrived (up to 615 bytes after its codewords begin, 510
+    // on a clean continuous stream).
+    void feed(std::span<const std::uint8_t> bytes);
+    // End of stream: decides what the bytes received allow (a last frame
+    // whose 510 codeword bytes are all there is reported) and counts the rest
+    // as skipped. A later feed() starts a new segment: offsets keep counting,
+    // but no frame spans the break.
+    void flush();
+    // Forgets everything, statistics included; offsets restart at 0.
+    void reset();
+
+    const Stats& stats() const { return stats_; }
+    // Received bytes a later decision may still need (<= kMaxCarried after
+    // feed() returns). The buffer itself is a fixed 8 KiB.
+    std::size_t bufferedBytes() const;
+
+private:
+    void process(bool final);
+    bool tryExpected(std::uint64_t c);
+    bool decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::uint64_t end);
+    void confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks);
+    void emitFrame(std::uint64_t c, int distance, const DecodedBlocks& blocks);
+    void reportPending();
+    void accountSkippedUpTo(std::uint64_t offset);
+    void compact();
+    std::uint64_t keepFrom() const;
+    int distance(std::uint64_t c) const;
+    const std::uint8_t* at(std::uint64_t offset) const { return buf_.data() + (offset - base_); }
+
+    Handler handler_;
+    std::vector<std::uint8_t> buf_;
+    std::uint64_t base_ = 0;     // stream offset of buf_[0]
+    std::size_t len_ = 0;
+    std::uint64_t scan_ = kWindowSize;  // next candidate not yet examined
+    std::uint64_t expect_ = 0;   // where the next frame is likely to start (0: no guess)
+    std::uint64_t failEnd_ = 0;  // failing candidates before this are dropped silently
+    std::uint64_t covered_ = 0;  // bytes before this are in an emitted frame or counted as skipped
+    bool hasPending_ = false;    // a failed frame waiting to be reported
+    std::uint64_t pendingC_ = 0;
+    int pendingDistance_ = 0;
+    DecodedBlocks pendingBlocks_;
+    Stats stats_;
+};
+
+}  // namespace rcm

@@ -1,0 +1,186 @@
+#include "codec/message/ItemTable.h"
+
+#include <stdexcept>
+
+namespace rcm {
+namespace {
+
+// Code names, indexed by the two-bit code 00, 01, 10, 11.
+constexpr std::array<std::string_view, 4> kControl{"", "AUTO", "GCS", "RC"};
+constexpr std::array<std::string_view, 4> kSlave{"", "NO_SLAVE", "MASTER_SLAVE", ""};
+constexpr std::array<std::string_view, 4> kOnOff{"", "OFF", "ON", ""};
+constexpr std::array<std::string_view, 4> kWheel{"", "OUT", "RETRACTED", ""};
+constexpr std::array<std::string_view, 4> kDump{"", "NO_DUMP", "DUMP", ""};
+constexpr std::array<std::string_view, 4> kFacility{"", "DISABLED", "ENABLED", ""};
+constexpr std::array<std::string_view, 4> kPhoto{"", "NONE", "TAKE", ""};
+
+constexpr FieldInfo kEngStatus[] = {
+    {"control", kControl, "Control source"},
+    {"slave", kSlave, "Master engine 1 + slave engine 3"},
+};
+constexpr FieldInfo kFlapStatus[] = {
+    {"control", kControl, "Control source"},
+    {"slave_aileron", kSlave, "Master LH + slave RH aileron"},
+};
+constexpr FieldInfo kFuelDump[] = {
+    {"facility", kFacility, "Fuel dump facility"},
+    {"tank1", kDump, "Dump tank 1"},
+    {"tank2", kDump, "Dump tank 2"},
+    {"tank3", kDump, "Dump tank 3"},
+};
+constexpr FieldInfo kWheels[] = {
+    {"LHS", kWheel, "Left wheel"},
+    {"RHS", kWheel, "Right wheel"},
+    {"NOSE", kWheel, "Nose wheel"},
+    {"TAIL", kWheel, "Tail wheel"},
+};
+constexpr FieldInfo kLights[] = {
+    {"wing_RHS", kOnOff, "Right wing light"},
+    {"wing_LHS", kOnOff, "Left wing light"},
+    {"tail", kOnOff, "Tail light"},
+    {"wheel_brake", kOnOff, "Wheel brake"},
+};
+constexpr FieldInfo kRadioControl[] = {
+    {"receiver", kOnOff, "Receiver"},
+    {"transmitter", kOnOff, "Transmitter"},
+};
+constexpr FieldInfo kPhotoField[] = {
+    {"photo", kPhoto, "Take one photograph"},
+};
+
+using enum ItemId;
+using enum ValueKind;
+using enum UnitKind;
+
+constexpr std::int64_t kCountryMax = 1929;  // the seed's largest dialling code
+
+// Canonical order: sections as PROFILE.md lists them, key item first in each
+// repeated unit, the unit's other items in ascending Item_ID order.
+constexpr ItemInfo kItems[] = {
+    {ID_msg, "ID_msg", 3, Unsigned, 0, 0xFFFFFF, 1, "", Header, "Message ID", {}},
+    {ID_UA_source, "ID_UA_source", 4, Station, 1, kCountryMax, 1, "", Header, "Aircraft ID", {}},
+    {time_UTC, "time_UTC", 3, Time, 0, 235959, 1, "hh:mm:ss", Header, "Time (UTC)", {}},
+    {date_UTC, "date_UTC", 3, Date, 0, 991231, 1, "yymmdd", Header, "Date (UTC)", {}},
+    {ID_BLK12_format, "ID_BLK12_format", 2, BytePair, 0, 255, 1, "", Header, "Block 1 and 2 format IDs", {}},
+    {ID_GCS_destination, "ID_GCS_destination", 4, Station, 1, kCountryMax, 1, "", Header, "GCS destination", {}},
+    {ID_GCS_backup, "ID_GCS_backup", 4, Station, 1, kCountryMax, 1, "", Header, "GCS backup", {}},
+
+    {eng_ID, "eng_ID", 1, Unsigned, 0, 255, 1, "", Engine, "Engine ID", {}, true},
+    {eng_status, "eng_status", 1, Fields, 0, 255, 1, "", Engine, "Engine status", kEngStatus},
+    {eng_prop_pitch, "eng_prop_pitch", 1, Unsigned, 0, 255, 1, "", Engine, "Propeller pitch", {}},
+    {eng_carb_SET, "eng_carb_SET", 1, Unsigned, 0, 255, 1, "", Engine, "Carburettor setting", {}},
+
+    {FLAP_status, "FLAP_status", 1, Fields, 0, 255, 1, "", Flaps, "Flaps status", kFlapStatus},
+    {F_aileron_LHS_set, "F_aileron_LHS_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Left aileron", {}},
+    {F_aileron_RHS_set, "F_aileron_RHS_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Right aileron", {}},
+    {F_lift_set, "F_lift_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Lift flaps", {}},
+    {F_rudder_set, "F_rudder_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Rudder", {}},
+    {F_elev_set, "F_elev_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Elevator", {}},
+    {F_airbrake_set, "F_airbrake_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Airbrake", {}},
+
+    {ENABLE_fuel_dump, "ENABLE_fuel_dump", 1, Fields, 0, 255, 1, "", FcuGeneral, "Fuel dump", kFuelDump},
+
+    {land_wheels, "land_wheels", 1, Fields, 0, 255, 1, "", Settings, "Landing gear", kWheels},
+    {lights, "lights", 1, Fields, 0, 255, 1, "", Settings, "Lights and wheel brake", kLights},
+    {setting_72, "setting_72", 1, Raw, 0, 255, 1, "", Settings, "Reserved setting 72", {}},
+
+    {system_ID, "system_ID", 8, Text, 0, 8, 1, "", Radio, "System ID", {}, true},
+    {receiver_control, "receiver_control", 1, Fields, 0, 255, 1, "", Radio, "Receiver and transmitter", kRadioControl},
+    {Rx_freq, "Rx_freq", 4, Unsigned, 0, 0xFFFFFFFF, 1, "kHz", Radio, "Receive frequency", {}},
+    {Tx_freq, "Tx_freq", 4, Unsigned, 0, 0xFFFFFFFF, 1, "kHz", Radio, "Transmit frequency", {}},
+    {Tx_OP_power, "Tx_OP_power", 1, Unsigned, 0, 255, 1, "dBm", Radio, "Transmit power", {}},
+
+    {SA_zoom_LHS_cam, "SA_zoom_LHS_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Left camera zoom", {}},
+    {SA_zoom_FWD_cam, "SA_zoom_FWD_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Forward camera zoom", {}},
+    {SA_zoom_RHS_cam, "SA_zoom_RHS_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Right camera zoom", {}},
+
+    {cam_ID, "cam_ID", 4, CameraId, 0, 255, 1, "", Camera, "Camera ID", {}, true},
+    {cam_mag_compass, "cam_mag_compass", 2, Unsigned, 0, 35999, 100, "deg", Camera, "Compass bearing", {}},
+    {cam_elev, "cam_elev", 2, Signed, -32767, 32767, 100, "deg", Camera, "Elevation", {}},
+    {cam_zoom_set, "cam_zoom_set", 1, Unsigned, 0, 255, 1, "", Camera, "Zoom", {}},
+    {take_one_photo, "take_one_photo", 1, Fields, 0, 255, 1, "", Camera, "Take one photo", kPhotoField},
+    {cam_GCS_destination, "ID_GCS_destination", 4, Station, 1, kCountryMax, 1, "", Camera, "Imagery destination GCS", {}},
+    {cam_GCS_backup, "ID_GCS_backup", 4, Station, 1, kCountryMax, 1, "", Camera, "Imagery backup GCS", {}},
+};
+
+constexpr int kItemCount = static_cast<int>(std::size(kItems));
+
+// Item_ID -> index in kItems, -1 for bytes that are not items; built at
+// compile time because the decoder consults it for every byte it reads.
+constexpr std::array<std::int16_t, 256> kIndexById = [] {
+    std::array<std::int16_t, 256> byId{};
+    byId.fill(-1);
+    for (int i = 0; i < kItemCount; ++i)
+        byId[static_cast<std::uint8_t>(kItems[i].id)] = static_cast<std::int16_t>(i);
+    return byId;
+}();
+
+struct UnitNames {
+    std::string_view section;
+    std::string_view parent;
+    std::string_view label;
+};
+constexpr UnitNames kUnitNames[kUnitKindCount] = {
+    {"HEADER", "", "Header"},
+    {"engine", "FCU", "Engine"},
+    {"flaps", "FCU", "Flaps"},
+    {"FCU_general", "FCU", "Fuel dump"},
+    {"SETTINGS", "", "Settings"},
+    {"comms_system", "COMMS", "Radio"},
+    {"SENSE", "", "Sense and avoid"},
+    {"camera", "PAYLOAD", "Camera"},
+};
+
+}  // namespace
+
+std::span<const ItemInfo> itemTable() { return kItems; }
+
+const ItemInfo* findItem(std::uint8_t id)
+{
+    const int index = kIndexById[id];
+    return index < 0 ? nullptr : &kItems[index];
+}
+
+const ItemInfo& itemInfo(ItemId id)
+{
+    const ItemInfo* info = findItem(id);
+    if (!info)
+        throw std::logic_error("itemInfo: not an item ID");
+    return *info;
+}
+
+const ItemInfo* findItem(UnitKind owner, std::string_view name)
+{
+    for (const ItemInfo& item : kItems)
+        if (item.owner == owner && item.name == name)
+            return &item;
+    return nullptr;
+}
+
+int canonicalRank(ItemId id) { return kIndexById[static_cast<std::uint8_t>(id)]; }
+
+std::optional<ItemId> unitKey(UnitKind kind)
+{
+    switch (kind) {
+    case Engine: return eng_ID;
+    case Radio: return system_ID;
+    case Camera: return cam_ID;
+    default: return std::nullopt;
+    }
+}
+
+bool isRepeated(UnitKind kind) { return unitKey(kind).has_value(); }
+
+std::string_view sectionName(UnitKind kind) { return kUnitNames[static_cast<int>(kind)].section; }
+std::string_view parentSectionName(UnitKind kind) { return kUnitNames[static_cast<int>(kind)].parent; }
+std::string_view unitLabel(UnitKind kind) { return kUnitNames[static_cast<int>(kind)].label; }
+
+std::optional<UnitKind> unitKindFromSection(std::string_view name)
+{
+    for (int i = 0; i < kUnitKindCount; ++i)
+        if (kUnitNames[i].section == name)
+            return static_cast<UnitKind>(i);
+    return std::nullopt;
+}
+
+}  // namespace rcm

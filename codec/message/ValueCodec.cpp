@@ -1,0 +1,227 @@
+#include "codec/message/ValueCodec.h"
+
+#include <cstdio>
+
+namespace rcm {
+namespace {
+
+std::string rangeError(const ItemInfo& item, std::int64_t v, std::int64_t min, std::int64_t max, const char* what = nullptr)
+{
+    std::string subject = what ? std::string(what) + " " : std::string();
+    if (v < min)
+        return subject + formatScaled(item, v) + " is below the minimum " + formatScaled(item, min) + " by " +
+               formatScaled(item, min - v);
+    if (v > max)
+        return subject + formatScaled(item, v) + " is above the maximum " + formatScaled(item, max) + " by " +
+               formatScaled(item, v - max);
+    return {};
+}
+
+std::string plainRange(std::int64_t v, std::int64_t min, std::int64_t max, const char* what)
+{
+    if (v >= min && v <= max)
+        return {};
+    const bool below = v < min;
+    return std::string(what) + " " + std::to_string(v) + (below ? " is below the minimum " : " is above the maximum ") +
+           std::to_string(below ? min : max) + " by " + std::to_string(below ? min - v : v - max);
+}
+
+bool printableAscii(const std::string& s)
+{
+    for (unsigned char c : s)
+        if (c < 0x20 || c > 0x7E)
+            return false;
+    return true;
+}
+
+int daysInMonth(int yy, int mm)
+{
+    static constexpr int days[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    // Two-digit years: 2000-2099, where every fourth year is a leap year.
+    return mm == 2 && yy % 4 == 0 ? 29 : days[mm - 1];
+}
+
+}  // namespace
+
+std::string formatScaled(const ItemInfo& item, std::int64_t number)
+{
+    if (item.scale != 100)
+        return std::to_string(number);
+    const bool negative = number < 0;
+    const std::uint64_t mag = negative ? static_cast<std::uint64_t>(-number) : static_cast<std::uint64_t>(number);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%s%llu.%02llu", negative ? "-" : "", static_cast<unsigned long long>(mag / 100),
+                  static_cast<unsigned long long>(mag % 100));
+    return buf;
+}
+
+void checkFields(const ItemInfo& item, std::uint8_t byte, std::vector<FieldProblem>& out)
+{
+    const int n = static_cast<int>(item.fields.size());
+    for (int f = 0; f < n; ++f) {
+        const unsigned code = fieldCode(byte, f);
+        if (!fieldCodeValid(item.fields[f], code))
+            out.push_back({std::string(item.fields[f].name),
+                           std::string("code ") + (code == 0 ? "00" : "11") + " means data corruption"});
+    }
+    const unsigned reservedMask = n >= 4 ? 0u : (0xFFu >> (2 * n));
+    if (byte & reservedMask) {
+        char buf[80];
+        std::snprintf(buf, sizeof buf, "reserved bits are not 0 (byte 0x%02X, mask 0x%02X)", byte, reservedMask);
+        out.push_back({"reserved bits", buf});
+    }
+}
+
+std::string checkValue(const ItemInfo& item, const Value& value)
+{
+    switch (item.kind) {
+    case ValueKind::Unsigned:
+    case ValueKind::Signed:
+        return rangeError(item, value.number, item.min, item.max);
+    case ValueKind::Raw:
+        return plainRange(value.number, 0, 255, "value");
+    case ValueKind::Station: {
+        std::string e = plainRange(value.number, item.min, item.max, "country dialling code");
+        if (e.empty())
+            e = plainRange(value.second, 0, 65535, "unit number");
+        return e;
+    }
+    case ValueKind::BytePair: {
+        std::string e = plainRange(value.number, 0, 255, "first format ID");
+        if (e.empty())
+            e = plainRange(value.second, 0, 255, "second format ID");
+        return e;
+    }
+    case ValueKind::Time: {
+        // Checked digit pair by digit pair so the reason names the part that is wrong.
+        if (value.number < 0)
+            return plainRange(value.number, 0, 235959, "time hhmmss");
+        const std::int64_t hh = value.number / 10000, mm = value.number / 100 % 100, ss = value.number % 100;
+        if (hh > 23)
+            return plainRange(hh, 0, 23, "hours");
+        if (mm > 59)
+            return plainRange(mm, 0, 59, "minutes");
+        return plainRange(ss, 0, 59, "seconds");
+    }
+    case ValueKind::Date: {
+        if (value.number < 0)
+            return plainRange(value.number, 0, 991231, "date yymmdd");
+        const std::int64_t yy = value.number / 10000, mm = value.number / 100 % 100, dd = value.number % 100;
+        if (yy > 99)
+            return plainRange(yy, 0, 99, "year");
+        if (mm < 1 || mm > 12)
+            return plainRange(mm, 1, 12, "month");
+        return plainRange(dd, 1, daysInMonth(static_cast<int>(yy), static_cast<int>(mm)), "day");
+    }
+    case ValueKind::Fields: {
+        if (value.number < 0 || value.number > 255)
+            return plainRange(value.number, 0, 255, "byte");
+        std::vector<FieldProblem> problems;
+        checkFields(item, static_cast<std::uint8_t>(value.number), problems);
+        if (problems.empty())
+            return {};
+        return "field " + problems.front().field + ": " + problems.front().reason;
+    }
+    case ValueKind::Text:
+        if (value.text.size() > item.size)
+            return "text \"" + value.text + "\" is " + std::to_string(value.text.size()) + " characters, " +
+                   std::to_string(value.text.size() - item.size) + " more than the " + std::to_string(item.size) +
+                   " allowed";
+        if (!printableAscii(value.text))
+            return "text must be printable ASCII";
+        // Trailing spaces are the padding on the wire: they would not come back.
+        if (!value.text.empty() && value.text.back() == ' ')
+            return "text \"" + value.text + "\" ends in a space, which the wire cannot keep (spaces pad the field)";
+        return {};
+    case ValueKind::CameraId:
+        if (value.text.size() != 3 || !printableAscii(value.text))
+            return "maker must be exactly 3 printable ASCII characters, got \"" + value.text + "\"";
+        return plainRange(value.number, 0, 255, "camera number");
+    }
+    return {};
+}
+
+void packValue(const ItemInfo& item, const Value& value, std::uint8_t* out)
+{
+    auto putBE = [](std::uint8_t* p, std::uint64_t v, int n) {
+        for (int i = n - 1; i >= 0; --i) {
+            p[i] = static_cast<std::uint8_t>(v);
+            v >>= 8;
+        }
+    };
+    switch (item.kind) {
+    case ValueKind::Unsigned:
+    case ValueKind::Signed:
+    case ValueKind::Time:
+    case ValueKind::Date:
+    case ValueKind::Fields:
+    case ValueKind::Raw:
+        putBE(out, static_cast<std::uint64_t>(value.number), item.size);
+        break;
+    case ValueKind::Station:
+        putBE(out, static_cast<std::uint64_t>(value.number), 2);
+        putBE(out + 2, static_cast<std::uint64_t>(value.second), 2);
+        break;
+    case ValueKind::BytePair:
+        out[0] = static_cast<std::uint8_t>(value.number);
+        out[1] = static_cast<std::uint8_t>(value.second);
+        break;
+    case ValueKind::Text:
+        for (std::size_t i = 0; i < item.size; ++i)
+            out[i] = i < value.text.size() ? static_cast<std::uint8_t>(value.text[i]) : ' ';
+        break;
+    case ValueKind::CameraId:
+        for (std::size_t i = 0; i < 3; ++i)
+            out[i] = static_cast<std::uint8_t>(value.text[i]);
+        out[3] = static_cast<std::uint8_t>(value.number);
+        break;
+    }
+}
+
+Value unpackValue(const ItemInfo& item, const std::uint8_t* in)
+{
+    auto getBE = [](const std::uint8_t* p, int n) {
+        std::uint64_t v = 0;
+        for (int i = 0; i < n; ++i)
+            v = (v << 8) | p[i];
+        return v;
+    };
+    Value v;
+    switch (item.kind) {
+    case ValueKind::Unsigned:
+    case ValueKind::Time:
+    case ValueKind::Date:
+    case ValueKind::Fields:
+    case ValueKind::Raw:
+        v.number = static_cast<std::int64_t>(getBE(in, item.size));
+        break;
+    case ValueKind::Signed: {
+        const std::uint64_t raw = getBE(in, item.size);
+        const std::uint64_t sign = 1ull << (8 * item.size - 1);
+        v.number = static_cast<std::int64_t>(raw ^ sign) - static_cast<std::int64_t>(sign);
+        break;
+    }
+    case ValueKind::Station:
+        v.number = static_cast<std::int64_t>(getBE(in, 2));
+        v.second = static_cast<std::int64_t>(getBE(in + 2, 2));
+        break;
+    case ValueKind::BytePair:
+        v.number = in[0];
+        v.second = in[1];
+        break;
+    case ValueKind::Text: {
+        std::size_t n = item.size;
+        while (n > 0 && in[n - 1] == ' ')
+            --n;
+        v.text.assign(reinterpret_cast<const char*>(in), n);
+        break;
+    }
+    case ValueKind::CameraId:
+        v.text.assign(reinterpret_cast<const char*>(in), 3);
+        v.number = in[3];
+        break;
+    }
+    return v;
+}
+
+}  // namespace rcm

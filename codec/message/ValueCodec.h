@@ -1,0 +1,33 @@
+// Checking, packing and unpacking one item's value, driven by its ItemInfo.
+#pragma once
+
+#include "codec/message/ItemTable.h"
+#include "codec/message/Message.h"
+
+#include <cstdint>
+#include <string>
+
+namespace rcm {
+
+// Empty when `value` is valid for `item`; otherwise what is wrong and by how
+// much ("300 is above the maximum 255 by 45").
+std::string checkValue(const ItemInfo& item, const Value& value);
+
+// Writes item.size bytes. The value must have passed checkValue.
+void packValue(const ItemInfo& item, const Value& value, std::uint8_t* out);
+
+// Reads item.size bytes. The result may be invalid; run checkValue on it.
+Value unpackValue(const ItemInfo& item, const std::uint8_t* in);
+
+// A number in the item's text units: "-54.64" for hundredths, "120" otherwise.
+std::string formatScaled(const ItemInfo& item, std::int64_t number);
+
+// For Fields items: the diagnostics of each corrupt field and of set reserved
+// bits, as (field label or "reserved bits", reason) pairs appended to `out`.
+struct FieldProblem {
+    std::string field;
+    std::string reason;
+};
+void checkFields(const ItemInfo& item, std::uint8_t byte, std::vector<FieldProblem>& out);
+
+}  // namespace rcm

@@ -1,0 +1,299 @@
+#include "codec/voice/VoiceCodec.h"
+
+#include <codec2/codec2.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+
+namespace rcm::voice {
+namespace {
+
+constexpr std::size_t kDataBytes = 10;  // sync, kind and sequence, payload: what RS protects
+constexpr std::size_t kParityBytes = kFrameBytes - kDataBytes;
+static_assert(kParityBytes == 2);
+constexpr std::uint8_t kKindMask = 0xC0;
+constexpr std::uint8_t kSequenceMask = 0x3F;
+static_assert(kSequenceMask + 1 == kSequenceModulus);
+
+// GF(256) with the field polynomial x^8+x^4+x^3+x^2+1 (0x11D), primitive
+// element x: the field of most byte-wide Reed-Solomon codes.
+struct Field {
+    std::array<std::uint8_t, 512> exp{};
+    std::array<int, 256> log{};
+    constexpr Field()
+    {
+        int x = 1;
+        for (int i = 0; i < 255; ++i) {
+            exp[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(x);
+            log[static_cast<std::size_t>(x)] = i;
+            x <<= 1;
+            if (x & 0x100)
+                x ^= 0x11D;
+        }
+        for (std::size_t i = 255; i < exp.size(); ++i)
+            exp[i] = exp[i - 255];
+    }
+    constexpr std::uint8_t mul(std::uint8_t a, std::uint8_t b) const
+    {
+        return a == 0 || b == 0 ? 0 : exp[static_cast<std::size_t>(log[a] + log[b])];
+    }
+};
+constexpr Field kField;
+
+// Generator (x + a)(x + a^2) = x^2 + g1 x + g0, a the primitive element.
+constexpr std::uint8_t kG1 = kField.exp[1] ^ kField.exp[2];
+constexpr std::uint8_t kG0 = kField.exp[3];
+
+// Bytes 10, 11: the remainder of data(x) x^2 modulo the generator, byte 0
+// the highest power.
+void addParity(FrameSpan frame)
+{
+    std::uint8_t r1 = 0;
+    std::uint8_t r0 = 0;
+    for (std::size_t i = 0; i < kDataBytes; ++i) {
+        const std::uint8_t feedback = frame[i] ^ r1;
+        r1 = r0 ^ kField.mul(feedback, kG1);
+        r0 = kField.mul(feedback, kG0);
+    }
+    frame[kDataBytes] = r1;
+    frame[kDataBytes + 1] = r0;
+}
+
+// Corrects one wrong byte: -1 when the syndromes show more.
+int correct(std::array<std::uint8_t, kFrameBytes>& cw)
+{
+    std::uint8_t s1 = 0;  // cw(a)
+    std::uint8_t s2 = 0;  // cw(a^2)
+    for (const std::uint8_t c : cw) {
+        s1 = kField.mul(s1, kField.exp[1]) ^ c;
+        s2 = kField.mul(s2, kField.exp[2]) ^ c;
+    }
+    if (s1 == 0 && s2 == 0)
+        return 0;
+    if (s1 == 0 || s2 == 0)
+        return -1;
+    // One error e at power i: s1 = e a^i, s2 = e a^2i, so a^i = s2 / s1.
+    const int i = (kField.log[s2] - kField.log[s1] + 255) % 255;
+    if (i >= static_cast<int>(kFrameBytes))
+        return -1;
+    const std::uint8_t e = kField.exp[static_cast<std::size_t>((kField.log[s1] - i + 255) % 255)];
+    cw[kFrameBytes - 1 - static_cast<std::size_t>(i)] ^= e;
+    return 1;
+}
+
+CODEC2* createCodec2()
+{
+    CODEC2* c = codec2_create(CODEC2_MODE_3200);
+    assert(c && codec2_samples_per_frame(c) == static_cast<int>(kFrameSamples) &&
+           codec2_bytes_per_frame(c) == static_cast<int>(kCodec2Bytes));
+    return c;
+}
+
+}  // namespace
+
+bool parseFrame(std::span<const std::uint8_t, kFrameBytes> bytes, VoiceFrame& frame)
+{
+    std::array<std::uint8_t, kFrameBytes> cw;
+    std::memcpy(cw.data(), bytes.data(), kFrameBytes);
+    const int corrected = correct(cw);
+    if (corrected < 0 || cw[0] != kSyncByte)
+        return false;
+    const auto kind = static_cast<std::uint8_t>(cw[1] & kKindMask);
+    if (kind != static_cast<std::uint8_t>(FrameKind::Speech) && kind != static_cast<std::uint8_t>(FrameKind::Idle))
+        return false;
+    frame.kind = static_cast<FrameKind>(kind);
+    frame.sequence = cw[1] & kSequenceMask;
+    std::memcpy(frame.payload.data(), cw.data() + 2, kCodec2Bytes);
+    frame.corrected = corrected;
+    return true;
+}
+
+VoiceEncoder::VoiceEncoder() : m_codec2(createCodec2(), codec2_destroy) {}
+
+VoiceEncoder::~VoiceEncoder() = default;
+
+void VoiceEncoder::frame(FrameKind kind, const std::uint8_t* payload, FrameSpan out)
+{
+    out[0] = kSyncByte;
+    out[1] = static_cast<std::uint8_t>(kind) | m_sequence;
+    std::memcpy(out.data() + 2, payload, kCodec2Bytes);
+    addParity(out);
+    m_sequence = (m_sequence + 1) & kSequenceMask;
+}
+
+void VoiceEncoder::speechFrame(PcmFrame pcm, FrameSpan out)
+{
+    std::array<short, kFrameSamples> speech;
+    std::copy(pcm.begin(), pcm.end(), speech.begin());
+    std::array<unsigned char, kCodec2Bytes> bits;
+    codec2_encode(m_codec2.get(), bits.data(), speech.data());
+    frame(FrameKind::Speech, bits.data(), out);
+}
+
+void VoiceEncoder::idleFrame(FrameSpan out)
+{
+    const std::array<std::uint8_t, kCodec2Bytes> zeros{};
+    frame(FrameKind::Idle, zeros.data(), out);
+}
+
+void VoiceEncoder::encode(std::span<const std::int16_t> pcm, std::vector<std::uint8_t>& out)
+{
+    while (!pcm.empty()) {
+        const std::size_t n = std::min(pcm.size(), kFrameSamples - m_pending);
+        std::copy_n(pcm.begin(), n, m_buffer.begin() + static_cast<std::ptrdiff_t>(m_pending));
+        m_pending += n;
+        pcm = pcm.subspan(n);
+        if (m_pending == kFrameSamples) {
+            out.resize(out.size() + kFrameBytes);
+            speechFrame(m_buffer, FrameSpan(out.data() + out.size() - kFrameBytes, kFrameBytes));
+            m_pending = 0;
+        }
+    }
+}
+
+void VoiceEncoder::finish(std::vector<std::uint8_t>& out)
+{
+    if (m_pending == 0)
+        return;
+    std::fill(m_buffer.begin() + static_cast<std::ptrdiff_t>(m_pending), m_buffer.end(), std::int16_t{0});
+    out.resize(out.size() + kFrameBytes);
+    speechFrame(m_buffer, FrameSpan(out.data() + out.size() - kFrameBytes, kFrameBytes));
+    m_pending = 0;
+}
+
+VoiceDecoder::VoiceDecoder() : m_codec2(createCodec2(), codec2_destroy) {}
+
+VoiceDecoder::~VoiceDecoder() = default;
+
+void VoiceDecoder::reset()
+{
+    m_codec2.reset(createCodec2());
+    m_buffer.clear();
+    m_base = 0;
+    m_tracking = false;
+    m_hasLast = false;
+    m_lastEnd = 0;
+    m_lastSequence = 0;
+    m_expect = 0;
+    m_misses = 0;
+    m_scan = 0;
+    m_stats = Stats{};
+}
+
+void VoiceDecoder::decode(std::span<const std::uint8_t> bytes, std::vector<std::int16_t>& pcm)
+{
+    m_stats.bytesIn += bytes.size();
+    // In slices, so that a large piece costs no more memory than a small one.
+    constexpr std::size_t kSlice = 1024;
+    while (!bytes.empty()) {
+        const std::size_t n = std::min(bytes.size(), kSlice);
+        m_buffer.insert(m_buffer.end(), bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(n));
+        bytes = bytes.subspan(n);
+        process(pcm);
+        // Kept: in step, from the last frame taken, where hunting would
+        // start again; hunting, from the next offset to try.
+        const std::uint64_t keep = std::max(m_base, m_tracking ? m_lastEnd : m_scan);
+        const std::size_t drop = static_cast<std::size_t>(std::min<std::uint64_t>(keep - m_base, m_buffer.size()));
+        m_buffer.erase(m_buffer.begin(), m_buffer.begin() + static_cast<std::ptrdiff_t>(drop));
+        m_base += drop;
+    }
+}
+
+bool VoiceDecoder::frameAt(std::uint64_t offset, VoiceFrame& frame) const
+{
+    return parseFrame(std::span<const std::uint8_t, kFrameBytes>(at(offset), kFrameBytes), frame);
+}
+
+// Frames missing between the last frame taken and one at `offset` with
+// `sequence`: the count the sequence gives (modulo 64) nearest to what the
+// bytes in between would hold.
+std::uint64_t VoiceDecoder::framesLostBefore(std::uint64_t offset, std::uint8_t sequence) const
+{
+    if (!m_hasLast)
+        return 0;
+    const std::int64_t byBytes = static_cast<std::int64_t>((offset - m_lastEnd + kFrameBytes / 2) / kFrameBytes);
+    const std::int64_t bySequence = (sequence - m_lastSequence - 1 + 2 * kSequenceModulus) % kSequenceModulus;
+    const std::int64_t turns = (byBytes - bySequence + kSequenceModulus / 2) / kSequenceModulus;
+    return static_cast<std::uint64_t>(std::max<std::int64_t>(0, bySequence + turns * kSequenceModulus));
+}
+
+void VoiceDecoder::take(std::uint64_t offset, const VoiceFrame& frame, std::uint64_t lost,
+                        std::vector<std::int16_t>& pcm)
+{
+    m_stats.bytesSkipped += offset - (m_hasLast ? m_lastEnd : 0);
+    m_stats.lostFrames += lost;
+    pcm.resize(pcm.size() + lost * kFrameSamples, 0);
+    const std::size_t at = pcm.size();
+    pcm.resize(at + kFrameSamples, 0);
+    if (frame.kind == FrameKind::Speech) {
+        std::array<short, kFrameSamples> speech;
+        codec2_decode(m_codec2.get(), speech.data(), frame.payload.data());
+        std::copy(speech.begin(), speech.end(), pcm.begin() + static_cast<std::ptrdiff_t>(at));
+        ++m_stats.speechFrames;
+    } else {
+        ++m_stats.idleFrames;
+    }
+    if (frame.corrected > 0)
+        ++m_stats.correctedFrames;
+    m_hasLast = true;
+    m_lastEnd = offset + kFrameBytes;
+    m_lastSequence = frame.sequence;
+    m_tracking = true;
+    m_expect = m_lastEnd;
+    m_misses = 0;
+}
+
+void VoiceDecoder::process(std::vector<std::int16_t>& pcm)
+{
+    const std::uint64_t end = m_base + m_buffer.size();
+    VoiceFrame frame;
+    for (;;) {
+        if (m_tracking) {
+            if (m_expect + kFrameBytes > end)
+                return;
+            if (frameAt(m_expect, frame)) {
+                take(m_expect, frame, framesLostBefore(m_expect, frame.sequence), pcm);
+                continue;
+            }
+            m_expect += kFrameBytes;
+            if (++m_misses >= kMaxMisses) {
+                // Bytes lost or inserted, most likely: look again from the
+                // last frame taken.
+                m_tracking = false;
+                m_scan = m_lastEnd;
+                ++m_stats.resyncs;
+            }
+            continue;
+        }
+
+        bool taken = false;
+        for (; m_scan + kFrameBytes <= end; ++m_scan) {
+            if (*at(m_scan) != kSyncByte || !frameAt(m_scan, frame))
+                continue;
+            const std::uint64_t lost = framesLostBefore(m_scan, frame.sequence);
+            const std::uint64_t byBytes = m_hasLast ? (m_scan - m_lastEnd + kFrameBytes / 2) / kFrameBytes : 0;
+            // The sequence agrees with the bytes in between: a 1 in 2^12
+            // chance for a false frame (sync, RS, kind), less 3 in 64.
+            if (m_hasLast && lost + 1 >= byBytes && lost <= byBytes + 1) {
+                take(m_scan, frame, lost, pcm);
+                taken = true;
+                break;
+            }
+            // Otherwise the next frame must follow, in sequence.
+            if (m_scan + 2 * kFrameBytes > end)
+                return;  // wait for it
+            VoiceFrame next;
+            if (*at(m_scan + kFrameBytes) == kSyncByte && frameAt(m_scan + kFrameBytes, next) &&
+                next.sequence == ((frame.sequence + 1) & kSequenceMask)) {
+                take(m_scan, frame, lost, pcm);
+                taken = true;
+                break;
+            }
+        }
+        if (!taken)
+            return;
+    }
+}
+
+}  // namespace rcm::voice

@@ -1,5 +1,0 @@
-#include "link/Link.h"
-
-Link::Link(QObject* parent) : QObject(parent) {}
-
-Link::~Link() = default;

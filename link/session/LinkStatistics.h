@@ -1,0 +1,70 @@
+#pragma once
+
+// A snapshot of one link's counters, sent by value from the link thread to
+// whoever displays them. Times are absolute, so the receiver computes ages
+// against its own clock when it draws them.
+
+#include <QMetaType>
+#include <QtGlobal>
+
+#include <algorithm>
+
+enum class LinkState : quint8 {
+    Closed,     // not started, or stopped
+    Waiting,    // open, no good frame received yet
+    Connected,  // good frames within the silence timeout
+    Lost,       // open but silent longer than the timeout, or the transport is gone
+};
+
+struct LinkStatistics {
+    LinkState state = LinkState::Closed;
+
+    quint64 framesSent = 0;
+    quint64 bytesReceived = 0;         // from the transport, datagrams of any size included
+    quint64 framesReceived = 0;        // good frames: both codewords decoded
+    quint64 correctedBytesBlock1 = 0;  // Reed-Solomon corrections over all good frames
+    quint64 correctedBytesBlock2 = 0;
+    quint64 framesWithDiagnostics = 0;  // good frames whose items had problems
+    quint64 uncorrectableFrames = 0;    // full-size frames a codeword of which was beyond correction
+    quint64 wrongSizeDatagrams = 0;     // datagrams that are not 510 bytes
+    quint64 bytesSkipped = 0;           // stream bytes the synchroniser found no frame in
+    // Secure link: frames are enciphered and authenticated ("encrypted and
+    // authenticated" in the status bar); frames that decoded but were
+    // refused, by reason (codec/secure/SecureCodec.h, secure::Rejection).
+    bool secure = false;
+    quint64 rejectedForged = 0;     // did not authenticate: not sent with this key and direction
+    quint64 rejectedReplayed = 0;   // authentic, but its ID_msg was not ahead of the last accepted
+    quint64 rejectedStaleTime = 0;  // authentic and new, but its time was outside the window
+    quint64 rejectedPlaintext = 0;  // an unencrypted frame on a keyed link
+    qint64 lastGoodFrameUtcMicros = 0;  // 0: none yet
+
+    // Delay from each ideal tick to the frame handed to the transport; the
+    // floor is "within 50 ms of its tick".
+    quint64 sendDelaySamples = 0;
+    qint64 sendDelayMinMicros = 0;
+    qint64 sendDelayMaxMicros = 0;
+    qint64 sendDelayTotalMicros = 0;
+    quint64 ticksMissed = 0;  // ticks that passed while the thread was busy
+
+    double sendDelayMeanMicros() const
+    {
+        return sendDelaySamples ? double(sendDelayTotalMicros) / double(sendDelaySamples) : 0.0;
+    }
+    void addSendDelay(qint64 micros)
+    {
+        sendDelayMinMicros = sendDelaySamples ? std::min(sendDelayMinMicros, micros) : micros;
+        sendDelayMaxMicros = sendDelaySamples ? std::max(sendDelayMaxMicros, micros) : micros;
+        sendDelayTotalMicros += micros;
+        ++sendDelaySamples;
+    }
+    // -1 when no good frame has arrived yet.
+    qint64 lastGoodFrameAgeMicros(qint64 nowUtcMicros) const
+    {
+        return lastGoodFrameUtcMicros ? nowUtcMicros - lastGoodFrameUtcMicros : -1;
+    }
+
+    friend bool operator==(const LinkStatistics&, const LinkStatistics&) = default;
+};
+
+Q_DECLARE_METATYPE(LinkState)
+Q_DECLARE_METATYPE(LinkStatistics)

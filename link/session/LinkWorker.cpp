@@ -1,0 +1,488 @@
+// First: it names a member emit(), which Qt's headers define as a macro.
+#include "codec/frame/StreamSync.h"
+
+#include "link/session/LinkWorker.h"
+
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/secure/SecureCodec.h"
+#include "link/transport/UdpLink.h"
+
+#include <QStringList>
+
+#include <algorithm>
+
+namespace {
+
+std::int64_t utcMicrosNow()
+{
+    using namespace std::chrono;
+    return duration_cast<microseconds>(system_clock::now().time_since_epoch()).count();
+}
+
+// time_UTC hhmmss and date_UTC yymmdd of that instant.
+void setTimeItems(rcm::Message& message, std::int64_t utcMicros)
+{
+    using namespace std::chrono;
+    const sys_time<microseconds> instant{microseconds{utcMicros}};
+    const sys_days day = floor<days>(instant);
+    const year_month_day date{day};
+    const hh_mm_ss time{floor<seconds>(instant - day)};
+    message.header.set(rcm::ItemId::time_UTC, std::int64_t(time.hours().count() * 10000 + time.minutes().count() * 100 +
+                                                           time.seconds().count()));
+    message.header.set(
+        rcm::ItemId::date_UTC,
+        std::int64_t((int(date.year()) % 100) * 10000 + int(unsigned(date.month())) * 100 + int(unsigned(date.day()))));
+}
+
+QString joinDiagnostics(const rcm::Diagnostics& diagnostics)
+{
+    QStringList lines;
+    for (const rcm::Diagnostic& d : diagnostics)
+        lines << QString::fromStdString(d.toString());
+    return lines.join(QLatin1Char('\n'));
+}
+
+template <std::size_t N>
+QByteArray toByteArray(const std::array<std::uint8_t, N>& bytes)
+{
+    return QByteArray(reinterpret_cast<const char*>(bytes.data()), qsizetype(N));
+}
+
+QByteArray toByteArray(std::span<const std::uint8_t> bytes)
+{
+    return QByteArray(reinterpret_cast<const char*>(bytes.data()), qsizetype(bytes.size()));
+}
+
+std::span<const std::uint8_t> asBytes(const QByteArray& bytes)
+{
+    return {reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size())};
+}
+
+}  // namespace
+
+LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log, Options options, QObject* parent)
+    : QObject(parent),
+      m_link(std::move(link)),
+      m_log(std::move(log)),
+      m_options(std::move(options)),
+      m_sync(std::make_unique<rcm::StreamSync>([this](const rcm::SyncedFrame& frame) {
+          if (frame.ok())
+              receiveFrame(frame.raw, frame.blocks);
+          else
+              receiveUncorrectable(frame.raw, frame.blocks.corrected1, frame.blocks.corrected2);
+      })),
+      m_tickTimer(this),
+      m_silenceTimer(this),
+      m_statisticsTimer(this),
+      m_nextMessageId(m_options.firstMessageId % kMessageIdModulus)
+{
+    registerMetaTypes();
+    Q_ASSERT(m_link);
+    // A child, so that moveToThread() takes the link and its sockets along.
+    m_link->setParent(this);
+    // In reply-to-sender mode the link follows only senders of frames
+    // accepted here, so a refused datagram cannot steer the replies.
+    m_udp = qobject_cast<UdpLink*>(m_link.get());
+    if (!m_udp)
+        m_udp = m_link->findChild<UdpLink*>();
+    if (m_udp)
+        m_udp->setFollowAcceptedSendersOnly(true);
+    m_statistics.secure = m_options.secure != nullptr;
+
+    m_tickTimer.setTimerType(Qt::PreciseTimer);
+    m_tickTimer.setSingleShot(true);
+    connect(&m_tickTimer, &QTimer::timeout, this, &LinkWorker::tick);
+    m_silenceTimer.setSingleShot(true);
+    m_silenceTimer.setInterval(m_options.silenceTimeout);
+    connect(&m_silenceTimer, &QTimer::timeout, this, &LinkWorker::silenceElapsed);
+    m_statisticsTimer.setInterval(m_options.statisticsInterval);
+    connect(&m_statisticsTimer, &QTimer::timeout, this, [this] {
+        if (!m_statisticsDirty)
+            return;
+        m_statisticsDirty = false;
+        emit statisticsChanged(m_statistics);
+    });
+
+    connect(m_link.get(), &Link::bytesReceived, this, &LinkWorker::receiveBytes);
+    connect(m_link.get(), &Link::datagramReceived, this, &LinkWorker::receiveDatagram);
+    connect(m_link.get(), &Link::closed, this, &LinkWorker::transportClosed);
+    connect(m_link.get(), &Link::errorOccurred, this, &LinkWorker::errorOccurred);
+
+    if (m_log)
+        m_log->setErrorHandler([this](const QString& error) { reportError(QStringLiteral("frame log: ") + error); });
+}
+
+LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log)
+    : LinkWorker(std::move(link), std::move(log), Options{})
+{
+}
+
+LinkWorker::~LinkWorker()
+{
+    // The link goes before the log and the synchroniser it feeds; quietly.
+    disconnect(m_link.get(), nullptr, this, nullptr);
+    m_link.reset();
+}
+
+void LinkWorker::registerMetaTypes()
+{
+    qRegisterMetaType<LinkState>();
+    qRegisterMetaType<LinkStatistics>();
+    qRegisterMetaType<ReceivedMessage>();
+    qRegisterMetaType<LoggedFrame>();
+    qRegisterMetaType<rcm::Message>();
+}
+
+void LinkWorker::start()
+{
+    if (m_running)
+        return;
+    m_running = true;
+    setState(LinkState::Waiting);
+    m_link->open();
+    m_silenceTimer.start();
+    m_statisticsTimer.start();
+    armTick();
+    if (m_options.secure && !m_options.secure->notice.empty())
+        reportError(QString::fromStdString(m_options.secure->notice));
+    emit started();
+    emit statisticsChanged(m_statistics);
+    m_statisticsDirty = false;
+}
+
+void LinkWorker::stop()
+{
+    if (!m_running)
+        return;
+    m_running = false;  // first, so the link's closed() is not taken for a loss
+    m_tickTimer.stop();
+    m_silenceTimer.stop();
+    m_statisticsTimer.stop();
+    m_link->close();
+    if (m_link->isStream())
+        m_sync->flush();
+    setState(LinkState::Closed);
+    emit stopped();
+    emit statisticsChanged(m_statistics);
+    m_statisticsDirty = false;
+}
+
+void LinkWorker::setCommand(const rcm::Message& command)
+{
+    // The items the worker fills in are set to valid placeholders, so only
+    // the operator's part is judged.
+    rcm::Message probe = command;
+    probe.header.set(rcm::ItemId::ID_msg, std::int64_t(0));
+    setTimeItems(probe, 0);
+    const rcm::Diagnostics errors =
+        rcm::validate(probe, m_options.secure ? rcm::secure::encodeOptions() : rcm::EncodeOptions{});
+    if (!errors.empty()) {
+        emit commandRejected(joinDiagnostics(errors));
+        return;
+    }
+    m_command = command;
+}
+
+void LinkWorker::armTick()
+{
+    const std::int64_t period = std::chrono::microseconds(m_options.interval).count();
+    const std::int64_t now = utcMicrosNow();
+    m_idealTickMicros = (now / period + 1) * period;
+    // Rounded up: a timer that fires a little late costs spread, one that
+    // fires early would stamp the frame with the previous second.
+    m_tickTimer.start(int((m_idealTickMicros - now + 999) / 1000));
+}
+
+void LinkWorker::tick()
+{
+    if (!m_running)
+        return;
+    const std::int64_t now = utcMicrosNow();
+    const std::int64_t period = std::chrono::microseconds(m_options.interval).count();
+    if (now < m_idealTickMicros) {
+        // The timer runs on the monotonic clock, ticks are on the UTC one.
+        // Woken a little early, wait the rest; if the UTC clock was stepped
+        // back, align afresh rather than wait out the step.
+        if (m_idealTickMicros - now < period)
+            m_tickTimer.start(int((m_idealTickMicros - now + 999) / 1000));
+        else
+            armTick();
+        return;
+    }
+    const std::int64_t missed = (now - m_idealTickMicros) / period;
+    m_statistics.ticksMissed += std::uint64_t(missed);
+    sendFrame(m_idealTickMicros + missed * period);
+    armTick();
+}
+
+void LinkWorker::sendFrame(std::int64_t idealTickMicros)
+{
+    if (!m_command)
+        return;
+    rcm::Message message = *m_command;
+    if (m_options.block2Source) {
+        if (std::optional<rcm::FlightPlanSection> section = m_options.block2Source())
+            message.flightPlan = std::move(*section);
+    }
+    std::uint32_t id = m_nextMessageId;
+    if (m_options.secure) {
+        // Never reused under the key, across restarts too: the aircraft
+        // would reject a reused ID as replayed.
+        std::string error;
+        id = m_options.secure->counter->next(&error);
+        if (!error.empty() && QString::fromStdString(error) != m_lastEncodeError) {
+            m_lastEncodeError = QString::fromStdString(error);
+            reportError(m_lastEncodeError);
+        }
+    }
+    message.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
+    setTimeItems(message, utcMicrosNow());
+    const std::optional<QByteArray> bytes = encode(message);
+    if (!bytes)
+        return;
+    // Closed, or no peer yet: the aircraft hears nothing, so nothing is counted.
+    if (!m_link->write(*bytes))
+        return;
+    m_statistics.addSendDelay(utcMicrosNow() - idealTickMicros);
+    ++m_statistics.framesSent;
+    m_nextMessageId = (id + 1) % kMessageIdModulus;
+    log(FrameDirection::Sent, *bytes, FrameStatus::NotChecked, {}, id);
+    emit frameSent(id);
+    statisticsDirty();
+}
+
+std::optional<QByteArray> LinkWorker::encode(rcm::Message& message)
+{
+    const auto attempt = [this](const rcm::Message& m, rcm::Diagnostics& errors) -> std::optional<QByteArray> {
+        if (m_options.secure) {
+            const std::optional<rcm::EncodedBlocks> b = m_options.secure->sender->encode(m, errors);
+            if (!b)
+                return std::nullopt;
+            if (m_link->isStream())
+                return toByteArray(rcm::makeFrame(b->block1, b->block2));
+            return toByteArray(rcm::makeDatagram(b->block1, b->block2));
+        }
+        if (m_link->isStream()) {
+            if (auto frame = rcm::encodeFrame(m, errors))
+                return toByteArray(*frame);
+        } else if (auto datagram = rcm::encodeDatagram(m, errors)) {
+            return toByteArray(*datagram);
+        }
+        return std::nullopt;
+    };
+    rcm::Diagnostics errors;
+    std::optional<QByteArray> bytes = attempt(message, errors);
+    if (!bytes && !message.flightPlan.empty()) {
+        // The command was validated when it was set, so the section is at
+        // fault: the frame still goes, without it.
+        const QString reason = QStringLiteral("BLOCK 2 section %1/%2 not sent: %3")
+                                   .arg(message.flightPlan.planId)
+                                   .arg(message.flightPlan.sectionId)
+                                   .arg(joinDiagnostics(errors));
+        if (reason != m_lastEncodeError) {
+            m_lastEncodeError = reason;
+            reportError(reason);
+        }
+        message.flightPlan = {};
+        errors.clear();
+        bytes = attempt(message, errors);
+    }
+    if (!bytes) {
+        const QString reason = QStringLiteral("frame not sent: ") + joinDiagnostics(errors);
+        if (reason != m_lastEncodeError) {
+            m_lastEncodeError = reason;
+            reportError(reason);
+        }
+    }
+    return bytes;
+}
+
+void LinkWorker::receiveBytes(const QByteArray& bytes)
+{
+    m_statistics.bytesReceived += quint64(bytes.size());
+    statisticsDirty();
+    m_sync->feed(asBytes(bytes));
+    m_statistics.bytesSkipped = m_sync->stats().bytesSkipped;
+}
+
+void LinkWorker::receiveDatagram(const QByteArray& datagram)
+{
+    m_statistics.bytesReceived += quint64(datagram.size());
+    if (std::size_t(datagram.size()) != rcm::kDatagramSize) {
+        ++m_statistics.wrongSizeDatagrams;
+        log(FrameDirection::Received, datagram, FrameStatus::Rejected);
+        statisticsDirty();
+        return;
+    }
+    const std::span<const std::uint8_t, rcm::kDatagramSize> codewords(
+        reinterpret_cast<const std::uint8_t*>(datagram.constData()), rcm::kDatagramSize);
+    const rcm::DecodedBlocks blocks = rcm::decodeCodewords(codewords);
+    if (blocks.ok())
+        receiveFrame(codewords, blocks);
+    else
+        receiveUncorrectable(codewords, blocks.corrected1, blocks.corrected2);
+}
+
+void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks)
+{
+    rcm::DecodeResult result;
+    if (m_options.secure) {
+        rcm::secure::Opened opened =
+            rcm::secure::openFrame(*m_options.secure->receiver, m_options.secure->guard.get(), blocks);
+        if (!opened.persistError.empty() && QString::fromStdString(opened.persistError) != m_lastPersistError) {
+            m_lastPersistError = QString::fromStdString(opened.persistError);
+            reportError(m_lastPersistError);
+        }
+        if (!opened.accepted) {
+            // Not a good frame: it neither counts as received nor keeps the link connected.
+            receiveRejected(raw, blocks, opened.rejection.value_or(rcm::secure::Rejection::Forged), opened.detail);
+            return;
+        }
+        result = std::move(opened.decoded);
+    } else {
+        result = rcm::decodeBlocks(blocks);
+    }
+    // For a datagram, still inside the link's datagramReceived(): its sender.
+    if (m_udp)
+        m_udp->acceptSender();
+    const bool clean = blocks.corrected1 == 0 && blocks.corrected2 == 0;
+    const rcm::Unit& header = result.message.header;
+    log(FrameDirection::Received, toByteArray(raw), clean ? FrameStatus::Decoded : FrameStatus::Corrected,
+        {blocks.corrected1, blocks.corrected2},
+        header.has(rcm::ItemId::ID_msg) ? std::optional<quint32>(quint32(header.number(rcm::ItemId::ID_msg)))
+                                        : std::nullopt);
+
+    const std::int64_t now = utcMicrosNow();
+    ++m_statistics.framesReceived;
+    m_statistics.correctedBytesBlock1 += std::uint64_t(blocks.corrected1);
+    m_statistics.correctedBytesBlock2 += std::uint64_t(blocks.corrected2);
+    if (!result.diagnostics.empty())
+        ++m_statistics.framesWithDiagnostics;
+    m_statistics.lastGoodFrameUtcMicros = now;
+    statisticsDirty();
+
+    if (m_running) {
+        m_silenceTimer.start();
+        const LinkState before = m_statistics.state;
+        setState(LinkState::Connected);
+        if (before == LinkState::Lost)
+            emit linkRegained();
+    }
+    if (m_options.block2Reply)
+        m_options.block2Reply(result.message.flightPlan);
+
+    ReceivedMessage received;
+    received.message = std::move(result.message);
+    received.corrected1 = blocks.corrected1;
+    received.corrected2 = blocks.corrected2;
+    received.diagnostics = std::move(result.diagnostics);
+    received.utcMicros = now;
+    received.transport = m_link->transport();
+    emit messageReceived(received);
+}
+
+void LinkWorker::receiveRejected(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks,
+                                  rcm::secure::Rejection rejection, const std::string& detail)
+{
+    using rcm::secure::Rejection;
+    switch (rejection) {
+    case Rejection::Forged:
+        ++m_statistics.rejectedForged;
+        break;
+    case Rejection::Replayed:
+        ++m_statistics.rejectedReplayed;
+        break;
+    case Rejection::StaleTime:
+        ++m_statistics.rejectedStaleTime;
+        break;
+    case Rejection::Plaintext:
+        ++m_statistics.rejectedPlaintext;
+        break;
+    }
+    // The bytes as they arrived: the ciphertext, which `rcm decode --key` reads again.
+    log(FrameDirection::Received, toByteArray(raw), FrameStatus::Rejected, {blocks.corrected1, blocks.corrected2});
+    statisticsDirty();
+    const std::string_view name = rcm::secure::rejectionName(rejection);
+    emit frameRejected(QString::fromLatin1(name.data(), qsizetype(name.size())) + QStringLiteral(": ") +
+                       QString::fromStdString(detail));
+}
+
+void LinkWorker::receiveUncorrectable(std::span<const std::uint8_t> raw, int corrected1, int corrected2)
+{
+    ++m_statistics.uncorrectableFrames;
+    log(FrameDirection::Received, toByteArray(raw), FrameStatus::Uncorrectable, {corrected1, corrected2});
+    statisticsDirty();
+}
+
+void LinkWorker::transportClosed()
+{
+    if (!m_running)
+        return;
+    // No frame spans the gap: what the synchroniser holds is decided now.
+    if (m_link->isStream())
+        m_sync->flush();
+    m_silenceTimer.stop();
+    if (m_statistics.state == LinkState::Waiting || m_statistics.state == LinkState::Connected) {
+        setState(LinkState::Lost);
+        emit linkLost();
+    }
+}
+
+void LinkWorker::silenceElapsed()
+{
+    if (!m_running)
+        return;
+    if (m_statistics.state == LinkState::Waiting || m_statistics.state == LinkState::Connected) {
+        setState(LinkState::Lost);
+        emit linkLost();
+    }
+}
+
+void LinkWorker::setState(LinkState state)
+{
+    if (m_statistics.state == state)
+        return;
+    m_statistics.state = state;
+    statisticsDirty();
+    emit stateChanged(state);
+}
+
+void LinkWorker::log(FrameDirection direction, QByteArray bytes, FrameStatus status, QList<int> corrected,
+                     std::optional<quint32> messageId)
+{
+    FrameRecord record;
+    record.bytes = std::move(bytes);
+    record.utcMicros = utcMicrosNow();
+    record.direction = direction;
+    record.transport = m_link->transport();
+    record.status = status;
+    record.correctedSymbols = std::move(corrected);
+
+    LoggedFrame logged;
+    logged.entry.offset = -1;
+    logged.entry.utcMicros = record.utcMicros;
+    logged.entry.length = quint32(record.bytes.size());
+    logged.entry.direction = direction;
+    logged.entry.transport = record.transport;
+    logged.entry.status = status;
+    logged.messageId = messageId;
+    if (m_log && m_log->isOpen())
+        m_log->append(record, &logged.entry.offset);
+    // A frame that is in no file (no log, or the log failed) carries its
+    // bytes: the signal is then their only copy.
+    if (!logged.inLog())
+        logged.bytes = std::move(record.bytes);
+    logged.correctedSymbols = std::move(record.correctedSymbols);
+    emit frameLogged(logged);
+}
+
+void LinkWorker::statisticsDirty()
+{
+    m_statisticsDirty = true;
+}
+
+void LinkWorker::reportError(const QString& message)
+{
+    emit errorOccurred(message);
+}

@@ -1,0 +1,46 @@
+#pragma once
+
+// A transport that only moves bytes. Parsing, counting, logging and the send
+// cadence belong to LinkWorker; a Link knows nothing of frames, so a new
+// transport is only this class to implement.
+
+#include "link/framelog/FrameLog.h"
+
+#include <QByteArray>
+#include <QObject>
+#include <QString>
+
+class Link : public QObject {
+    Q_OBJECT
+
+public:
+    explicit Link(QObject* parent = nullptr);
+    ~Link() override;
+
+    virtual FrameTransport transport() const = 0;
+    // A stream delivers bytesReceived() in whatever pieces the transport
+    // chose, so frames must be found again by a synchroniser; a datagram
+    // transport delivers datagramReceived(), one frame per datagram.
+    virtual bool isStream() const = 0;
+    virtual bool isOpen() const = 0;
+    // For people: "/dev/ttyUSB0 9600 8N1", "udp 0.0.0.0:5000 -> 10.0.0.2:5001".
+    virtual QString description() const = 0;
+
+public slots:
+    // Both are idempotent. open() reports failure through errorOccurred().
+    virtual void open() = 0;
+    virtual void close() = 0;
+    // True when the transport took the bytes; false when closed or with no
+    // one to send to. Never blocks.
+    virtual bool write(const QByteArray& bytes) = 0;
+
+signals:
+    // opened() again after a transport that reopens by itself came back.
+    void opened();
+    // On close() and when the transport failed or disappeared.
+    void closed();
+    void bytesReceived(const QByteArray& bytes);
+    void datagramReceived(const QByteArray& datagram);
+    // Once per failure, not once per retry or per frame.
+    void errorOccurred(const QString& message);
+};

@@ -1,0 +1,148 @@
+#include "link/transport/SerialLink.h"
+
+SerialLink::SerialLink(const QString& portName, qint32 baudRate, QObject* parent)
+    : Link(parent), m_portName(portName), m_baudRate(baudRate), m_port(this), m_reopenTimer(this)
+{
+    m_reopenTimer.setInterval(kDefaultReopenInterval);
+    connect(&m_reopenTimer, &QTimer::timeout, this, &SerialLink::retryOpen);
+    connect(&m_port, &QSerialPort::readyRead, this, [this] { emit bytesReceived(m_port.readAll()); });
+    connect(&m_port, &QSerialPort::errorOccurred, this, &SerialLink::handleError);
+}
+
+SerialLink::~SerialLink()
+{
+    // Quietly: nobody should hear from a link being destroyed.
+    m_wanted = false;
+    m_reopenTimer.stop();
+    m_port.close();
+}
+
+QList<QSerialPortInfo> SerialLink::availablePorts()
+{
+    return QSerialPortInfo::availablePorts();
+}
+
+void SerialLink::setReopenInterval(std::chrono::milliseconds interval)
+{
+    m_reopenTimer.setInterval(interval);
+}
+
+std::chrono::milliseconds SerialLink::reopenInterval() const
+{
+    return m_reopenTimer.intervalAsDuration();
+}
+
+QString SerialLink::description() const
+{
+    return QStringLiteral("%1 %2 8N1").arg(m_portName).arg(m_baudRate);
+}
+
+void SerialLink::open()
+{
+    m_wanted = true;
+    if (m_port.isOpen() || m_reopenTimer.isActive())
+        return;
+    if (!tryOpen()) {
+        reportFailure(QStringLiteral("%1: cannot open: %2; retrying").arg(m_portName, m_port.errorString()));
+        m_reopenTimer.start();
+    }
+}
+
+void SerialLink::close()
+{
+    m_wanted = false;
+    m_losing = false;
+    m_reopenTimer.stop();
+    if (!m_port.isOpen())
+        return;
+    m_port.close();
+    emit closed();
+}
+
+bool SerialLink::write(const QByteArray& bytes)
+{
+    if (!m_port.isOpen())
+        return false;
+    // QSerialPort buffers and writes from its notifier as soon as the event
+    // loop runs again; flush() would do it now but ends in tcdrain(), which
+    // blocks for the whole frame's airtime at 9,600 bit/s.
+    return m_port.write(bytes) == bytes.size();
+}
+
+bool SerialLink::tryOpen()
+{
+    m_port.setPortName(m_portName);
+    // Stored now, applied by open(). A pseudo-terminal accepts or ignores
+    // them; the speed means nothing there, and nothing here depends on it.
+    m_port.setBaudRate(m_baudRate);
+    m_port.setDataBits(QSerialPort::Data8);
+    m_port.setParity(QSerialPort::NoParity);
+    m_port.setStopBits(QSerialPort::OneStop);
+    m_port.setFlowControl(QSerialPort::NoFlowControl);
+    if (!m_port.open(QIODevice::ReadWrite))
+        return false;
+    m_port.clearError();
+    m_failureReported = false;
+    m_lastError.clear();
+    m_reopenTimer.stop();
+    emit opened();
+    return true;
+}
+
+void SerialLink::retryOpen()
+{
+    if (!m_wanted || m_port.isOpen()) {
+        m_reopenTimer.stop();
+        return;
+    }
+    ++m_reopenAttempts;
+    tryOpen();  // failures were reported when the port was lost
+}
+
+void SerialLink::handleError(QSerialPort::SerialPortError error)
+{
+    // Errors while closed belong to an open attempt, which reports them itself.
+    if (error == QSerialPort::NoError || error == QSerialPort::TimeoutError || !m_port.isOpen() || m_losing)
+        return;
+    switch (error) {
+        case QSerialPort::ResourceError:  // the device went away
+        case QSerialPort::ReadError:      // read() returned end of file: hung up (a pty's master closed)
+            // Closed from the event loop, not here: this runs inside the
+            // port's own notifier, which close() deletes.
+            m_losing = true;
+            QMetaObject::invokeMethod(
+                this, [this, reason = m_port.errorString()] { lose(reason); }, Qt::QueuedConnection);
+            break;
+        default: {
+            const QString message = QStringLiteral("%1: %2").arg(m_portName, m_port.errorString());
+            m_port.clearError();
+            if (message != m_lastError) {
+                m_lastError = message;
+                emit errorOccurred(message);
+            }
+            break;
+        }
+    }
+}
+
+void SerialLink::lose(const QString& reason)
+{
+    m_losing = false;
+    if (!m_port.isOpen())
+        return;  // closed meanwhile, by close()
+    m_port.close();
+    reportFailure(QStringLiteral("%1: port lost: %2; reopening every %3 ms")
+                      .arg(m_portName, reason)
+                      .arg(m_reopenTimer.intervalAsDuration().count()));
+    emit closed();
+    if (m_wanted)
+        m_reopenTimer.start();
+}
+
+void SerialLink::reportFailure(const QString& message)
+{
+    if (m_failureReported)
+        return;
+    m_failureReported = true;
+    emit errorOccurred(message);
+}

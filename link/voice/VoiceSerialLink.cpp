@@ -1,0 +1,160 @@
+#include "link/voice/VoiceSerialLink.h"
+
+#include "codec/voice/VoiceCodec.h"
+#include "codec/voice/VoiceMux.h"
+#include "link/voice/VoiceSink.h"
+#include "link/voice/VoiceSource.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace {
+
+// When the event loop stalled, the line went idle anyway; making up for it
+// with a burst would only queue bytes in the modem, as latency. At most this
+// many ticks' bytes go out at once beyond the lead.
+constexpr int kMaxTicksOfCatchUp = 4;
+
+// A voice source when none was given: idle frames for ever.
+class IdleVoice : public VoiceSource {
+public:
+    void readVoice(std::span<std::uint8_t> out) override
+    {
+        while (!out.empty()) {
+            if (m_position == m_frame.size()) {
+                m_encoder.idleFrame(m_frame);
+                m_position = 0;
+            }
+            const std::size_t n = std::min(out.size(), m_frame.size() - m_position);
+            std::copy_n(m_frame.begin() + static_cast<std::ptrdiff_t>(m_position), n, out.begin());
+            m_position += n;
+            out = out.subspan(n);
+        }
+    }
+
+private:
+    rcm::voice::VoiceEncoder m_encoder;
+    std::array<std::uint8_t, rcm::voice::kFrameBytes> m_frame{};
+    std::size_t m_position = rcm::voice::kFrameBytes;
+};
+
+}  // namespace
+
+VoiceSerialLink::VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
+                                 std::shared_ptr<VoiceSink> sink, Options options, QObject* parent)
+    : Link(parent),
+      m_inner(inner.release()),
+      m_source(source ? std::move(source) : std::make_shared<IdleVoice>()),
+      m_sink(std::move(sink)),
+      m_options(options),
+      m_mux(std::make_unique<rcm::VoiceMultiplexer>()),
+      m_demux(std::make_unique<rcm::VoiceDemultiplexer>(
+          [this](std::span<const std::uint8_t> control) {
+              emit bytesReceived(QByteArray(reinterpret_cast<const char*>(control.data()), qsizetype(control.size())));
+          },
+          [this](std::span<const std::uint8_t> voice) {
+              if (m_sink)
+                  m_sink->writeVoice(voice);
+          })),
+      m_timer(this)
+{
+    Q_ASSERT(m_inner && m_inner->isStream());
+    m_inner->setParent(this);
+    m_timer.setTimerType(Qt::PreciseTimer);
+    m_timer.setInterval(m_options.tick);
+    connect(&m_timer, &QTimer::timeout, this, &VoiceSerialLink::pace);
+    connect(m_inner, &Link::opened, this, [this] {
+        start();
+        emit opened();
+    });
+    connect(m_inner, &Link::closed, this, [this] {
+        m_timer.stop();
+        emit closed();
+    });
+    connect(m_inner, &Link::errorOccurred, this, &Link::errorOccurred);
+    connect(m_inner, &Link::bytesReceived, this, &VoiceSerialLink::receive);
+}
+
+VoiceSerialLink::VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
+                                 std::shared_ptr<VoiceSink> sink)
+    : VoiceSerialLink(std::move(inner), std::move(source), std::move(sink), Options{})
+{
+}
+
+VoiceSerialLink::~VoiceSerialLink()
+{
+    // Quietly, and before the demultiplexer its signals would reach.
+    m_timer.stop();
+    disconnect(m_inner, nullptr, this, nullptr);
+}
+
+QString VoiceSerialLink::description() const
+{
+    return m_inner->description() + QStringLiteral(", voice multiplexed at %1 bit/s").arg(m_options.bytesPerSecond * 8);
+}
+
+void VoiceSerialLink::open()
+{
+    m_inner->open();
+}
+
+void VoiceSerialLink::close()
+{
+    m_timer.stop();
+    m_inner->close();
+}
+
+bool VoiceSerialLink::write(const QByteArray& bytes)
+{
+    if (!isOpen() || std::size_t(bytes.size()) != rcm::kFrameSize)
+        return false;
+    const bool afterFill = !m_mux->sendingFrame() && m_mux->queuedFrames() == 0;
+    m_mux->queueFrame(std::span<const std::uint8_t, rcm::kFrameSize>(
+        reinterpret_cast<const std::uint8_t*>(bytes.constData()), rcm::kFrameSize));
+    if (afterFill)
+        m_holdUntil = m_clock.nsecsElapsed() + std::chrono::nanoseconds(m_options.frameHold).count();
+    return true;
+}
+
+void VoiceSerialLink::start()
+{
+    // A new line: what was half sent or half received is gone.
+    m_mux = std::make_unique<rcm::VoiceMultiplexer>();
+    m_demux->reset();
+    m_clock.start();
+    m_written = 0;
+    m_skipped = 0;
+    m_holdUntil = 0;
+    m_timer.start();
+    pace();
+}
+
+void VoiceSerialLink::pace()
+{
+    if (!m_inner->isOpen())
+        return;
+    const std::int64_t now = m_clock.nsecsElapsed();
+    const auto lineTime = static_cast<std::uint64_t>(now / 1000 * m_options.bytesPerSecond / 1000000);
+    std::uint64_t due = (static_cast<std::uint64_t>(m_options.lead) + lineTime - m_skipped) & ~std::uint64_t(1);
+    const auto tickBytes = static_cast<std::uint64_t>(m_options.bytesPerSecond * m_options.tick.count() / 1000);
+    const std::uint64_t most = m_written + static_cast<std::uint64_t>(m_options.lead) + kMaxTicksOfCatchUp * tickBytes;
+    if (due > most) {
+        m_skipped += due - most;
+        due = most;
+    }
+    if (due <= m_written)
+        return;
+    const std::size_t pairs = static_cast<std::size_t>(due - m_written) / 2;
+    std::vector<std::uint8_t> voice(pairs);
+    m_source->readVoice(voice);
+    QByteArray line(qsizetype(2 * pairs), Qt::Uninitialized);
+    m_mux->setHoldFill(now < m_holdUntil);
+    m_mux->multiplex(voice, std::span(reinterpret_cast<std::uint8_t*>(line.data()), 2 * pairs));
+    m_inner->write(line);
+    m_written += 2 * pairs;
+}
+
+void VoiceSerialLink::receive(const QByteArray& bytes)
+{
+    m_demux->feed({reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size())});
+}

@@ -1,0 +1,98 @@
+#pragma once
+
+// The satellite modem's 9,600 bps shared by commands and voice (PROFILE.md
+// section 4, docs/protocol.md section 7): a stream transport, normally a
+// SerialLink, wrapped so that every byte pair on the line is one control
+// byte and one voice byte, C V C V ..., 1,200 bytes a second with no gap.
+//
+// Sending. The worker's frame (600 bytes, once a second) is the control
+// phase; the voice phase comes from a VoiceSource. The line is paced here, by
+// the host's monotonic clock: every tick (10 ms) the bytes due since the line
+// started are written, `lead` bytes ahead, so the modem's buffer never runs
+// dry between ticks. A frame is sent whole, and the next one, if it was
+// written before this one ended, follows at once, so frames stand exactly
+// 1,200 bytes apart. With no frame to send the control phase carries fill
+// and voice goes on. The first frame after fill is held `frameHold`, so that
+// the worker's next tick, a second later, has that much slack.
+//
+// Receiving. rcm::VoiceDemultiplexer finds the control phase by the
+// preamble: its bytes go on as bytesReceived() for the worker's
+// synchroniser, the other phase to the VoiceSink.
+//
+// The port's bit rate is not the line's: at 8N1 a byte takes 10 bits, so a
+// modem whose data rate is 9,600 bps wants its serial port at 19,200 baud or
+// more, with the modem buffering. The pacing here is what holds the line to
+// 1,200 bytes a second. A modem whose clock differs from the host's by
+// 100 ppm drifts 0.12 bytes a second against it: its buffer holds `lead`
+// bytes, so that is minutes before it runs dry or grows by a frame.
+
+#include "link/transport/Link.h"
+
+#include <QElapsedTimer>
+#include <QTimer>
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+
+namespace rcm {
+class VoiceDemultiplexer;
+class VoiceMultiplexer;
+}  // namespace rcm
+class VoiceSink;
+class VoiceSource;
+
+class VoiceSerialLink : public Link {
+    Q_OBJECT
+
+public:
+    struct Options {
+        int bytesPerSecond = 1200;  // the line: 9,600 bps
+        std::chrono::milliseconds tick{10};
+        int lead = 24;  // bytes written ahead of the line: 20 ms
+        std::chrono::milliseconds frameHold{200};
+    };
+
+    // `inner` a stream transport, moved in and made a child. A null source
+    // sends idle voice; a null sink drops what is received.
+    VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink,
+                    Options options, QObject* parent = nullptr);
+    VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink);
+    ~VoiceSerialLink() override;
+
+    FrameTransport transport() const override { return m_inner->transport(); }
+    bool isStream() const override { return true; }
+    bool isOpen() const override { return m_inner->isOpen(); }
+    QString description() const override;
+
+    Link* inner() const { return m_inner; }
+    // The link's thread.
+    const rcm::VoiceMultiplexer& multiplexer() const { return *m_mux; }
+    const rcm::VoiceDemultiplexer& demultiplexer() const { return *m_demux; }
+    // Line bytes written since the port last opened. The link's thread.
+    std::uint64_t lineBytesWritten() const { return m_written; }
+
+public slots:
+    void open() override;
+    void close() override;
+    // One 600-byte frame, to go out at the next frame boundary of the line.
+    // False when closed or for anything else than 600 bytes.
+    bool write(const QByteArray& bytes) override;
+
+private:
+    void start();
+    void pace();
+    void receive(const QByteArray& bytes);
+
+    Link* m_inner;  // a child
+    std::shared_ptr<VoiceSource> m_source;
+    std::shared_ptr<VoiceSink> m_sink;
+    Options m_options;
+    std::unique_ptr<rcm::VoiceMultiplexer> m_mux;
+    std::unique_ptr<rcm::VoiceDemultiplexer> m_demux;
+    QTimer m_timer;
+    QElapsedTimer m_clock;         // since the port opened
+    std::uint64_t m_written = 0;   // line bytes written since then
+    std::uint64_t m_skipped = 0;   // line bytes never written: the event loop stalled
+    std::int64_t m_holdUntil = 0;  // m_clock ns: the first frame after fill waits until then
+};

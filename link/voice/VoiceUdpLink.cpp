@@ -1,0 +1,117 @@
+#include "link/voice/VoiceUdpLink.h"
+
+#include "codec/voice/VoiceCodec.h"
+#include "link/voice/VoiceSink.h"
+#include "link/voice/VoiceSource.h"
+
+#include <cstring>
+
+namespace {
+
+constexpr qsizetype kMagicSize = sizeof VoiceUdpLink::kMagic;
+// A stall makes no burst: at most this many frames are caught up at once.
+constexpr std::uint64_t kMaxCatchUp = 5;
+
+}  // namespace
+
+VoiceUdpLink::VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
+                           std::shared_ptr<VoiceSink> sink, QObject* parent)
+    : Link(parent), m_inner(inner.release()), m_source(std::move(source)), m_sink(std::move(sink)), m_timer(this)
+{
+    Q_ASSERT(m_inner && !m_inner->isStream());
+    m_inner->setParent(this);
+    m_timer.setTimerType(Qt::PreciseTimer);
+    m_timer.setInterval(kTick);
+    connect(&m_timer, &QTimer::timeout, this, &VoiceUdpLink::pace);
+    connect(m_inner, &Link::opened, this, [this] {
+        start();
+        emit opened();
+    });
+    connect(m_inner, &Link::closed, this, [this] {
+        m_timer.stop();
+        emit closed();
+    });
+    connect(m_inner, &Link::errorOccurred, this, &Link::errorOccurred);
+    connect(m_inner, &Link::datagramReceived, this, &VoiceUdpLink::receive);
+    connect(m_inner, &Link::bytesReceived, this, &Link::bytesReceived);
+}
+
+VoiceUdpLink::~VoiceUdpLink()
+{
+    m_timer.stop();
+    disconnect(m_inner, nullptr, this, nullptr);
+}
+
+bool VoiceUdpLink::isVoiceDatagram(const QByteArray& datagram)
+{
+    const qsizetype frames = datagram.size() - kMagicSize;
+    return frames >= qsizetype(rcm::voice::kFrameBytes) && frames % qsizetype(rcm::voice::kFrameBytes) == 0 &&
+           std::memcmp(datagram.constData(), kMagic, kMagicSize) == 0;
+}
+
+QString VoiceUdpLink::description() const
+{
+    return m_inner->description() + QStringLiteral(", voice in datagrams of its own");
+}
+
+void VoiceUdpLink::open()
+{
+    m_inner->open();
+    // A transport may open at once, before anyone heard opened().
+    if (m_inner->isOpen() && !m_timer.isActive())
+        start();
+}
+
+void VoiceUdpLink::close()
+{
+    m_timer.stop();
+    m_inner->close();
+}
+
+bool VoiceUdpLink::write(const QByteArray& bytes)
+{
+    return m_inner->write(bytes);
+}
+
+void VoiceUdpLink::start()
+{
+    if (m_timer.isActive())
+        return;
+    m_clock.start();
+    m_frames = 0;
+    m_timer.start();
+    pace();
+}
+
+void VoiceUdpLink::pace()
+{
+    if (!m_source || !m_inner->isOpen())
+        return;
+    using rcm::voice::kFrameBytes;
+    using rcm::voice::kFramesPerSecond;
+    // The frame whose 20 ms has begun goes now.
+    const auto due =
+        static_cast<std::uint64_t>(m_clock.nsecsElapsed() / 1000 * std::int64_t(kFramesPerSecond) / 1000000) + 1;
+    if (due > m_frames + kMaxCatchUp)
+        m_frames = due - kMaxCatchUp;
+    QByteArray datagram(kMagicSize + qsizetype(kFrameBytes), Qt::Uninitialized);
+    std::memcpy(datagram.data(), kMagic, kMagicSize);
+    for (; m_frames < due; ++m_frames) {
+        m_source->readVoice({reinterpret_cast<std::uint8_t*>(datagram.data()) + kMagicSize, kFrameBytes});
+        // No peer yet: the frame is gone, as on a line nobody listens to.
+        if (m_inner->write(datagram))
+            ++m_sent;
+    }
+}
+
+void VoiceUdpLink::receive(const QByteArray& datagram)
+{
+    if (!isVoiceDatagram(datagram)) {
+        emit datagramReceived(datagram);
+        return;
+    }
+    ++m_received;
+    if (m_sink)
+        m_sink->writeVoice({reinterpret_cast<const std::uint8_t*>(datagram.constData()) + kMagicSize,
+                            std::size_t(datagram.size() - kMagicSize)});
+}

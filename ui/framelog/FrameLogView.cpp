@@ -1,0 +1,229 @@
+#include "ui/framelog/FrameLogView.h"
+
+#include "codec/frame/Frame.h"
+#include "codec/message/MessageDecoder.h"
+#include "codec/message/TextFormat.h"
+#include "ui/framelog/FrameLogFilterModel.h"
+#include "ui/framelog/FrameLogModel.h"
+#include "ui/framelog/HexDump.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDateTime>
+#include <QFontDatabase>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLocale>
+#include <QPlainTextEdit>
+#include <QSplitter>
+#include <QTableView>
+#include <QTimeZone>
+#include <QVBoxLayout>
+
+#include <span>
+
+namespace {
+
+QPlainTextEdit* makeDetailPane(const QString& placeholder)
+{
+    auto* pane = new QPlainTextEdit;
+    pane->setReadOnly(true);
+    pane->setLineWrapMode(QPlainTextEdit::NoWrap);
+    pane->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+    pane->setPlaceholderText(placeholder);
+    return pane;
+}
+
+// The selected frame for people: what it was, then its items.
+QString describeFrame(int number, const FrameRecord& record, std::optional<quint32> messageId)
+{
+    const QDateTime time = QDateTime::fromMSecsSinceEpoch(record.utcMicros / 1000, QTimeZone::utc());
+    QString text =
+        QStringLiteral("# Frame %1: %2 %3 UTC, %4, %5 bytes, %6\n")
+            .arg(number)
+            .arg(record.direction == FrameDirection::Sent ? QStringLiteral("sent") : QStringLiteral("received"))
+            .arg(time.toString(QStringLiteral("yyyy-MM-dd hh:mm:ss.zzz")))
+            .arg(frameTransportName(record.transport))
+            .arg(record.bytes.size())
+            .arg(frameStatusName(record.status));
+    if (record.bytes.isEmpty()) {
+        text += QStringLiteral("# No bytes for this frame: this session keeps no frame log, or the log lacks it.\n");
+        if (messageId)
+            text += QStringLiteral("# ID_msg %1\n").arg(*messageId);
+        return text;
+    }
+    const qsizetype n = record.bytes.size();
+    if (n != qsizetype(rcm::kFrameSize) && n != qsizetype(rcm::kDatagramSize))
+        return text + QStringLiteral("# Neither a 600-byte frame nor a 510-byte datagram: not decoded.\n");
+    const rcm::DecodeResult result = rcm::decodeFrame(
+        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record.bytes.constData()), std::size_t(n)));
+    const auto corrected = [](int c) { return c < 0 ? QStringLiteral("beyond correction") : QString::number(c); };
+    text += QStringLiteral("# Reed-Solomon: BLOCK 1 %1, BLOCK 2 %2 bytes corrected\n")
+                .arg(corrected(result.corrected1), corrected(result.corrected2));
+    for (const rcm::Diagnostic& d : result.diagnostics)
+        text += QStringLiteral("# ! %1\n").arg(QString::fromStdString(d.toString()));
+    return text + QString::fromStdString(rcm::formatMessage(result.message));
+}
+
+}  // namespace
+
+FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
+    : QWidget(parent),
+      m_model(model),
+      m_filter(new FrameLogFilterModel(this)),
+      m_direction(new QComboBox),
+      m_status(new QComboBox),
+      m_follow(new QCheckBox(tr("Follow newest"))),
+      m_count(new QLabel),
+      m_table(new QTableView),
+      m_detail(makeDetailPane(tr("Select a frame to see its items"))),
+      m_hex(makeDetailPane(tr("Select a frame to see its bytes")))
+{
+    m_filter->setSourceModel(model);
+
+    m_direction->addItem(tr("Both directions"), FrameLogFilterModel::kAllDirections);
+    m_direction->addItem(tr("Sent"), FrameLogFilterModel::bit(FrameDirection::Sent));
+    m_direction->addItem(tr("Received"), FrameLogFilterModel::bit(FrameDirection::Received));
+    m_direction->setToolTip(tr("Show frames sent to the aircraft, received from it, or both"));
+    using F = FrameLogFilterModel;
+    m_status->addItem(tr("Any status"), F::kAllStatuses);
+    m_status->addItem(tr("Problems (corrected, uncorrectable, rejected)"), F::bit(FrameStatus::Corrected) |
+                                                                               F::bit(FrameStatus::Uncorrectable) |
+                                                                               F::bit(FrameStatus::Rejected));
+    for (FrameStatus s : {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable,
+                          FrameStatus::Rejected, FrameStatus::NotChecked})
+        m_status->addItem(frameStatusName(s), F::bit(s));
+    m_status->setToolTip(tr("Show only frames with this decode status"));
+    m_follow->setChecked(true);
+    m_follow->setToolTip(tr("Scroll to each new frame as it arrives"));
+
+    auto* bar = new QHBoxLayout;
+    bar->setContentsMargins(0, 0, 0, 0);
+    bar->addWidget(new QLabel(tr("Show:")));
+    bar->addWidget(m_direction);
+    bar->addWidget(m_status);
+    bar->addWidget(m_follow);
+    bar->addStretch(1);
+    bar->addWidget(m_count);
+
+    m_table->setModel(m_filter);
+    m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
+    m_table->setSelectionMode(QAbstractItemView::SingleSelection);
+    m_table->setAlternatingRowColors(true);
+    m_table->setWordWrap(false);
+    m_table->setShowGrid(false);
+    m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    m_table->verticalHeader()->hide();
+    // Fixed row heights and column widths: a view that measured its rows
+    // would ask for the text of all 200,000 of them.
+    m_table->verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
+    m_table->verticalHeader()->setDefaultSectionSize(m_table->fontMetrics().height() + 6);
+    QHeaderView* columns = m_table->horizontalHeader();
+    columns->setSectionResizeMode(QHeaderView::Interactive);
+    columns->setStretchLastSection(true);
+    columns->setHighlightSections(false);
+    const int digit = m_table->fontMetrics().horizontalAdvance(QLatin1Char('0'));
+    m_table->setColumnWidth(FrameLogModel::NumberColumn, digit * 9);
+    m_table->setColumnWidth(FrameLogModel::TimeColumn, digit * 15);
+    m_table->setColumnWidth(FrameLogModel::DirectionColumn, digit * 12);
+    m_table->setColumnWidth(FrameLogModel::MessageIdColumn, digit * 12);
+    m_table->setColumnWidth(FrameLogModel::CorrectedColumn, digit * 15);
+
+    auto* details = new QSplitter(Qt::Horizontal);
+    details->addWidget(m_detail);
+    details->addWidget(m_hex);
+    details->setStretchFactor(0, 1);
+    details->setStretchFactor(1, 1);
+    auto* split = new QSplitter(Qt::Vertical);
+    split->addWidget(m_table);
+    split->addWidget(details);
+    split->setStretchFactor(0, 3);
+    split->setStretchFactor(1, 2);
+    split->setChildrenCollapsible(false);
+
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(6, 6, 6, 6);
+    layout->addLayout(bar);
+    layout->addWidget(split, 1);
+
+    connect(m_direction, &QComboBox::currentIndexChanged, this, &FrameLogView::applyFilter);
+    connect(m_status, &QComboBox::currentIndexChanged, this, &FrameLogView::applyFilter);
+    connect(m_table->selectionModel(), &QItemSelectionModel::currentRowChanged, this, &FrameLogView::showSelected);
+    connect(m_filter, &QAbstractItemModel::rowsInserted, this, [this] {
+        updateCount();
+        if (m_follow->isChecked())
+            m_table->scrollToBottom();
+    });
+    connect(m_model, &QAbstractItemModel::rowsInserted, this, &FrameLogView::updateCount);
+    connect(m_filter, &QAbstractItemModel::modelReset, this, [this] {
+        updateCount();
+        showSelected();
+    });
+    updateCount();
+}
+
+void FrameLogView::setFollowing(bool on)
+{
+    m_follow->setChecked(on);
+}
+
+bool FrameLogView::isFollowing() const
+{
+    return m_follow->isChecked();
+}
+
+void FrameLogView::showSourceRow(int sourceRow)
+{
+    const QModelIndex index = m_filter->mapFromSource(m_model->index(sourceRow, 0));
+    if (!index.isValid())
+        return;
+    m_table->setCurrentIndex(index);
+    m_table->scrollTo(index, QAbstractItemView::PositionAtCenter);
+}
+
+void FrameLogView::scrollToSourceRow(int sourceRow)
+{
+    const int row = std::min(m_filter->rowAtOrAfter(sourceRow), m_filter->rowCount() - 1);
+    if (row >= 0)
+        m_table->scrollTo(m_filter->index(row, 0), QAbstractItemView::EnsureVisible);
+}
+
+QString FrameLogView::detailText() const
+{
+    return m_detail->toPlainText();
+}
+
+QString FrameLogView::hexText() const
+{
+    return m_hex->toPlainText();
+}
+
+void FrameLogView::applyFilter()
+{
+    m_filter->setDirections(m_direction->currentData().toUInt());
+    m_filter->setStatuses(m_status->currentData().toUInt());
+}
+
+void FrameLogView::showSelected()
+{
+    const QModelIndex current = m_table->selectionModel()->currentIndex();
+    if (!current.isValid()) {
+        m_detail->clear();
+        m_hex->clear();
+        return;
+    }
+    const int row = m_filter->sourceRow(current.row());
+    const FrameRecord record = m_model->record(row);
+    m_detail->setPlainText(describeFrame(row + 1, record, m_model->messageId(row)));
+    m_hex->setPlainText(hexDump(record.bytes, frameParts(record.bytes.size())));
+}
+
+void FrameLogView::updateCount()
+{
+    const QLocale locale;
+    const int shown = m_filter->rowCount();
+    const int total = m_model->rowCount();
+    m_count->setText(shown == total ? tr("%1 frames").arg(locale.toString(total))
+                                    : tr("%1 of %2 frames").arg(locale.toString(shown), locale.toString(total)));
+}

@@ -1,0 +1,77 @@
+#include "ui/panels/CameraPanel.h"
+
+#include "ui/panels/CommandState.h"
+#include "ui/panels/ItemText.h"
+#include "ui/panels/UnitCard.h"
+
+#include <QHBoxLayout>
+#include <QPushButton>
+
+namespace {
+
+constexpr rcm::ItemId kPhoto = rcm::ItemId::take_one_photo;
+
+}  // namespace
+
+CameraPanel::CameraPanel(CommandState* command, ReportedState* reported, QWidget* parent)
+    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QHBoxLayout(this))
+{
+    setObjectName(QStringLiteral("CameraPanel"));
+    rebuild();
+    connect(command, &CommandState::airframeChanged, this, &CameraPanel::rebuild);
+}
+
+void CameraPanel::rebuild()
+{
+    // Deleted at once, not later: the old cards name units the command no longer has.
+    qDeleteAll(findChildren<UnitCard*>(Qt::FindDirectChildrenOnly));
+    using enum rcm::ItemId;
+    if (m_command->airframe().senseAndAvoid) {
+        auto* sense = new UnitCard(m_command, m_reported, {rcm::UnitKind::Sense, 0},
+                                   QString::fromUtf8(rcm::unitLabel(rcm::UnitKind::Sense).data()), this);
+        for (rcm::ItemId id : {SA_zoom_LHS_cam, SA_zoom_FWD_cam, SA_zoom_RHS_cam})
+            sense->addSpinBox(id);
+        m_layout->addWidget(sense);
+    }
+    const auto& cameras = m_command->airframe().cameras;
+    for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
+        const auto& spec = cameras[static_cast<std::size_t>(i)];
+        const QString title = spec.name.empty()
+                                  ? QStringLiteral("%1 %2").arg(QString::fromStdString(spec.maker)).arg(spec.number)
+                                  : QString::fromStdString(spec.name);
+        auto* card = new UnitCard(m_command, m_reported, {rcm::UnitKind::Camera, i}, title, this);
+        card->addKey();
+        card->addSpinBox(cam_mag_compass);
+        card->addSpinBox(cam_elev);
+        card->addSpinBox(cam_zoom_set);
+        addPhotoButton(card);
+        card->addStation(cam_GCS_destination);
+        card->addStation(cam_GCS_backup);
+        m_layout->addWidget(card);
+    }
+}
+
+QPushButton* CameraPanel::addPhotoButton(UnitCard* card)
+{
+    const UnitRef ref = card->unitRef();
+    auto* button = new QPushButton(ItemText::label(kPhoto), card);
+    button->setObjectName(ItemText::name(kPhoto));
+    button->setToolTip(ItemText::fieldToolTip(kPhoto, 0));
+    card->addRow(button, kPhoto, 0);
+    // The code that is not the resting one (NONE) is the command (TAKE).
+    const unsigned none = m_command->resting().cameras.at(static_cast<std::size_t>(ref.index)).fieldCode(kPhoto, 0);
+    unsigned take = none;
+    for (unsigned code : ItemText::validFieldCodes(kPhoto, 0))
+        if (code != none)
+            take = code;
+    connect(button, &QPushButton::clicked, this, [this, ref, take] { m_command->setFieldCode(ref, kPhoto, 0, take); });
+    // While a photograph waits for its frame, a second click would not be a second photograph.
+    auto refresh = [this, button, ref, none] {
+        const bool pending = m_command->unit(ref) && m_command->fieldCode(ref, kPhoto, 0) != none;
+        button->setEnabled(!pending && m_command->unit(ref));
+        button->setText(pending ? tr("Photograph in the next frame") : ItemText::label(kPhoto));
+    };
+    refresh();
+    connect(m_command, &CommandState::changed, button, refresh);
+    return button;
+}

@@ -1,0 +1,205 @@
+#include "ui/panels/CommandPreview.h"
+
+#include "codec/message/MessageEncoder.h"
+#include "codec/message/TextFormat.h"
+#include "ui/framelog/HexDump.h"
+
+#include <QDateTime>
+#include <QFontDatabase>
+#include <QHash>
+#include <QLabel>
+#include <QTextEdit>
+#include <QTimeZone>
+#include <QVBoxLayout>
+
+namespace {
+
+// The items the link fills in for every frame: the ID, time and date of the
+// next whole second, as LinkWorker stamps them.
+void stampAsLink(rcm::Message& message, quint32 messageId)
+{
+    const QDateTime next = QDateTime::fromSecsSinceEpoch(QDateTime::currentSecsSinceEpoch() + 1, QTimeZone::utc());
+    const QTime t = next.time();
+    const QDate d = next.date();
+    message.header.set(rcm::ItemId::ID_msg, std::int64_t(messageId));
+    message.header.set(rcm::ItemId::time_UTC, t.hour() * 10000 + t.minute() * 100 + t.second());
+    message.header.set(rcm::ItemId::date_UTC, (d.year() % 100) * 10000 + d.month() * 100 + d.day());
+}
+
+// Each line of a message's text with a key naming the item it sets: the
+// sections it is in, the key item line of its unit, and the item's name. Two
+// texts' lines with one key are the same item of the same unit.
+struct KeyedLine {
+    QString key;  // empty for section lines
+    QString line;
+};
+
+QList<KeyedLine> keyedLines(const std::string& text)
+{
+    static const QStringList repeated = {QStringLiteral("engine"), QStringLiteral("comms_system"),
+                                         QStringLiteral("camera")};
+    QList<KeyedLine> out;
+    QStringList sections;
+    QString unit;  // the key item line of the repeated unit being read
+    for (const QString& line : QString::fromStdString(text).split(QLatin1Char('\n'), Qt::SkipEmptyParts)) {
+        if (line.startsWith(QLatin1String("BEGIN "))) {
+            sections << line.mid(6);
+            unit.clear();
+            out.append({QString(), line});
+        } else if (line == QLatin1String("END")) {
+            if (!sections.isEmpty())
+                sections.removeLast();
+            unit.clear();
+            out.append({QString(), line});
+        } else {
+            // In canonical order a repeated unit's key item is its first line.
+            if (!sections.isEmpty() && repeated.contains(sections.last()) && unit.isEmpty())
+                unit = line;
+            const QString name = line.section(QLatin1Char(' '), 0, 0);
+            out.append({sections.join(QLatin1Char('/')) + QLatin1Char('|') + unit + QLatin1Char('|') + name, line});
+        }
+    }
+    return out;
+}
+
+QTextEdit* codeView()
+{
+    auto* view = new QTextEdit;
+    view->setReadOnly(true);
+    view->setLineWrapMode(QTextEdit::NoWrap);
+    view->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+    return view;
+}
+
+const QString kMarkStyle = QStringLiteral("background-color:#ffe08a");
+
+}  // namespace
+
+CommandPreview::CommandPreview(QWidget* parent)
+    : QWidget(parent), m_summary(new QLabel), m_tabs(new QTabWidget), m_text(codeView()), m_hex(codeView())
+{
+    m_summary->setWordWrap(true);
+    m_tabs->addTab(m_text, tr("Items"));
+    m_tabs->addTab(m_hex, tr("Bytes"));
+    m_tabs->setDocumentMode(true);
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(6, 6, 6, 6);
+    layout->addWidget(m_summary);
+    layout->addWidget(m_tabs, 1);
+    refresh();
+}
+
+void CommandPreview::setDatagram(bool datagram)
+{
+    if (datagram == m_datagram)
+        return;
+    m_datagram = datagram;
+    refresh();
+}
+
+QString CommandPreview::text() const
+{
+    return m_text->toPlainText();
+}
+
+QString CommandPreview::hex() const
+{
+    return m_hex->toPlainText();
+}
+
+void CommandPreview::setCommand(const rcm::Message& command)
+{
+    m_command = command;
+    refresh();
+}
+
+void CommandPreview::frameSent(quint32 messageId)
+{
+    m_lastSent = m_command;
+    m_nextId = (messageId + 1) % (1u << 24);
+    refresh();
+}
+
+void CommandPreview::resetSent()
+{
+    m_lastSent.reset();
+    m_nextId = 0;
+    refresh();
+}
+
+void CommandPreview::refresh()
+{
+    rcm::Message next = m_command;
+    stampAsLink(next, m_nextId);
+    std::optional<rcm::Message> before = m_lastSent;
+    if (before)
+        stampAsLink(*before, m_nextId);  // the same stamp, so only the command's changes differ
+
+    // Items.
+    QHash<QString, QString> previous;
+    if (before)
+        for (const KeyedLine& k : keyedLines(rcm::formatMessage(*before)))
+            if (!k.key.isEmpty())
+                previous.insert(k.key, k.line);
+    QString html = QStringLiteral("<pre style=\"margin:0\">");
+    m_changedItems = 0;
+    for (const KeyedLine& k : keyedLines(rcm::formatMessage(next))) {
+        const bool changed = before && !k.key.isEmpty() && previous.value(k.key) != k.line;
+        if (changed) {
+            ++m_changedItems;
+            html += QStringLiteral("<span style=\"%1\"><b>%2</b></span>\n").arg(kMarkStyle, k.line.toHtmlEscaped());
+        } else if (k.key.isEmpty()) {
+            html += QStringLiteral("<span style=\"color:#6b6b6b\">%1</span>\n").arg(k.line.toHtmlEscaped());
+        } else {
+            html += k.line.toHtmlEscaped() + QLatin1Char('\n');
+        }
+    }
+    m_text->setHtml(html + QStringLiteral("</pre>"));
+
+    // Bytes.
+    rcm::Diagnostics errors;
+    const auto encode = [&](const rcm::Message& m, rcm::Diagnostics& e) -> QByteArray {
+        if (m_datagram) {
+            const auto d = rcm::encodeDatagram(m, e);
+            return d ? QByteArray(reinterpret_cast<const char*>(d->data()), qsizetype(d->size())) : QByteArray();
+        }
+        const auto f = rcm::encodeFrame(m, e);
+        return f ? QByteArray(reinterpret_cast<const char*>(f->data()), qsizetype(f->size())) : QByteArray();
+    };
+    const QByteArray bytes = encode(next, errors);
+    if (bytes.isEmpty()) {
+        QString reasons;
+        for (const rcm::Diagnostic& d : errors)
+            reasons += QStringLiteral("<li>%1</li>").arg(QString::fromStdString(d.toString()).toHtmlEscaped());
+        m_hex->setHtml(
+            QStringLiteral("<p style=\"color:#b01c1c\"><b>%1</b></p><ul>%2</ul>")
+                .arg(tr("This command cannot be encoded; the link keeps sending the last good one."), reasons));
+        m_summary->setText(QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(tr("Not encodable")));
+        return;
+    }
+    rcm::Diagnostics ignored;
+    const QByteArray previousBytes = before ? encode(*before, ignored) : QByteArray();
+    QList<bool> marked(bytes.size(), false);
+    if (previousBytes.size() == bytes.size())
+        for (const HexDumpPart& part : frameParts(bytes.size()))
+            if (part.title.endsWith(QLatin1String("data")))  // parity changes with any data byte
+                for (qsizetype i = part.offset; i < part.offset + part.length; ++i)
+                    marked[i] = bytes[i] != previousBytes[i];
+    m_hex->setHtml(
+        QStringLiteral("<pre style=\"margin:0\">%1</pre>").arg(hexDump(bytes, frameParts(bytes.size()), &marked)));
+
+    const QString framing =
+        m_datagram ? tr("%1-byte UDP datagram").arg(bytes.size()) : tr("%1-byte serial frame").arg(bytes.size());
+    if (!before)
+        m_summary->setText(tr("Next frame: ID_msg %1, %2. No frame sent yet.").arg(m_nextId).arg(framing));
+    else if (m_changedItems == 0)
+        m_summary->setText(
+            tr("Next frame: ID_msg %1, %2. Same command as the last frame sent.").arg(m_nextId).arg(framing));
+    else
+        m_summary->setText(
+            tr("Next frame: ID_msg %1, %2. <span style=\"%3\"><b>%n item(s) changed</b></span> since the last "
+               "frame sent.",
+               nullptr, m_changedItems)
+                .arg(m_nextId)
+                .arg(framing, kMarkStyle));
+}

@@ -1,0 +1,52 @@
+#pragma once
+
+// The next frame before it goes: the command in the text format and the
+// bytes the link will send, with what changed since the last frame sent
+// marked, so that the operator sees exactly what a click will do to the
+// aircraft one second later. ID_msg, time_UTC and date_UTC are shown as the
+// link will stamp them; they change every frame and are not marked.
+
+#include "codec/message/Message.h"
+
+#include <QTabWidget>
+
+#include <optional>
+
+class QLabel;
+class QTextEdit;
+
+class CommandPreview : public QWidget {
+    Q_OBJECT
+
+public:
+    explicit CommandPreview(QWidget* parent = nullptr);
+
+    // Serial frames carry the 90-byte preamble; UDP datagrams do not.
+    void setDatagram(bool datagram);
+    // Items of the next frame that differ from the last frame sent; 0 before any.
+    int changedItems() const { return m_changedItems; }
+    QString text() const;  // plain, without marks
+    QString hex() const;
+    // Not a slot: rcm::Message's meta type is declared in link/session/MessageMetaType.h,
+    // which this widget has no need of.
+    void setCommand(const rcm::Message& command);
+
+public slots:
+    // The command as it stands went out as frame `messageId`.
+    void frameSent(quint32 messageId);
+    // A new link: nothing has been sent on it yet.
+    void resetSent();
+
+private:
+    void refresh();
+
+    rcm::Message m_command;
+    std::optional<rcm::Message> m_lastSent;
+    quint32 m_nextId = 0;
+    bool m_datagram = true;
+    int m_changedItems = 0;
+    QLabel* m_summary;
+    QTabWidget* m_tabs;
+    QTextEdit* m_text;
+    QTextEdit* m_hex;
+};

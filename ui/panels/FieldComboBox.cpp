@@ -1,0 +1,37 @@
+#include "ui/panels/FieldComboBox.h"
+
+#include "ui/panels/CommandState.h"
+#include "ui/panels/ItemText.h"
+
+#include <QSignalBlocker>
+
+FieldComboBox::FieldComboBox(CommandState* command, UnitRef ref, rcm::ItemId id, int field, QWidget* parent)
+    : QComboBox(parent), m_command(command), m_ref(ref), m_id(id), m_field(field)
+{
+    setObjectName(ItemText::name(id, field));
+    for (unsigned code : ItemText::validFieldCodes(id, field))
+        addItem(ItemText::fieldCodeName(id, field, code), code);
+    setToolTip(ItemText::fieldToolTip(id, field));
+    setAccessibleName(ItemText::label(id, field));
+    refresh();
+    connect(this, &QComboBox::currentIndexChanged, this, &FieldComboBox::commit);
+    connect(command, &CommandState::changed, this, &FieldComboBox::refresh);
+}
+
+void FieldComboBox::refresh()
+{
+    const bool commanded = m_command->value(m_ref, m_id) != nullptr;
+    setEnabled(commanded);
+    // A code not in the list (nothing commanded yet) shows as no selection.
+    const int index = commanded ? findData(m_command->fieldCode(m_ref, m_id, m_field)) : -1;
+    if (index != currentIndex()) {
+        const QSignalBlocker block(this);
+        setCurrentIndex(index);
+    }
+}
+
+void FieldComboBox::commit(int index)
+{
+    if (index < 0 || !m_command->setFieldCode(m_ref, m_id, m_field, itemData(index).toUInt()))
+        refresh();
+}

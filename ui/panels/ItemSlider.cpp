@@ -1,0 +1,39 @@
+#include "ui/panels/ItemSlider.h"
+
+#include "ui/panels/CommandState.h"
+#include "ui/panels/ItemText.h"
+
+#include <QSignalBlocker>
+
+ItemSlider::ItemSlider(CommandState* command, UnitRef ref, rcm::ItemId id, QWidget* parent)
+    : QSlider(Qt::Horizontal, parent), m_command(command), m_ref(ref), m_id(id)
+{
+    const rcm::ItemInfo& info = rcm::itemInfo(id);
+    setObjectName(ItemText::name(id) + QStringLiteral(".slider"));
+    setRange(static_cast<int>(info.min), static_cast<int>(info.max));
+    setSingleStep(1);
+    setPageStep(10);
+    setTickPosition(QSlider::TicksBelow);
+    setTickInterval(static_cast<int>(info.max - info.min) / 4);
+    setToolTip(ItemText::toolTip(id));
+    setAccessibleName(ItemText::label(id));
+    refresh();
+    connect(this, &QSlider::valueChanged, this, &ItemSlider::commit);
+    connect(command, &CommandState::changed, this, &ItemSlider::refresh);
+}
+
+void ItemSlider::refresh()
+{
+    const rcm::Value* v = m_command->value(m_ref, m_id);
+    setEnabled(v != nullptr);
+    if (v && v->number != value()) {
+        const QSignalBlocker block(this);
+        setValue(static_cast<int>(v->number));
+    }
+}
+
+void ItemSlider::commit(int value)
+{
+    if (!m_command->setNumber(m_ref, m_id, value))
+        refresh();
+}

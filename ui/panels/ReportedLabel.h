@@ -1,0 +1,33 @@
+// The value the aircraft last reported for one item (or one two-bit field of
+// it), shown beside the control that commands it. When the report has
+// disagreed with the command for more than two status frames the label is
+// highlighted: property "mismatch" true, a warning background, and a tool tip
+// saying what was commanded and what is reported.
+#pragma once
+
+#include "codec/message/ItemTable.h"
+#include "ui/panels/UnitRef.h"
+
+#include <QLabel>
+
+class CommandState;
+class ReportedState;
+
+class ReportedLabel : public QLabel {
+    Q_OBJECT
+
+public:
+    ReportedLabel(const CommandState* command, const ReportedState* reported, UnitRef ref, rcm::ItemId id,
+                  int field = -1, QWidget* parent = nullptr);
+
+    bool mismatch() const { return property("mismatch").toBool(); }
+
+private:
+    void refresh();
+
+    const CommandState* m_command;
+    const ReportedState* m_reported;
+    UnitRef m_ref;
+    rcm::ItemId m_id;
+    int m_field;
+};

@@ -1,0 +1,78 @@
+// What the aircraft last said it is doing: the last reported value of every
+// item of every unit, from its status frames, and for each commanded item how
+// many status frames in a row have disagreed with the command. A panel shows
+// the reported value beside the commanded one and highlights a disagreement
+// only once it outlasts what a moving part explains (two frames).
+#pragma once
+
+#include "codec/message/Message.h"
+#include "link/session/MessageMetaType.h"
+#include "ui/panels/UnitRef.h"
+
+#include <QObject>
+
+#include <array>
+#include <map>
+#include <vector>
+
+class CommandState;
+struct ReceivedMessage;
+
+class ReportedState : public QObject {
+    Q_OBJECT
+
+public:
+    // Disagreeing for more than this many consecutive status frames is persistent.
+    static constexpr int kTransientFrames = 2;
+
+    // Compares against `command`'s message as it is when each status frame
+    // arrives; forgets everything when the command's airframe changes.
+    // `command` must outlive this object.
+    explicit ReportedState(const CommandState* command, QObject* parent = nullptr);
+
+    // The last value reported for the item of the unit `ref` names in the
+    // command (matched by key item); nullptr before any report of it.
+    const rcm::Value* value(UnitRef ref, rcm::ItemId id) const;
+    // The unit as last reported, matched by key item; nullptr before any report.
+    const rcm::Unit* unit(UnitRef ref) const;
+
+    // Consecutive status frames, up to the last, in which the reported item
+    // (field: only that two-bit field; -1: the whole item) differed from the
+    // command. A frame without the item ends the run, and so does a new
+    // commanded value: the count is against the command as it stands.
+    int mismatchFrames(UnitRef ref, rcm::ItemId id, int field = -1) const;
+    bool mismatchPersistent(UnitRef ref, rcm::ItemId id, int field = -1) const
+    {
+        return mismatchFrames(ref, id, field) > kTransientFrames;
+    }
+
+    int statusFrames() const { return m_statusFrames; }
+    void clear();
+
+public slots:
+    void onStatus(const rcm::Message& status);
+    // LinkController::messageReceived, for a direct connection.
+    void onReceived(const ReceivedMessage& received);
+
+signals:
+    void updated();
+
+private:
+    struct Comparison {
+        rcm::Value commanded;  // what the counts below were counted against
+        int frames = 0;
+        std::array<int, 4> fieldFrames{};
+    };
+    struct ReportedUnit {
+        rcm::Unit unit;
+        std::map<rcm::ItemId, Comparison> comparisons;
+    };
+
+    const ReportedUnit* find(UnitRef ref) const;
+    ReportedUnit& findOrAdd(const rcm::Unit& like);
+    void compare(const rcm::Unit& commanded, const rcm::Unit* reported);
+
+    const CommandState* m_command;
+    std::vector<ReportedUnit> m_units;
+    int m_statusFrames = 0;
+};

@@ -1,0 +1,92 @@
+#include "ui/window/LinkSettings.h"
+
+#include "link/transport/SerialLink.h"
+#include "link/transport/UdpLink.h"
+
+#include <QHostAddress>
+#include <QSettings>
+
+std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
+{
+    const auto fail = [&](const QString& why) -> std::unique_ptr<Link> {
+        if (error)
+            *error = why;
+        return nullptr;
+    };
+    if (transport == Transport::Serial) {
+        if (serialPort.trimmed().isEmpty())
+            return fail(QObject::tr("Choose a serial port"));
+        if (baudRate <= 0)
+            return fail(QObject::tr("The bit rate must be positive"));
+        return std::make_unique<SerialLink>(serialPort.trimmed(), baudRate);
+    }
+    const QHostAddress local(localAddress.trimmed());
+    const QHostAddress remote(remoteAddress.trimmed());
+    if (local.isNull())
+        return fail(QObject::tr("\"%1\" is not a local IP address").arg(localAddress));
+    if (remote.isNull())
+        return fail(QObject::tr("\"%1\" is not an IP address").arg(remoteAddress));
+    if (remotePort == 0)
+        return fail(QObject::tr("Give the aircraft's UDP port"));
+    return std::make_unique<UdpLink>(local, localPort, remote, remotePort);
+}
+
+QString LinkSettings::summary() const
+{
+    const QString where = transport == Transport::Serial
+                              ? QObject::tr("serial %1 at %2 bit/s").arg(serialPort).arg(baudRate)
+                              : QObject::tr("UDP %1:%2").arg(remoteAddress).arg(remotePort);
+    return keyPath.isEmpty() ? where : QObject::tr("%1, encrypted").arg(where);
+}
+
+std::optional<LinkSettings> LinkSettings::udpRemote(const QString& hostAndPort, QString* error)
+{
+    const qsizetype colon = hostAndPort.lastIndexOf(QLatin1Char(':'));
+    bool ok = false;
+    const uint port = colon > 0 ? hostAndPort.mid(colon + 1).toUInt(&ok) : 0;
+    const QString host = hostAndPort.left(colon);
+    if (!ok || port == 0 || port > 65535 || QHostAddress(host).isNull()) {
+        if (error)
+            *error = QObject::tr("\"%1\" is not HOST:PORT with an IP address and a port 1..65535").arg(hostAndPort);
+        return std::nullopt;
+    }
+    LinkSettings s;
+    s.transport = Transport::Udp;
+    s.remoteAddress = host;
+    s.remotePort = quint16(port);
+    return s;
+}
+
+void LinkSettings::save(QSettings& settings) const
+{
+    settings.beginGroup(QStringLiteral("link"));
+    settings.setValue(QStringLiteral("transport"),
+                      transport == Transport::Serial ? QStringLiteral("serial") : QStringLiteral("udp"));
+    settings.setValue(QStringLiteral("serialPort"), serialPort);
+    settings.setValue(QStringLiteral("baudRate"), baudRate);
+    settings.setValue(QStringLiteral("localAddress"), localAddress);
+    settings.setValue(QStringLiteral("localPort"), localPort);
+    settings.setValue(QStringLiteral("remoteAddress"), remoteAddress);
+    settings.setValue(QStringLiteral("remotePort"), remotePort);
+    settings.setValue(QStringLiteral("keyPath"), keyPath);  // where the key is; the key stays in its file
+    settings.endGroup();
+}
+
+LinkSettings LinkSettings::load(const QSettings& settings)
+{
+    const LinkSettings defaults;
+    const auto value = [&](const char* key, const QVariant& fallback) {
+        return settings.value(QStringLiteral("link/") + QLatin1String(key), fallback);
+    };
+    LinkSettings s;
+    s.transport =
+        value("transport", QString()).toString() == QLatin1String("serial") ? Transport::Serial : Transport::Udp;
+    s.serialPort = value("serialPort", defaults.serialPort).toString();
+    s.baudRate = value("baudRate", defaults.baudRate).toInt();
+    s.localAddress = value("localAddress", defaults.localAddress).toString();
+    s.localPort = quint16(value("localPort", defaults.localPort).toUInt());
+    s.remoteAddress = value("remoteAddress", defaults.remoteAddress).toString();
+    s.remotePort = quint16(value("remotePort", defaults.remotePort).toUInt());
+    s.keyPath = value("keyPath", defaults.keyPath).toString();
+    return s;
+}

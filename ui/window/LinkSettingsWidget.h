@@ -1,0 +1,50 @@
+#pragma once
+
+// Edits LinkSettings: the transport, then either the serial port (from the
+// system's list, refreshed on demand through SerialLink's helper, or typed,
+// e.g. a pseudo-terminal) and bit rate, or the UDP endpoints; and, for either,
+// the aircraft's key file (typed, or chosen in a file dialog) for a secure link.
+
+#include "ui/window/LinkSettings.h"
+
+#include <QWidget>
+
+class QComboBox;
+class QLineEdit;
+class QSpinBox;
+class QStackedWidget;
+class QToolButton;
+
+class LinkSettingsWidget : public QWidget {
+    Q_OBJECT
+
+public:
+    explicit LinkSettingsWidget(QWidget* parent = nullptr);
+
+    LinkSettings settings() const;
+    void setSettings(const LinkSettings& settings);
+
+    QLineEdit* keyPathEdit() const { return m_keyPath; }
+
+public slots:
+    // Lists the serial ports again, keeping the one chosen.
+    void refreshPorts();
+    // A file dialog for the key file.
+    void chooseKeyFile();
+
+signals:
+    void changed();
+
+private:
+    QComboBox* m_transport;
+    QStackedWidget* m_pages;
+    QComboBox* m_port;
+    QToolButton* m_refresh;
+    QComboBox* m_baud;
+    QLineEdit* m_localAddress;
+    QSpinBox* m_localPort;
+    QLineEdit* m_remoteAddress;
+    QSpinBox* m_remotePort;
+    QLineEdit* m_keyPath;
+    QToolButton* m_chooseKey;
+};

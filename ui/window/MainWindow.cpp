@@ -1,0 +1,688 @@
+#include "ui/window/MainWindow.h"
+
+#include "codec/secure/SecureCodec.h"
+#include "link/framelog/FrameLogCsv.h"
+#include "link/session/LinkController.h"
+#include "link/framelog/ReplayLink.h"
+#include "link/simulation/AirframeLoader.h"
+#include "ui/panels/CameraPanel.h"
+#include "ui/panels/CommandPreview.h"
+#include "ui/panels/CommandState.h"
+#include "ui/panels/EnginePanel.h"
+#include "ui/panels/FlapsPanel.h"
+#include "ui/plan/FlightPlanUpload.h"
+#include "ui/plan/FlightPlanWidget.h"
+#include "ui/framelog/FrameLogModel.h"
+#include "ui/framelog/FrameLogView.h"
+#include "ui/panels/FuelDumpPanel.h"
+#include "ui/panels/GearPanel.h"
+#include "ui/panels/HeaderPanel.h"
+#include "ui/panels/LightsPanel.h"
+#include "ui/window/LinkSettingsWidget.h"
+#include "ui/voice/PushToTalkWidget.h"
+#include "ui/panels/RadioPanel.h"
+#include "ui/window/RehearsalLauncher.h"
+#include "ui/framelog/ReplayControls.h"
+#include "ui/panels/ReportedState.h"
+#include "ui/window/StatusBarWidget.h"
+#include "ui/voice/VoiceChannel.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDateTime>
+#include <QDir>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QGroupBox>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QSaveFile>
+#include <QScrollArea>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QThread>
+#include <QVBoxLayout>
+
+#include <memory>
+
+namespace {
+
+// Every panel at its natural height, top aligned, in a scroll area, so a
+// small screen scrolls rather than squeezing the controls and a large one
+// does not spread them apart.
+QScrollArea* scrolled(QWidget* panel)
+{
+    auto* page = new QWidget;
+    auto* layout = new QVBoxLayout(page);
+    layout->setContentsMargins(4, 8, 4, 4);
+    layout->addWidget(panel);
+    layout->addStretch(1);
+    auto* area = new QScrollArea;
+    area->setWidget(page);
+    area->setWidgetResizable(true);
+    area->setFrameShape(QFrame::NoFrame);
+    return area;
+}
+
+QDockWidget* dock(const QString& title, const QString& name, QWidget* content, QMainWindow* window)
+{
+    auto* d = new QDockWidget(title, window);
+    d->setObjectName(name);  // for saveState()
+    // The title as a heading, so the areas of the window read at a glance;
+    // the content keeps the normal font.
+    QFont body = d->font();
+    body.setBold(false);  // explicitly, or the content would inherit the heading's weight
+    content->setFont(body);
+    QFont heading = d->font();
+    heading.setBold(true);
+    d->setFont(heading);
+    d->setWidget(content);
+    d->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable | QDockWidget::DockWidgetClosable);
+    return d;
+}
+
+const QString kTitle = QStringLiteral("RCM ground control station");
+
+}  // namespace
+
+MainWindow::MainWindow(const Options& options, QWidget* parent)
+    : QMainWindow(parent),
+      m_command(new CommandState(rcm::Airframe::wellEquipped(), this)),
+      m_reported(new ReportedState(m_command, this)),
+      m_upload(new FlightPlanUpload(this)),
+      m_logModel(new FrameLogModel(this)),
+      m_rehearsal(new RehearsalLauncher(this)),
+      m_frameLogDirectory(options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory()
+                                                              : options.frameLogDirectory)
+{
+    LinkWorker::registerMetaTypes();
+    setWindowTitle(kTitle);
+    setDockOptions(QMainWindow::AnimatedDocks | QMainWindow::AllowTabbedDocks);
+    buildPanels();
+    buildDocks();
+    buildMenus();
+
+    m_status = new StatusBarWidget;
+    statusBar()->addPermanentWidget(m_status, 1);
+    statusBar()->setSizeGripEnabled(true);
+
+    connect(m_command, &CommandState::changed, this, &MainWindow::commandChanged);
+    connect(m_command, &CommandState::rejected, this,
+            [this](const QString& reason) { statusBar()->showMessage(tr("Not commanded: %1").arg(reason), 8000); });
+    connect(m_command, &CommandState::airframeChanged, this, [this] {
+        m_reported->clear();
+        updateTitle();
+    });
+    connect(m_rehearsal, &RehearsalLauncher::ready, this, [this](quint16 port) {
+        LinkSettings s;
+        s.transport = LinkSettings::Transport::Udp;
+        s.localAddress = QStringLiteral("127.0.0.1");
+        s.localPort = 0;
+        s.remoteAddress = QStringLiteral("127.0.0.1");
+        s.remotePort = port;
+        QString error;
+        std::unique_ptr<Link> link = s.createLink(&error);
+        stopController();
+        startController(std::move(link), true, tr("rehearsal with uasim on %1:%2").arg(s.remoteAddress).arg(port), true,
+                        m_rehearsalKey);
+        m_rehearsing = true;
+        setLinkControlsRunning(true);
+    });
+    connect(m_rehearsal, &RehearsalLauncher::failed, this, [this](const QString& reason) {
+        m_rehearsalKey.reset();
+        showError(tr("Rehearsal: %1").arg(reason));
+        if (m_rehearsing)
+            disconnectLink();
+    });
+
+    restoreSession(options);
+    commandChanged();
+    setLinkControlsRunning(false);
+    updateTitle();
+}
+
+MainWindow::~MainWindow()
+{
+    // The link first: its thread calls into m_upload until it ends.
+    stopController();
+}
+
+void MainWindow::buildPanels()
+{
+    m_panels = new QTabWidget;
+    m_panels->setDocumentMode(true);
+    m_panels->setUsesScrollButtons(true);
+    // Alt+1 .. Alt+8 in the View menu bring each up; the tabs themselves
+    // carry no mnemonic, which would make those shortcuts ambiguous.
+    const struct {
+        QWidget* panel;
+        QString title;
+    } panels[] = {
+        {new HeaderPanel(m_command, m_reported), tr("Header")},
+        {new EnginePanel(m_command, m_reported), tr("Engines")},
+        {new FlapsPanel(m_command, m_reported), tr("Flaps")},
+        {new GearPanel(m_command, m_reported), tr("Landing gear")},
+        {new LightsPanel(m_command, m_reported), tr("Lights")},
+        {new FuelDumpPanel(m_command, m_reported), tr("Fuel dump")},
+        {new RadioPanel(m_command, m_reported), tr("Radios")},
+        {new CameraPanel(m_command, m_reported), tr("Cameras")},
+    };
+    for (const auto& p : panels) {
+        const int index = m_panels->addTab(scrolled(p.panel), p.title);
+        m_panels->setTabToolTip(index, tr("%1 (Alt+%2)").arg(p.title).arg(index + 1));
+    }
+    setCentralWidget(m_panels);
+}
+
+void MainWindow::buildDocks()
+{
+    // Link: where to, and the buttons that start and stop it.
+    auto* linkBox = new QWidget;
+    auto* linkLayout = new QVBoxLayout(linkBox);
+    linkLayout->setContentsMargins(8, 8, 8, 8);
+    m_linkSettings = new LinkSettingsWidget;
+    linkLayout->addWidget(m_linkSettings);
+    m_connectButton = new QPushButton(tr("Connect"));
+    m_connectButton->setToolTip(tr("Open the link and start sending the command once a second (Ctrl+K)"));
+    m_disconnectButton = new QPushButton(tr("Disconnect"));
+    m_disconnectButton->setToolTip(tr("Stop sending and close the link (Ctrl+Shift+K)"));
+    auto* buttons = new QHBoxLayout;
+    buttons->addWidget(m_connectButton);
+    buttons->addWidget(m_disconnectButton);
+    linkLayout->addLayout(buttons);
+    m_rehearsalButton = new QPushButton(tr("Start rehearsal"));
+    m_rehearsalButton->setToolTip(
+        tr("Start the simulated aircraft (uasim) on this computer and connect to it "
+           "(Ctrl+R)"));
+    linkLayout->addWidget(m_rehearsalButton);
+    m_linkNote = new QLabel;
+    m_linkNote->setWordWrap(true);
+    m_linkNote->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_linkNote->setStyleSheet(QStringLiteral("color: palette(mid);"));
+    linkLayout->addWidget(m_linkNote);
+    m_replayControls = new ReplayControls;
+    m_replayControls->hide();
+    linkLayout->addWidget(m_replayControls);
+    linkLayout->addStretch(1);
+    connect(m_connectButton, &QPushButton::clicked, this, &MainWindow::connectLink);
+    connect(m_disconnectButton, &QPushButton::clicked, this, &MainWindow::disconnectLink);
+    connect(m_rehearsalButton, &QPushButton::clicked, this, &MainWindow::startRehearsal);
+
+    connect(m_replayControls, &ReplayControls::pauseRequested, this, &MainWindow::setReplayPaused);
+    connect(m_replayControls, &ReplayControls::speedRequested, this, &MainWindow::setReplaySpeed);
+    connect(m_replayControls, &ReplayControls::seekRequested, this, [this](qint64 utc) {
+        if (m_replay)
+            QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), utc] { replay->seek(utc); });
+    });
+
+    m_preview = new CommandPreview;
+    m_logView = new FrameLogView(m_logModel);
+    m_flightPlan = new FlightPlanWidget(m_upload);
+    connect(m_flightPlan, &FlightPlanWidget::message, this,
+            [this](const QString& text) { statusBar()->showMessage(text, 8000); });
+
+    QDockWidget* link = dock(tr("Link"), QStringLiteral("linkDock"), linkBox, this);
+    QDockWidget* preview = dock(tr("Next frame"), QStringLiteral("previewDock"), m_preview, this);
+    QDockWidget* log = dock(tr("Frame log"), QStringLiteral("frameLogDock"), m_logView, this);
+    QDockWidget* plan = dock(tr("Flight plan"), QStringLiteral("flightPlanDock"), m_flightPlan, this);
+    m_voice = new VoiceChannel(this);
+    QDockWidget* voice = dock(tr("Voice"), QStringLiteral("voiceDock"), new PushToTalkWidget(m_voice), this);
+    // The panels take the full width they need; the link sits beside them,
+    // the log and the next frame share the bottom.
+    setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
+    setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
+    addDockWidget(Qt::LeftDockWidgetArea, link);
+    addDockWidget(Qt::RightDockWidgetArea, voice);
+    addDockWidget(Qt::BottomDockWidgetArea, log);
+    splitDockWidget(log, preview, Qt::Horizontal);
+    tabifyDockWidget(log, plan);
+    log->raise();
+    resizeDocks({link, voice}, {230, 230}, Qt::Horizontal);
+    resizeDocks({log, preview}, {900, 600}, Qt::Horizontal);
+    resizeDocks({log}, {540}, Qt::Vertical);
+}
+
+void MainWindow::buildMenus()
+{
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    QAction* open = file->addAction(tr("&Open frame log for replay\u2026"), this, &MainWindow::chooseFrameLog);
+    open->setShortcut(QKeySequence::Open);
+    QAction* csv = file->addAction(tr("&Export frame log as CSV\u2026"), this, &MainWindow::exportCsv);
+    csv->setShortcut(QKeySequence(tr("Ctrl+E")));
+    file->addSeparator();
+    QAction* plan = file->addAction(tr("Open flight &plan\u2026"), m_flightPlan, &FlightPlanWidget::openPlan);
+    plan->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
+    QMenu* airframes = file->addMenu(tr("&Airframe"));
+    m_airframeActions = new QActionGroup(this);
+    for (const QString& path : AirframeLoader::builtIn()) {
+        const auto airframe = AirframeLoader::load(path);
+        QAction* a = airframes->addAction(airframe ? QString::fromStdString(airframe->name) : path);
+        a->setCheckable(true);
+        a->setData(path);
+        m_airframeActions->addAction(a);
+        connect(a, &QAction::triggered, this, [this, path] { loadAirframe(path); });
+    }
+    airframes->addSeparator();
+    airframes->addAction(tr("From a &file\u2026"), this, &MainWindow::chooseAirframe);
+    file->addSeparator();
+    QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
+    quit->setShortcut(QKeySequence::Quit);
+
+    QMenu* linkMenu = menuBar()->addMenu(tr("&Link"));
+    m_connectAction = linkMenu->addAction(tr("&Connect"), this, &MainWindow::connectLink);
+    m_connectAction->setShortcut(QKeySequence(tr("Ctrl+K")));
+    m_disconnectAction = linkMenu->addAction(tr("&Disconnect"), this, &MainWindow::disconnectLink);
+    m_disconnectAction->setShortcut(QKeySequence(tr("Ctrl+Shift+K")));
+    m_rehearsalAction = linkMenu->addAction(tr("Start &rehearsal with uasim"), this, &MainWindow::startRehearsal);
+    m_rehearsalAction->setShortcut(QKeySequence(tr("Ctrl+R")));
+    linkMenu->addSeparator();
+    m_pauseAction =
+        linkMenu->addAction(tr("&Pause or resume replay"), this, [this] { setReplayPaused(!m_replayPaused); });
+    m_pauseAction->setShortcut(QKeySequence(tr("Ctrl+P")));
+    m_pauseAction->setEnabled(false);
+    linkMenu->addAction(tr("Refresh serial ports"), m_linkSettings, &LinkSettingsWidget::refreshPorts);
+
+    m_viewMenu = menuBar()->addMenu(tr("&View"));
+    for (int i = 0; i < m_panels->count(); ++i) {
+        const QString name = m_panels->tabText(i);
+        QAction* a = m_viewMenu->addAction(name, this, [this, i] { showPanel(i); });
+        a->setShortcut(QKeySequence(Qt::ALT | Qt::Key(Qt::Key_1 + i)));
+        a->setToolTip(tr("Show the %1 panel").arg(name));
+    }
+    m_viewMenu->addSeparator();
+    int key = 0;
+    for (QDockWidget* d : findChildren<QDockWidget*>()) {
+        QAction* toggle = d->toggleViewAction();
+        toggle->setShortcut(QKeySequence(Qt::CTRL | Qt::Key(Qt::Key_1 + key++)));
+        m_viewMenu->addAction(toggle);
+    }
+
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(tr("&About"), this, [this] {
+        QMessageBox::about(this, kTitle,
+                           tr("<p><b>%1</b></p><p>Commands an unmanned aircraft with the Remote Control Message: "
+                              "a 600-byte frame once a second over a serial modem, or a 510-byte UDP datagram."
+                              "</p>")
+                               .arg(kTitle));
+    });
+}
+
+void MainWindow::restoreSession(const Options& options)
+{
+    QString airframe = options.airframePath;
+    if (options.restoreSettings) {
+        QSettings settings;
+        restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
+        restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+        m_linkSettings->setSettings(LinkSettings::load(settings));
+        if (airframe.isEmpty())
+            airframe = settings.value(QStringLiteral("airframe")).toString();
+    }
+    if (airframe.isEmpty())
+        airframe = AirframeLoader::kDefaultPath;
+    QString error;
+    if (!loadAirframe(airframe, &error) && airframe != AirframeLoader::kDefaultPath) {
+        showError(error);
+        loadAirframe(AirframeLoader::kDefaultPath);
+    }
+}
+
+void MainWindow::saveSession() const
+{
+    QSettings settings;
+    settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
+    settings.setValue(QStringLiteral("window/state"), saveState());
+    m_linkSettings->settings().save(settings);
+    settings.setValue(QStringLiteral("airframe"), m_airframePath);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event)
+{
+    saveSession();
+    stopController();
+    m_rehearsal->stop();
+    event->accept();
+}
+
+bool MainWindow::loadAirframe(const QString& path, QString* error)
+{
+    QString reason;
+    const std::optional<rcm::Airframe> airframe = AirframeLoader::load(path, &reason);
+    if (!airframe) {
+        if (error)
+            *error = reason;
+        else
+            showError(reason);
+        return false;
+    }
+    m_airframePath = path;
+    m_command->setAirframe(*airframe);
+    for (QAction* a : m_airframeActions->actions())
+        a->setChecked(a->data().toString() == path);
+    updateTitle();
+    return true;
+}
+
+LinkStatistics MainWindow::statistics() const
+{
+    return m_controller ? m_controller->statistics() : LinkStatistics();
+}
+
+void MainWindow::connectLink()
+{
+    connectWith(m_linkSettings->settings());
+}
+
+bool MainWindow::connectWith(const LinkSettings& settings)
+{
+    m_linkSettings->setSettings(settings);
+    QString error;
+    std::unique_ptr<Link> link = settings.createLink(&error);
+    if (!link) {
+        showError(error);
+        return false;
+    }
+    bool keyOk = false;
+    std::shared_ptr<rcm::secure::SecureEndpoint> secure = openKey(settings.keyPath, &keyOk);
+    if (!keyOk)
+        return false;
+    stopController();
+    m_rehearsal->stop();
+    m_rehearsalKey.reset();
+    m_rehearsing = false;
+    startController(std::move(link), settings.transport == LinkSettings::Transport::Udp, settings.summary(), true,
+                    std::move(secure));
+    setLinkControlsRunning(true);
+    return true;
+}
+
+void MainWindow::disconnectLink()
+{
+    stopController();
+    m_rehearsal->stop();
+    m_rehearsalKey.reset();
+    m_rehearsing = false;
+    setLinkControlsRunning(false);
+}
+
+std::shared_ptr<rcm::secure::SecureEndpoint> MainWindow::openKey(const QString& keyPath, bool* ok)
+{
+    *ok = true;
+    if (keyPath.isEmpty())
+        return nullptr;
+    // Reads the key and the state files beside it: small local files, once per connection.
+    std::string error;
+    std::shared_ptr<rcm::secure::SecureEndpoint> endpoint = rcm::secure::SecureEndpoint::open(
+        QDir::fromNativeSeparators(keyPath).toStdString(), rcm::secure::Direction::GcsToUa, error);
+    if (!endpoint) {
+        *ok = false;
+        // The reason names the file and the fix ("run: chmod 600 ..."); it never holds key bytes.
+        const QString reason = tr("Not connected: the key file is refused: %1").arg(QString::fromStdString(error));
+        m_linkNote->setText(reason);
+        showError(reason);
+    }
+    return endpoint;
+}
+
+void MainWindow::startRehearsal()
+{
+    startRehearsalWith(RehearsalLauncher::defaultProgram());
+}
+
+void MainWindow::startRehearsalWith(const QString& uasimProgram)
+{
+    stopController();
+    setLinkControlsRunning(false);
+    // The key is checked here, before uasim starts, so a refused key file is
+    // the console's message and not uasim's exit code.
+    const QString keyPath = m_linkSettings->settings().keyPath;
+    bool keyOk = false;
+    m_rehearsalKey = openKey(keyPath, &keyOk);
+    if (!keyOk)
+        return;
+    m_linkNote->setText(tr("Starting uasim\u2026"));
+    // ready() connects; failed() says why not.
+    m_rehearsal->start(m_command->airframe(), uasimProgram, QDir::fromNativeSeparators(keyPath));
+}
+
+bool MainWindow::openFrameLog(const QString& path)
+{
+    disconnectLink();
+    QString error;
+    if (!m_logModel->openLog(path, &error)) {
+        showError(tr("Cannot open the frame log: %1").arg(error));
+        return false;
+    }
+    if (!error.isEmpty())
+        showError(tr("The frame log is damaged part-way; replaying what comes before: %1").arg(error));
+    auto replay = std::make_unique<ReplayLink>(path);
+    m_replay = replay.get();
+    const int rows = m_logModel->rowCount();
+    m_logModel->setPlayedRows(0);
+    m_replayControls->setRange(rows ? m_logModel->utcMicros(0) : 0, rows ? m_logModel->utcMicros(rows - 1) : 0);
+    m_replayControls->setPaused(false);
+    m_replayControls->show();
+    m_pauseAction->setEnabled(true);
+    // Cross-thread: each of these is queued to the GUI thread.
+    connect(m_replay, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
+        m_logModel->setPlayedRows(next);
+        m_replayControls->setPosition(utc);
+        if (m_logView->isFollowing() && next > 0)
+            m_logView->scrollToSourceRow(next - 1);
+    });
+    m_replayPaused = false;
+    connect(m_replay, &ReplayLink::stateChanged, this, [this](ReplayLink::State state) {
+        m_replayPaused = state == ReplayLink::State::Paused;
+        m_replayControls->setPaused(m_replayPaused);
+        m_replayControls->setFinished(state == ReplayLink::State::Finished);
+    });
+    connect(m_replay, &ReplayLink::endOfLog, this, [this] {
+        statusBar()->showMessage(tr("Replay: end of the frame log"), 8000);
+        emit replayFinished();
+    });
+    startController(std::move(replay), true, tr("replay of %1").arg(QFileInfo(path).fileName()), false);
+    setReplaySpeed(m_replayControls->speed());
+    setLinkControlsRunning(true);
+    return true;
+}
+
+void MainWindow::setReplayPaused(bool paused)
+{
+    if (!m_replay)
+        return;
+    m_replayPaused = paused;
+    QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), paused] { replay->setPaused(paused); });
+    m_replayControls->setPaused(paused);
+}
+
+void MainWindow::setReplaySpeed(double speed)
+{
+    m_replayControls->setSpeed(speed);
+    if (m_replay)
+        QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), speed] { replay->setSpeed(speed); });
+}
+
+void MainWindow::showPanel(int index)
+{
+    m_panels->setCurrentIndex(index);
+    if (QWidget* page = m_panels->currentWidget())
+        page->setFocus(Qt::ShortcutFocusReason);
+}
+
+void MainWindow::startController(std::unique_ptr<Link> link, bool datagram, const QString& description, bool keepLog,
+                                 std::shared_ptr<rcm::secure::SecureEndpoint> secure)
+{
+    std::unique_ptr<FrameLog> log;
+    m_sessionLogPath.clear();
+    if (keepLog) {
+        log = std::make_unique<FrameLog>();
+        const QString path =
+            QDir(m_frameLogDirectory).filePath(FrameLog::sessionFileName(QDateTime::currentDateTimeUtc()));
+        QString error;
+        m_logModel->clear();
+        if (log->open(path, &error)) {
+            m_sessionLogPath = path;
+            m_logModel->setSessionLog(path);
+        } else {
+            showError(tr("No frame log for this session: %1").arg(error));
+            log.reset();
+        }
+    }
+    m_linkDescription = description;
+
+    LinkWorker::Options options;
+    m_status->setKeyFingerprint(secure ? QString::fromStdString(secure->fingerprint) : QString());
+    options.secure = std::move(secure);
+    // The uploader takes the section size of this link: 199 bytes when keyed.
+    link = m_voice->attach(std::move(link));  // when voice is on
+    m_controller = std::make_unique<LinkController>(std::move(link), std::move(log), m_upload->linkOptions(options));
+    LinkController* c = m_controller.get();
+    connect(c, &LinkController::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
+    // A live session's frames become rows as the link logs them; a replay's
+    // rows are its log file, opened already.
+    if (keepLog)
+        connect(c, &LinkController::frameLogged, m_logModel, &FrameLogModel::appendLogged);
+    connect(c, &LinkController::stateChanged, m_status, &StatusBarWidget::setState);
+    connect(c, &LinkController::messageReceived, this, &MainWindow::messageReceived);
+    connect(c, &LinkController::frameSent, this, &MainWindow::frameSent);
+    connect(c, &LinkController::errorOccurred, this, &MainWindow::showError);
+    connect(c, &LinkController::commandRejected, this,
+            [this](const QString& reasons) { showError(tr("The link refused the command: %1").arg(reasons)); });
+
+    m_preview->setDatagram(datagram);
+    m_preview->resetSent();
+    m_status->setLinkDescription(description);
+    m_status->setStatistics(LinkStatistics());
+    c->setCommand(m_command->message());
+    c->start();
+    m_flightPlan->setLinkReady(!m_replay);
+    m_linkNote->setText(m_sessionLogPath.isEmpty()
+                            ? description
+                            : tr("%1\nFrame log: %2").arg(description, QDir::toNativeSeparators(m_sessionLogPath)));
+    updateTitle();
+}
+
+void MainWindow::stopController()
+{
+    if (!m_controller)
+        return;
+    m_upload->cancel();
+    m_replay.clear();
+    // Ends the link thread; the worker closes the link in it.
+    m_controller.reset();
+    m_replayControls->hide();
+    m_pauseAction->setEnabled(false);
+    m_logModel->setPlayedRows(-1);
+    m_flightPlan->setLinkReady(false);
+    m_status->setLinkDescription(QString());
+    m_status->setKeyFingerprint(QString());
+    m_status->setStatistics(LinkStatistics());
+    m_linkDescription.clear();
+    updateTitle();
+}
+
+void MainWindow::commandChanged()
+{
+    m_preview->setCommand(m_command->message());
+    if (m_controller)
+        m_controller->setCommand(m_command->message());
+}
+
+void MainWindow::messageReceived(const ReceivedMessage& received)
+{
+    m_reported->onReceived(received);
+    if (m_rehearsing)
+        m_rehearsal->confirm();
+}
+
+void MainWindow::frameSent(quint32 messageId)
+{
+    m_command->frameSent();
+    m_preview->frameSent(messageId);
+}
+
+void MainWindow::setLinkControlsRunning(bool running)
+{
+    m_linkSettings->setEnabled(!running);
+    m_connectButton->setEnabled(!running);
+    m_connectAction->setEnabled(!running);
+    m_disconnectButton->setEnabled(running || m_rehearsal->isRunning());
+    m_disconnectAction->setEnabled(running || m_rehearsal->isRunning());
+    if (!running && !m_rehearsal->isRunning())
+        m_linkNote->setText(
+            tr("Not connected. Connect to the aircraft's link, start a rehearsal against the "
+               "simulated aircraft, or open a frame log to replay it (Ctrl+O)."));
+}
+
+void MainWindow::updateTitle()
+{
+    QString title = kTitle + QStringLiteral(" \u2014 ") + QString::fromStdString(m_command->airframe().name);
+    if (!m_linkDescription.isEmpty())
+        title += QStringLiteral(" \u2014 ") + m_linkDescription;
+    setWindowTitle(title);
+}
+
+void MainWindow::chooseFrameLog()
+{
+    const QString path = QFileDialog::getOpenFileName(this, tr("Replay a frame log"), m_frameLogDirectory,
+                                                      tr("Frame logs (*.pcapng);;All files (*)"));
+    if (!path.isEmpty())
+        openFrameLog(path);
+}
+
+void MainWindow::exportCsv()
+{
+    const QString source = m_logModel->logPath().isEmpty() ? m_sessionLogPath : m_logModel->logPath();
+    if (source.isEmpty()) {
+        showError(tr("No frame log to export: connect, or open a log first"));
+        return;
+    }
+    const QString target = QFileDialog::getSaveFileName(this, tr("Export the frame log as CSV"),
+                                                        QFileInfo(source).completeBaseName() + QStringLiteral(".csv"),
+                                                        tr("CSV files (*.csv)"));
+    if (target.isEmpty())
+        return;
+    // A day's log takes seconds to export: a thread of its own, so the
+    // console keeps sending and drawing meanwhile. The thread only touches
+    // `result`; the GUI reads it once the thread has finished.
+    struct Result {
+        bool ok = false;
+        QString error;
+    };
+    auto result = std::make_shared<Result>();
+    auto* thread = QThread::create([source, target, result] {
+        QSaveFile out(target);
+        result->ok = out.open(QIODevice::WriteOnly) && exportFrameLogCsv(source, out, &result->error) && out.commit();
+        if (!result->ok && result->error.isEmpty())
+            result->error = out.errorString();
+    });
+    connect(thread, &QThread::finished, this, [this, result, target] {
+        if (result->ok)
+            statusBar()->showMessage(tr("Exported %1").arg(QDir::toNativeSeparators(target)), 8000);
+        else
+            showError(tr("CSV export failed: %1").arg(result->error));
+    });
+    connect(thread, &QThread::finished, thread, &QObject::deleteLater);
+    statusBar()->showMessage(tr("Exporting %1\u2026").arg(QDir::toNativeSeparators(target)));
+    thread->start();
+}
+
+void MainWindow::chooseAirframe()
+{
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Open an airframe"), QString(), tr("Airframes (*.json);;All files (*)"));
+    if (!path.isEmpty())
+        loadAirframe(path);
+}
+
+void MainWindow::showError(const QString& message)
+{
+    statusBar()->showMessage(message, 10000);
+    qWarning("%s", qPrintable(message));
+}

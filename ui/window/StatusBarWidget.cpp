@@ -1,0 +1,238 @@
+#include "ui/window/StatusBarWidget.h"
+
+#include <QDateTime>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLocale>
+#include <QStringList>
+
+namespace {
+
+QLabel* counter(const QString& toolTip)
+{
+    auto* label = new QLabel;
+    label->setToolTip(toolTip);
+    label->setTextFormat(Qt::RichText);
+    return label;
+}
+
+QString field(const QString& name, const QString& value)
+{
+    return QStringLiteral("<span style=\"color:#6b6b6b\">%1</span> <b>%2</b>").arg(name, value);
+}
+
+QFrame* separator()
+{
+    auto* line = new QFrame;
+    line->setFrameShape(QFrame::VLine);
+    line->setFrameShadow(QFrame::Sunken);
+    return line;
+}
+
+}  // namespace
+
+StatusBarWidget::StatusBarWidget(QWidget* parent)
+    : QWidget(parent),
+      m_state(new QLabel),
+      m_sent(counter(tr("Frames handed to the link since it started"))),
+      m_received(counter(tr("Good frames received from the aircraft"))),
+      m_corrected(counter(tr("Bytes Reed-Solomon corrected in the frames received (BLOCK 1 + BLOCK 2)"))),
+      m_uncorrectable(counter(tr("Frames received with a codeword beyond correction"))),
+      m_age(counter(tr("Time since the last good frame from the aircraft"))),
+      m_security(counter(QString())),
+      m_rejectedSeparator(separator()),
+      m_rejected(counter(tr("Frames that decoded but were refused, by reason:\n"
+                            "forged: not sent with this aircraft's key (a wrong key file, or an injector)\n"
+                            "replayed: authentic, but not newer than the last frame accepted\n"
+                            "stale time: authentic and new, but its time is over 30 s from this computer's clock\n"
+                            "plaintext: an unencrypted frame on a keyed link"))),
+      m_lost(new QLabel(tr("LINK LOST")))
+{
+    m_state->setTextFormat(Qt::RichText);
+    m_state->setMinimumWidth(
+        fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535")));
+    m_lost->setToolTip(tr("No good frame from the aircraft within the silence timeout"));
+    m_lost->setAlignment(Qt::AlignCenter);
+    m_lost->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("  LINK LOST  ")) + 16);
+    m_lost->hide();
+
+    auto* layout = new QHBoxLayout(this);
+    layout->setContentsMargins(6, 0, 6, 0);
+    layout->setSpacing(12);
+    layout->addWidget(m_state);
+    for (QLabel* label : {m_sent, m_received, m_corrected, m_uncorrectable, m_age, m_security}) {
+        layout->addWidget(separator());
+        layout->addWidget(label);
+    }
+    layout->addWidget(m_rejectedSeparator);
+    layout->addWidget(m_rejected);
+    layout->addStretch(1);
+    layout->addWidget(m_lost);
+
+    m_ageTimer.setInterval(250);
+    connect(&m_ageTimer, &QTimer::timeout, this, &StatusBarWidget::updateAge);
+    m_blinkTimer.setInterval(500);
+    connect(&m_blinkTimer, &QTimer::timeout, this, &StatusBarWidget::blink);
+    setStatistics(LinkStatistics());
+}
+
+QString StatusBarWidget::stateText() const
+{
+    return m_state->text();
+}
+
+QString StatusBarWidget::ageText() const
+{
+    return m_age->text();
+}
+
+QString StatusBarWidget::securityText() const
+{
+    return m_statistics.secure ? tr("encrypted and authenticated") : tr("not encrypted");
+}
+
+QString StatusBarWidget::rejectedText() const
+{
+    const QLocale locale;
+    QStringList parts;
+    const auto add = [&](quint64 count, const QString& reason) {
+        if (count)
+            parts << QStringLiteral("%1 %2").arg(reason, locale.toString(count));
+    };
+    add(m_statistics.rejectedForged, tr("forged"));
+    add(m_statistics.rejectedReplayed, tr("replayed"));
+    add(m_statistics.rejectedStaleTime, tr("stale time"));
+    add(m_statistics.rejectedPlaintext, tr("plaintext"));
+    return parts.join(QStringLiteral(", "));
+}
+
+void StatusBarWidget::setKeyFingerprint(const QString& fingerprint)
+{
+    m_fingerprint = fingerprint;
+    updateSecurity();
+}
+
+void StatusBarWidget::updateSecurity()
+{
+    if (m_statistics.secure) {
+        m_security->setText(
+            QStringLiteral("<span style=\"color:#1d7a35\"><b>%1</b></span>").arg(securityText().toHtmlEscaped()));
+        m_security->setToolTip(
+            tr("Every frame sent is enciphered with the aircraft's key and every frame received must "
+               "authenticate, be newer than the last and carry the current time (docs/security.md).") +
+            (m_fingerprint.isEmpty() ? QString() : tr("\nKey fingerprint: %1").arg(m_fingerprint)));
+    } else {
+        m_security->setText(
+            QStringLiteral("<span style=\"color:#6b6b6b\">%1</span>").arg(securityText().toHtmlEscaped()));
+        m_security->setToolTip(
+            tr("No key file: frames go in the clear and are not authenticated. Choose the aircraft's key file "
+               "in the link settings for a secure link."));
+    }
+    const QString rejected = rejectedText();
+    m_rejected->setText(
+        field(tr("Rejected"), QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(rejected.toHtmlEscaped())));
+    m_rejected->setVisible(!rejected.isEmpty());
+    m_rejectedSeparator->setVisible(!rejected.isEmpty());
+}
+
+void StatusBarWidget::setLinkDescription(const QString& description)
+{
+    m_description = description;
+    setState(m_statistics.state);
+}
+
+void StatusBarWidget::setState(LinkState state)
+{
+    m_statistics.state = state;
+    QString name, colour;
+    switch (state) {
+        case LinkState::Closed:
+            name = tr("Not connected");
+            colour = QStringLiteral("#8a8a8a");
+            break;
+        case LinkState::Waiting:
+            name = tr("Waiting for the aircraft");
+            colour = QStringLiteral("#c98a00");
+            break;
+        case LinkState::Connected:
+            name = tr("Connected");
+            colour = QStringLiteral("#1d7a35");
+            break;
+        case LinkState::Lost:
+            name = tr("Lost");
+            colour = QStringLiteral("#b01c1c");
+            break;
+    }
+    QString text = QStringLiteral("<span style=\"color:%1\">\u25cf</span> <b>%2</b>").arg(colour, name);
+    if (!m_description.isEmpty() && state != LinkState::Closed)
+        text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(m_description.toHtmlEscaped());
+    m_state->setText(text);
+    setAlarm(state == LinkState::Lost);
+    if (state == LinkState::Closed)
+        m_ageTimer.stop();
+    else if (!m_ageTimer.isActive())
+        m_ageTimer.start();
+    updateAge();
+}
+
+void StatusBarWidget::setStatistics(const LinkStatistics& statistics)
+{
+    const bool stateChanged = statistics.state != m_statistics.state;
+    m_statistics = statistics;
+    const QLocale locale;
+    m_sent->setText(field(tr("Sent"), locale.toString(statistics.framesSent)));
+    m_received->setText(field(tr("Received"), locale.toString(statistics.framesReceived)));
+    m_corrected->setText(field(tr("Corrected bytes"),
+                               locale.toString(statistics.correctedBytesBlock1 + statistics.correctedBytesBlock2)));
+    const QString bad = locale.toString(statistics.uncorrectableFrames);
+    m_uncorrectable->setText(field(
+        tr("Uncorrectable"),
+        statistics.uncorrectableFrames ? QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(bad) : bad));
+    updateSecurity();
+    if (stateChanged || statistics.state == LinkState::Closed)
+        setState(statistics.state);
+    else
+        updateAge();
+}
+
+void StatusBarWidget::updateAge()
+{
+    const qint64 age = m_statistics.lastGoodFrameAgeMicros(QDateTime::currentDateTimeUtc().toMSecsSinceEpoch() * 1000);
+    QString text;
+    if (age < 0)
+        text = QStringLiteral("\u2014");
+    else if (age < 60'000'000)
+        text = tr("%1 s ago").arg(double(std::max<qint64>(age, 0)) / 1e6, 0, 'f', 1);
+    else if (age < 3'600'000'000)
+        text = tr("%1 min ago").arg(age / 60'000'000);
+    else
+        text = tr("%1 h ago").arg(age / 3'600'000'000);
+    m_age->setText(field(tr("Last frame"), text));
+}
+
+void StatusBarWidget::setAlarm(bool on)
+{
+    if (on == m_alarm)
+        return;
+    m_alarm = on;
+    m_lost->setVisible(on);
+    if (on) {
+        m_blink = false;
+        m_blinkTimer.start();
+        blink();
+    } else {
+        m_blinkTimer.stop();
+    }
+    emit alarm(on);
+}
+
+// Alternates two looks rather than hiding the label: the alarm never
+// disappears, it only pulses.
+void StatusBarWidget::blink()
+{
+    m_blink = !m_blink;
+    m_lost->setStyleSheet(m_blink ? QStringLiteral("background:#b01c1c; color:white; font-weight:bold; "
+                                                   "border-radius:3px; padding:1px 8px;")
+                                  : QStringLiteral("background:#f6d5d5; color:#b01c1c; font-weight:bold; "
+                                                   "border-radius:3px; padding:1px 8px;"));
+}

@@ -1,0 +1,70 @@
+#pragma once
+
+// The link at a glance, for the main window's status bar: its state, frames
+// sent and received, bytes Reed-Solomon corrected, frames beyond correction,
+// how long ago the last good frame came, whether the link is encrypted and
+// authenticated and, when any, the frames it rejected by reason, and the
+// link-lost alarm. The alarm
+// is a red, blinking "LINK LOST" that stays until a good frame arrives again
+// or the operator disconnects, and a signal, alarm(bool), for whatever else
+// should sound it (a tone, a light).
+
+#include "link/session/LinkStatistics.h"
+
+#include <QTimer>
+#include <QWidget>
+
+class QLabel;
+
+class StatusBarWidget : public QWidget {
+    Q_OBJECT
+
+public:
+    explicit StatusBarWidget(QWidget* parent = nullptr);
+
+    bool alarmActive() const { return m_alarm; }
+    const LinkStatistics& statistics() const { return m_statistics; }
+    // The texts shown, for tests and screenshots.
+    QString stateText() const;
+    QString ageText() const;
+    // "encrypted and authenticated" or "not encrypted".
+    QString securityText() const;
+    // "forged 3, replayed 1", the reasons with a count; empty when there are none.
+    QString rejectedText() const;
+
+public slots:
+    void setStatistics(const LinkStatistics& statistics);
+    void setState(LinkState state);
+    // What the link is, "UDP 127.0.0.1:5600"; empty when there is none.
+    void setLinkDescription(const QString& description);
+    // The key's fingerprint (16 hex digits) for the tooltip; empty: none.
+    void setKeyFingerprint(const QString& fingerprint);
+
+signals:
+    // True when the link is lost, false when it is back or was closed.
+    void alarm(bool on);
+
+private:
+    void updateAge();
+    void updateSecurity();
+    void setAlarm(bool on);
+    void blink();
+
+    LinkStatistics m_statistics;
+    QString m_description;
+    QString m_fingerprint;
+    bool m_alarm = false;
+    bool m_blink = false;
+    QTimer m_ageTimer;
+    QTimer m_blinkTimer;
+    QLabel* m_state;
+    QLabel* m_sent;
+    QLabel* m_received;
+    QLabel* m_corrected;
+    QLabel* m_uncorrectable;
+    QLabel* m_age;
+    QLabel* m_security;
+    QWidget* m_rejectedSeparator;
+    QLabel* m_rejected;
+    QLabel* m_lost;
+};
