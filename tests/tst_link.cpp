@@ -14,6 +14,7 @@
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/LinkController.h"
 #include "link/session/LinkWorker.h"
+#include "link/session/VirtualClock.h"
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
 
@@ -383,18 +384,28 @@ void TestLink::udpFramesArriveDecodeAndCountUp()
     QCOMPARE(got[1].correctedSymbols, QList<int>({3, 2}));
 }
 
+// On a VirtualClock the worker's thread runs exactly the ticks the test
+// steps: three frames, on the second.
 void TestLink::messageIdWrapsAt24Bits()
 {
     UdpFarEnd far;
-    LinkWorker::Options options = fastOptions();
+    const auto clock = std::make_shared<VirtualClock>(rcm::test::kFixtureStartUtcMicros);
+    LinkWorker::Options options;
+    options.clock = clock;
     options.firstMessageId = 0xFFFFFE;
     LinkController controller(udpTo(far.port()), nullptr, options);
+    QSignalSpy started(&controller, &LinkController::started);
     controller.setCommand(command(2));
     controller.start();
-    QTRY_VERIFY_WITH_TIMEOUT(far.datagrams.count() >= 3, kPatience);
-    QCOMPARE(messageId(decode(far.datagram(0)).message), 0xFFFFFE);
-    QCOMPARE(messageId(decode(far.datagram(1)).message), 0xFFFFFF);
-    QCOMPARE(messageId(decode(far.datagram(2)).message), 0);
+    QTRY_COMPARE_WITH_TIMEOUT(started.count(), 1, kPatience);
+    clock->advance(3s);
+    QTRY_COMPARE_WITH_TIMEOUT(far.datagrams.count(), 3, kPatience);
+    for (int i = 0; i < 3; ++i) {
+        const rcm::Message m = decode(far.datagram(i)).message;
+        QCOMPARE(messageId(m), std::int64_t(i == 2 ? 0 : 0xFFFFFE + i));
+        QCOMPARE(m.header.number(rcm::ItemId::time_UTC), 73201 + i);
+        QCOMPARE(m.header.number(rcm::ItemId::date_UTC), 261122);
+    }
 }
 
 void TestLink::wrongSizeAndUndecodableDatagramsAreCountedNotFatal()
