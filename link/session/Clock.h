@@ -2,8 +2,10 @@
 
 // The time a link session runs on: the UTC clock its frames are stamped
 // with, a monotonic one for intervals, and single-shot timers on it. Passed
-// in (LinkWorker::Options::clock, ReplayLink), so that tests run a session on
-// a VirtualClock in simulated time instead of waiting on the wall clock.
+// in (LinkWorker::Options::clock, ReplayLink, the voice links; the secure
+// codec takes UTC seconds as rcm::secure::UtcClock), so that tests run a
+// session on a VirtualClock in simulated time instead of waiting on the
+// wall clock. Null where a clock is passed means the SystemClock.
 
 #include <QObject>
 
