@@ -1,7 +1,9 @@
 // The link layer end to end: a LinkController's worker thread against a far
 // end in the test's thread, over UDP on loopback and over pseudo-terminals.
 // Time only enters through QTRY's patience: the cadence runs at 50 ms so the
-// tests are quick, and nothing asserts how long anything took.
+// tests are quick, and nothing asserts how long anything took. The silence
+// timeout, the worker's own logic, runs against the simulated aircraft in
+// simulated time instead.
 
 // First: it names a member emit(), which Qt's headers define as a macro.
 #include "codec/frame/StreamSync.h"
@@ -12,8 +14,11 @@
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/LinkController.h"
 #include "link/session/LinkWorker.h"
+#include "link/session/VirtualClock.h"
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
+
+#include "AircraftFixture.h"
 
 #include <QDate>
 #include <QDateTime>
@@ -379,18 +384,28 @@ void TestLink::udpFramesArriveDecodeAndCountUp()
     QCOMPARE(got[1].correctedSymbols, QList<int>({3, 2}));
 }
 
+// On a VirtualClock the worker's thread runs exactly the ticks the test
+// steps: three frames, on the second.
 void TestLink::messageIdWrapsAt24Bits()
 {
     UdpFarEnd far;
-    LinkWorker::Options options = fastOptions();
+    const auto clock = std::make_shared<VirtualClock>(rcm::test::kFixtureStartUtcMicros);
+    LinkWorker::Options options;
+    options.clock = clock;
     options.firstMessageId = 0xFFFFFE;
     LinkController controller(udpTo(far.port()), nullptr, options);
+    QSignalSpy started(&controller, &LinkController::started);
     controller.setCommand(command(2));
     controller.start();
-    QTRY_VERIFY_WITH_TIMEOUT(far.datagrams.count() >= 3, kPatience);
-    QCOMPARE(messageId(decode(far.datagram(0)).message), 0xFFFFFE);
-    QCOMPARE(messageId(decode(far.datagram(1)).message), 0xFFFFFF);
-    QCOMPARE(messageId(decode(far.datagram(2)).message), 0);
+    QTRY_COMPARE_WITH_TIMEOUT(started.count(), 1, kPatience);
+    clock->advance(3s);
+    QTRY_COMPARE_WITH_TIMEOUT(far.datagrams.count(), 3, kPatience);
+    for (int i = 0; i < 3; ++i) {
+        const rcm::Message m = decode(far.datagram(i)).message;
+        QCOMPARE(messageId(m), std::int64_t(i == 2 ? 0 : 0xFFFFFE + i));
+        QCOMPARE(m.header.number(rcm::ItemId::time_UTC), 73201 + i);
+        QCOMPARE(m.header.number(rcm::ItemId::date_UTC), 261122);
+    }
 }
 
 void TestLink::wrongSizeAndUndecodableDatagramsAreCountedNotFatal()
@@ -614,42 +629,42 @@ void TestLink::commandFromGuiThreadReachesTheFrames()
     }
 }
 
+// Silence is the worker's own affair, so these run against the simulated
+// aircraft in simulated time (AircraftFixture), to the microsecond.
 void TestLink::silenceReportsLostOnceThenRegained()
 {
-    UdpFarEnd far;
-    bool replying = true;
-    std::uint32_t replies = 0;
-    QObject::connect(&far.link, &Link::datagramReceived, [&] {
-        if (replying)
-            far.link.write(aircraftDatagram(replies++));
-    });
-    LinkWorker::Options options = fastOptions();
-    options.silenceTimeout = 300ms;
-    LinkController controller(udpTo(far.port()), nullptr, options);
-    QSignalSpy lost(&controller, &LinkController::linkLost);
-    QSignalSpy regained(&controller, &LinkController::linkRegained);
-    QSignalSpy states(&controller, &LinkController::stateChanged);
-    controller.setCommand(command(2));
-    controller.start();
+    rcm::test::AircraftFixture f;
+    QSignalSpy lost(f.console.get(), &LinkWorker::linkLost);
+    QSignalSpy regained(f.console.get(), &LinkWorker::linkRegained);
+    QSignalSpy states(f.console.get(), &LinkWorker::stateChanged);
+    f.console->setCommand(command(2));
+    f.start();
+    f.run(3s);  // 07:32:03.250: the aircraft's frames of 07:32:01, :02 and :03 heard
+    QCOMPARE(f.console->statistics().framesReceived, quint64(3));
+    QCOMPARE(f.console->statistics().state, LinkState::Connected);
 
-    QTRY_VERIFY_WITH_TIMEOUT(replies >= 3, kPatience);
+    // The aircraft falls silent; lost 3 s after the last frame heard, not before.
+    f.aircraftWorker->stop();
+    f.run(2749ms);
     QCOMPARE(lost.count(), 0);
-    replying = false;
-    QTRY_COMPARE_WITH_TIMEOUT(lost.count(), 1, kPatience);
-    QCOMPARE(regained.count(), 0);
-    QTRY_COMPARE_WITH_TIMEOUT(controller.statistics().state, LinkState::Lost, kPatience);
-    // Silence goes on for more than another timeout (counted in the worker's
-    // own ticks, 10 x 50 ms against 300 ms): still one report.
-    const int sentWhileLost = int(far.datagrams.count());
-    QTRY_VERIFY_WITH_TIMEOUT(far.datagrams.count() >= sentWhileLost + 10, kPatience);
+    f.run(1ms);
     QCOMPARE(lost.count(), 1);
+    QCOMPARE(f.console->statistics().state, LinkState::Lost);
+    // Silence goes on for several more timeouts: still one report.
+    f.run(10s);
+    QCOMPARE(lost.count(), 1);
+    QCOMPARE(regained.count(), 0);
 
-    replying = true;
-    QTRY_COMPARE_WITH_TIMEOUT(regained.count(), 1, kPatience);
-    QTRY_VERIFY_WITH_TIMEOUT(replies >= 6, kPatience);
+    // Back on the air: regained with its first frame, on the next second.
+    f.aircraftWorker->start();
+    f.run(999ms);
+    QCOMPARE(regained.count(), 0);
+    f.run(1ms);
+    QCOMPARE(regained.count(), 1);
+    f.run(3s);
     QCOMPARE(lost.count(), 1);
     QCOMPARE(regained.count(), 1);
-    QTRY_COMPARE_WITH_TIMEOUT(controller.statistics().state, LinkState::Connected, kPatience);
+    QCOMPARE(f.console->statistics().state, LinkState::Connected);
 
     QList<LinkState> seen;
     for (const QList<QVariant>& args : states)
@@ -659,16 +674,16 @@ void TestLink::silenceReportsLostOnceThenRegained()
 
 void TestLink::silenceBeforeAnyFrameIsLost()
 {
-    UdpFarEnd far;  // never answers
-    LinkWorker::Options options = fastOptions();
-    options.silenceTimeout = 200ms;
-    LinkController controller(udpTo(far.port()), nullptr, options);
-    QSignalSpy lost(&controller, &LinkController::linkLost);
-    controller.setCommand(command(2));
-    controller.start();
-    QTRY_COMPARE_WITH_TIMEOUT(lost.count(), 1, kPatience);
-    QTRY_COMPARE_WITH_TIMEOUT(controller.statistics().state, LinkState::Lost, kPatience);
-    QCOMPARE(controller.statistics().lastGoodFrameAgeMicros(0), qint64(-1));
+    rcm::test::AircraftFixture f;  // the aircraft is never started
+    QSignalSpy lost(f.console.get(), &LinkWorker::linkLost);
+    f.console->setCommand(command(2));
+    f.console->start();
+    f.run(2999ms);
+    QCOMPARE(lost.count(), 0);
+    f.run(1ms);
+    QCOMPARE(lost.count(), 1);
+    QCOMPARE(f.console->statistics().state, LinkState::Lost);
+    QCOMPARE(f.console->statistics().lastGoodFrameAgeMicros(0), qint64(-1));
 }
 
 void TestLink::block2HooksCarryTheFlightPlan()

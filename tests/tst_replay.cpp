@@ -1,13 +1,14 @@
 // Replay of a frame log: the same frames in the same order, pause, speed,
 // seeking by time, the end of the log, and the worker taking a replay as it
-// takes any transport. Waits are QTRY_* on signals only: where a test must
-// show that nothing arrives, a second replay of the same log played to its
-// end is the clock (the paused one would have finished before it).
+// takes any transport. Each replay runs on a VirtualClock the test steps:
+// the logs hold a frame a second, so a second of simulated time plays one
+// through at 10x, and ten show that a paused or closed one stays silent.
 
 #include "codec/frame/Frame.h"
 #include "link/framelog/FrameLog.h"
-#include "link/session/LinkWorker.h"
 #include "link/framelog/ReplayLink.h"
+#include "link/session/LinkWorker.h"
+#include "link/session/VirtualClock.h"
 
 #include <QFile>
 #include <QSignalSpy>
@@ -19,8 +20,9 @@
 namespace {
 
 const QString kVectors = QStringLiteral(RCM_VECTORS_DIR "/rcm/");
+using namespace std::chrono_literals;
+
 constexpr qint64 kT0 = 1795332720000123;
-constexpr int kTimeoutMs = 60000;  // only a bound for a broken build; the tests take a second or two
 
 QByteArray readFile(const QString& path)
 {
@@ -96,6 +98,7 @@ class TestReplay : public QObject {
 
 private slots:
     void initTestCase();
+    void init();
     void replaysFrameForFrameAt10x();
     void pauseStopsDelivery();
     void seekByTime();
@@ -109,16 +112,20 @@ private slots:
 
 private:
     QString writeLog(const QList<FrameRecord>& records);
-    // Plays the log through another replay at 10x, to its end.
-    void letTheLogPlayOnce(const QString& path);
 
     QTemporaryDir m_dir;
+    std::shared_ptr<VirtualClock> m_clock;  // a new one for each test
     int m_logs = 0;
 };
 
 void TestReplay::initTestCase()
 {
     QVERIFY(m_dir.isValid());
+}
+
+void TestReplay::init()
+{
+    m_clock = std::make_shared<VirtualClock>(0);
 }
 
 QString TestReplay::writeLog(const QList<FrameRecord>& records)
@@ -136,22 +143,13 @@ QString TestReplay::writeLog(const QList<FrameRecord>& records)
     return path;
 }
 
-void TestReplay::letTheLogPlayOnce(const QString& path)
-{
-    ReplayLink witness(path);
-    QSignalSpy end(&witness, &ReplayLink::endOfLog);
-    witness.setSpeed(ReplayLink::kMaxSpeed);
-    witness.open();
-    QTRY_COMPARE_WITH_TIMEOUT(end.count(), 1, kTimeoutMs);
-}
-
 void TestReplay::replaysFrameForFrameAt10x()
 {
     const QList<FrameRecord> records = session(10, true);
     const QString path = writeLog(records);
     QVERIFY(!path.isEmpty());
 
-    ReplayLink link(path);
+    ReplayLink link(path, m_clock);
     QSignalSpy frames(&link, &ReplayLink::frameReplayed);
     QSignalSpy received(&link, &Link::datagramReceived);
     QSignalSpy bytes(&link, &Link::bytesReceived);
@@ -170,7 +168,12 @@ void TestReplay::replaysFrameForFrameAt10x()
     QCOMPARE(link.startMicros(), records.first().utcMicros);
     QCOMPARE(link.endMicros(), records.last().utcMicros);
 
-    QTRY_COMPARE_WITH_TIMEOUT(end.count(), 1, kTimeoutMs);
+    // The last record is due 9 s (and 9 us) of log after the first: 900 ms at 10x.
+    m_clock->advance(899ms);
+    QCOMPARE(frames.count(), records.size() - 1);
+    QCOMPARE(end.count(), 0);
+    m_clock->advance(2ms);
+    QCOMPARE(end.count(), 1);
     QCOMPARE(replayed(frames), records);
     QCOMPARE(datagrams(received), receivedDatagrams(records));
     QCOMPARE(bytes.count(), 0);
@@ -188,7 +191,7 @@ void TestReplay::pauseStopsDelivery()
 {
     const QList<FrameRecord> records = session(8);
     const QString path = writeLog(records);
-    ReplayLink link(path);
+    ReplayLink link(path, m_clock);
     QSignalSpy frames(&link, &ReplayLink::frameReplayed);
     QSignalSpy end(&link, &ReplayLink::endOfLog);
     // Paused from a slot, as a GUI button would: exactly after the second frame.
@@ -198,20 +201,22 @@ void TestReplay::pauseStopsDelivery()
     });
     link.setSpeed(10);
     link.open();
-    QTRY_COMPARE_WITH_TIMEOUT(link.state(), ReplayLink::State::Paused, kTimeoutMs);
+    m_clock->advance(1s);
+    QCOMPARE(link.state(), ReplayLink::State::Paused);
     QVERIFY(link.isPaused());
     const int atPause = 2;
     QCOMPARE(frames.count(), atPause);
     const qint64 frozen = link.positionMicros();
 
-    letTheLogPlayOnce(path);
+    m_clock->advance(10s);
     QCOMPARE(frames.count(), atPause);
     QCOMPARE(end.count(), 0);
     QCOMPARE(link.positionMicros(), frozen);
 
     link.resume();
     QCOMPARE(link.state(), ReplayLink::State::Playing);
-    QTRY_COMPARE_WITH_TIMEOUT(end.count(), 1, kTimeoutMs);
+    m_clock->advance(1s);
+    QCOMPARE(end.count(), 1);
     QCOMPARE(replayed(frames), records);  // nothing lost or repeated across the pause
 }
 
@@ -219,7 +224,7 @@ void TestReplay::seekByTime()
 {
     const QList<FrameRecord> records = session(10);
     const QString path = writeLog(records);
-    ReplayLink link(path);
+    ReplayLink link(path, m_clock);
     QSignalSpy frames(&link, &ReplayLink::frameReplayed);
     QSignalSpy received(&link, &Link::datagramReceived);
     QSignalSpy position(&link, &ReplayLink::positionChanged);
@@ -251,7 +256,8 @@ void TestReplay::seekByTime()
     QCOMPARE(link.state(), ReplayLink::State::Paused);
     QCOMPARE(frames.count(), 0);
     link.resume();
-    QTRY_COMPARE_WITH_TIMEOUT(end.count(), 2, kTimeoutMs);
+    m_clock->advance(1s);
+    QCOMPARE(end.count(), 2);
     QCOMPARE(replayed(frames), records.mid(7));
     QCOMPARE(datagrams(received), receivedDatagrams(records.mid(7)));
 
@@ -259,7 +265,8 @@ void TestReplay::seekByTime()
     frames.clear();
     QCOMPARE(seekTo(records[8].utcMicros), 8);
     QCOMPARE(link.state(), ReplayLink::State::Playing);
-    QTRY_COMPARE_WITH_TIMEOUT(end.count(), 3, kTimeoutMs);
+    m_clock->advance(1s);
+    QCOMPARE(end.count(), 3);
     QCOMPARE(replayed(frames), records.mid(8));
 }
 
@@ -267,17 +274,18 @@ void TestReplay::endOfLogIsSignalledOnce()
 {
     const QList<FrameRecord> records = session(4);
     const QString path = writeLog(records);
-    ReplayLink link(path);
+    ReplayLink link(path, m_clock);
     QSignalSpy end(&link, &ReplayLink::endOfLog);
     QSignalSpy frames(&link, &ReplayLink::frameReplayed);
     link.setSpeed(10);
     link.open();
-    QTRY_COMPARE_WITH_TIMEOUT(end.count(), 1, kTimeoutMs);
+    m_clock->advance(1s);
+    QCOMPARE(end.count(), 1);
     link.pause();
     link.resume();
     link.setSpeed(2);
     link.seek(records.last().utcMicros + 5000000);
-    letTheLogPlayOnce(path);
+    m_clock->advance(10s);
     QCOMPARE(end.count(), 1);
     QCOMPARE(frames.count(), records.size());
     QCOMPARE(link.state(), ReplayLink::State::Finished);
@@ -286,7 +294,7 @@ void TestReplay::endOfLogIsSignalledOnce()
 void TestReplay::emptyLogEndsAtOnce()
 {
     const QString path = writeLog({});
-    ReplayLink link(path);
+    ReplayLink link(path, m_clock);
     QSignalSpy end(&link, &ReplayLink::endOfLog);
     QSignalSpy opened(&link, &Link::opened);
     link.open();
@@ -298,7 +306,7 @@ void TestReplay::emptyLogEndsAtOnce()
 
 void TestReplay::speedIsClamped()
 {
-    ReplayLink link(m_dir.filePath(QStringLiteral("never-opened.pcapng")));
+    ReplayLink link(m_dir.filePath(QStringLiteral("never-opened.pcapng")), m_clock);
     QSignalSpy speed(&link, &ReplayLink::speedChanged);
     QCOMPARE(link.speed(), 1.0);
     link.setSpeed(100);
@@ -318,7 +326,7 @@ void TestReplay::speedIsClamped()
 void TestReplay::writesAreRefused()
 {
     const QString path = writeLog(session(2));
-    ReplayLink link(path);
+    ReplayLink link(path, m_clock);
     link.setPaused(true);
     link.open();
     QSignalSpy frames(&link, &ReplayLink::frameReplayed);
@@ -330,7 +338,7 @@ void TestReplay::writesAreRefused()
 void TestReplay::unreadableLog()
 {
     const QString missing = m_dir.filePath(QStringLiteral("missing.pcapng"));
-    ReplayLink link(missing);
+    ReplayLink link(missing, m_clock);
     QSignalSpy errors(&link, &Link::errorOccurred);
     QSignalSpy opened(&link, &Link::opened);
     link.open();
@@ -347,27 +355,29 @@ void TestReplay::closeStopsPlayback()
 {
     const QList<FrameRecord> records = session(6);
     const QString path = writeLog(records);
-    ReplayLink link(path);
+    ReplayLink link(path, m_clock);
     QSignalSpy frames(&link, &ReplayLink::frameReplayed);
     QSignalSpy closed(&link, &Link::closed);
     QSignalSpy end(&link, &ReplayLink::endOfLog);
     auto closeOnce = connect(&link, &ReplayLink::frameReplayed, &link, &ReplayLink::close);
     link.setSpeed(10);
     link.open();
-    QTRY_COMPARE_WITH_TIMEOUT(closed.count(), 1, kTimeoutMs);
+    m_clock->advance(1s);
+    QCOMPARE(closed.count(), 1);
     disconnect(closeOnce);
     link.close();
     QCOMPARE(closed.count(), 1);
     QCOMPARE(link.state(), ReplayLink::State::Closed);
     const int atClose = 1;
     QCOMPARE(frames.count(), atClose);
-    letTheLogPlayOnce(path);
+    m_clock->advance(10s);
     QCOMPARE(frames.count(), atClose);
     QCOMPARE(end.count(), 0);
 
     // Opened again, it starts over.
     link.open();
-    QTRY_COMPARE_WITH_TIMEOUT(end.count(), 1, kTimeoutMs);
+    m_clock->advance(1s);
+    QCOMPARE(end.count(), 1);
     QCOMPARE(replayed(frames).mid(atClose), records);
 }
 
@@ -375,21 +385,24 @@ void TestReplay::workerDecodesReplayedFrames()
 {
     const QList<FrameRecord> records = session(10);
     const QString path = writeLog(records);
-    auto replay = std::make_unique<ReplayLink>(path);
+    auto replay = std::make_unique<ReplayLink>(path, m_clock);
     ReplayLink* link = replay.get();
     link->setSpeed(10);
     QSignalSpy end(link, &ReplayLink::endOfLog);
-    LinkWorker worker(std::move(replay));
+    LinkWorker::Options options;
+    options.clock = m_clock;
+    LinkWorker worker(std::move(replay), nullptr, options);
     QSignalSpy messages(&worker, &LinkWorker::messageReceived);
     worker.start();
-    QTRY_COMPARE_WITH_TIMEOUT(end.count(), 1, kTimeoutMs);
+    m_clock->advance(1s);
+    QCOMPARE(end.count(), 1);
     // Every received record but the wrong-size datagram is a good frame (the
     // corrupted one is corrected); the sent ones never reach the worker.
     int good = 0;
     for (const FrameRecord& r : records)
         if (r.direction == FrameDirection::Received && r.status != FrameStatus::Rejected)
             ++good;
-    QTRY_COMPARE_WITH_TIMEOUT(int(messages.count()), good, kTimeoutMs);
+    QCOMPARE(int(messages.count()), good);
     const auto first = messages.first().at(0).value<ReceivedMessage>();
     QCOMPARE(first.transport, FrameTransport::Replay);
     QCOMPARE(first.message.header.number(rcm::ItemId::ID_msg), 133);

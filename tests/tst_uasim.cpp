@@ -1,6 +1,7 @@
-// The simulated aircraft: first in process, frame by frame on its own
-// clock; then the built `uasim` program over UDP, spoken to as the console
-// would. The program checks wait on signals and conditions, never on time.
+// The simulated aircraft: first frame by frame on its own clock; then flown
+// by the console's worker in simulated time (AircraftFixture); then the
+// built `uasim` program over UDP, spoken to as the console would. The
+// program checks wait on signals and conditions, never on a time.
 #include "codec/message/Airframe.h"
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/MessageDecoder.h"
@@ -8,8 +9,11 @@
 #include "link/framelog/FrameLogReader.h"
 #include "link/simulation/SimulatedAircraft.h"
 
+#include "AircraftFixture.h"
+#include "UasimProcess.h"
+
 #include <QNetworkDatagram>
-#include <QProcess>
+#include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QUdpSocket>
 #include <QtTest>
@@ -48,99 +52,77 @@ QByteArray joined(const std::vector<std::string>& lines)
     return out;
 }
 
-// Generous: uasim answers once a second, and gear takes several seconds.
+// Generous: only a bound for a broken build; the process tests wait on what
+// arrives, a status frame or two at uasim's own 1 Hz.
 constexpr int kPatienceMs = 30000;
 
-quint16 freePort()
-{
-    QUdpSocket probe;
-    probe.bind(QHostAddress::LocalHost, 0);
-    return probe.localPort();
-}
-
-// A uasim process spoken to as the console would: one command per status
+// The built uasim spoken to as the console would: one command per status
 // frame received, so the exchange runs at uasim's own cadence and the test
 // waits only on what arrives.
 class UasimRun : public QObject {
 public:
-    explicit UasimRun(const QStringList& extraArguments = {})
+    explicit UasimRun(const QStringList& extraArguments = {}) : uasim(extraArguments)
     {
-        m_port = freePort();
-        m_process.setProgram(QStringLiteral(RCM_BIN_DIR "/uasim"));
-        m_process.setArguments(
-            QStringList{QStringLiteral("--udp"), QString::number(m_port), QStringLiteral("--verbose")} +
-            extraArguments);
-        QObject::connect(&m_process, &QProcess::readyReadStandardError, this,
-                         [this] { m_stderr += m_process.readAllStandardError(); });
         m_socket.bind(QHostAddress::LocalHost, 0);
         QObject::connect(&m_socket, &QUdpSocket::readyRead, this, [this] { receive(); });
         command = restingCommand(Airframe::wellEquipped());
         command.header.set(ItemId::ID_UA_source, Value::station({44, 133}));
     }
 
-    ~UasimRun() override
-    {
-        if (m_process.state() != QProcess::NotRunning) {
-            m_process.kill();
-            m_process.waitForFinished();
-        }
-    }
-
-    bool start()
-    {
-        m_process.start();
-        return m_process.waitForStarted();
-    }
-    // uasim says so once its socket is bound: the first command can go.
-    bool listening() const { return m_stderr.contains("on udp"); }
-
     void send()
     {
         Message m = command;
         m.header.set(ItemId::ID_msg, m_nextId++);
-        if (uploader)
-            if (auto section = uploader->next())
-                m.flightPlan = *section;
         Diagnostics errors;
         const auto datagram = encodeDatagram(m, errors);
         QVERIFY2(datagram, errors.empty() ? "" : errors.front().toString().c_str());
         m_socket.writeDatagram(reinterpret_cast<const char*>(datagram->data()), qint64(datagram->size()),
-                               QHostAddress::LocalHost, m_port);
+                               QHostAddress::LocalHost, uasim.port());
     }
 
-    QProcess& process() { return m_process; }
-    const QByteArray& errors() const { return m_stderr; }
-
+    test::UasimProcess uasim;
     Message command;
-    std::optional<FlightPlanUploader> uploader;
     std::vector<DecodeResult> statuses;
 
 private:
     void receive()
     {
         while (m_socket.hasPendingDatagrams()) {
-            const QNetworkDatagram d = m_socket.receiveDatagram();
-            const QByteArray bytes = d.data();
-            DecodeResult r =
-                decodeFrame({reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size())});
-            if (uploader)
-                uploader->handleReply(r.message.flightPlan);
-            statuses.push_back(std::move(r));
+            const QByteArray bytes = m_socket.receiveDatagram().data();
+            statuses.push_back(
+                decodeFrame({reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size())}));
             send();
         }
     }
 
-    QProcess m_process;
     QUdpSocket m_socket;
-    quint16 m_port = 0;
     std::uint32_t m_nextId = 0;
-    QByteArray m_stderr;
 };
 
-const Message& latest(const UasimRun& run)
-{
-    return run.statuses.back().message;
-}
+// The console's worker against the simulated aircraft, in simulated time;
+// `statuses` are the status frames the console received.
+struct Flight {
+    explicit Flight(test::AircraftFixture::Options options = {})
+        : fixture(std::move(options)), statuses(fixture.console.get(), &LinkWorker::messageReceived)
+    {
+        command = restingCommand(Airframe::wellEquipped());
+        command.header.set(ItemId::ID_UA_source, Value::station({44, 133}));
+    }
+    // From the next frame on.
+    void setCommand() { fixture.console->setCommand(command); }
+    void start()
+    {
+        setCommand();
+        fixture.start();
+    }
+    Message status(qsizetype i) const { return statuses.at(i).at(0).value<ReceivedMessage>().message; }
+    Message latest() const { return status(statuses.count() - 1); }
+
+    test::AircraftFixture fixture;
+    QSignalSpy statuses;
+    Message command;
+};
+
 
 }  // namespace
 
@@ -366,10 +348,12 @@ private slots:
         QVERIFY(p.readAllStandardError().startsWith("uasim: "));
     }
 
+    // In simulated time from here on: the console's worker against the
+    // aircraft, both ticking on the second from 07:32:00.250.
     void reportsTheCommandedState()
     {
-        UasimRun run;
-        Message& c = run.command;
+        Flight f;
+        Message& c = f.command;
         for (int wheel = 0; wheel < 4; ++wheel)
             c.settings.setFieldCode(ItemId::land_wheels, wheel, kRetracted);
         c.settings.setFieldCode(ItemId::lights, 0, kOn);      // right wing light
@@ -377,107 +361,111 @@ private slots:
         c.engines[1].setFieldCode(ItemId::eng_status, 0, 2);  // GCS control
         c.engines[1].set(ItemId::eng_prop_pitch, 120);
         c.engines[1].set(ItemId::eng_carb_SET, 200);
-        QVERIFY(run.start());
-        QTRY_VERIFY_WITH_TIMEOUT(run.listening(), kPatienceMs);
-        run.send();
+        f.start();
+        f.fixture.run(6s);
 
-        const auto reached = [&] {
-            if (run.statuses.empty())
-                return false;
-            const Message& s = latest(run);
-            for (int wheel = 0; wheel < 4; ++wheel)
-                if (s.settings.fieldCode(ItemId::land_wheels, wheel) != kRetracted)
-                    return false;
-            return s.settings.fieldCode(ItemId::lights, 0) == kOn && s.settings.fieldCode(ItemId::lights, 1) == kOff &&
-                   s.settings.fieldCode(ItemId::lights, 3) == kOn &&
-                   s.engines[1].fieldCode(ItemId::eng_status, 0) == 2 &&
-                   s.engines[1].number(ItemId::eng_prop_pitch) == 120 &&
-                   s.engines[1].number(ItemId::eng_carb_SET) == 200;
-        };
-        QTRY_VERIFY_WITH_TIMEOUT(reached(), kPatienceMs);
-
-        // On the way the lights were on while the gear was still down: the
-        // mismatch the console highlights.
-        const bool lightsBeforeGear = std::any_of(run.statuses.begin(), run.statuses.end(), [](const DecodeResult& r) {
-            return r.message.settings.fieldCode(ItemId::lights, 0) == kOn &&
-                   r.message.settings.fieldCode(ItemId::land_wheels, 0) == kOut;
-        });
-        QVERIFY(lightsBeforeGear);
-        for (std::size_t i = 0; i < run.statuses.size(); ++i) {
-            const DecodeResult& r = run.statuses[i];
-            QVERIFY(r.ok());
+        // On each second the aircraft's status goes first, then the command:
+        // status 0 is the resting aircraft, status 1 the first with the
+        // command acted on. The gear takes 3.5 s, so the lights are on while
+        // it is still down in four of them: the mismatch the console highlights.
+        QCOMPARE(f.statuses.count(), 6);
+        for (int i = 0; i < 6; ++i) {
+            const ReceivedMessage r = f.statuses.at(i).at(0).value<ReceivedMessage>();
             QCOMPARE(r.corrected1 + r.corrected2, 0);
-            QCOMPARE(*r.message.header.find(ItemId::ID_UA_source), Value::station({44, 133}));
-            if (i > 0)  // its own frame count, one a frame
-                QCOMPARE(r.message.header.number(ItemId::ID_msg),
-                         run.statuses[i - 1].message.header.number(ItemId::ID_msg) + 1);
+            QVERIFY(r.diagnostics.empty());
+            const Message& s = r.message;
+            QCOMPARE(s.header.number(ItemId::ID_msg), i);
+            QCOMPARE(s.header.number(ItemId::time_UTC), 73201 + i);
+            QCOMPARE(*s.header.find(ItemId::ID_UA_source), Value::station({44, 133}));
+            const unsigned lights = i == 0 ? kOff : kOn;
+            QCOMPARE(s.settings.fieldCode(ItemId::lights, 0), lights);
+            QCOMPARE(s.settings.fieldCode(ItemId::lights, 1), kOff);
+            QCOMPARE(s.settings.fieldCode(ItemId::lights, 3), lights);
+            for (int wheel = 0; wheel < 4; ++wheel)
+                QCOMPARE(s.settings.fieldCode(ItemId::land_wheels, wheel), i < 5 ? kOut : kRetracted);
+            QCOMPARE(s.engines[1].fieldCode(ItemId::eng_status, 0), i == 0 ? 1u : 2u);
+            QCOMPARE(s.engines[1].number(ItemId::eng_prop_pitch), i == 0 ? 0 : 120);
+            QCOMPARE(s.engines[1].number(ItemId::eng_carb_SET), i == 0 ? 0 : 200);
         }
-        QTRY_VERIFY_WITH_TIMEOUT(
-            run.errors().contains("command 0 (RS 0+0); gear RETRACTED/RETRACTED/RETRACTED/RETRACTED"), kPatienceMs);
+        QCOMPARE(f.fixture.aircraftWorker->statistics().framesReceived, quint64(6));
+        QVERIFY(!f.fixture.aircraft.gearMoving());
     }
 
     void countsOnePhotoPerPress()
     {
-        UasimRun run;
-        const auto photoIn = [](const DecodeResult& r) {
-            return r.message.cameras.at(0).fieldCode(ItemId::take_one_photo, 0);
+        Flight f;
+        QStringList events;
+        QObject::connect(f.fixture.responder.get(), &AircraftResponder::commandApplied,
+                         [&](const ReceivedMessage&, const SimulatedAircraft::ApplyReport& report) {
+                             for (const std::string& e : report.events)
+                                 events << QString::fromStdString(e);
+                         });
+        const auto photoIn = [&](qsizetype i) { return f.status(i).cameras.at(0).fieldCode(ItemId::take_one_photo, 0); };
+        const auto press = [&](unsigned code) {
+            f.command.cameras[0].set(ItemId::take_one_photo, std::int64_t(code << 6));
+            f.setCommand();
         };
-        const auto takes = [&](std::size_t from) {
-            return std::count_if(run.statuses.begin() + std::ptrdiff_t(from), run.statuses.end(),
-                                 [&](const DecodeResult& r) { return photoIn(r) == kTake; });
-        };
-        run.command.cameras[0].set(ItemId::take_one_photo, std::int64_t(kTake << 6));
-        QVERIFY(run.start());
-        QTRY_VERIFY_WITH_TIMEOUT(run.listening(), kPatienceMs);
-        run.send();
-        // TAKE held for four frames: one photograph.
-        QTRY_VERIFY_WITH_TIMEOUT(run.statuses.size() >= 4, kPatienceMs);
-        QCOMPARE(takes(0), 1);
-        QCOMPARE(photoIn(run.statuses.front()), kTake);
-        QTRY_VERIFY_WITH_TIMEOUT(run.errors().contains("photos taken 1/0"), kPatienceMs);
+        press(kTake);
+        f.start();
+        // TAKE held for four commands: one photograph, in the status after the first.
+        f.fixture.run(5s);
+        QCOMPARE(f.statuses.count(), 5);
+        QCOMPARE(f.fixture.aircraft.photoCount(0), 1);
+        for (int i = 0; i < 5; ++i)
+            QCOMPARE(photoIn(i), i == 1 ? kTake : kNone);
 
         // Released, then pressed again: the second.
-        run.command.cameras[0].set(ItemId::take_one_photo, std::int64_t(kNone << 6));
-        const std::size_t released = run.statuses.size();
-        QTRY_VERIFY_WITH_TIMEOUT(run.statuses.size() >= released + 2, kPatienceMs);
-        run.command.cameras[0].set(ItemId::take_one_photo, std::int64_t(kTake << 6));
-        const std::size_t pressed = run.statuses.size();
-        QTRY_VERIFY_WITH_TIMEOUT(takes(pressed) == 1, kPatienceMs);
-        QTRY_VERIFY_WITH_TIMEOUT(run.errors().contains("camera NIK 1: photograph 2 taken"), kPatienceMs);
-        QTRY_VERIFY_WITH_TIMEOUT(run.errors().contains("photos taken 2/0"), kPatienceMs);
-        QCOMPARE(takes(0), 2);
+        press(kNone);
+        f.fixture.run(2s);
+        press(kTake);
+        f.fixture.run(2s);
+        QCOMPARE(f.statuses.count(), 9);
+        for (int i = 5; i < 9; ++i)
+            QCOMPARE(photoIn(i), i == 8 ? kTake : kNone);
+        QCOMPARE(f.fixture.aircraft.photoCount(0), 2);
+        QCOMPARE(f.fixture.aircraft.photoCount(1), 0);
+        QCOMPARE(events, QStringList({"camera NIK 1: photograph 1 taken", "camera NIK 1: photograph 2 taken"}));
     }
 
     void acknowledgesAnUploadedFlightPlan()
     {
-        UasimRun run;
         std::vector<std::uint8_t> plan(700);
         for (std::size_t i = 0; i < plan.size(); ++i)
             plan[i] = static_cast<std::uint8_t>(i ^ 0x5A);
-        run.uploader.emplace(0xF1A9, plan, FlightPlanSection::kMaxData, 0);
-        QCOMPARE(run.uploader->sections().size(), std::size_t{4});
-        QVERIFY(run.start());
-        QTRY_VERIFY_WITH_TIMEOUT(run.listening(), kPatienceMs);
-        run.send();
-        QTRY_COMPARE_WITH_TIMEOUT(run.uploader->state(), FlightPlanUploader::State::Acknowledged, kPatienceMs);
-        const auto ack = FlightPlanAcknowledgement::read(latest(run).flightPlan);
+        FlightPlanUploader uploader(0xF1A9, plan, FlightPlanSection::kMaxData, 0);
+        QCOMPARE(uploader.sections().size(), std::size_t{4});
+        test::AircraftFixture::Options options;
+        options.console.block2Source = [&] { return uploader.next(); };
+        options.console.block2Reply = [&](const FlightPlanSection& reply) { uploader.handleReply(reply); };
+        Flight f(std::move(options));
+        f.start();
+        // One section a second from 07:32:01; the last one reaches the
+        // aircraft at 07:32:04 and its acknowledgement the console at :05.
+        f.fixture.run(4s);
+        QVERIFY(uploader.state() != FlightPlanUploader::State::Acknowledged);
+        QCOMPARE(f.fixture.aircraft.flightPlanId(), 0xF1A9u);
+        QVERIFY(f.fixture.aircraft.flightPlan() == plan);
+        f.fixture.run(1s);
+        QCOMPARE(uploader.state(), FlightPlanUploader::State::Acknowledged);
+        const auto ack = FlightPlanAcknowledgement::read(f.latest().flightPlan);
         QVERIFY(ack);
         QCOMPARE(ack->planId, 0xF1A9u);
-        QCOMPARE(ack->descriptor, run.uploader->descriptor());
-        QTRY_VERIFY_WITH_TIMEOUT(run.errors().contains("flight plan 61865 complete: 700 bytes in 4 sections"),
-                                 kPatienceMs);
+        QCOMPARE(ack->descriptor, uploader.descriptor());
         // Before the plan was complete, BLOCK 2 was empty.
-        QVERIFY(run.statuses.front().message.flightPlan.empty());
+        for (int i = 0; i < 4; ++i)
+            QVERIFY(f.status(i).flightPlan.empty());
     }
 
+    // The built uasim, as few seconds as it takes: its options, its verbose
+    // lines, its log and its signals.
     void appliesItsFaults()
     {
         // About eight flipped bits per 510-byte datagram: Reed-Solomon repairs them.
         UasimRun run({QStringLiteral("--ber"), QStringLiteral("0.002"), QStringLiteral("--seed"), QStringLiteral("3")});
-        QVERIFY(run.start());
-        QTRY_VERIFY_WITH_TIMEOUT(run.listening(), kPatienceMs);
+        QVERIFY(run.uasim.start());
+        QTRY_VERIFY_WITH_TIMEOUT(run.uasim.listening(), kPatienceMs);
         run.send();
-        QTRY_VERIFY_WITH_TIMEOUT(run.statuses.size() >= 2, kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(!run.statuses.empty(), kPatienceMs);
         for (const DecodeResult& r : run.statuses) {
             QVERIFY(r.ok());
             QVERIFY(r.corrected1 + r.corrected2 > 0);
@@ -493,19 +481,19 @@ private slots:
                        "radios": [{"systemId": "UHF", "name": "UHF"}], "cameras": [], "senseAndAvoid": false})");
         file.close();
         UasimRun run({QStringLiteral("--airframe"), file.fileName()});
-        QVERIFY(run.start());
-        QTRY_VERIFY_WITH_TIMEOUT(run.listening(), kPatienceMs);
-        QVERIFY2(run.errors().contains("Motor glider on udp"), run.errors());
+        QVERIFY(run.uasim.start());
+        QTRY_VERIFY_WITH_TIMEOUT(run.uasim.listening(), kPatienceMs);
+        QVERIFY2(run.uasim.stderrText().contains("Motor glider on udp"), run.uasim.stderrText());
         run.send();
         QTRY_VERIFY_WITH_TIMEOUT(!run.statuses.empty(), kPatienceMs);
-        const Message& s = latest(run);
+        const Message& s = run.statuses.back().message;
         QCOMPARE(s.engines.size(), std::size_t{1});
         QCOMPARE(s.engines[0].number(ItemId::eng_ID), 4);
         QCOMPARE(s.radios.size(), std::size_t{1});
         QCOMPARE(s.radios[0].find(ItemId::system_ID)->text, std::string("UHF"));
         QVERIFY(s.cameras.empty() && s.sense.empty());
         // The well-equipped command's other units are reported, not acted on.
-        QTRY_VERIFY_WITH_TIMEOUT(run.errors().contains("IGNORED engine 1: not fitted"), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(run.uasim.stderrText().contains("IGNORED engine 1: not fitted"), kPatienceMs);
     }
 
     void logsAndExitsCleanlyOnSigterm()
@@ -513,14 +501,15 @@ private slots:
         QTemporaryDir dir;
         const QString path = dir.filePath(QStringLiteral("uasim.pcapng"));
         UasimRun run({QStringLiteral("--log"), path});
-        QVERIFY(run.start());
-        QTRY_VERIFY_WITH_TIMEOUT(run.listening(), kPatienceMs);
+        QVERIFY(run.uasim.start());
+        QTRY_VERIFY_WITH_TIMEOUT(run.uasim.listening(), kPatienceMs);
         run.send();
-        QTRY_VERIFY_WITH_TIMEOUT(run.statuses.size() >= 2, kPatienceMs);
-        run.process().terminate();
-        QTRY_COMPARE_WITH_TIMEOUT(run.process().state(), QProcess::NotRunning, kPatienceMs);
-        QCOMPARE(run.process().exitStatus(), QProcess::NormalExit);
-        QCOMPARE(run.process().exitCode(), 0);
+        QTRY_VERIFY_WITH_TIMEOUT(!run.statuses.empty(), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(run.uasim.stderrText().contains("command 0 (RS 0+0); gear OUT/OUT/OUT/OUT"),
+                                 kPatienceMs);
+        QVERIFY(run.uasim.stop(kPatienceMs));
+        QCOMPARE(run.uasim.process().exitStatus(), QProcess::NormalExit);
+        QCOMPARE(run.uasim.process().exitCode(), 0);
 
         FrameLogReader reader;
         QVERIFY2(reader.open(path), qPrintable(reader.errorString()));
@@ -528,7 +517,7 @@ private slots:
         const auto records = reader.readAll();
         const auto sent = std::count_if(records.begin(), records.end(),
                                         [](const FrameRecord& r) { return r.direction == FrameDirection::Sent; });
-        QVERIFY(sent >= 2);
+        QVERIFY(sent >= 1);
         QVERIFY(records.size() > sent);  // the commands too
         for (const FrameRecord& r : records) {
             QCOMPARE(r.transport, FrameTransport::Udp);

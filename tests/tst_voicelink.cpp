@@ -15,6 +15,7 @@
 #include "codec/voice/VoiceMux.h"
 #include "codec/voice/WavFile.h"
 #include "link/session/LinkWorker.h"
+#include "link/session/VirtualClock.h"
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
 #include "link/voice/VoiceDecoderSink.h"
@@ -300,20 +301,30 @@ void TestVoiceLink::framesQueuedTogetherGoBackToBack()
 }
 
 // The link worker at its real cadence, a frame a second, over the voice
-// line at its real rate: the line carries exactly 1,200 bytes from one
-// preamble to the next, every second.
+// line at its real rate, both on one clock stepped by the test: the line
+// carries exactly 1,200 bytes from one preamble to the next, every second.
 void TestVoiceLink::workerCadenceGives1200BytesASecond()
 {
     PtyLine far;
     QVERIFY(far.open());
-    auto link = std::make_unique<VoiceSerialLink>(std::make_unique<SerialLink>(far.slavePath()), nullptr, nullptr);
-    LinkWorker worker(std::move(link), nullptr);
+    const auto clock = std::make_shared<VirtualClock>(0);
+    VoiceSerialLink::Options line;
+    line.clock = clock;
+    auto link =
+        std::make_unique<VoiceSerialLink>(std::make_unique<SerialLink>(far.slavePath()), nullptr, nullptr, line);
+    LinkWorker::Options options;
+    options.clock = clock;
+    LinkWorker worker(std::move(link), nullptr, options);
     rcm::Message command;
     command.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
     worker.setCommand(command);
     QSignalSpy sent(&worker, &LinkWorker::frameSent);
     worker.start();
-    QTRY_VERIFY_WITH_TIMEOUT(hear(far.bytes()).frameOffsets.size() >= 4, kPatience);
+    // A frame sent each second from 1 s on takes a second of line, the first
+    // held 200 ms: by 5.5 s four have gone out whole and the fifth is on the line.
+    clock->advance(5500ms);
+    QCOMPARE(sent.count(), 5);
+    QTRY_COMPARE_WITH_TIMEOUT(hear(far.bytes()).frameOffsets.size(), std::size_t(4), kPatience);
     worker.stop();
 
     const Heard h = hear(far.bytes());
@@ -418,22 +429,31 @@ void TestVoiceLink::voiceDatagramFormat()
 }
 
 // The phrase from one voice link to another over UDP, with a command
-// datagram each way: the commands arrive as commands, the phrase whole.
+// datagram each way: the commands arrive as commands, the phrase whole. Both
+// are paced by one clock the test steps, 10 ms at a time, letting each
+// step's datagrams arrive on loopback before the next.
 void TestVoiceLink::phraseOverUdpBesideCommands()
 {
+    const auto clock = std::make_shared<VirtualClock>(0);
+    const auto run = [&](std::chrono::milliseconds duration) {
+        for (auto t = 0ms; t < duration; t += VoiceUdpLink::kTick) {
+            clock->advance(VoiceUdpLink::kTick);
+            QCoreApplication::processEvents();
+        }
+    };
     Pcm heard;
     auto sink = std::make_shared<VoiceDecoderSink>(
         [&](std::span<const std::int16_t> pcm) { heard.insert(heard.end(), pcm.begin(), pcm.end()); });
     auto aircraftUdp = std::make_unique<UdpLink>(QHostAddress::LocalHost, 0);
     aircraftUdp->setReplyToSender(true);
-    VoiceUdpLink aircraft(std::move(aircraftUdp), std::make_shared<VoiceEncoderSource>(), sink);
+    VoiceUdpLink aircraft(std::move(aircraftUdp), std::make_shared<VoiceEncoderSource>(), sink, clock);
     QSignalSpy aircraftCommands(&aircraft, &Link::datagramReceived);
     aircraft.open();
     const quint16 port = qobject_cast<UdpLink*>(aircraft.inner())->boundPort();
 
     auto source = std::make_shared<VoiceEncoderSource>(0ms);
     VoiceUdpLink console(std::make_unique<UdpLink>(QHostAddress::LocalHost, 0, QHostAddress::LocalHost, port), source,
-                         nullptr);
+                         nullptr, clock);
     QSignalSpy consoleCommands(&console, &Link::datagramReceived);
     console.open();
     const QByteArray command = commandFrame(5).mid(rcm::kPreambleSize);
@@ -445,8 +465,10 @@ void TestVoiceLink::phraseOverUdpBesideCommands()
 
     source->pushPcm(phrase());
     source->endTalk();
+    run(std::chrono::milliseconds(20 * phraseFrames()));
     QTRY_COMPARE_WITH_TIMEOUT(sink->speechFrames(), std::uint64_t(phraseFrames()), kPatience);
     const std::uint64_t enough = sink->samplesOut() + 2 * rcm::voice::kFrameSamples;
+    run(40ms);
     QTRY_VERIFY_WITH_TIMEOUT(sink->samplesOut() >= enough, kPatience);
     QCOMPARE(aircraftCommands.count(), 1);  // voice never passed for a command
     verifyPhrase(heard);

@@ -15,11 +15,15 @@ constexpr int kBatch = 64;
 
 }  // namespace
 
-ReplayLink::ReplayLink(const QString& pcapngPath, QObject* parent) : Link(parent), m_path(pcapngPath), m_timer(this)
+ReplayLink::ReplayLink(const QString& pcapngPath, QObject* parent) : ReplayLink(pcapngPath, nullptr, parent) {}
+
+ReplayLink::ReplayLink(const QString& pcapngPath, std::shared_ptr<Clock> clock, QObject* parent)
+    : Link(parent),
+      m_path(pcapngPath),
+      m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>()),
+      m_timer(m_clock->createTimer(this, Qt::PreciseTimer))
 {
-    m_timer.setSingleShot(true);
-    m_timer.setTimerType(Qt::PreciseTimer);
-    connect(&m_timer, &QTimer::timeout, this, &ReplayLink::playDue);
+    connect(m_timer, &ClockTimer::timeout, this, &ReplayLink::playDue);
 }
 
 ReplayLink::~ReplayLink() = default;
@@ -38,7 +42,7 @@ qint64 ReplayLink::positionMicros() const
 {
     if (m_state != State::Playing)
         return m_anchorMicros;
-    return m_anchorMicros + qint64(double(m_clock.nsecsElapsed() / 1000) * m_speed);
+    return m_anchorMicros + qint64(double(m_clock->steadyMicros() - m_anchorSteadyMicros) * m_speed);
 }
 
 qint64 ReplayLink::dueMicros(int index) const
@@ -49,7 +53,7 @@ qint64 ReplayLink::dueMicros(int index) const
 void ReplayLink::restartClock(qint64 logMicros)
 {
     m_anchorMicros = logMicros;
-    m_clock.restart();
+    m_anchorSteadyMicros = m_clock->steadyMicros();
 }
 
 void ReplayLink::open()
@@ -84,7 +88,7 @@ void ReplayLink::close()
 {
     if (!m_open)
         return;
-    m_timer.stop();
+    m_timer->stop();
     m_reader.close();
     m_open = false;
     m_next = 0;
@@ -161,11 +165,13 @@ void ReplayLink::updateState()
 void ReplayLink::schedule()
 {
     if (m_state != State::Playing) {
-        m_timer.stop();
+        m_timer->stop();
         return;
     }
-    const qint64 waitMicros = qint64(double(dueMicros(m_next) - positionMicros()) / m_speed);
-    m_timer.start(int(std::clamp<qint64>((waitMicros + 999) / 1000, 0, 24 * 3600 * 1000)));
+    // Rounded up, here and to milliseconds: woken before the record is due,
+    // playDue() would find nothing to play and wait again for nothing.
+    const qint64 waitMicros = qint64(std::ceil(double(dueMicros(m_next) - positionMicros()) / m_speed));
+    m_timer->start(std::chrono::milliseconds(std::clamp<qint64>((waitMicros + 999) / 1000, 0, 24 * 3600 * 1000)));
 }
 
 void ReplayLink::playDue()

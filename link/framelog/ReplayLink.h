@@ -19,10 +19,10 @@
 // after the step play at once, in file order.
 
 #include "link/framelog/FrameLogReader.h"
+#include "link/session/Clock.h"
 #include "link/transport/Link.h"
 
-#include <QElapsedTimer>
-#include <QTimer>
+#include <memory>
 
 class ReplayLink : public Link {
     Q_OBJECT
@@ -39,7 +39,9 @@ public:
     static constexpr double kMinSpeed = 0.25;
     static constexpr double kMaxSpeed = 10.0;
 
+    // Paced by `clock`'s steady time and timers; the system clock when null.
     explicit ReplayLink(const QString& pcapngPath, QObject* parent = nullptr);
+    ReplayLink(const QString& pcapngPath, std::shared_ptr<Clock> clock, QObject* parent = nullptr);
     ~ReplayLink() override;
 
     FrameTransport transport() const override { return FrameTransport::Replay; }
@@ -103,9 +105,10 @@ private:
 
     QString m_path;
     FrameLogReader m_reader;
-    QTimer m_timer;
-    QElapsedTimer m_clock;      // wall time since m_anchorMicros, while playing
-    qint64 m_anchorMicros = 0;  // log time when m_clock started, or where it stopped
+    std::shared_ptr<Clock> m_clock;
+    ClockTimer* m_timer;          // a child
+    qint64 m_anchorSteadyMicros = 0;  // the clock's steady time at m_anchorMicros, while playing
+    qint64 m_anchorMicros = 0;  // log time when playing (re)started, or where it stopped
     qint64 m_endMicros = 0;
     qint64 m_floorMicros = 0;  // the latest log time played or sought: nothing is due before it
     int m_next = 0;

@@ -14,12 +14,6 @@
 
 namespace {
 
-std::int64_t utcMicrosNow()
-{
-    using namespace std::chrono;
-    return duration_cast<microseconds>(system_clock::now().time_since_epoch()).count();
-}
-
 // time_UTC hhmmss and date_UTC yymmdd of that instant.
 void setTimeItems(rcm::Message& message, std::int64_t utcMicros)
 {
@@ -72,9 +66,10 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
           else
               receiveUncorrectable(frame.raw, frame.blocks.corrected1, frame.blocks.corrected2);
       })),
-      m_tickTimer(this),
-      m_silenceTimer(this),
-      m_statisticsTimer(this),
+      m_clock(m_options.clock ? m_options.clock : std::make_shared<SystemClock>()),
+      m_tickTimer(m_clock->createTimer(this, Qt::PreciseTimer)),
+      m_silenceTimer(m_clock->createTimer(this)),
+      m_statisticsTimer(m_clock->createTimer(this)),
       m_nextMessageId(m_options.firstMessageId % kMessageIdModulus)
 {
     registerMetaTypes();
@@ -90,14 +85,10 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
         m_udp->setFollowAcceptedSendersOnly(true);
     m_statistics.secure = m_options.secure != nullptr;
 
-    m_tickTimer.setTimerType(Qt::PreciseTimer);
-    m_tickTimer.setSingleShot(true);
-    connect(&m_tickTimer, &QTimer::timeout, this, &LinkWorker::tick);
-    m_silenceTimer.setSingleShot(true);
-    m_silenceTimer.setInterval(m_options.silenceTimeout);
-    connect(&m_silenceTimer, &QTimer::timeout, this, &LinkWorker::silenceElapsed);
-    m_statisticsTimer.setInterval(m_options.statisticsInterval);
-    connect(&m_statisticsTimer, &QTimer::timeout, this, [this] {
+    connect(m_tickTimer, &ClockTimer::timeout, this, &LinkWorker::tick);
+    connect(m_silenceTimer, &ClockTimer::timeout, this, &LinkWorker::silenceElapsed);
+    connect(m_statisticsTimer, &ClockTimer::timeout, this, [this] {
+        m_statisticsTimer->start(m_options.statisticsInterval);
         if (!m_statisticsDirty)
             return;
         m_statisticsDirty = false;
@@ -141,8 +132,8 @@ void LinkWorker::start()
     m_running = true;
     setState(LinkState::Waiting);
     m_link->open();
-    m_silenceTimer.start();
-    m_statisticsTimer.start();
+    m_silenceTimer->start(m_options.silenceTimeout);
+    m_statisticsTimer->start(m_options.statisticsInterval);
     armTick();
     if (m_options.secure && !m_options.secure->notice.empty())
         reportError(QString::fromStdString(m_options.secure->notice));
@@ -156,9 +147,9 @@ void LinkWorker::stop()
     if (!m_running)
         return;
     m_running = false;  // first, so the link's closed() is not taken for a loss
-    m_tickTimer.stop();
-    m_silenceTimer.stop();
-    m_statisticsTimer.stop();
+    m_tickTimer->stop();
+    m_silenceTimer->stop();
+    m_statisticsTimer->stop();
     m_link->close();
     if (m_link->isStream())
         m_sync->flush();
@@ -187,25 +178,25 @@ void LinkWorker::setCommand(const rcm::Message& command)
 void LinkWorker::armTick()
 {
     const std::int64_t period = std::chrono::microseconds(m_options.interval).count();
-    const std::int64_t now = utcMicrosNow();
+    const std::int64_t now = m_clock->utcMicros();
     m_idealTickMicros = (now / period + 1) * period;
     // Rounded up: a timer that fires a little late costs spread, one that
     // fires early would stamp the frame with the previous second.
-    m_tickTimer.start(int((m_idealTickMicros - now + 999) / 1000));
+    m_tickTimer->start(std::chrono::milliseconds((m_idealTickMicros - now + 999) / 1000));
 }
 
 void LinkWorker::tick()
 {
     if (!m_running)
         return;
-    const std::int64_t now = utcMicrosNow();
+    const std::int64_t now = m_clock->utcMicros();
     const std::int64_t period = std::chrono::microseconds(m_options.interval).count();
     if (now < m_idealTickMicros) {
         // The timer runs on the monotonic clock, ticks are on the UTC one.
         // Woken a little early, wait the rest; if the UTC clock was stepped
         // back, align afresh rather than wait out the step.
         if (m_idealTickMicros - now < period)
-            m_tickTimer.start(int((m_idealTickMicros - now + 999) / 1000));
+            m_tickTimer->start(std::chrono::milliseconds((m_idealTickMicros - now + 999) / 1000));
         else
             armTick();
         return;
@@ -237,14 +228,14 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
         }
     }
     message.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
-    setTimeItems(message, utcMicrosNow());
+    setTimeItems(message, m_clock->utcMicros());
     const std::optional<QByteArray> bytes = encode(message);
     if (!bytes)
         return;
     // Closed, or no peer yet: the aircraft hears nothing, so nothing is counted.
     if (!m_link->write(*bytes))
         return;
-    m_statistics.addSendDelay(utcMicrosNow() - idealTickMicros);
+    m_statistics.addSendDelay(m_clock->utcMicros() - idealTickMicros);
     ++m_statistics.framesSent;
     m_nextMessageId = (id + 1) % kMessageIdModulus;
     log(FrameDirection::Sent, *bytes, FrameStatus::NotChecked, {}, id);
@@ -353,7 +344,7 @@ void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::Deco
         header.has(rcm::ItemId::ID_msg) ? std::optional<quint32>(quint32(header.number(rcm::ItemId::ID_msg)))
                                         : std::nullopt);
 
-    const std::int64_t now = utcMicrosNow();
+    const std::int64_t now = m_clock->utcMicros();
     ++m_statistics.framesReceived;
     m_statistics.correctedBytesBlock1 += std::uint64_t(blocks.corrected1);
     m_statistics.correctedBytesBlock2 += std::uint64_t(blocks.corrected2);
@@ -363,7 +354,7 @@ void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::Deco
     statisticsDirty();
 
     if (m_running) {
-        m_silenceTimer.start();
+        m_silenceTimer->start(m_options.silenceTimeout);
         const LinkState before = m_statistics.state;
         setState(LinkState::Connected);
         if (before == LinkState::Lost)
@@ -422,7 +413,7 @@ void LinkWorker::transportClosed()
     // No frame spans the gap: what the synchroniser holds is decided now.
     if (m_link->isStream())
         m_sync->flush();
-    m_silenceTimer.stop();
+    m_silenceTimer->stop();
     if (m_statistics.state == LinkState::Waiting || m_statistics.state == LinkState::Connected) {
         setState(LinkState::Lost);
         emit linkLost();
@@ -453,7 +444,7 @@ void LinkWorker::log(FrameDirection direction, QByteArray bytes, FrameStatus sta
 {
     FrameRecord record;
     record.bytes = std::move(bytes);
-    record.utcMicros = utcMicrosNow();
+    record.utcMicros = m_clock->utcMicros();
     record.direction = direction;
     record.transport = m_link->transport();
     record.status = status;

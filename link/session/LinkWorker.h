@@ -11,6 +11,7 @@
 // decodes, FrameLog records.
 
 #include "codec/message/Message.h"
+#include "link/session/Clock.h"
 #include "link/session/MessageMetaType.h"
 #include "link/framelog/FrameLog.h"
 #include "link/transport/Link.h"
@@ -19,7 +20,6 @@
 #include "link/session/ReceivedMessage.h"
 
 #include <QObject>
-#include <QTimer>
 
 #include <chrono>
 #include <cstdint>
@@ -71,6 +71,9 @@ public:
         // the statistics, logged as Rejected with its bytes as received, and
         // reported by frameRejected(). Used by the link thread only.
         std::shared_ptr<rcm::secure::SecureEndpoint> secure;
+        // What stamps the frames and paces the ticks and timeouts; null: the
+        // system clock. Tests pass a VirtualClock.
+        std::shared_ptr<Clock> clock;
     };
 
     static constexpr std::uint32_t kMessageIdModulus = 1u << 24;
@@ -87,6 +90,8 @@ public:
     // In the link thread only (or before it starts).
     const LinkStatistics& statistics() const { return m_statistics; }
     Link* link() const { return m_link.get(); }
+    // options().clock, or the system clock the worker made for itself.
+    Clock& clock() const { return *m_clock; }
 
 public slots:
     // Opens the link and starts the cadence.
@@ -148,9 +153,11 @@ private:
     // Held by pointer so that this header does not include StreamSync.h,
     // whose private emit() clashes with Qt's emit macro in Qt headers.
     std::unique_ptr<rcm::StreamSync> m_sync;
-    QTimer m_tickTimer;
-    QTimer m_silenceTimer;
-    QTimer m_statisticsTimer;
+    std::shared_ptr<Clock> m_clock;
+    // Children, so that moveToThread() takes them along.
+    ClockTimer* m_tickTimer;
+    ClockTimer* m_silenceTimer;
+    ClockTimer* m_statisticsTimer;
     LinkStatistics m_statistics;
     bool m_statisticsDirty = false;
     bool m_running = false;

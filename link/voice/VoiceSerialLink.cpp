@@ -56,19 +56,21 @@ VoiceSerialLink::VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<Vo
               if (m_sink)
                   m_sink->writeVoice(voice);
           })),
-      m_timer(this)
+      m_clock(m_options.clock ? m_options.clock : std::make_shared<SystemClock>()),
+      m_timer(m_clock->createTimer(this, Qt::PreciseTimer))
 {
     Q_ASSERT(m_inner && m_inner->isStream());
     m_inner->setParent(this);
-    m_timer.setTimerType(Qt::PreciseTimer);
-    m_timer.setInterval(m_options.tick);
-    connect(&m_timer, &QTimer::timeout, this, &VoiceSerialLink::pace);
+    connect(m_timer, &ClockTimer::timeout, this, [this] {
+        m_timer->start(m_options.tick);
+        pace();
+    });
     connect(m_inner, &Link::opened, this, [this] {
         start();
         emit opened();
     });
     connect(m_inner, &Link::closed, this, [this] {
-        m_timer.stop();
+        m_timer->stop();
         emit closed();
     });
     connect(m_inner, &Link::errorOccurred, this, &Link::errorOccurred);
@@ -84,7 +86,7 @@ VoiceSerialLink::VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<Vo
 VoiceSerialLink::~VoiceSerialLink()
 {
     // Quietly, and before the demultiplexer its signals would reach.
-    m_timer.stop();
+    m_timer->stop();
     disconnect(m_inner, nullptr, this, nullptr);
 }
 
@@ -100,7 +102,7 @@ void VoiceSerialLink::open()
 
 void VoiceSerialLink::close()
 {
-    m_timer.stop();
+    m_timer->stop();
     m_inner->close();
 }
 
@@ -112,7 +114,7 @@ bool VoiceSerialLink::write(const QByteArray& bytes)
     m_mux->queueFrame(std::span<const std::uint8_t, rcm::kFrameSize>(
         reinterpret_cast<const std::uint8_t*>(bytes.constData()), rcm::kFrameSize));
     if (afterFill)
-        m_holdUntil = m_clock.nsecsElapsed() + std::chrono::nanoseconds(m_options.frameHold).count();
+        m_holdUntil = nanosSinceOpened() + std::chrono::nanoseconds(m_options.frameHold).count();
     return true;
 }
 
@@ -121,11 +123,11 @@ void VoiceSerialLink::start()
     // A new line: what was half sent or half received is gone.
     m_mux = std::make_unique<rcm::VoiceMultiplexer>();
     m_demux->reset();
-    m_clock.start();
+    m_openedMicros = m_clock->steadyMicros();
     m_written = 0;
     m_skipped = 0;
     m_holdUntil = 0;
-    m_timer.start();
+    m_timer->start(m_options.tick);
     pace();
 }
 
@@ -133,7 +135,7 @@ void VoiceSerialLink::pace()
 {
     if (!m_inner->isOpen())
         return;
-    const std::int64_t now = m_clock.nsecsElapsed();
+    const std::int64_t now = nanosSinceOpened();
     const auto lineTime = static_cast<std::uint64_t>(now / 1000 * m_options.bytesPerSecond / 1000000);
     std::uint64_t due = (static_cast<std::uint64_t>(m_options.lead) + lineTime - m_skipped) & ~std::uint64_t(1);
     const auto tickBytes = static_cast<std::uint64_t>(m_options.bytesPerSecond * m_options.tick.count() / 1000);
@@ -152,6 +154,11 @@ void VoiceSerialLink::pace()
     m_mux->multiplex(voice, std::span(reinterpret_cast<std::uint8_t*>(line.data()), 2 * pairs));
     m_inner->write(line);
     m_written += 2 * pairs;
+}
+
+std::int64_t VoiceSerialLink::nanosSinceOpened() const
+{
+    return (m_clock->steadyMicros() - m_openedMicros) * 1000;
 }
 
 void VoiceSerialLink::receive(const QByteArray& bytes)

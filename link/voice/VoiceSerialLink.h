@@ -7,7 +7,8 @@
 //
 // Sending. The worker's frame (600 bytes, once a second) is the control
 // phase; the voice phase comes from a VoiceSource. The line is paced here, by
-// the host's monotonic clock: every tick (10 ms) the bytes due since the line
+// a steady clock (Options::clock, the host's monotonic one unless a test
+// passes its own): every tick (10 ms) the bytes due since the line
 // started are written, `lead` bytes ahead, so the modem's buffer never runs
 // dry between ticks. A frame is sent whole, and the next one, if it was
 // written before this one ended, follows at once, so frames stand exactly
@@ -26,10 +27,8 @@
 // 100 ppm drifts 0.12 bytes a second against it: its buffer holds `lead`
 // bytes, so that is minutes before it runs dry or grows by a frame.
 
+#include "link/session/Clock.h"
 #include "link/transport/Link.h"
-
-#include <QElapsedTimer>
-#include <QTimer>
 
 #include <chrono>
 #include <cstdint>
@@ -51,6 +50,8 @@ public:
         std::chrono::milliseconds tick{10};
         int lead = 24;  // bytes written ahead of the line: 20 ms
         std::chrono::milliseconds frameHold{200};
+        // The line's time and ticks; null: the system clock.
+        std::shared_ptr<Clock> clock;
     };
 
     // `inner` a stream transport, moved in and made a child. A null source
@@ -82,6 +83,7 @@ public slots:
 private:
     void start();
     void pace();
+    std::int64_t nanosSinceOpened() const;
     void receive(const QByteArray& bytes);
 
     Link* m_inner;  // a child
@@ -90,9 +92,10 @@ private:
     Options m_options;
     std::unique_ptr<rcm::VoiceMultiplexer> m_mux;
     std::unique_ptr<rcm::VoiceDemultiplexer> m_demux;
-    QTimer m_timer;
-    QElapsedTimer m_clock;         // since the port opened
+    std::shared_ptr<Clock> m_clock;
+    ClockTimer* m_timer;              // a child
+    std::int64_t m_openedMicros = 0;  // m_clock's steady time when the port opened
     std::uint64_t m_written = 0;   // line bytes written since then
     std::uint64_t m_skipped = 0;   // line bytes never written: the event loop stalled
-    std::int64_t m_holdUntil = 0;  // m_clock ns: the first frame after fill waits until then
+    std::int64_t m_holdUntil = 0;  // ns since the port opened: the first frame after fill waits until then
 };

@@ -16,19 +16,31 @@ constexpr std::uint64_t kMaxCatchUp = 5;
 
 VoiceUdpLink::VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
                            std::shared_ptr<VoiceSink> sink, QObject* parent)
-    : Link(parent), m_inner(inner.release()), m_source(std::move(source)), m_sink(std::move(sink)), m_timer(this)
+    : VoiceUdpLink(std::move(inner), std::move(source), std::move(sink), nullptr, parent)
+{
+}
+
+VoiceUdpLink::VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
+                           std::shared_ptr<VoiceSink> sink, std::shared_ptr<Clock> clock, QObject* parent)
+    : Link(parent),
+      m_inner(inner.release()),
+      m_source(std::move(source)),
+      m_sink(std::move(sink)),
+      m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>()),
+      m_timer(m_clock->createTimer(this, Qt::PreciseTimer))
 {
     Q_ASSERT(m_inner && !m_inner->isStream());
     m_inner->setParent(this);
-    m_timer.setTimerType(Qt::PreciseTimer);
-    m_timer.setInterval(kTick);
-    connect(&m_timer, &QTimer::timeout, this, &VoiceUdpLink::pace);
+    connect(m_timer, &ClockTimer::timeout, this, [this] {
+        m_timer->start(kTick);
+        pace();
+    });
     connect(m_inner, &Link::opened, this, [this] {
         start();
         emit opened();
     });
     connect(m_inner, &Link::closed, this, [this] {
-        m_timer.stop();
+        m_timer->stop();
         emit closed();
     });
     connect(m_inner, &Link::errorOccurred, this, &Link::errorOccurred);
@@ -38,7 +50,7 @@ VoiceUdpLink::VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSou
 
 VoiceUdpLink::~VoiceUdpLink()
 {
-    m_timer.stop();
+    m_timer->stop();
     disconnect(m_inner, nullptr, this, nullptr);
 }
 
@@ -58,13 +70,13 @@ void VoiceUdpLink::open()
 {
     m_inner->open();
     // A transport may open at once, before anyone heard opened().
-    if (m_inner->isOpen() && !m_timer.isActive())
+    if (m_inner->isOpen() && !m_timer->isActive())
         start();
 }
 
 void VoiceUdpLink::close()
 {
-    m_timer.stop();
+    m_timer->stop();
     m_inner->close();
 }
 
@@ -75,11 +87,11 @@ bool VoiceUdpLink::write(const QByteArray& bytes)
 
 void VoiceUdpLink::start()
 {
-    if (m_timer.isActive())
+    if (m_timer->isActive())
         return;
-    m_clock.start();
+    m_openedMicros = m_clock->steadyMicros();
     m_frames = 0;
-    m_timer.start();
+    m_timer->start(kTick);
     pace();
 }
 
@@ -91,7 +103,7 @@ void VoiceUdpLink::pace()
     using rcm::voice::kFramesPerSecond;
     // The frame whose 20 ms has begun goes now.
     const auto due =
-        static_cast<std::uint64_t>(m_clock.nsecsElapsed() / 1000 * std::int64_t(kFramesPerSecond) / 1000000) + 1;
+        static_cast<std::uint64_t>((m_clock->steadyMicros() - m_openedMicros) * std::int64_t(kFramesPerSecond) / 1000000) + 1;
     if (due > m_frames + kMaxCatchUp)
         m_frames = due - kMaxCatchUp;
     QByteArray datagram(kMagicSize + qsizetype(kFrameBytes), Qt::Uninitialized);

@@ -13,13 +13,13 @@
 // must match too. Datagrams of neither kind go on as datagramReceived(),
 // where the worker counts them as of the wrong size.
 //
-// Voice is paced by the host's monotonic clock, a frame every 20 ms, as the
-// voice phase of the serial line would carry it.
+// Voice is paced by a steady clock (the host's monotonic one unless a test
+// passes its own), a frame every 20 ms, as the voice phase of the serial line
+// would carry it.
 
+#include "link/session/Clock.h"
 #include "link/transport/Link.h"
 
-#include <QElapsedTimer>
-#include <QTimer>
 
 #include <chrono>
 #include <cstdint>
@@ -39,6 +39,9 @@ public:
     // sends no voice; a null sink drops what is received.
     VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink,
                  QObject* parent = nullptr);
+    // Paced by `clock`; the system clock when null.
+    VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink,
+                 std::shared_ptr<Clock> clock, QObject* parent = nullptr);
     ~VoiceUdpLink() override;
 
     // True for a datagram of the voice format above.
@@ -68,8 +71,9 @@ private:
     Link* m_inner;  // a child
     std::shared_ptr<VoiceSource> m_source;
     std::shared_ptr<VoiceSink> m_sink;
-    QTimer m_timer;
-    QElapsedTimer m_clock;
+    std::shared_ptr<Clock> m_clock;
+    ClockTimer* m_timer;              // a child
+    std::int64_t m_openedMicros = 0;  // m_clock's steady time when the link opened
     std::uint64_t m_frames = 0;  // voice frames taken from the source since the link opened
     std::uint64_t m_sent = 0;
     std::uint64_t m_received = 0;
