@@ -173,6 +173,11 @@ private slots:
     void parseErrors_data();
     void parseErrors();
     void reportsEveryError();
+    void badInput_data();
+    void badInput();
+    void byteOrderMarkIsSkipped();
+    void errorsAreCapped();
+    void block1OverflowNamesTheItem();
     void countries_data();
     void countries();
     void countryForCode_data();
@@ -799,6 +804,106 @@ void TestTextFormat::formatSpeed()
     qInfo("well-equipped: formatMessage x 86400 in %lld ms (%zu bytes); parseMessage x 8640 in %lld ms",
           formatMs, bytes, parseMs);
     QVERIFY(bytes > 0 && items > 0);
+}
+
+// Input found from outside to break the error messages: every message whole,
+// at its line and column, and short.
+void TestTextFormat::badInput_data()
+{
+    QTest::addColumn<QByteArray>("text");
+    QTest::addColumn<QByteArray>("error");  // Diagnostic::toString() of the one error
+    const QByteArray control = " in the text; the format is printable text (inside quotes write any byte as \\xHH)";
+    QTest::newRow("NUL in a value") << QByteArray("eng_ID 1\0002", 10) << "line 1 column 9: control byte \\x00" + control;
+    QTest::newRow("NUL in a name") << QByteArray("ID_msg 1\nID\000msg 2\n", 18)
+                                   << "line 2 column 3: control byte \\x00" + control;
+    QTest::newRow("escape byte") << QByteArray("system_ID \"A\x1B[2J\"") << "line 1 column 13: control byte \\x1B" + control;
+    QTest::newRow("DEL") << QByteArray("ID_msg 1\x7F") << "line 1 column 9: control byte \\x7F" + control;
+    QTest::newRow("carriage return inside a line")
+        << QByteArray("ID_msg\r1\r\n") << "line 1 column 7: control byte \\x0D" + control;
+
+    const QByteArray big(10 << 20, 'A');
+    const QByteArray shown = QByteArray(40, 'A') + "... (10485760 bytes)";
+    QTest::newRow("10 MB text value")
+        << "system_ID " + big
+        << "line 1 column 11: system_ID: text \"" + shown + "\" is 10485760 characters, 10485752 more than the 8 allowed";
+    QTest::newRow("10 MB number") << "ID_msg " + QByteArray(10 << 20, '9')
+                                  << "line 1 column 8: ID_msg: '" + QByteArray(40, '9') +
+                                         "... (10485760 bytes)' does not fit in 64 bits; expected an integer from 0 to "
+                                         "16777215 (decimal or 0x hex)";
+    QTest::newRow("10 MB name") << big + " 1" << "line 1 column 1: " + shown + ": unknown item '" + shown + "'";
+    QTest::newRow("10 MB quoted value")
+        << "ID_msg \"" + big + "\""
+        << "line 1 column 8: ID_msg: expected an integer from 0 to 16777215 (decimal or 0x hex), got quoted text \"" +
+               QByteArray(39, 'A') + "... (10485762 bytes)";
+    // A long UTF-8 name is cut between characters, not inside one.
+    QTest::newRow("long UTF-8 name") << QByteArray("A") + QByteArray("\xC3\xA9").repeated(30) + " 1"
+                                     << "line 1 column 1: A" + QByteArray("\xC3\xA9").repeated(19) +
+                                            "... (61 bytes): unknown item 'A" +
+                                            QByteArray("\xC3\xA9").repeated(19) + "... (61 bytes)'";
+}
+
+void TestTextFormat::badInput()
+{
+    QFETCH(QByteArray, text);
+    QFETCH(QByteArray, error);
+    const ParseResult r = parseMessage(std::string_view(text.constData(), static_cast<std::size_t>(text.size())));
+    QCOMPARE(r.errors.size(), std::size_t{1});
+    QCOMPARE(q(r.errors.front().toString()), error);
+    QCOMPARE(r.unlistedErrors, std::size_t{0});
+}
+
+void TestTextFormat::byteOrderMarkIsSkipped()
+{
+    ParseResult r = parseMessage("\xEF\xBB\xBFID_msg 133\nSA_zoom_LHS_cam 35\n");
+    QVERIFY2(r.ok(), dump(r.errors).c_str());
+    QCOMPARE(r.message.header.number(ItemId::ID_msg), 133);
+    QCOMPARE(r.message.sense.number(ItemId::SA_zoom_LHS_cam), 35);
+    // Columns count from after the mark, as an editor shows them.
+    r = parseMessage("\xEF\xBB\xBFID_msg x\n");
+    QCOMPARE(q(dump(r.errors)), QByteArray("line 1 column 8: ID_msg: expected an integer from 0 to 16777215 (decimal or "
+                                           "0x hex), got 'x'\n"));
+    // Only at the very start: elsewhere it is an unknown name as written.
+    r = parseMessage("ID_msg 1\n\xEF\xBB\xBFID_msg 2\n");
+    QCOMPARE(q(dump(r.errors)), QByteArray("line 2 column 1: \xEF\xBB\xBFID_msg: unknown item '\xEF\xBB\xBFID_msg'\n"));
+}
+
+void TestTextFormat::errorsAreCapped()
+{
+    std::string text;
+    for (int i = 0; i < 1000000; ++i)
+        text += "foo 1\n";
+    const ParseResult r = parseMessage(text);
+    QCOMPARE(r.errors.size(), kMaxListedErrors);
+    QCOMPARE(r.unlistedErrors, std::size_t{1000000} - kMaxListedErrors);
+    QCOMPARE(q(r.errors.front().toString()), QByteArray("line 1 column 1: foo: unknown item 'foo'"));
+    QCOMPARE(r.errors.back().line, 20);
+}
+
+void TestTextFormat::block1OverflowNamesTheItem()
+{
+    // Nine radios of 23 bytes (207) fit; the tenth stops at its Tx_freq (224).
+    std::string text;
+    for (int i = 0; i < 10; ++i)
+        text += "system_ID R" + std::to_string(i) +
+                "\nRx_freq 1\nTx_freq 1\nTx_OP_power 1\nreceiver_control receiver=ON transmitter=ON\n";
+    ParseResult r = parseMessage(text);
+    QCOMPARE(q(dump(r.errors)), QByteArray("line 48 column 1: Tx_freq: BLOCK 1 is full here: the items need 230 bytes, "
+                                           "7 more than the 223 a block holds\n"));
+    QCOMPARE(r.errors.front().kind, Diagnostic::Kind::DoesNotFit);
+    // The same text under the secure link's limits, with ID_msg, time_UTC and
+    // date_UTC to be filled in (12 bytes): 195 bytes left, full in the ninth radio.
+    constexpr std::array<ItemId, 3> filled{ItemId::ID_msg, ItemId::time_UTC, ItemId::date_UTC};
+    r = parseMessage(text, EncodeOptions{16, 199}, filled);
+    QCOMPARE(q(dump(r.errors)),
+             QByteArray("line 42 column 1: Rx_freq: BLOCK 1 is full here: the items need 242 bytes plus 16 bytes of "
+                        "required padding, 35 more than the 223 a block holds (counting ID_msg, time_UTC and "
+                        "date_UTC, filled in when not given)\n"));
+    // Text that fits gets no error, and encodes.
+    text.resize(text.find("system_ID R9"));
+    r = parseMessage(text);
+    QVERIFY(r.ok());
+    Diagnostics errors;
+    QVERIFY(encodeFrame(r.message, errors));
 }
 
 QTEST_APPLESS_MAIN(TestTextFormat)

@@ -45,6 +45,7 @@ std::vector<std::uint8_t> encodeBytes(const Options& o, const std::optional<rcm:
 
 void fillHeaderDefaults(rcm::Message& m)
 {
+    static_assert(kHeaderDefaults.size() == 3, "the items filled in below");
     using rcm::ItemId;
     if (!m.header.has(ItemId::ID_msg))
         m.header.set(ItemId::ID_msg, 0);
@@ -67,12 +68,15 @@ int encode(const Options& o)
     }
     const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());
     const std::string name = inputName(o.file);
-    rcm::ParseResult parsed = rcm::parseMessage(text);
+    rcm::ParseResult parsed = rcm::parseMessage(
+        text, o.key.empty() ? rcm::EncodeOptions{} : rcm::secure::encodeOptions(), kHeaderDefaults);
     if (!parsed.ok()) {
         // file:line:column: as compilers write it, so editors can jump there.
         for (const rcm::Diagnostic& d : parsed.errors)
             std::fprintf(stderr, "%s:%d:%d: %s%s%s\n", name.c_str(), d.line, d.column, d.where.c_str(),
                          d.where.empty() ? "" : ": ", d.message.c_str());
+        if (parsed.unlistedErrors > 0)
+            std::fprintf(stderr, "%s: %zu more errors not listed\n", name.c_str(), parsed.unlistedErrors);
         return kExitFailed;
     }
     fillHeaderDefaults(parsed.message);

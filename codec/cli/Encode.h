@@ -4,10 +4,14 @@
 #include "codec/cli/Options.h"
 #include "codec/message/Message.h"
 
+#include <array>
+
 namespace rcm::cli {
 
-// Fills ID_msg (0), time_UTC and date_UTC (the UTC clock) where the text did
-// not give them.
+// The header items encode fills in where the text does not give them: ID_msg
+// (0), time_UTC and date_UTC (the UTC clock).
+inline constexpr std::array<rcm::ItemId, 3> kHeaderDefaults{rcm::ItemId::ID_msg, rcm::ItemId::time_UTC,
+                                                            rcm::ItemId::date_UTC};
 void fillHeaderDefaults(rcm::Message& m);
 
 // Reads the text from o.file and writes the bytes to standard output; errors

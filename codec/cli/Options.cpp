@@ -22,7 +22,8 @@ encode  reads one Remote Control Message in the text format from FILE (standard
         Items given in the text are never changed. An item absent from the text
         is absent from the frame, except ID_msg (0 when not given), time_UTC and
         date_UTC (the UTC clock when not given).
-        Errors name the line and column; nothing is written then.
+        Errors name the line and column (the first 20 are listed, the rest
+        counted); nothing is written then. A UTF-8 byte-order mark is skipped.
 
 decode  reads bytes from FILE (standard input when absent or -): any number of
         frames amid other bytes, found by their preamble even with bit errors in
