@@ -37,8 +37,12 @@ private slots:
     void encodeDatagram();
     void encodeReportsLineAndColumn();
     void encodeRefusesWhatDoesNotFit();
+    void encodeCapsTheErrors();
+    void encodeReportsControlBytesWhole();
+    void encodeSkipsAByteOrderMark();
     void decodeVectorsToText();
     void decodeStreamAmidGarbage();
+    void decodeFrameBeginningBeforeTheStream();
     void decodeReportsUncorrectable();
     void decodeFindsNothing();
     void decodeSummary();
@@ -127,8 +131,44 @@ void TestRcm::encodeRefusesWhatDoesNotFit()
     const Run r = runRcm({"encode"}, text);
     QCOMPARE(r.exitCode, 1);
     QCOMPARE(r.out, QByteArray());
-    QVERIFY2(r.err.contains("<stdin>: block 1: BLOCK 1: the items need 242 bytes, 19 more than the 223 a block holds"),
-             r.err);
+    // Named at the first item that no longer fits: the tenth radio's
+    // system_ID, as ID_msg, time_UTC and date_UTC take 12 bytes.
+    QCOMPARE(r.err, QByteArray("<stdin>:46:1: system_ID: BLOCK 1 is full here: the items need 242 bytes, 19 more than "
+                               "the 223 a block holds (counting ID_msg, time_UTC and date_UTC, filled in when not "
+                               "given)\n"));
+}
+
+void TestRcm::encodeCapsTheErrors()
+{
+    QByteArray text;
+    for (int i = 0; i < 1000000; ++i)
+        text += "foo 1\n";
+    const Run r = runRcm({"encode"}, text);
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.out, QByteArray());
+    QByteArray expected;
+    for (int line = 1; line <= 20; ++line)
+        expected += "<stdin>:" + QByteArray::number(line) + ":1: foo: unknown item 'foo'\n";
+    expected += "<stdin>: 999980 more errors not listed\n";
+    QCOMPARE(r.err, expected);
+}
+
+void TestRcm::encodeReportsControlBytesWhole()
+{
+    const Run r = runRcm({"encode"}, QByteArray("ID_msg 1\nID\000msg 2\nSA_zoom_LHS_cam 35\n", 37));
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.err, QByteArray("<stdin>:2:3: control byte \\x00 in the text; the format is printable text (inside "
+                               "quotes write any byte as \\xHH)\n"));
+}
+
+void TestRcm::encodeSkipsAByteOrderMark()
+{
+    const QByteArray text = "ID_msg 1\ntime_UTC 00:00:00\ndate_UTC 261122\n";
+    const Run plain = runRcm({"encode"}, text);
+    const Run marked = runRcm({"encode"}, "\xEF\xBB\xBF" + text);
+    QCOMPARE(marked.exitCode, 0);
+    QCOMPARE(marked.err, QByteArray());
+    QCOMPARE(marked.out, plain.out);
 }
 
 void TestRcm::decodeVectorsToText()
@@ -156,6 +196,16 @@ void TestRcm::decodeStreamAmidGarbage()
     QCOMPARE(r.out.count("# frame "), 3);
     QCOMPARE(r.out.count("# block1 corrected 0\n"), 3);
     QVERIFY(r.out.contains("flight_plan_ID 0xDEADBEEF\n"));
+}
+
+void TestRcm::decodeFrameBeginningBeforeTheStream()
+{
+    // The stream begins 50 bytes into the frame's 90-byte preamble.
+    const Run r = runRcm({"decode"}, vector("seed-example.bin").mid(50));
+    QCOMPARE(r.exitCode, 0);
+    QVERIFY2(r.out.startsWith("# frame 1 at byte offset -50 (50 bytes before the start of the stream)\n"
+                              "# block1 corrected 0\n"),
+             r.out.constData());
 }
 
 void TestRcm::decodeReportsUncorrectable()

@@ -43,11 +43,21 @@ struct DecodeCounts {
     std::uint64_t warnings = 0;
 };
 
-void printMessage(Output& out, std::uint64_t frameNumber, std::uint64_t offset, const rcm::DecodeResult& r,
+// "frame 3 at byte offset 1200"; a stream that began inside the frame's
+// preamble puts its start before the stream's.
+std::string frameAt(std::uint64_t frameNumber, std::int64_t offset)
+{
+    std::string s = "frame " + std::to_string(frameNumber) + " at byte offset " + std::to_string(offset);
+    if (offset < 0)
+        s += " (" + std::to_string(-offset) + " bytes before the start of the stream)";
+    return s;
+}
+
+void printMessage(Output& out, std::uint64_t frameNumber, std::int64_t offset, const rcm::DecodeResult& r,
                   std::string_view direction = {})
 {
     std::string& s = out.buffer();
-    s += "# frame " + std::to_string(frameNumber) + " at byte offset " + std::to_string(offset) + "\n";
+    s += "# " + frameAt(frameNumber, offset) + "\n";
     s += "# block1 corrected " + std::to_string(r.corrected1) + "\n";
     s += "# block2 corrected " + std::to_string(r.corrected2) + "\n";
     if (!direction.empty())
@@ -72,7 +82,7 @@ bool decodeKeyed(Keyed& k, const Options& o, Output& out, std::uint64_t frameNum
         return false;
     }
     if (!o.summary)
-        printMessage(out, frameNumber, static_cast<std::uint64_t>(offset), r.decoded,
+        printMessage(out, frameNumber, offset, r.decoded,
                      rcm::secure::directionName(r.direction));
     return true;
 }
@@ -178,15 +188,14 @@ int decode(const Options& o)
         ++frameNumber;
         if (!frame.ok()) {
             ++counts.uncorrectable;
-            std::fprintf(stderr, "rcm: frame %llu at byte offset %llu: uncorrectable (block 1 %s, block 2 %s)\n",
-                         static_cast<unsigned long long>(frameNumber), static_cast<unsigned long long>(frame.offset),
+            std::fprintf(stderr, "rcm: %s: uncorrectable (block 1 %s, block 2 %s)\n",
+                         frameAt(frameNumber, frame.offset).c_str(),
                          frame.blocks.corrected1 < 0 ? "beyond correction" : "good",
                          frame.blocks.corrected2 < 0 ? "beyond correction" : "good");
             return;
         }
         if (keyed) {
-            const std::string what = "frame " + std::to_string(frameNumber) + " at byte offset " +
-                                     std::to_string(frame.offset);
+            const std::string what = frameAt(frameNumber, frame.offset);
             if (!decodeKeyed(*keyed, o, out, frameNumber, frame.offset, frame.blocks, what.c_str()))
                 return;
         }
