@@ -146,7 +146,10 @@ bool better(const Trial& a, const Trial& b)
 
 }  // namespace
 
-StreamSync::StreamSync(Handler onFrame) : handler_(std::move(onFrame)), buf_(kBufferSize) {}
+StreamSync::StreamSync(Handler onFrame, Acceptor exact)
+    : handler_(std::move(onFrame)), exact_(std::move(exact)), buf_(kBufferSize)
+{
+}
 
 void StreamSync::reset()
 {
@@ -326,19 +329,26 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
     if (n == 0 || cands[0].distance >= bar)
         return false;
 
-    Trial trials[2];
+    // The reading taken is the best the acceptance decision finds exact, or,
+    // when none is, the best of all (which it will then refuse); without an
+    // acceptor every reading counts as exact.
+    Trial trials[3];
     Decoded decoded[2];  // [0]: the closest window's, to predict the others near it
     int best = -1;
+    int exact = -1;
     DecodedBlocks firstBlocks;
     for (std::size_t i = 0; i < n; ++i) {
-        // score >= distance: once the distance alone exceeds the best score,
-        // no later candidate can win, nor tie with fewer corrections.
-        if (best >= 0) {
-            const Trial& b = trials[best];
+        // score >= distance: once the distance alone exceeds the score of the
+        // reading to be taken, no later candidate can win, nor tie with fewer
+        // corrections.
+        if (exact >= 0) {
+            const Trial& b = trials[exact];
             if (cands[i].distance > b.score || (cands[i].distance == b.score && corrections(b.blocks) == 0))
                 break;
         }
-        const int slot = best == 0 ? 1 : 0;
+        int slot = 0;
+        while (slot == best || slot == exact)
+            ++slot;
         Trial& t = trials[slot];
         Decoded& d = decoded[i == 0 ? 0 : 1];
         rsDecode(at(cands[i].c), i == 0 ? nullptr : &decoded[0],
@@ -359,13 +369,18 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
                 std::memcpy(firstBlocks.block2.data(), cw + kCodewordSize, kBlockSize);
             firstBlocks.corrected1 = firstBlocks.corrected2 = -1;
         }
-        if (confirms(t, t.c < failEnd_) && (best < 0 || better(t, trials[best])))
+        if (!confirms(t, t.c < failEnd_))
+            continue;
+        if (best < 0 || better(t, trials[best]))
             best = slot;
+        if ((exact < 0 || better(t, trials[exact])) && (!exact_ || exact_(t.blocks)))
+            exact = slot;
     }
     if (best >= 0) {
-        if (trials[best].distance >= bar)
+        const Trial& taken = trials[exact >= 0 ? exact : best];
+        if (taken.distance >= bar)
             return false;
-        confirm(trials[best].c, trials[best].distance, trials[best].blocks);
+        confirm(taken.c, taken.distance, taken.blocks);
         return true;
     }
 

@@ -69,6 +69,9 @@ struct SyncedFrame {
 class StreamSync {
 public:
     using Handler = std::function<void(const SyncedFrame&)>;
+    // True when blocks whose codewords both decoded pass the acceptance
+    // decision's exactness rules (FrameReceiver's); no side effects.
+    using Acceptor = std::function<bool(const DecodedBlocks&)>;
 
     static constexpr std::size_t kWindowSize = 16;
     static constexpr int kMaxWindowBitErrors = 6;
@@ -92,7 +95,7 @@ public:
         std::uint64_t corrected2 = 0;
     };
 
-    explicit StreamSync(Handler onFrame);
+    explicit StreamSync(Handler onFrame, Acceptor exact = {});
 
     // Frames are reported in stream order, each as soon as the bytes that
     // decide it have arrived (up to 615 bytes after its codewords begin, 510
@@ -126,6 +129,7 @@ private:
     const std::uint8_t* at(std::uint64_t offset) const { return buf_.data() + (offset - base_); }
 
     Handler handler_;
+    Acceptor exact_;
     std::vector<std::uint8_t> buf_;
     std::uint64_t base_ = 0;     // stream offset of buf_[0]
     std::size_t len_ = 0;
