@@ -69,16 +69,22 @@ struct SyncedFrame {
 class StreamSync {
 public:
     using Handler = std::function<void(const SyncedFrame&)>;
+    // True when blocks whose codewords both decoded pass the acceptance
+    // decision's exactness rules (FrameReceiver's); no side effects.
+    using Acceptor = std::function<bool(const DecodedBlocks&)>;
 
     static constexpr std::size_t kWindowSize = 16;
     static constexpr int kMaxWindowBitErrors = 6;
+    // Where the next frame is due (600 bytes after the last one reported),
+    // a window this far from the preamble still qualifies.
+    static constexpr int kMaxDueWindowBitErrors = 16;
     static constexpr std::size_t kNeighbourhood = kPreambleSize;  // candidates q .. q+89
     // Upper bound of bufferedBytes() between feed() calls: a neighbourhood,
     // the frame after it and 16 bytes beyond (to see whether codeword 2 was
     // displaced by a slip in codeword 1), plus the preamble of a failed frame
     // whose report waits to see whether it was only a false start inside a
     // real preamble.
-    static constexpr std::size_t kMaxCarried = 2 * kPreambleSize + kFrameSize + rs::kMaxCorrectable;
+    static constexpr std::size_t kMaxCarried = 2 * kPreambleSize + kFrameSize;
 
     struct Stats {
         std::uint64_t bytesIn = 0;
@@ -89,7 +95,7 @@ public:
         std::uint64_t corrected2 = 0;
     };
 
-    explicit StreamSync(Handler onFrame);
+    explicit StreamSync(Handler onFrame, Acceptor exact = {});
 
     // Frames are reported in stream order, each as soon as the bytes that
     // decide it have arrived (up to 615 bytes after its codewords begin, 510
@@ -119,14 +125,17 @@ private:
     void compact();
     std::uint64_t keepFrom() const;
     int distance(std::uint64_t c) const;
+    bool qualifies(std::uint64_t c, int distance) const;
     const std::uint8_t* at(std::uint64_t offset) const { return buf_.data() + (offset - base_); }
 
     Handler handler_;
+    Acceptor exact_;
     std::vector<std::uint8_t> buf_;
     std::uint64_t base_ = 0;     // stream offset of buf_[0]
     std::size_t len_ = 0;
     std::uint64_t scan_ = kWindowSize;  // next candidate not yet examined
     std::uint64_t expect_ = 0;   // where the next frame is likely to start (0: no guess)
+    std::uint64_t due_ = 0;      // where the next frame is due after the last reported, good or not
     std::uint64_t failEnd_ = 0;  // failing candidates before this are dropped silently
     std::uint64_t covered_ = 0;  // bytes before this are in an emitted frame or counted as skipped
     bool hasPending_ = false;    // a failed frame waiting to be reported
