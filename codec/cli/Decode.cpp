@@ -1,16 +1,16 @@
 #include "codec/cli/Decode.h"
 
 #include "codec/cli/InputFile.h"
-#include "codec/cli/KeyedReceive.h"
-#include "codec/frame/StreamSync.h"
-#include "codec/message/MessageDecoder.h"
 #include "codec/message/TextFormat.h"
+#include "codec/receive/FrameReceiver.h"
+#include "codec/secure/SecureCodec.h"
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
-#include <string_view>
+#include <vector>
 
 namespace rcm::cli {
 namespace {
@@ -35,13 +35,55 @@ private:
     std::string m_buffer;
 };
 
-struct DecodeCounts {
-    std::uint64_t decoded = 0;
-    std::uint64_t uncorrectable = 0;
-    std::uint64_t corrected1 = 0;
-    std::uint64_t corrected2 = 0;
-    std::uint64_t warnings = 0;
+// What --key, --direction and --replay-state give the receiver: a codec for
+// each direction a frame may have been sent in, and the replay state.
+struct Keys {
+    std::vector<std::unique_ptr<rcm::secure::SecureCodec>> codecs;
+    std::unique_ptr<rcm::secure::ReplayGuard> guard;
 };
+
+// False, with the reason on standard error, when the key cannot be used.
+bool loadKeys(const Options& o, Keys& keys)
+{
+    using namespace rcm::secure;
+    std::string error;
+    const std::optional<SecretKey> psk = readKeyFile(o.key, error);
+    if (!psk) {
+        std::fprintf(stderr, "rcm: %s\n", error.c_str());
+        return false;
+    }
+    for (const Direction d : {Direction::GcsToUa, Direction::UaToGcs})
+        if (!o.direction || *o.direction == d)
+            keys.codecs.push_back(std::make_unique<SecureCodec>(*psk, d));
+    if (o.replayState.empty())
+        return true;
+    ReplayGuard::Options g;
+    g.stateFile = o.replayState;
+    g.keyFingerprint = fingerprint(*psk);
+    g.windowSeconds = o.window.value_or(kDefaultWindowSeconds);
+    try {
+        keys.guard = std::make_unique<ReplayGuard>(g);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rcm: %s\n", e.what());
+        return false;
+    }
+    if (!keys.guard->notice().empty())
+        std::fprintf(stderr, "rcm: %s\n", keys.guard->notice().c_str());
+    return true;
+}
+
+// A recording is judged by its own frames' continuity; with --replay-state
+// decode is the live receiver, this machine's clock included.
+rcm::FrameReceiver::Options receiverOptions(const Options& o, const Keys& keys)
+{
+    rcm::FrameReceiver::Options r;
+    r.mode = keys.guard ? rcm::FrameReceiver::Mode::Live : rcm::FrameReceiver::Mode::Recording;
+    r.clockWindowSeconds = o.window.value_or(rcm::secure::kDefaultWindowSeconds);
+    for (const auto& codec : keys.codecs)
+        r.keys.codecs.push_back(codec.get());
+    r.keys.guard = keys.guard.get();
+    return r;
+}
 
 // "frame 3 at byte offset 1200"; a stream that began inside the frame's
 // preamble puts its start before the stream's.
@@ -53,196 +95,127 @@ std::string frameAt(std::uint64_t frameNumber, std::int64_t offset)
     return s;
 }
 
-void printMessage(Output& out, std::uint64_t frameNumber, std::int64_t offset, const rcm::DecodeResult& r,
-                  std::string_view direction = {})
+void printMessage(Output& out, std::uint64_t frameNumber, const rcm::ReceivedFrame& f)
 {
     std::string& s = out.buffer();
-    s += "# " + frameAt(frameNumber, offset) + "\n";
-    s += "# block1 corrected " + std::to_string(r.corrected1) + "\n";
-    s += "# block2 corrected " + std::to_string(r.corrected2) + "\n";
-    if (!direction.empty())
-        s += "# secure " + std::string(direction) + ", authenticated\n";
-    for (const rcm::Diagnostic& d : r.diagnostics)
-        s += "# warning: " + d.toString() + "\n";
-    s += rcm::formatMessage(r.message);
+    s += "# " + frameAt(frameNumber, f.offset) + "\n";
+    s += "# block1 corrected " + std::to_string(f.decoded.corrected1) + "\n";
+    s += "# block2 corrected " + std::to_string(f.decoded.corrected2) + "\n";
+    if (f.direction)
+        s += "# secure " + std::string(rcm::secure::directionName(*f.direction)) + ", authenticated\n";
+    s += rcm::formatMessage(f.decoded.message);
     s += "\n";
     out.maybeFlush();
 }
 
-// Decodes a good frame on a keyed link: prints it, or reports why it was
-// refused. False when refused.
-bool decodeKeyed(Keyed& k, const Options& o, Output& out, std::uint64_t frameNumber, std::int64_t offset,
-                 const rcm::DecodedBlocks& blocks, const char* what)
+// Prints what decode saw of each frame: the message on standard output, a
+// refusal and its reason on standard error.
+class Report {
+public:
+    Report(const Options& o, Output& out) : m_options(o), m_out(out) {}
+
+    void operator()(const rcm::ReceivedFrame& f)
+    {
+        ++m_frames;
+        if (!f.warning.empty() && !m_warned) {
+            std::fprintf(stderr, "rcm: warning: %s\n", f.warning.c_str());
+            m_warned = true;
+        }
+        if (!f.delivered()) {
+            std::fprintf(stderr, "rcm: %s: refused as %s: %s\n", frameAt(m_frames, f.offset).c_str(),
+                         std::string(rcm::refusalName(*f.refusal)).c_str(), f.detail.c_str());
+            return;
+        }
+        m_corrected1 += static_cast<std::uint64_t>(f.decoded.corrected1);
+        m_corrected2 += static_cast<std::uint64_t>(f.decoded.corrected2);
+        if (!m_options.summary)
+            printMessage(m_out, m_frames, f);
+    }
+
+    // The counts of --summary.
+    void summary(const rcm::FrameReceiver& receiver) const
+    {
+        const rcm::FrameReceiver::Stats& st = receiver.stats();
+        std::string& s = m_out.buffer();
+        s += "frames " + std::to_string(m_frames) + "\n";
+        s += "delivered " + std::to_string(st.delivered) + "\n";
+        s += "refused " + std::to_string(st.refusedTotal()) + "\n";
+        s += "corrected block1 " + std::to_string(m_corrected1) + "\n";
+        s += "corrected block2 " + std::to_string(m_corrected2) + "\n";
+        if (!m_options.datagram) {
+            s += "bytes read " + std::to_string(receiver.syncStats().bytesIn) + "\n";
+            s += "bytes skipped " + std::to_string(receiver.syncStats().bytesSkipped) + "\n";
+        }
+        for (int i = 0; i < rcm::kRefusalCount; ++i)
+            s += "refused " + std::string(rcm::refusalName(static_cast<rcm::Refusal>(i))) + " " +
+                 std::to_string(st.refused[static_cast<std::size_t>(i)]) + "\n";
+    }
+
+private:
+    const Options& m_options;
+    Output& m_out;
+    std::uint64_t m_frames = 0;
+    std::uint64_t m_corrected1 = 0;  // of delivered frames
+    std::uint64_t m_corrected2 = 0;
+    bool m_warned = false;  // the replay state could not be written: said once
+};
+
+// Feeds o.file to the receiver: a stream, or exactly one datagram.
+bool feed(const Options& o, rcm::FrameReceiver& receiver)
 {
-    KeyedResult r = openKeyed(k, blocks);
-    if (!r.accepted) {
-        ++k.rejected[static_cast<int>(r.rejection)];
-        std::fprintf(stderr, "rcm: %s: rejected as %s: %s\n", what,
-                     std::string(rcm::secure::rejectionName(r.rejection)).c_str(), r.detail.c_str());
+    if (o.datagram) {
+        std::vector<std::uint8_t> input;
+        std::string error;
+        if (!readAll(o.file, input, error)) {
+            std::fprintf(stderr, "rcm: %s\n", error.c_str());
+            return false;
+        }
+        if (input.size() != rcm::kDatagramSize) {
+            std::fprintf(stderr, "rcm: a datagram is %zu bytes; read %zu\n", rcm::kDatagramSize, input.size());
+            return false;
+        }
+        receiver.receive(input);
+        return true;
+    }
+    std::FILE* f = o.file.empty() || o.file == "-" ? stdin : std::fopen(o.file.c_str(), "rb");
+    if (!f) {
+        std::fprintf(stderr, "rcm: cannot open %s: %s\n", o.file.c_str(), std::strerror(errno));
         return false;
     }
-    if (!o.summary)
-        printMessage(out, frameNumber, offset, r.decoded,
-                     rcm::secure::directionName(r.direction));
-    return true;
-}
-
-void printRejectedCounts(const Keyed& k, std::string& s)
-{
-    for (int i = 0; i < rcm::secure::kRejectionCount; ++i)
-        s += "rejected " + std::string(rcm::secure::rejectionName(static_cast<rcm::secure::Rejection>(i))) + " " +
-             std::to_string(k.rejected[static_cast<std::size_t>(i)]) + "\n";
-}
-
-std::uint64_t totalRejected(const Keyed* k)
-{
-    std::uint64_t n = 0;
-    if (k)
-        for (std::uint64_t r : k->rejected)
-            n += r;
-    return n;
-}
-
-int decodeDatagram(const Options& o, const std::vector<std::uint8_t>& input)
-{
-    if (input.size() != rcm::kDatagramSize) {
-        std::fprintf(stderr, "rcm: a datagram is %zu bytes; read %zu\n", rcm::kDatagramSize, input.size());
-        return kExitFailed;
-    }
-    if (!o.key.empty()) {
-        const std::unique_ptr<Keyed> k = loadKeyed(o);
-        if (!k)
-            return kExitFailed;
-        const rcm::DecodedBlocks blocks =
-            rcm::decodeCodewords(std::span<const std::uint8_t, rcm::kDatagramSize>(input.data(), rcm::kDatagramSize));
-        Output out;
-        bool ok = blocks.ok();
-        if (!ok)
-            std::fprintf(stderr, "rcm: datagram: uncorrectable (block 1 %s, block 2 %s)\n",
-                         blocks.corrected1 < 0 ? "beyond correction" : "good",
-                         blocks.corrected2 < 0 ? "beyond correction" : "good");
-        else
-            ok = decodeKeyed(*k, o, out, 1, 0, blocks, "datagram");
-        if (o.summary) {
-            std::string& s = out.buffer();
-            s += "frames 1\ndecoded " + std::string(ok ? "1" : "0") + "\nuncorrectable " +
-                 (blocks.ok() ? "0" : "1") + "\n";
-            if (ok)
-                s += "corrected block1 " + std::to_string(blocks.corrected1) + "\ncorrected block2 " +
-                     std::to_string(blocks.corrected2) + "\n";
-            printRejectedCounts(*k, s);
-        }
-        return ok ? kExitOk : kExitFailed;
-    }
-    const rcm::DecodeResult r = rcm::decodeFrame(input);
-    if (!r.ok()) {
-        for (const rcm::Diagnostic& d : r.diagnostics)
-            if (d.kind == rcm::Diagnostic::Kind::Uncorrectable)
-                std::fprintf(stderr, "rcm: datagram: %s\n", d.toString().c_str());
-        if (o.summary)
-            std::printf("frames 1\ndecoded 0\nuncorrectable 1\n");
-        return kExitFailed;
-    }
-    if (o.summary) {
-        std::printf("frames 1\ndecoded 1\nuncorrectable 0\ncorrected block1 %d\ncorrected block2 %d\n", r.corrected1,
-                    r.corrected2);
-    } else {
-        Output out;
-        printMessage(out, 1, 0, r);
-    }
-    return kExitOk;
+    static std::uint8_t buf[1 << 16];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+        receiver.feed(std::span<const std::uint8_t>(buf, n));
+    const bool failed = std::ferror(f);
+    if (f != stdin)
+        std::fclose(f);
+    receiver.flush();
+    if (failed)
+        std::fprintf(stderr, "rcm: read error: %s\n", std::strerror(errno));
+    return !failed;
 }
 
 }  // namespace
 
 int decode(const Options& o)
 {
-    std::string error;
-    if (o.datagram) {
-        std::vector<std::uint8_t> input;
-        if (!readAll(o.file, input, error)) {
-            std::fprintf(stderr, "rcm: %s\n", error.c_str());
-            return kExitFailed;
-        }
-        return decodeDatagram(o, input);
-    }
-
-    std::FILE* f = o.file.empty() || o.file == "-" ? stdin : std::fopen(o.file.c_str(), "rb");
-    if (!f) {
-        std::fprintf(stderr, "rcm: cannot open %s: %s\n", o.file.c_str(), std::strerror(errno));
+    Keys keys;
+    if (!o.key.empty() && !loadKeys(o, keys))
         return kExitFailed;
-    }
-    std::unique_ptr<Keyed> keyed;
-    if (!o.key.empty()) {
-        keyed = loadKeyed(o);
-        if (!keyed) {
-            if (f != stdin)
-                std::fclose(f);
-            return kExitFailed;
-        }
-    }
     Output out;
-    DecodeCounts counts;
-    std::uint64_t frameNumber = 0;
-    rcm::StreamSync sync([&](const rcm::SyncedFrame& frame) {
-        ++frameNumber;
-        if (!frame.ok()) {
-            ++counts.uncorrectable;
-            std::fprintf(stderr, "rcm: %s: uncorrectable (block 1 %s, block 2 %s)\n",
-                         frameAt(frameNumber, frame.offset).c_str(),
-                         frame.blocks.corrected1 < 0 ? "beyond correction" : "good",
-                         frame.blocks.corrected2 < 0 ? "beyond correction" : "good");
-            return;
-        }
-        if (keyed) {
-            const std::string what = frameAt(frameNumber, frame.offset);
-            if (!decodeKeyed(*keyed, o, out, frameNumber, frame.offset, frame.blocks, what.c_str()))
-                return;
-        }
-        ++counts.decoded;
-        counts.corrected1 += static_cast<std::uint64_t>(frame.blocks.corrected1);
-        counts.corrected2 += static_cast<std::uint64_t>(frame.blocks.corrected2);
-        if (o.summary || keyed)
-            return;
-        const rcm::DecodeResult r = rcm::decodeBlocks(frame.blocks);
-        counts.warnings += r.diagnostics.size();
-        printMessage(out, frameNumber, frame.offset, r);
-    });
-
-    static std::uint8_t buf[1 << 16];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
-        sync.feed(std::span<const std::uint8_t>(buf, n));
-    const bool failed = std::ferror(f);
-    if (f != stdin)
-        std::fclose(f);
-    sync.flush();
-    if (failed) {
-        std::fprintf(stderr, "rcm: read error: %s\n", std::strerror(errno));
+    Report report(o, out);
+    rcm::FrameReceiver receiver(receiverOptions(o, keys), [&](const rcm::ReceivedFrame& f) { report(f); });
+    if (!feed(o, receiver))
         return kExitFailed;
-    }
-
-    if (o.summary) {
-        const auto& st = sync.stats();
-        std::string& s = out.buffer();
-        s += "frames " + std::to_string(counts.decoded + counts.uncorrectable + totalRejected(keyed.get())) + "\n";
-        s += "decoded " + std::to_string(counts.decoded) + "\n";
-        s += "uncorrectable " + std::to_string(counts.uncorrectable) + "\n";
-        s += "corrected block1 " + std::to_string(counts.corrected1) + "\n";
-        s += "corrected block2 " + std::to_string(counts.corrected2) + "\n";
-        s += "bytes read " + std::to_string(st.bytesIn) + "\n";
-        s += "bytes skipped " + std::to_string(st.bytesSkipped) + "\n";
-        if (keyed)
-            printRejectedCounts(*keyed, s);
-    }
+    if (o.summary)
+        report.summary(receiver);
     out.flush();
-    const std::uint64_t rejected = totalRejected(keyed.get());
-    if (counts.decoded + counts.uncorrectable + rejected == 0) {
+    const rcm::FrameReceiver::Stats& st = receiver.stats();
+    if (st.delivered + st.refusedTotal() == 0) {
         std::fprintf(stderr, "rcm: no frame found\n");
         return kExitFailed;
     }
-    return counts.uncorrectable || rejected ? kExitFailed : kExitOk;
+    return st.refusedTotal() > 0 ? kExitFailed : kExitOk;
 }
-
 
 }  // namespace rcm::cli

@@ -27,14 +27,21 @@ encode  reads one Remote Control Message in the text format from FILE (standard
 
 decode  reads bytes from FILE (standard input when absent or -): any number of
         frames amid other bytes, found by their preamble even with bit errors in
-        it. Each decoded message is printed in the text format, preceded by
+        it. Each frame goes through the codec's one receive path
+        (codec/receive, docs/protocol.md): it is delivered only when it is
+        exact (decoded with no warning, padding and header as the profile
+        says) and follows the recording's earlier frames from the same sender
+        (ID_msg ahead, time_UTC in step). A delivered message is printed in
+        the text format, preceded by
           # frame N at byte offset X
           # block1 corrected N
           # block2 corrected N
-        and a "# warning:" line for anything inside that was not acted on.
-        A frame beyond correction is reported on standard error, not printed.
+        Any other frame is refused, never printed: standard error says
+          rcm: frame N at byte offset X: refused as REASON: what and where
+        (uncorrectable, enciphered when it needs a key, not exact: ...,
+        replayed, implausible: ..., and the reasons under --key below).
         --datagram reads exactly one 510-byte datagram instead.
-        --summary prints only the counts.
+        --summary prints only the counts, refusals counted by reason.
 
 --key KEYFILE  the secure link (docs/security.md): AES-256-HCTR2 over BLOCK 1
         and BLOCK 2 before Reed-Solomon, authenticated by the message's own
@@ -47,11 +54,11 @@ decode  reads bytes from FILE (standard input when absent or -): any number of
         only once, and a time within 30 s of its clock).
         decode deciphers and authenticates each frame, in DIR only or, without
         --direction, in whichever direction it was sent (named in a
-        "# secure" line). A frame that does not authenticate is not printed;
-        standard error says why: forged (not sent with this key and
-        direction), plaintext (an unencrypted frame), and with --replay-state
-        also replayed or stale time. Without --replay-state no replay or time
-        check is made: a recording is decoded as it is.
+        "# secure" line). A frame that does not authenticate is refused as
+        forged (not sent with this key and direction) or plaintext (an
+        unencrypted frame); with --replay-state also as replayed or
+        stale time. Without --replay-state a recording is checked only against its
+        own earlier frames, not against this machine's clock.
 --replay-state STATE  decode as the receiver does: STATE holds the last
         accepted ID_msg (created when absent, updated as frames are accepted);
         a frame must be ahead of it and within --window SECONDS (default 30)
@@ -66,9 +73,9 @@ dissector  prints the Wireshark Lua dissector generated from the item table
         (the copy in resources/wireshark/rcm.lua is this output):
           tshark -X lua_script:resources/wireshark/rcm.lua -r session.pcapng -V
 
-Exit status: 0 when everything decoded (or encoded), 1 when a frame was
-uncorrectable or rejected, none was found, or the text or key had errors,
-2 for misuse.
+Exit status: 0 when every frame was delivered (or the text encoded), 1 when
+a frame was refused, none was found, or the text or key had errors, 2 for
+misuse.
 
 Example:
   printf 'ID_msg 133\nID_UA_source GB_133\nSA_zoom_FWD_cam 105\n' > cmd.txt
