@@ -291,19 +291,23 @@ void FrameReceiver::judge(ReceivedFrame& frame, std::span<const std::uint8_t, kD
 bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bool remember)
 {
     frame.blocks = blocks;
+    const bool keyed = !m_options.keys.codecs.empty();
     const auto no = [&](Verdict v) {
         frame.refusal = v.refusal;
         frame.detail = std::move(v.detail);
+        if (keyed) {
+            // Nothing read from a refused frame is passed on, authentic or not.
+            frame.decoded.message = Message{};
+            frame.decoded.diagnostics.clear();
+        }
         return false;
     };
     if (!blocks.ok()) {
         // A keyed link's blocks are ciphertext: nothing in them can be read.
-        if (m_options.keys.codecs.empty()) {
+        if (!keyed)
             frame.decoded = decodeBlocks(blocks);
-        } else {
-            frame.decoded.corrected1 = blocks.corrected1;
-            frame.decoded.corrected2 = blocks.corrected2;
-        }
+        frame.decoded.corrected1 = blocks.corrected1;
+        frame.decoded.corrected2 = blocks.corrected2;
         return no(refuse(Refusal::Uncorrectable, codewordsDetail(blocks)));
     }
 
@@ -311,7 +315,7 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
     // rules), the plain rules otherwise.
     DecodeResult& r = frame.decoded;
     secure::HeaderStamp stamp;
-    if (!m_options.keys.codecs.empty()) {
+    if (keyed) {
         bool plaintext = false;
         std::string why;
         for (const secure::SecureCodec* codec : m_options.keys.codecs) {
