@@ -270,8 +270,8 @@ void TestRcm::decodeRefusesWhatIsNotExact()
     const Run r = runRcm({"decode"}, QByteArray(reinterpret_cast<const char*>(frame->data()), 600));
     QCOMPARE(r.exitCode, 1);
     QCOMPARE(r.out, QByteArray());
-    QCOMPARE(r.err,
-             QByteArray("rcm: frame 1 at byte offset 0: refused as not exact: missing header item: block 1: no ID_msg\n"));
+    QCOMPARE(r.err, QByteArray("rcm: frame 1 at byte offset 0: refused as not exact: missing header item: block 1: "
+                               "no ID_msg\n"));
 }
 
 void TestRcm::decodeDatagram()

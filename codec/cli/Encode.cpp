@@ -68,8 +68,8 @@ int encode(const Options& o)
     }
     const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());
     const std::string name = inputName(o.file);
-    rcm::ParseResult parsed = rcm::parseMessage(
-        text, o.key.empty() ? rcm::EncodeOptions{} : rcm::secure::encodeOptions(), kHeaderDefaults);
+    rcm::ParseResult parsed =
+        rcm::parseMessage(text, o.key.empty() ? rcm::EncodeOptions{} : rcm::secure::encodeOptions(), kHeaderDefaults);
     if (!parsed.ok()) {
         // file:line:column: as compilers write it, so editors can jump there.
         for (const rcm::Diagnostic& d : parsed.errors)

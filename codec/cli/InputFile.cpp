@@ -27,6 +27,9 @@ bool readAll(const std::string& path, std::vector<std::uint8_t>& out, std::strin
     return true;
 }
 
-std::string inputName(const std::string& path) { return path.empty() || path == "-" ? "<stdin>" : path; }
+std::string inputName(const std::string& path)
+{
+    return path.empty() || path == "-" ? "<stdin>" : path;
+}
 
 }  // namespace rcm::cli

@@ -134,7 +134,10 @@ std::string readValue(std::string_view option, const std::string& v, Options& o)
 
 }  // namespace
 
-const char* helpText() { return kHelp; }
+const char* helpText()
+{
+    return kHelp;
+}
 
 std::optional<Options> parseOptions(int argc, const char* const* argv, std::string& misuse)
 {
