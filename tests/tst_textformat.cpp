@@ -897,24 +897,27 @@ void TestTextFormat::badInput_data()
     QTest::addColumn<QByteArray>("text");
     QTest::addColumn<QByteArray>("error");  // Diagnostic::toString() of the one error
     const QByteArray control = " in the text; the format is printable text (inside quotes write any byte as \\xHH)";
-    QTest::newRow("NUL in a value") << QByteArray("eng_ID 1\0002", 10) << "line 1 column 9: control byte \\x00" + control;
+    QTest::newRow("NUL in a value") << QByteArray("eng_ID 1\0002", 10)
+                                    << "line 1 column 9: control byte \\x00" + control;
     QTest::newRow("NUL in a name") << QByteArray("ID_msg 1\nID\000msg 2\n", 18)
                                    << "line 2 column 3: control byte \\x00" + control;
-    QTest::newRow("escape byte") << QByteArray("system_ID \"A\x1B[2J\"") << "line 1 column 13: control byte \\x1B" + control;
+    QTest::newRow("escape byte") << QByteArray("system_ID \"A\x1B[2J\"")
+                                 << "line 1 column 13: control byte \\x1B" + control;
     QTest::newRow("DEL") << QByteArray("ID_msg 1\x7F") << "line 1 column 9: control byte \\x7F" + control;
     QTest::newRow("carriage return inside a line")
         << QByteArray("ID_msg\r1\r\n") << "line 1 column 7: control byte \\x0D" + control;
 
     const QByteArray big(10 << 20, 'A');
     const QByteArray shown = QByteArray(40, 'A') + "... (10485760 bytes)";
-    QTest::newRow("10 MB text value")
-        << "system_ID " + big
-        << "line 1 column 11: system_ID: text \"" + shown + "\" is 10485760 characters, 10485752 more than the 8 allowed";
+    QTest::newRow("10 MB text value") << "system_ID " + big
+                                      << "line 1 column 11: system_ID: text \"" + shown +
+                                             "\" is 10485760 characters, 10485752 more than the 8 allowed";
     QTest::newRow("10 MB number") << "ID_msg " + QByteArray(10 << 20, '9')
                                   << "line 1 column 8: ID_msg: '" + QByteArray(40, '9') +
                                          "... (10485760 bytes)' does not fit in 64 bits; expected an integer from 0 to "
                                          "16777215 (decimal or 0x hex)";
-    QTest::newRow("10 MB name") << big + " 1" << "line 1 column 1: " + shown + ": unknown item '" + shown + "'";
+    QTest::newRow("10 MB name") << big + " 1"
+                                << "line 1 column 1: " + shown + ": unknown item '" + shown + "'";
     QTest::newRow("10 MB quoted value")
         << "ID_msg \"" + big + "\""
         << "line 1 column 8: ID_msg: expected an integer from 0 to 16777215 (decimal or 0x hex), got quoted text \"" +
@@ -922,8 +925,8 @@ void TestTextFormat::badInput_data()
     // A long UTF-8 name is cut between characters, not inside one.
     QTest::newRow("long UTF-8 name") << QByteArray("A") + QByteArray("\xC3\xA9").repeated(30) + " 1"
                                      << "line 1 column 1: A" + QByteArray("\xC3\xA9").repeated(19) +
-                                            "... (61 bytes): unknown item 'A" +
-                                            QByteArray("\xC3\xA9").repeated(19) + "... (61 bytes)'";
+                                            "... (61 bytes): unknown item 'A" + QByteArray("\xC3\xA9").repeated(19) +
+                                            "... (61 bytes)'";
 }
 
 void TestTextFormat::badInput()
@@ -944,8 +947,9 @@ void TestTextFormat::byteOrderMarkIsSkipped()
     QCOMPARE(r.message.sense.number(ItemId::SA_zoom_LHS_cam), 35);
     // Columns count from after the mark, as an editor shows them.
     r = parseMessage("\xEF\xBB\xBFID_msg x\n");
-    QCOMPARE(q(dump(r.errors)), QByteArray("line 1 column 8: ID_msg: expected an integer from 0 to 16777215 (decimal or "
-                                           "0x hex), got 'x'\n"));
+    QCOMPARE(q(dump(r.errors)),
+             QByteArray("line 1 column 8: ID_msg: expected an integer from 0 to 16777215 (decimal or "
+                        "0x hex), got 'x'\n"));
     // Only at the very start: elsewhere it is an unknown name as written.
     r = parseMessage("ID_msg 1\n\xEF\xBB\xBFID_msg 2\n");
     QCOMPARE(q(dump(r.errors)), QByteArray("line 2 column 1: \xEF\xBB\xBFID_msg: unknown item '\xEF\xBB\xBFID_msg'\n"));
