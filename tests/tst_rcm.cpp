@@ -1,6 +1,7 @@
 // The rcm command-line tool, run as a user runs it: bytes in, bytes and text
 // out, exit status and error messages.
 #include "codec/message/MessageDecoder.h"
+#include "codec/message/MessageEncoder.h"
 #include "codec/message/TextFormat.h"
 
 #include "RunProgram.h"
@@ -37,11 +38,16 @@ private slots:
     void encodeDatagram();
     void encodeReportsLineAndColumn();
     void encodeRefusesWhatDoesNotFit();
+    void encodeCapsTheErrors();
+    void encodeReportsControlBytesWhole();
+    void encodeSkipsAByteOrderMark();
     void decodeVectorsToText();
     void decodeStreamAmidGarbage();
+    void decodeFrameBeginningBeforeTheStream();
     void decodeReportsUncorrectable();
     void decodeFindsNothing();
     void decodeSummary();
+    void decodeRefusesWhatIsNotExact();
     void decodeDatagram();
     void roundTripThroughTheTool();
     void misuse_data();
@@ -127,8 +133,44 @@ void TestRcm::encodeRefusesWhatDoesNotFit()
     const Run r = runRcm({"encode"}, text);
     QCOMPARE(r.exitCode, 1);
     QCOMPARE(r.out, QByteArray());
-    QVERIFY2(r.err.contains("<stdin>: block 1: BLOCK 1: the items need 242 bytes, 19 more than the 223 a block holds"),
-             r.err);
+    // Named at the first item that no longer fits: the tenth radio's
+    // system_ID, as ID_msg, time_UTC and date_UTC take 12 bytes.
+    QCOMPARE(r.err, QByteArray("<stdin>:46:1: system_ID: BLOCK 1 is full here: the items need 242 bytes, 19 more than "
+                               "the 223 a block holds (counting ID_msg, time_UTC and date_UTC, filled in when not "
+                               "given)\n"));
+}
+
+void TestRcm::encodeCapsTheErrors()
+{
+    QByteArray text;
+    for (int i = 0; i < 1000000; ++i)
+        text += "foo 1\n";
+    const Run r = runRcm({"encode"}, text);
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.out, QByteArray());
+    QByteArray expected;
+    for (int line = 1; line <= 20; ++line)
+        expected += "<stdin>:" + QByteArray::number(line) + ":1: foo: unknown item 'foo'\n";
+    expected += "<stdin>: 999980 more errors not listed\n";
+    QCOMPARE(r.err, expected);
+}
+
+void TestRcm::encodeReportsControlBytesWhole()
+{
+    const Run r = runRcm({"encode"}, QByteArray("ID_msg 1\nID\000msg 2\nSA_zoom_LHS_cam 35\n", 37));
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.err, QByteArray("<stdin>:2:3: control byte \\x00 in the text; the format is printable text (inside "
+                               "quotes write any byte as \\xHH)\n"));
+}
+
+void TestRcm::encodeSkipsAByteOrderMark()
+{
+    const QByteArray text = "ID_msg 1\ntime_UTC 00:00:00\ndate_UTC 261122\n";
+    const Run plain = runRcm({"encode"}, text);
+    const Run marked = runRcm({"encode"}, "\xEF\xBB\xBF" + text);
+    QCOMPARE(marked.exitCode, 0);
+    QCOMPARE(marked.err, QByteArray());
+    QCOMPARE(marked.out, plain.out);
 }
 
 void TestRcm::decodeVectorsToText()
@@ -158,6 +200,16 @@ void TestRcm::decodeStreamAmidGarbage()
     QVERIFY(r.out.contains("flight_plan_ID 0xDEADBEEF\n"));
 }
 
+void TestRcm::decodeFrameBeginningBeforeTheStream()
+{
+    // The stream begins 50 bytes into the frame's 90-byte preamble.
+    const Run r = runRcm({"decode"}, vector("seed-example.bin").mid(50));
+    QCOMPARE(r.exitCode, 0);
+    QVERIFY2(r.out.startsWith("# frame 1 at byte offset -50 (50 bytes before the start of the stream)\n"
+                              "# block1 corrected 0\n"),
+             r.out.constData());
+}
+
 void TestRcm::decodeReportsUncorrectable()
 {
     QByteArray bytes = vector("seed-example.bin") + vector("well-equipped.bin");
@@ -167,8 +219,8 @@ void TestRcm::decodeReportsUncorrectable()
     QCOMPARE(r.exitCode, 1);
     QCOMPARE(r.out.count("# frame "), 1);
     QVERIFY(r.out.startsWith("# frame 1 at byte offset 0\n"));
-    QCOMPARE(r.err,
-             QByteArray("rcm: frame 2 at byte offset 600: uncorrectable (block 1 good, block 2 beyond correction)\n"));
+    QCOMPARE(r.err, QByteArray("rcm: frame 2 at byte offset 600: refused as uncorrectable: block 1 good, block 2 "
+                               "beyond correction\n"));
 }
 
 void TestRcm::decodeFindsNothing()
@@ -181,10 +233,45 @@ void TestRcm::decodeFindsNothing()
 
 void TestRcm::decodeSummary()
 {
-    const Run r = runRcm({"decode", "--summary"}, vector("stream.bin") + vector("well-equipped.errors.bin"));
+    Run r = runRcm({"decode", "--summary"},
+                   vector("well-equipped.errors.bin") + vector("seed-example.bin") + vector("flight-plan.bin"));
     QCOMPARE(r.exitCode, 0);
-    QCOMPARE(r.out, QByteArray("frames 4\ndecoded 4\nuncorrectable 0\ncorrected block1 16\ncorrected block2 16\n"
-                               "bytes read 3100\nbytes skipped 700\n"));
+    QCOMPARE(r.err, QByteArray());
+    QVERIFY2(r.out.startsWith("frames 3\ndelivered 3\nrefused 0\ncorrected block1 16\ncorrected block2 16\n"
+                              "bytes read 1800\nbytes skipped 0\nrefused uncorrectable 0\n"),
+             r.out.constData());
+    // A recording is checked for continuity between its own frames: the
+    // well-equipped frame again (stream.bin holds it) is a replay, counted by
+    // its reason.
+    r = runRcm({"decode", "--summary"}, vector("stream.bin") + vector("well-equipped.errors.bin"));
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.out, QByteArray("frames 4\ndelivered 3\nrefused 1\ncorrected block1 0\ncorrected block2 0\n"
+                               "bytes read 3100\nbytes skipped 700\n"
+                               "refused uncorrectable 0\nrefused wrong size 0\nrefused enciphered 0\n"
+                               "refused forged 0\nrefused plaintext 0\nrefused not exact: missing header item 0\n"
+                               "refused not exact: bad padding 0\nrefused not exact: invalid field 0\n"
+                               "refused not exact: unknown item 0\nrefused not exact: not canonical 0\n"
+                               "refused not exact: warning 0\nrefused replayed 1\n"
+                               "refused implausible: message id step 0\nrefused implausible: time step 0\n"
+                               "refused stale time 0\nrefused implausible: plan section 0\n"));
+    QCOMPARE(r.err, QByteArray("rcm: frame 4 at byte offset 2500: refused as replayed: ID_msg 4508515 is not ahead of "
+                               "the last accepted 4508515\n"));
+}
+
+// A frame the acceptance decision finds inexact is refused with its reason,
+// never printed as items.
+void TestRcm::decodeRefusesWhatIsNotExact()
+{
+    rcm::Message m;
+    m.sense.set(rcm::ItemId::SA_zoom_FWD_cam, 105);  // no ID_msg, time_UTC or date_UTC
+    rcm::Diagnostics errors;
+    const auto frame = rcm::encodeFrame(m, errors);
+    QVERIFY(frame);
+    const Run r = runRcm({"decode"}, QByteArray(reinterpret_cast<const char*>(frame->data()), 600));
+    QCOMPARE(r.exitCode, 1);
+    QCOMPARE(r.out, QByteArray());
+    QCOMPARE(r.err, QByteArray("rcm: frame 1 at byte offset 0: refused as not exact: missing header item: block 1: "
+                               "no ID_msg\n"));
 }
 
 void TestRcm::decodeDatagram()

@@ -45,6 +45,7 @@ private slots:
     void encodeDecodeRoundTrip();
     void wrongKeyIsForged();
     void plaintextFrameIsRefused();
+    void encipheredFrameWithoutKey();
     void keyFileReadableByOthers();
     void replayStateRefusesReplayAndStaleTime();
     void encodeRefusesWhatTheSecureLinkCannotCarry();
@@ -114,7 +115,7 @@ void TestRcmSecure::encodeDecodeRoundTrip()
         const Run w = runRcm({"decode", "--key", m_key, "--direction", dir[0] == 'g' ? "ua-to-gcs" : "gcs-to-ua"},
                              e.out);
         QCOMPARE(w.exitCode, 1);
-        QVERIFY(w.err.contains("rejected as forged"));
+        QVERIFY(w.err.contains("refused as forged"));
         QVERIFY(!w.out.contains("SA_zoom_FWD_cam"));
 
         // Datagrams too.
@@ -123,8 +124,8 @@ void TestRcmSecure::encodeDecodeRoundTrip()
         QCOMPARE(ed.out, e.out.mid(90));
         const Run dd = runRcm({"decode", "--key", m_key, "--datagram", "--summary"}, ed.out);
         QCOMPARE(dd.exitCode, 0);
-        QVERIFY(dd.out.contains("decoded 1\n"));
-        QVERIFY(dd.out.contains("rejected forged 0\n"));
+        QVERIFY(dd.out.contains("delivered 1\n"));
+        QVERIFY(dd.out.contains("refused forged 0\n"));
     }
 }
 
@@ -139,9 +140,9 @@ void TestRcmSecure::wrongKeyIsForged()
     const Run d = runRcm({"decode", "--key", other, "--summary"}, stream);
     QCOMPARE(d.exitCode, 1);
     QVERIFY(d.out.contains("frames 3\n"));
-    QVERIFY(d.out.contains("decoded 0\n"));
-    QVERIFY(d.out.contains("rejected forged 3\n"));
-    QCOMPARE(d.err.count("rejected as forged: sent neither GCS->UA nor UA->GCS with this key"), 3);
+    QVERIFY(d.out.contains("delivered 0\n"));
+    QVERIFY(d.out.contains("refused forged 3\n"));
+    QCOMPARE(d.err.count("refused as forged: sent in none of the directions given with this key"), 3);
     QVERIFY(!d.err.contains(keyText(m_key)) && !d.err.contains(keyText(other)));
 }
 
@@ -152,8 +153,24 @@ void TestRcmSecure::plaintextFrameIsRefused()
     QCOMPARE(e.exitCode, 0);
     const Run d = runRcm({"decode", "--key", m_key}, e.out);
     QCOMPARE(d.exitCode, 1);
-    QVERIFY(d.err.contains("frame 1 at byte offset 0: rejected as plaintext: an unencrypted message on a keyed link"));
+    QVERIFY(d.err.contains("frame 1 at byte offset 0: refused as plaintext: an unencrypted message on a keyed link"));
     QCOMPARE(d.out, QByteArray());
+}
+
+// Without the key a secure frame is said to be enciphered, never decoded
+// into nonsense items.
+void TestRcmSecure::encipheredFrameWithoutKey()
+{
+    const Run e = runRcm({"encode", "--key", m_key}, nowHeader(1) + kCommand);
+    QCOMPARE(e.exitCode, 0);
+    const Run d = runRcm({"decode"}, e.out);
+    QCOMPARE(d.exitCode, 1);
+    QCOMPARE(d.out, QByteArray());
+    QCOMPARE(d.err, QByteArray("rcm: frame 1 at byte offset 0: refused as enciphered: the blocks look enciphered, and "
+                               "no key was given\n"));
+    const Run s = runRcm({"decode", "--summary"}, e.out + e.out);
+    QVERIFY2(s.out.contains("frames 2\ndelivered 0\nrefused 2\n"), s.out.constData());
+    QVERIFY(s.out.contains("\nrefused enciphered 2\n"));
 }
 
 void TestRcmSecure::keyFileReadableByOthers()
@@ -188,20 +205,20 @@ void TestRcmSecure::replayStateRefusesReplayAndStaleTime()
     // The same frame again, in a later run: the state remembered it.
     d = runRcm(decode, e10.out);
     QCOMPARE(d.exitCode, 1);
-    QVERIFY(d.err.contains("rejected as replayed: ID_msg 10 is not ahead of the last accepted 10"));
+    QVERIFY(d.err.contains("refused as replayed: ID_msg 10 is not ahead of the last accepted 10"));
     QCOMPARE(d.out, QByteArray());
 
     // Replay and the next fresh one in one stream.
     d = runRcm(QStringList(decode) << "--summary", e10.out + e11.out);
     QCOMPARE(d.exitCode, 1);
-    QVERIFY(d.out.contains("decoded 1\n"));
-    QVERIFY(d.out.contains("rejected replayed 1\n"));
+    QVERIFY(d.out.contains("delivered 1\n"));
+    QVERIFY(d.out.contains("refused replayed 1\n"));
 
     // Ten minutes old: stale time, with the default window and with --window.
     const Run old = runRcm({"encode", "--key", m_key}, nowHeader(12, -600) + kCommand);
     d = runRcm(decode, old.out);
     QCOMPARE(d.exitCode, 1);
-    QVERIFY2(d.err.contains("rejected as stale time"), d.err.constData());
+    QVERIFY2(d.err.contains("refused as stale time"), d.err.constData());
     QVERIFY(d.err.contains("behind the receiver's clock; the window is 30 s"));
     d = runRcm(QStringList(decode) << "--window" << "3600", old.out);
     QCOMPARE(d.exitCode, 0);
@@ -215,7 +232,7 @@ void TestRcmSecure::encodeRefusesWhatTheSecureLinkCannotCarry()
     QCOMPARE(runRcm({"encode"}, nowHeader(1) + plan).exitCode, 0);
     const Run r = runRcm({"encode", "--key", m_key}, nowHeader(1) + plan);
     QCOMPARE(r.exitCode, 1);
-    QVERIFY2(r.err.contains("200 data bytes, 1 more than the 199 a section carries"), r.err.constData());
+    QCOMPARE(r.err, QByteArray("<stdin>:7:18: flight_plan_data: 200 bytes is above the maximum 199 by 1\n"));
     QCOMPARE(r.out, QByteArray());
 }
 

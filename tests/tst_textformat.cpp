@@ -8,7 +8,6 @@
 
 #include "RandomMessage.h"
 
-#include <QElapsedTimer>
 #include <QFile>
 #include <QtTest>
 
@@ -151,6 +150,103 @@ flight_plan_data 000102030405060708090A0B0C0D0E0F
 END
 )";
 
+// well-equipped.bin as formatMessage prints it: every kind of value, the
+// camera's own stations, a country without an alpha-2 code.
+const char* const kWellEquippedText = R"(BEGIN HEADER
+ID_msg 4508515
+ID_UA_source 1166_8271
+time_UTC 08:07:31
+date_UTC 970816
+ID_BLK12_format 194 107
+ID_GCS_destination 193_63944
+ID_GCS_backup 59_51093
+END
+BEGIN FCU
+BEGIN engine
+eng_ID 1
+eng_status control=GCS slave=NO_SLAVE
+eng_prop_pitch 228
+eng_carb_SET 136
+END
+BEGIN engine
+eng_ID 2
+eng_status control=RC slave=NO_SLAVE
+eng_prop_pitch 52
+eng_carb_SET 162
+END
+BEGIN engine
+eng_ID 3
+eng_status control=AUTO slave=NO_SLAVE
+eng_prop_pitch 13
+eng_carb_SET 4
+END
+BEGIN flaps
+FLAP_status control=GCS slave_aileron=NO_SLAVE
+F_aileron_LHS_set 121
+F_aileron_RHS_set -19
+F_lift_set 58
+F_rudder_set -120
+F_elev_set 8
+F_airbrake_set -71
+END
+BEGIN FCU_general
+ENABLE_fuel_dump facility=DISABLED tank1=NO_DUMP tank2=NO_DUMP tank3=DUMP
+END
+END
+BEGIN SETTINGS
+land_wheels LHS=OUT RHS=OUT NOSE=OUT TAIL=OUT
+lights wing_RHS=ON wing_LHS=OFF tail=OFF wheel_brake=ON
+END
+BEGIN COMMS
+BEGIN comms_system
+system_ID VHF1
+receiver_control receiver=OFF transmitter=OFF
+Rx_freq 127712
+Tx_freq 121961
+Tx_OP_power 170
+END
+BEGIN comms_system
+system_ID VHF2
+receiver_control receiver=OFF transmitter=OFF
+Rx_freq 134410
+Tx_freq 131831
+Tx_OP_power 97
+END
+BEGIN comms_system
+system_ID VHF3
+receiver_control receiver=ON transmitter=OFF
+Rx_freq 134363
+Tx_freq 134557
+Tx_OP_power 201
+END
+END
+BEGIN SENSE
+SA_zoom_LHS_cam 17
+SA_zoom_FWD_cam 245
+SA_zoom_RHS_cam 124
+END
+BEGIN PAYLOAD
+BEGIN camera
+cam_ID SNY 1
+cam_mag_compass 264.95
+cam_elev 45.76
+cam_zoom_set 88
+take_one_photo photo=NONE
+ID_GCS_destination 1808_49113
+ID_GCS_backup 178_57535
+END
+BEGIN camera
+cam_ID SNY 2
+cam_mag_compass 333.20
+cam_elev -54.64
+cam_zoom_set 83
+take_one_photo photo=NONE
+ID_GCS_destination 806_48565
+ID_GCS_backup 1003_3876
+END
+END
+)";
+
 }  // namespace
 
 class TestTextFormat : public QObject {
@@ -173,12 +269,17 @@ private slots:
     void parseErrors_data();
     void parseErrors();
     void reportsEveryError();
+    void badInput_data();
+    void badInput();
+    void byteOrderMarkIsSkipped();
+    void errorsAreCapped();
+    void block1OverflowNamesTheItem();
     void countries_data();
     void countries();
     void countryForCode_data();
     void countryForCode();
     void countryTableConsistent();
-    void formatSpeed();
+    void wellEquippedFrameText();
 };
 
 // ---------------------------------------------------------- source examples
@@ -780,25 +881,117 @@ void TestTextFormat::countryTableConsistent()
 
 // ------------------------------------------------------------------- speed
 
-void TestTextFormat::formatSpeed()
+void TestTextFormat::wellEquippedFrameText()
 {
     const QByteArray frame = readVector("well-equipped.bin");
     QCOMPARE(frame.size(), qsizetype(kFrameSize));
     const DecodeResult d = decodeFrame(std::span(reinterpret_cast<const std::uint8_t*>(frame.data()), kFrameSize));
-    QElapsedTimer timer;
-    timer.start();
-    std::size_t bytes = 0;
-    for (int i = 0; i < 86400; ++i)
-        bytes += formatMessage(d.message).size();
-    const qint64 formatMs = timer.restart();
-    const std::string text = formatMessage(d.message);
-    std::size_t items = 0;
-    for (int i = 0; i < 8640; ++i)
-        items += parseMessage(text).message.header.items().size();
-    const qint64 parseMs = timer.elapsed();
-    qInfo("well-equipped: formatMessage x 86400 in %lld ms (%zu bytes); parseMessage x 8640 in %lld ms",
-          formatMs, bytes, parseMs);
-    QVERIFY(bytes > 0 && items > 0);
+    QVERIFY(d.ok());
+    QCOMPARE(q(formatMessage(d.message)), QByteArray(kWellEquippedText));
+}
+
+// Input found from outside to break the error messages: every message whole,
+// at its line and column, and short.
+void TestTextFormat::badInput_data()
+{
+    QTest::addColumn<QByteArray>("text");
+    QTest::addColumn<QByteArray>("error");  // Diagnostic::toString() of the one error
+    const QByteArray control = " in the text; the format is printable text (inside quotes write any byte as \\xHH)";
+    QTest::newRow("NUL in a value") << QByteArray("eng_ID 1\0002", 10)
+                                    << "line 1 column 9: control byte \\x00" + control;
+    QTest::newRow("NUL in a name") << QByteArray("ID_msg 1\nID\000msg 2\n", 18)
+                                   << "line 2 column 3: control byte \\x00" + control;
+    QTest::newRow("escape byte") << QByteArray("system_ID \"A\x1B[2J\"")
+                                 << "line 1 column 13: control byte \\x1B" + control;
+    QTest::newRow("DEL") << QByteArray("ID_msg 1\x7F") << "line 1 column 9: control byte \\x7F" + control;
+    QTest::newRow("carriage return inside a line")
+        << QByteArray("ID_msg\r1\r\n") << "line 1 column 7: control byte \\x0D" + control;
+
+    const QByteArray big(10 << 20, 'A');
+    const QByteArray shown = QByteArray(40, 'A') + "... (10485760 bytes)";
+    QTest::newRow("10 MB text value") << "system_ID " + big
+                                      << "line 1 column 11: system_ID: text \"" + shown +
+                                             "\" is 10485760 characters, 10485752 more than the 8 allowed";
+    QTest::newRow("10 MB number") << "ID_msg " + QByteArray(10 << 20, '9')
+                                  << "line 1 column 8: ID_msg: '" + QByteArray(40, '9') +
+                                         "... (10485760 bytes)' does not fit in 64 bits; expected an integer from 0 to "
+                                         "16777215 (decimal or 0x hex)";
+    QTest::newRow("10 MB name") << big + " 1"
+                                << "line 1 column 1: " + shown + ": unknown item '" + shown + "'";
+    QTest::newRow("10 MB quoted value")
+        << "ID_msg \"" + big + "\""
+        << "line 1 column 8: ID_msg: expected an integer from 0 to 16777215 (decimal or 0x hex), got quoted text \"" +
+               QByteArray(39, 'A') + "... (10485762 bytes)";
+    // A long UTF-8 name is cut between characters, not inside one.
+    QTest::newRow("long UTF-8 name") << QByteArray("A") + QByteArray("\xC3\xA9").repeated(30) + " 1"
+                                     << "line 1 column 1: A" + QByteArray("\xC3\xA9").repeated(19) +
+                                            "... (61 bytes): unknown item 'A" + QByteArray("\xC3\xA9").repeated(19) +
+                                            "... (61 bytes)'";
+}
+
+void TestTextFormat::badInput()
+{
+    QFETCH(QByteArray, text);
+    QFETCH(QByteArray, error);
+    const ParseResult r = parseMessage(std::string_view(text.constData(), static_cast<std::size_t>(text.size())));
+    QCOMPARE(r.errors.size(), std::size_t{1});
+    QCOMPARE(q(r.errors.front().toString()), error);
+    QCOMPARE(r.unlistedErrors, std::size_t{0});
+}
+
+void TestTextFormat::byteOrderMarkIsSkipped()
+{
+    ParseResult r = parseMessage("\xEF\xBB\xBFID_msg 133\nSA_zoom_LHS_cam 35\n");
+    QVERIFY2(r.ok(), dump(r.errors).c_str());
+    QCOMPARE(r.message.header.number(ItemId::ID_msg), 133);
+    QCOMPARE(r.message.sense.number(ItemId::SA_zoom_LHS_cam), 35);
+    // Columns count from after the mark, as an editor shows them.
+    r = parseMessage("\xEF\xBB\xBFID_msg x\n");
+    QCOMPARE(q(dump(r.errors)),
+             QByteArray("line 1 column 8: ID_msg: expected an integer from 0 to 16777215 (decimal or "
+                        "0x hex), got 'x'\n"));
+    // Only at the very start: elsewhere it is an unknown name as written.
+    r = parseMessage("ID_msg 1\n\xEF\xBB\xBFID_msg 2\n");
+    QCOMPARE(q(dump(r.errors)), QByteArray("line 2 column 1: \xEF\xBB\xBFID_msg: unknown item '\xEF\xBB\xBFID_msg'\n"));
+}
+
+void TestTextFormat::errorsAreCapped()
+{
+    std::string text;
+    for (int i = 0; i < 1000000; ++i)
+        text += "foo 1\n";
+    const ParseResult r = parseMessage(text);
+    QCOMPARE(r.errors.size(), kMaxListedErrors);
+    QCOMPARE(r.unlistedErrors, std::size_t{1000000} - kMaxListedErrors);
+    QCOMPARE(q(r.errors.front().toString()), QByteArray("line 1 column 1: foo: unknown item 'foo'"));
+    QCOMPARE(r.errors.back().line, 20);
+}
+
+void TestTextFormat::block1OverflowNamesTheItem()
+{
+    // Nine radios of 23 bytes (207) fit; the tenth stops at its Tx_freq (224).
+    std::string text;
+    for (int i = 0; i < 10; ++i)
+        text += "system_ID R" + std::to_string(i) +
+                "\nRx_freq 1\nTx_freq 1\nTx_OP_power 1\nreceiver_control receiver=ON transmitter=ON\n";
+    ParseResult r = parseMessage(text);
+    QCOMPARE(q(dump(r.errors)), QByteArray("line 48 column 1: Tx_freq: BLOCK 1 is full here: the items need 230 bytes, "
+                                           "7 more than the 223 a block holds\n"));
+    QCOMPARE(r.errors.front().kind, Diagnostic::Kind::DoesNotFit);
+    // The same text under the secure link's limits, with ID_msg, time_UTC and
+    // date_UTC to be filled in (12 bytes): 195 bytes left, full in the ninth radio.
+    constexpr std::array<ItemId, 3> filled{ItemId::ID_msg, ItemId::time_UTC, ItemId::date_UTC};
+    r = parseMessage(text, EncodeOptions{16, 199}, filled);
+    QCOMPARE(q(dump(r.errors)),
+             QByteArray("line 42 column 1: Rx_freq: BLOCK 1 is full here: the items need 242 bytes plus 16 bytes of "
+                        "required padding, 35 more than the 223 a block holds (counting ID_msg, time_UTC and "
+                        "date_UTC, filled in when not given)\n"));
+    // Text that fits gets no error, and encodes.
+    text.resize(text.find("system_ID R9"));
+    r = parseMessage(text);
+    QVERIFY(r.ok());
+    Diagnostics errors;
+    QVERIFY(encodeFrame(r.message, errors));
 }
 
 QTEST_APPLESS_MAIN(TestTextFormat)

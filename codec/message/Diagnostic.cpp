@@ -1,5 +1,7 @@
 #include "codec/message/Diagnostic.h"
 
+#include <algorithm>
+
 namespace rcm {
 
 std::string Diagnostic::toString() const
@@ -16,6 +18,29 @@ std::string Diagnostic::toString() const
     if (!where.empty())
         out += where + ": ";
     out += message;
+    return out;
+}
+
+std::string echoInput(std::string_view input)
+{
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    std::size_t shown = std::min(input.size(), kEchoLimit);
+    // Never half a UTF-8 character: back off over continuation bytes.
+    while (shown < input.size() && shown > 0 && (static_cast<unsigned char>(input[shown]) & 0xC0) == 0x80)
+        --shown;
+    std::string out;
+    for (const char ch : input.substr(0, shown)) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c < 0x20 || c == 0x7F) {
+            out += "\\x";
+            out += kHex[c >> 4];
+            out += kHex[c & 0xF];
+        } else {
+            out += ch;
+        }
+    }
+    if (shown < input.size())
+        out += "... (" + std::to_string(input.size()) + " bytes)";
     return out;
 }
 

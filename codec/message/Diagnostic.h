@@ -1,7 +1,9 @@
 // What went wrong, and where: every codec error and warning is one of these.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rcm {
@@ -36,5 +38,11 @@ struct Diagnostic {
 };
 
 using Diagnostics = std::vector<Diagnostic>;
+
+// Bytes of input as a message quotes them: control bytes written \xHH (so a
+// NUL cannot end the message) and at most kEchoLimit bytes, the rest counted:
+// "AAAA... (10485760 bytes)".
+inline constexpr std::size_t kEchoLimit = 40;
+std::string echoInput(std::string_view input);
 
 }  // namespace rcm

@@ -17,6 +17,18 @@ std::size_t block1ItemBytes(const Message& message)
     return total;
 }
 
+std::string block1Overflow(std::size_t itemBytes, const EncodeOptions& options)
+{
+    const std::size_t needed = itemBytes + options.minBlock1Padding;
+    if (needed <= kBlockSize)
+        return {};
+    std::string what = "the items need " + std::to_string(itemBytes) + " bytes";
+    if (options.minBlock1Padding)
+        what += " plus " + std::to_string(options.minBlock1Padding) + " bytes of required padding";
+    return what + ", " + std::to_string(needed - kBlockSize) + " more than the " + std::to_string(kBlockSize) +
+           " a block holds";
+}
+
 Diagnostics validate(const Message& message, const EncodeOptions& options)
 {
     Diagnostics errors;
@@ -35,15 +47,8 @@ Diagnostics validate(const Message& message, const EncodeOptions& options)
         }
     });
 
-    const std::size_t needed = block1ItemBytes(message) + options.minBlock1Padding;
-    if (needed > kBlockSize) {
-        std::string what = "the items need " + std::to_string(block1ItemBytes(message)) + " bytes";
-        if (options.minBlock1Padding)
-            what += " plus " + std::to_string(options.minBlock1Padding) + " bytes of required padding";
-        errors.push_back({Diagnostic::Kind::DoesNotFit, 1, -1, "BLOCK 1",
-                          what + ", " + std::to_string(needed - kBlockSize) + " more than the " +
-                              std::to_string(kBlockSize) + " a block holds"});
-    }
+    if (std::string overflow = block1Overflow(block1ItemBytes(message), options); !overflow.empty())
+        errors.push_back({Diagnostic::Kind::DoesNotFit, 1, -1, "BLOCK 1", std::move(overflow)});
     const std::size_t planBytes = message.flightPlan.data.size();
     if (planBytes > options.maxFlightPlanData) {
         errors.push_back({Diagnostic::Kind::DoesNotFit, 2, -1, "flight plan section",

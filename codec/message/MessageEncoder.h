@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 
 namespace rcm {
 
@@ -21,6 +22,10 @@ struct EncodeOptions {
 
 // Bytes BLOCK 1 items of `message` take, Item_ID bytes included.
 std::size_t block1ItemBytes(const Message& message);
+
+// Why BLOCK 1 items of `itemBytes` do not fit ("the items need 242 bytes, 19
+// more than the 223 a block holds"); empty when they fit.
+std::string block1Overflow(std::size_t itemBytes, const EncodeOptions& options = {});
 
 // Checks everything an encode would; empty when the message can be encoded.
 Diagnostics validate(const Message& message, const EncodeOptions& options = {});

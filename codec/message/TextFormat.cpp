@@ -27,6 +27,7 @@ constexpr std::array<std::string_view, PlanFieldCount> kPlanNames{"flight_plan_I
                                                                    "flight_plan_data"};
 
 constexpr char kHexDigits[] = "0123456789ABCDEF";
+constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 
 // ---------------------------------------------------------------- printer
 
@@ -264,7 +265,7 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b)
     return true;
 }
 
-std::string quote(std::string_view s) { return "'" + std::string(s) + "'"; }
+std::string quote(std::string_view s) { return "'" + echoInput(s) + "'"; }
 
 // "a, b or c"
 std::string joinOr(const std::vector<std::string_view>& names, std::string_view last = " or ")
@@ -483,8 +484,13 @@ std::string rangeReason(std::int64_t v, std::int64_t min, std::int64_t max)
 
 class Parser {
 public:
-    explicit Parser(std::string_view text) : m_text(text)
+    Parser(std::string_view text, const EncodeOptions& limits, std::span<const ItemId> filledWhenAbsent)
+        : m_text(text), m_limits(limits), m_filledWhenAbsent(filledWhenAbsent)
     {
+        // Editors on Windows start UTF-8 files with a byte-order mark; it is
+        // not part of the first line.
+        if (m_text.starts_with(kByteOrderMark))
+            m_text.remove_prefix(kByteOrderMark.size());
         m_rankCount = itemTable().size();
         for (int k = 0; k < kUnitKindCount; ++k) {
             m_lastStarted[k] = -1;
@@ -509,6 +515,7 @@ public:
                 handleLine(tokens);
             pos = end + 1;
         }
+        checkBlock1Fits();
         for (const Frame& frame : m_stack)
             error(DiagKind::Syntax, frame.line, frame.column, "",
                   "section " + std::string(frame.name) + " opened at line " + std::to_string(frame.line) +
@@ -516,7 +523,7 @@ public:
         std::stable_sort(m_errors.begin(), m_errors.end(), [](const Diagnostic& a, const Diagnostic& b) {
             return a.line != b.line ? a.line < b.line : a.column < b.column;
         });
-        return ParseResult{std::move(m_message), std::move(m_errors)};
+        return ParseResult{std::move(m_message), std::move(m_errors), m_unlistedErrors};
     }
 
 private:
@@ -530,13 +537,20 @@ private:
         int unitIndex;   // into the message's units of `kind`, for repeated ones
     };
 
-    void error(DiagKind kind, int line, int column, std::string where, std::string message)
+    // Keeps the first kMaxListedErrors and counts the rest: a file of
+    // nonsense gets a screenful, not one error per line. `where` may be a
+    // name from the input, so it is echoed as such.
+    void error(DiagKind kind, int line, int column, std::string_view where, std::string message)
     {
-        m_errors.push_back(Diagnostic{kind, 0, -1, std::move(where), std::move(message), line, column});
+        if (m_errors.size() >= kMaxListedErrors) {
+            ++m_unlistedErrors;
+            return;
+        }
+        m_errors.push_back(Diagnostic{kind, 0, -1, echoInput(where), std::move(message), line, column});
     }
-    void error(DiagKind kind, int column, std::string where, std::string message)
+    void error(DiagKind kind, int column, std::string_view where, std::string message)
     {
-        error(kind, m_line, column, std::move(where), std::move(message));
+        error(kind, m_line, column, where, std::move(message));
     }
 
     // Splits a line; on a lexical error reports it and returns false, and the
@@ -545,6 +559,15 @@ private:
     {
         tokens.clear();
         auto isSpace = [](char c) { return c == ' ' || c == '\t'; };
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            const auto c = static_cast<unsigned char>(line[i]);
+            if ((c < 0x20 && c != '\t') || c == 0x7F) {
+                error(DiagKind::Syntax, static_cast<int>(i) + 1, "",
+                      "control byte " + echoInput(line.substr(i, 1)) +
+                          " in the text; the format is printable text (inside quotes write any byte as \\xHH)");
+                return false;
+            }
+        }
         std::size_t i = 0;
         while (i < line.size()) {
             const char c = line[i];
@@ -848,8 +871,39 @@ private:
         else
             first = m_line;
         std::optional<Value> value = parseValue(*info, tokens);
-        if (value && !repeated)
+        if (value && !repeated) {
             unitAt(info->owner, index).set(info->id, std::move(*value));
+            m_block1Bytes += 1 + info->size;
+            // Header items filled in later only take room, never give it: past
+            // the first item that overflows without them, none is needed.
+            if (m_block1Items.empty() || block1Overflow(m_block1Items.back().bytesSoFar, m_limits).empty())
+                m_block1Items.push_back({m_line, nameToken.column, info->name, m_block1Bytes});
+        }
+    }
+
+    // Reports, at the first item BLOCK 1 has no room for, that the items do
+    // not fit; the header items to be filled in count as coming first.
+    void checkBlock1Fits()
+    {
+        std::size_t filled = 0;
+        std::vector<std::string_view> filledNames;
+        for (const ItemId id : m_filledWhenAbsent)
+            if (!m_message.header.has(id)) {
+                filled += 1 + itemInfo(id).size;
+                filledNames.push_back(itemInfo(id).name);
+            }
+        const std::string overflow = block1Overflow(m_block1Bytes + filled, m_limits);
+        if (overflow.empty())
+            return;
+        for (const Block1Item& item : m_block1Items) {
+            if (block1Overflow(item.bytesSoFar + filled, m_limits).empty())
+                continue;
+            std::string message = "BLOCK 1 is full here: " + overflow;
+            if (!filledNames.empty())
+                message += " (counting " + joinOr(filledNames, " and ") + ", filled in when not given)";
+            error(DiagKind::DoesNotFit, item.line, item.column, item.name, std::move(message));
+            return;
+        }
     }
 
     // Checks the number of value tokens; false (reported) when it is wrong.
@@ -876,7 +930,7 @@ private:
     {
         if (t.quoted) {
             error(DiagKind::Syntax, t.column, std::string(name),
-                  "expected " + expected + ", got quoted text " + std::string(t.raw));
+                  "expected " + expected + ", got quoted text " + echoInput(t.raw));
             return false;
         }
         switch (readInteger(t.raw, out)) {
@@ -903,7 +957,7 @@ private:
         const Token& t = values[0];
         auto syntax = [&](const Token& at) {
             error(DiagKind::Syntax, at.column, std::string(name),
-                  "expected " + expected + ", got " + (at.quoted ? "quoted text " + std::string(at.raw) : quote(at.raw)));
+                  "expected " + expected + ", got " + (at.quoted ? "quoted text " + echoInput(at.raw) : quote(at.raw)));
         };
 
         Value v;
@@ -994,7 +1048,7 @@ private:
         const std::size_t underscore = t.raw.find('_');
         if (t.quoted || underscore == std::string_view::npos) {
             error(DiagKind::Syntax, t.column, std::string(name),
-                  "expected " + expected + ", got " + (t.quoted ? std::string(t.raw) : quote(t.raw)));
+                  "expected " + expected + ", got " + (t.quoted ? echoInput(t.raw) : quote(t.raw)));
             return false;
         }
         const std::string_view country = t.raw.substr(0, underscore);
@@ -1060,7 +1114,7 @@ private:
             const std::size_t eq = t.raw.find('=');
             if (t.quoted || eq == std::string_view::npos) {
                 error(DiagKind::Syntax, t.column, where,
-                      "expected FIELD=CODE, got " + (t.quoted ? std::string(t.raw) : quote(t.raw)) + "; " +
+                      "expected FIELD=CODE, got " + (t.quoted ? echoInput(t.raw) : quote(t.raw)) + "; " +
                           std::string(info.name) + " takes " + expected);
                 ok = false;
                 malformed = true;
@@ -1131,7 +1185,7 @@ private:
         FlightPlanSection& plan = m_message.flightPlan;
         if (field == PlanData) {
             const std::string expected = "the data bytes as hex digits, two per byte, in one token, at most " +
-                                         std::to_string(FlightPlanSection::kMaxData) + " bytes";
+                                         std::to_string(m_limits.maxFlightPlanData) + " bytes";
             if (!checkTokenCount(name, 1, expected, tokens))
                 return;
             const Token& t = tokens[1];
@@ -1153,11 +1207,11 @@ private:
                 return;
             }
             const std::size_t bytes = t.raw.size() / 2;
-            if (bytes > FlightPlanSection::kMaxData) {
+            if (bytes > m_limits.maxFlightPlanData) {
                 error(DiagKind::OutOfRange, t.column, std::string(name),
                       std::to_string(bytes) + " bytes is above the maximum " +
-                          std::to_string(FlightPlanSection::kMaxData) + " by " +
-                          std::to_string(bytes - FlightPlanSection::kMaxData));
+                          std::to_string(m_limits.maxFlightPlanData) + " by " +
+                          std::to_string(bytes - m_limits.maxFlightPlanData));
                 return;
             }
             if (repeated)
@@ -1189,10 +1243,23 @@ private:
     }
 
     std::string_view m_text;
+    EncodeOptions m_limits;
+    std::span<const ItemId> m_filledWhenAbsent;
+    // BLOCK 1 items in the text's order, with the bytes taken up to and
+    // including each, to name the first one that does not fit.
+    struct Block1Item {
+        int line;
+        int column;
+        std::string_view name;
+        std::size_t bytesSoFar;
+    };
+    std::vector<Block1Item> m_block1Items;
+    std::size_t m_block1Bytes = 0;
     int m_line = 0;
     std::size_t m_rankCount = 0;
     Message m_message;
     Diagnostics m_errors;
+    std::size_t m_unlistedErrors = 0;
     std::vector<Frame> m_stack;
     // Per unit, the line where each item (by canonical rank) was first given,
     // 0 when not yet: for "given twice; first at line N" and the key check.
@@ -1236,6 +1303,9 @@ std::string formatMessage(const Message& message)
     return out;
 }
 
-ParseResult parseMessage(std::string_view text) { return Parser(text).run(); }
+ParseResult parseMessage(std::string_view text, const EncodeOptions& limits, std::span<const ItemId> filledWhenAbsent)
+{
+    return Parser(text, limits, filledWhenAbsent).run();
+}
 
 }  // namespace rcm

@@ -69,7 +69,8 @@
 // ### Lines and tokens
 // One item per line: its name, a space, its value. Tokens are separated by
 // spaces or tabs; `#` outside quotes starts a comment; a line may end in
-// "\r\n". Names of items, sections, fields and codes are case-sensitive and
+// "\r\n". A control byte (other than tab) is an error anywhere; a UTF-8
+// byte-order mark at the very start is skipped. Names of items, sections, fields and codes are case-sensitive and
 // are the item table's. Section lines are `BEGIN <name>` and `END`.
 //
 // ### Sections
@@ -128,7 +129,9 @@
 
 #include "codec/message/Diagnostic.h"
 #include "codec/message/Message.h"
+#include "codec/message/MessageEncoder.h"
 
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -138,13 +141,24 @@ namespace rcm {
 // or not; an invalid value prints so that parsing it reports the problem.
 std::string formatMessage(const Message& message);
 
+// Errors a parse lists; it counts the rest.
+inline constexpr std::size_t kMaxListedErrors = 20;
+
 struct ParseResult {
-    Message message;     // what could be read; not to be encoded unless ok()
-    Diagnostics errors;  // kind Syntax or OutOfRange, each with line and column, in line order
+    Message message;                 // what could be read; not to be encoded unless ok()
+    Diagnostics errors;              // at most kMaxListedErrors, each with line and column, in line order;
+                                     // kind Syntax, OutOfRange or DoesNotFit
+    std::size_t unlistedErrors = 0;  // errors found beyond those listed
     bool ok() const { return errors.empty(); }
 };
 
-// Reads a whole text, reporting every error it finds rather than the first.
-ParseResult parseMessage(std::string_view text);
+// Reads a whole text, reporting every error it finds rather than the first
+// (up to kMaxListedErrors). A UTF-8 byte-order mark at the start is skipped.
+// What the encoder would refuse for size under `limits` is reported at the
+// line of the first item that does not fit (or of flight_plan_data); header
+// items in `filledWhenAbsent` that the text lacks count as given before it,
+// for a caller that fills them in before encoding.
+ParseResult parseMessage(std::string_view text, const EncodeOptions& limits = {},
+                         std::span<const ItemId> filledWhenAbsent = {});
 
 }  // namespace rcm

@@ -1,5 +1,7 @@
 #include "codec/message/ValueCodec.h"
 
+#include "codec/message/Diagnostic.h"
+
 #include <cstdio>
 
 namespace rcm {
@@ -124,18 +126,19 @@ std::string checkValue(const ItemInfo& item, const Value& value)
     }
     case ValueKind::Text:
         if (value.text.size() > item.size)
-            return "text \"" + value.text + "\" is " + std::to_string(value.text.size()) + " characters, " +
-                   std::to_string(value.text.size() - item.size) + " more than the " + std::to_string(item.size) +
-                   " allowed";
+            return "text \"" + echoInput(value.text) + "\" is " + std::to_string(value.text.size()) +
+                   " characters, " + std::to_string(value.text.size() - item.size) + " more than the " +
+                   std::to_string(item.size) + " allowed";
         if (!printableAscii(value.text))
             return "text must be printable ASCII";
         // Trailing spaces are the padding on the wire: they would not come back.
         if (!value.text.empty() && value.text.back() == ' ')
-            return "text \"" + value.text + "\" ends in a space, which the wire cannot keep (spaces pad the field)";
+            return "text \"" + echoInput(value.text) +
+                   "\" ends in a space, which the wire cannot keep (spaces pad the field)";
         return {};
     case ValueKind::CameraId:
         if (value.text.size() != 3 || !printableAscii(value.text))
-            return "maker must be exactly 3 printable ASCII characters, got \"" + value.text + "\"";
+            return "maker must be exactly 3 printable ASCII characters, got \"" + echoInput(value.text) + "\"";
         return plainRange(value.number, 0, 255, "camera number");
     }
     return {};

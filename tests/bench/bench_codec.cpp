@@ -8,6 +8,7 @@
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/message/TextFormat.h"
 #include "codec/frame/ReedSolomon.h"
 #include "codec/frame/StreamSync.h"
 
@@ -125,6 +126,24 @@ int main(int argc, char** argv)
         });
         std::printf("encode (model -> 600-byte frame)       %9.0f frames/s  %7.2f us/frame  [%zu]\n", n / s,
                     1e6 * s / n, sink % 2);
+    }
+
+    // The text format, both ways, on the same message (rcm decode prints a
+    // day's log through formatMessage; rcm encode reads through parseMessage).
+    {
+        const Message m = fullCommand(1);
+        const std::string text = formatMessage(m);
+        std::size_t sink = 0;
+        const double format = bestOf(kRuns, [&] {
+            for (int i = 0; i < n; ++i)
+                sink += formatMessage(m).size();
+        });
+        const double parse = bestOf(kRuns, [&] {
+            for (int i = 0; i < n; ++i)
+                sink += parseMessage(text).errors.size();
+        });
+        std::printf("text format (%zu bytes)                formatMessage %6.2f us, parseMessage %6.2f us  [%zu]\n",
+                    text.size(), 1e6 * format / n, 1e6 * parse / n, sink % 2);
     }
 
     // Frames for the decoding measurements.

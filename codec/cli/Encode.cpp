@@ -1,0 +1,109 @@
+#include "codec/cli/Encode.h"
+
+#include "codec/cli/InputFile.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/message/TextFormat.h"
+#include "codec/secure/SecureCodec.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+
+namespace rcm::cli {
+namespace {
+
+// The frame (or datagram) bytes, or nothing with the reasons in `errors`.
+std::vector<std::uint8_t> encodeBytes(const Options& o, const std::optional<rcm::secure::SecretKey>& key,
+                                      const rcm::Message& message, rcm::Diagnostics& errors)
+{
+    std::vector<std::uint8_t> bytes;
+    if (key) {
+        const rcm::secure::SecureCodec codec(*key, o.direction.value_or(rcm::secure::Direction::GcsToUa));
+        if (const auto b = codec.encode(message, errors)) {
+            if (o.datagram) {
+                const rcm::DatagramBytes d = rcm::makeDatagram(b->block1, b->block2);
+                bytes.assign(d.begin(), d.end());
+            } else {
+                const rcm::FrameBytes f = rcm::makeFrame(b->block1, b->block2);
+                bytes.assign(f.begin(), f.end());
+            }
+        }
+    } else if (o.datagram) {
+        if (auto d = rcm::encodeDatagram(message, errors))
+            bytes.assign(d->begin(), d->end());
+    } else if (auto f = rcm::encodeFrame(message, errors)) {
+        bytes.assign(f->begin(), f->end());
+    }
+    return bytes;
+}
+
+}  // namespace
+
+void fillHeaderDefaults(rcm::Message& m)
+{
+    static_assert(kHeaderDefaults.size() == 3, "the items filled in below");
+    using rcm::ItemId;
+    if (!m.header.has(ItemId::ID_msg))
+        m.header.set(ItemId::ID_msg, 0);
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    if (!m.header.has(ItemId::time_UTC))
+        m.header.set(ItemId::time_UTC, utc.tm_hour * 10000 + utc.tm_min * 100 + std::min(utc.tm_sec, 59));
+    if (!m.header.has(ItemId::date_UTC))
+        m.header.set(ItemId::date_UTC, (utc.tm_year % 100) * 10000 + (utc.tm_mon + 1) * 100 + utc.tm_mday);
+}
+
+int encode(const Options& o)
+{
+    std::vector<std::uint8_t> input;
+    std::string error;
+    if (!readAll(o.file, input, error)) {
+        std::fprintf(stderr, "rcm: %s\n", error.c_str());
+        return kExitFailed;
+    }
+    const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());
+    const std::string name = inputName(o.file);
+    rcm::ParseResult parsed =
+        rcm::parseMessage(text, o.key.empty() ? rcm::EncodeOptions{} : rcm::secure::encodeOptions(), kHeaderDefaults);
+    if (!parsed.ok()) {
+        // file:line:column: as compilers write it, so editors can jump there.
+        for (const rcm::Diagnostic& d : parsed.errors)
+            std::fprintf(stderr, "%s:%d:%d: %s%s%s\n", name.c_str(), d.line, d.column, d.where.c_str(),
+                         d.where.empty() ? "" : ": ", d.message.c_str());
+        if (parsed.unlistedErrors > 0)
+            std::fprintf(stderr, "%s: %zu more errors not listed\n", name.c_str(), parsed.unlistedErrors);
+        return kExitFailed;
+    }
+    fillHeaderDefaults(parsed.message);
+    std::optional<rcm::secure::SecretKey> key;
+    if (!o.key.empty()) {
+        key = rcm::secure::readKeyFile(o.key, error);
+        if (!key) {
+            std::fprintf(stderr, "rcm: %s\n", error.c_str());
+            return kExitFailed;
+        }
+    }
+    rcm::Diagnostics errors;
+    const std::vector<std::uint8_t> bytes = encodeBytes(o, key, parsed.message, errors);
+    if (bytes.empty()) {
+        for (const rcm::Diagnostic& d : errors)
+            std::fprintf(stderr, "%s: %s\n", name.c_str(), d.toString().c_str());
+        return kExitFailed;
+    }
+    if (isatty(STDOUT_FILENO)) {
+        std::fprintf(stderr, "rcm: not writing binary to a terminal; redirect standard output (> frame.bin)\n");
+        return kExitMisuse;
+    }
+    if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0) {
+        std::fprintf(stderr, "rcm: cannot write standard output: %s\n", std::strerror(errno));
+        return kExitFailed;
+    }
+    return kExitOk;
+}
+
+}  // namespace rcm::cli
