@@ -230,10 +230,10 @@ private slots:
         auto* control = child<FieldComboBox>(card, QStringLiteral("eng_status.control"));
         QVERIFY(control);
         QCOMPARE(control->count(), 3);
-        QCOMPARE(control->itemText(0), QStringLiteral("Automatic (FCU)"));
+        QCOMPARE(control->itemText(0), QStringLiteral("Automatic"));
         QCOMPARE(control->itemText(1), QStringLiteral("Ground station"));
         QCOMPARE(control->itemText(2), QStringLiteral("RC transmitter"));
-        QCOMPARE(control->currentText(), QStringLiteral("Automatic (FCU)"));
+        QCOMPARE(control->currentText(), QStringLiteral("Automatic"));
 
         auto camera = shown<CameraPanel>();
         auto* compass = child<ItemSpinBox>(camera.get(), QStringLiteral("cam_mag_compass"));

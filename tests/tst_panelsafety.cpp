@@ -24,12 +24,14 @@
 #include "ui/panels/ReportedLabel.h"
 #include "ui/panels/ReportedState.h"
 #include "ui/panels/StationEditor.h"
+#include "ui/window/Theme.h"
 
 #include <QAbstractButton>
 #include <QApplication>
 #include <QLineEdit>
 #include <QScrollArea>
 #include <QScrollBar>
+#include <QStyle>
 #include <QSignalSpy>
 #include <QTest>
 #include <QVBoxLayout>
@@ -425,6 +427,43 @@ private slots:
         reported.onStatus(status);
         reported.onStatus(status);
         QVERIFY(rudder->mismatch());
+    }
+
+    // The night theme an operator can switch to: dark, and every text on its
+    // own background at 7:1 or better (WCAG AAA), as in the day theme.
+    void nightThemeIsReadable()
+    {
+        using R = QPalette::ColorRole;
+        const std::pair<R, R> pairs[] = {{R::WindowText, R::Window},   {R::Text, R::Base},
+                                         {R::ButtonText, R::Button},   {R::ToolTipText, R::ToolTipBase},
+                                         {R::Text, R::AlternateBase}};
+        for (Theme::Kind kind : {Theme::Kind::Day, Theme::Kind::Night}) {
+            const QPalette palette = Theme::palette(kind);
+            for (const auto& [text, background] : pairs) {
+                const double ratio = Theme::contrast(palette.color(text), palette.color(background));
+                QVERIFY2(ratio >= 7.0, qPrintable(QStringLiteral("%1: %2 on %3 is %4:1")
+                                                      .arg(Theme::name(kind))
+                                                      .arg(palette.color(text).name(), palette.color(background).name())
+                                                      .arg(ratio)));
+            }
+        }
+        const QPalette night = Theme::palette(Theme::Kind::Night);
+        QCOMPARE_GE(Theme::contrast(night.color(R::HighlightedText), night.color(R::Highlight)), 4.5);
+        QCOMPARE_GE(Theme::contrast(night.color(R::PlaceholderText), night.color(R::Base)), 4.5);
+        QCOMPARE_GE(Theme::contrast(night.color(R::Mid), night.color(R::Window)), 4.5);
+        QCOMPARE_LT(night.color(R::Window).lightness(), 48);  // dark: no large bright area
+        QCOMPARE_LT(night.color(R::Base).lightness(), 48);
+        QCOMPARE(Theme::contrast(Qt::black, Qt::white), 21.0);
+
+        // Switched for the whole application, and back.
+        Theme::apply(*qApp, Theme::Kind::Night);
+        FlapsPanel panel(&m_command, &m_reported);
+        QCOMPARE(panel.palette().color(R::Window), night.color(R::Window));
+        QCOMPARE(QApplication::style()->name(), QStringLiteral("fusion"));
+        Theme::apply(*qApp, Theme::Kind::Day);
+        QCOMPARE(QApplication::palette().color(R::Window), Theme::palette(Theme::Kind::Day).color(R::Window));
+        QCOMPARE(Theme::fromName(Theme::name(Theme::Kind::Night)), Theme::Kind::Night);
+        QCOMPARE(Theme::fromName(QStringLiteral("dusk")), std::nullopt);
     }
 };
 

@@ -15,7 +15,7 @@ constexpr std::array<std::string_view, 4> kFacility{"", "DISABLED", "ENABLED", "
 constexpr std::array<std::string_view, 4> kPhoto{"", "NONE", "TAKE", ""};
 
 // The same codes for people.
-constexpr std::array<std::string_view, 4> kControlWords{"", "Automatic (FCU)", "Ground station", "RC transmitter"};
+constexpr std::array<std::string_view, 4> kControlWords{"", "Automatic", "Ground station", "RC transmitter"};
 constexpr std::array<std::string_view, 4> kSlaveWords{"", "Independent", "Master and slave", ""};
 constexpr std::array<std::string_view, 4> kOnOffWords{"", "Off", "On", ""};
 constexpr std::array<std::string_view, 4> kWheelWords{"", "Out (down)", "Retracted", ""};

@@ -1,7 +1,7 @@
 // A combo box bound to one two-bit field of one commanded unit: its entries
-// are the field's valid codes from the item table, in words ("Automatic
-// (FCU)", "Ground station", "RC transmitter"), so no corrupt code (00, or 11
-// where it has no meaning) can be chosen. A change is a choice from the open
+// are the field's valid codes from the item table, in words ("Automatic",
+// "Ground station", "RC transmitter"), so no corrupt code (00, or 11 where it
+// has no meaning) can be chosen. A change is a choice from the open
 // list: neither the wheel nor a stray arrow or letter key changes the field
 // (Space, F4 or Alt+Down open the list).
 #pragma once

@@ -81,7 +81,7 @@ StationEditor::StationEditor(CommandState* command, UnitRef ref, rcm::ItemId id,
     m_unit->setValidator(new QRegularExpressionValidator(QRegularExpression(QStringLiteral("[0-9]{0,5}")), m_unit));
     m_unit->setMaxLength(5);
     m_unit->setAlignment(Qt::AlignRight);
-    m_unit->setMinimumWidth(fieldWidth(m_unit, {QStringLiteral("00000")}));
+    m_unit->setFixedWidth(fieldWidth(m_unit, {QStringLiteral("00000")}));
     for (QLineEdit* field : {m_country, m_unit}) {
         field->setProperty("invalid", false);
         DeliberateInput::protect(field);
@@ -94,7 +94,8 @@ StationEditor::StationEditor(CommandState* command, UnitRef ref, rcm::ItemId id,
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(m_country);
-    layout->addWidget(m_unit, 1);
+    layout->addWidget(m_unit);
+    layout->addStretch(1);
     refresh();
     connect(command, &CommandState::changed, this, &StationEditor::refresh);
 }
