@@ -8,6 +8,7 @@
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/message/TextFormat.h"
 #include "link/simulation/SimulatedAircraft.h"
 #include "ui/panels/CameraPanel.h"
 #include "ui/panels/CommandState.h"
@@ -250,6 +251,51 @@ private slots:
         auto* power = child<ItemSpinBox>(radios.get(), QStringLiteral("Tx_OP_power"));
         QCOMPARE(power->toolTip(), QStringLiteral("Transmit power, 0..50 dBm"));
         QCOMPARE(power->maximum(), 50.0);
+    }
+
+    // Panels show words and units for people; the wire, the text format and
+    // the encoder keep the profile's codes, units and ranges.
+    void wordsAndUnitsForPeopleTheWireUnchanged()
+    {
+        for (const ItemInfo& item : itemTable())
+            for (int field = 0; field < static_cast<int>(item.fields.size()); ++field)
+                for (unsigned code : ItemText::validFieldCodes(item.id, field))
+                    QVERIFY2(
+                        ItemText::fieldCodeWord(item.id, field, code) != ItemText::fieldCodeName(item.id, field, code),
+                        qPrintable(ItemText::fieldCodeName(item.id, field, code)));
+        QCOMPARE(ItemText::fieldCodeWord(eng_status, 1, 2), QStringLiteral("Master and slave"));
+        QCOMPARE(ItemText::fieldCodeWord(ENABLE_fuel_dump, 1, 1), QStringLiteral("Keep fuel"));
+        QCOMPARE(ItemText::fieldCodeWord(eng_status, 1, 3), QStringLiteral("corrupt (11)"));
+
+        // Percent of a 0..255 setting: every value shows apart and reads back as itself.
+        for (ItemId id :
+             {eng_prop_pitch, eng_carb_SET, SA_zoom_LHS_cam, SA_zoom_FWD_cam, SA_zoom_RHS_cam, cam_zoom_set})
+            for (std::int64_t wire = 0; wire <= 255; ++wire)
+                QCOMPARE(ItemText::parseNumber(id, ItemText::number(id, wire)), std::optional<std::int64_t>(wire));
+        QCOMPARE(ItemText::value(eng_prop_pitch, Value::of(128)), QStringLiteral("50.2 %"));
+        QCOMPARE(ItemText::value(eng_prop_pitch, Value::of(255)), QStringLiteral("100.0 %"));
+        QCOMPARE(ItemText::parseNumber(eng_prop_pitch, QStringLiteral("50 %")), std::optional<std::int64_t>(128));
+        QCOMPARE(ItemText::parseNumber(eng_prop_pitch, QStringLiteral("100.1")), std::nullopt);
+        // MHz for kHz, to the kHz and no finer.
+        QCOMPARE(ItemText::value(Rx_freq, Value::of(127712)), QStringLiteral("127.712 MHz"));
+        QCOMPARE(ItemText::parseNumber(Tx_freq, QStringLiteral("127.712 MHz")), std::optional<std::int64_t>(127712));
+        QCOMPARE(ItemText::parseNumber(Tx_freq, QStringLiteral("127.7125")), std::nullopt);
+        QCOMPARE(ItemText::value(cam_elev, Value::of(-5464)), QStringLiteral("-54.64\u00b0"));
+        // Transmit power: the console offers 0..50 dBm (1 mW..100 W).
+        QCOMPARE(ItemText::parseNumber(Tx_OP_power, QStringLiteral("50")), std::optional<std::int64_t>(50));
+        QCOMPARE(ItemText::parseNumber(Tx_OP_power, QStringLiteral("51 dBm")), std::nullopt);
+        QCOMPARE(ItemText::parseNumber(Tx_OP_power, QStringLiteral("170")), std::nullopt);
+
+        // What the panels do not change: the text format and the encoder, in kHz, 0..255 dBm, codes.
+        Message m = m_command.message();
+        m.radios[0].set(Rx_freq, 127712);
+        m.radios[0].set(Tx_OP_power, 170);
+        const std::string text = formatMessage(m);
+        QVERIFY(text.find("Rx_freq 127712\n") != std::string::npos);
+        QVERIFY(text.find("Tx_OP_power 170\n") != std::string::npos);
+        QVERIFY(text.find("slave=NO_SLAVE") != std::string::npos);
+        QVERIFY(parseMessage(text).ok());
+        QVERIFY(!wireItems(m).empty());  // encodes
     }
 
     void enginePanel()

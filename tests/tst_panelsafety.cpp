@@ -144,8 +144,8 @@ private slots:
         for (QWidget* widget : panels.all<QWidget>()) {
             if (!widget->isVisible())
                 continue;
-            for (const QPoint delta : {QPoint(0, 120), QPoint(0, -120), QPoint(0, -360), QPoint(120, 0),
-                                       QPoint(-240, 0), QPoint(0, 15)})
+            for (const QPoint delta :
+                 {QPoint(0, 120), QPoint(0, -120), QPoint(0, -360), QPoint(120, 0), QPoint(-240, 0), QPoint(0, 15)})
                 turnWheel(widget, delta);
             ++turned;
         }
@@ -210,7 +210,7 @@ private slots:
         QVERIFY(activate(&panels.area));
         const QByteArray before = block1(m_command.message());
         QSignalSpy changed(&m_command, &CommandState::changed);
-        const Qt::Key moves[] = {Qt::Key_Up,     Qt::Key_Down, Qt::Key_Left, Qt::Key_Right, Qt::Key_PageUp,
+        const Qt::Key moves[] = {Qt::Key_Up,       Qt::Key_Down, Qt::Key_Left, Qt::Key_Right, Qt::Key_PageUp,
                                  Qt::Key_PageDown, Qt::Key_Home, Qt::Key_End,  Qt::Key_R,     Qt::Key_G};
         for (FieldComboBox* combo : panels.all<FieldComboBox>()) {
             combo->setFocus();
@@ -434,8 +434,10 @@ private slots:
     void nightThemeIsReadable()
     {
         using R = QPalette::ColorRole;
-        const std::pair<R, R> pairs[] = {{R::WindowText, R::Window},   {R::Text, R::Base},
-                                         {R::ButtonText, R::Button},   {R::ToolTipText, R::ToolTipBase},
+        const std::pair<R, R> pairs[] = {{R::WindowText, R::Window},
+                                         {R::Text, R::Base},
+                                         {R::ButtonText, R::Button},
+                                         {R::ToolTipText, R::ToolTipBase},
                                          {R::Text, R::AlternateBase}};
         for (Theme::Kind kind : {Theme::Kind::Day, Theme::Kind::Night}) {
             const QPalette palette = Theme::palette(kind);

@@ -82,8 +82,7 @@ QString mutedColour(const QPalette& palette)
     const QColor text = palette.color(QPalette::Text);
     const QColor base = palette.color(QPalette::Base);
     auto mix = [](int a, int b) { return (2 * a + b) / 3; };
-    return QColor(mix(text.red(), base.red()), mix(text.green(), base.green()), mix(text.blue(), base.blue()))
-        .name();
+    return QColor(mix(text.red(), base.red()), mix(text.green(), base.green()), mix(text.blue(), base.blue())).name();
 }
 
 }  // namespace

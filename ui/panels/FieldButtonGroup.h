@@ -2,8 +2,8 @@
 // valid code from the item table, in words (Out (down) | Retracted, Off | On):
 // for the switches an operator must see the position of at a glance. The
 // buttons are named after their codes (objectName "RETRACTED"). Only a click
-// or Space on a button changes the field, never an arrow key or the wheel. A guard, when set, may refuse a change before it
-// reaches the command (the fuel dump's confirmation).
+// or Space on a button changes the field, never an arrow key or the wheel. A guard, when set, may refuse a change
+// before it reaches the command (the fuel dump's confirmation).
 #pragma once
 
 #include "codec/message/ItemTable.h"

@@ -5,6 +5,8 @@
 
 #include <QRegularExpression>
 
+#include <algorithm>
+
 namespace ItemText {
 namespace {
 
@@ -56,12 +58,10 @@ QString toolTip(rcm::ItemId id)
     QString range;
     switch (info.kind) {
         case rcm::ValueKind::Unsigned:
-        case rcm::ValueKind::Signed:
-        {
+        case rcm::ValueKind::Signed: {
             const rcm::Presentation shown = rcm::presentation(info);
             range = number(id, shown.min) + QStringLiteral("..") + number(id, shown.max) + unitSuffix(id);
-        }
-            break;
+        } break;
         case rcm::ValueKind::Station:
             range = QStringLiteral("country as ISO alpha-2 or dialling code %1..%2, unit 0..65535")
                         .arg(info.min)
@@ -80,7 +80,7 @@ QString fieldToolTip(rcm::ItemId id, int field)
 {
     QStringList codes;
     for (unsigned code : validFieldCodes(id, field))
-        codes << fieldCodeName(id, field, code);
+        codes << fieldCodeWord(id, field, code);
     return label(id, field) + QStringLiteral(" (") + label(id) + QStringLiteral("): ") +
            codes.join(QStringLiteral(", "));
 }
@@ -122,10 +122,11 @@ std::optional<std::int64_t> parseNumber(rcm::ItemId id, QString text)
     std::int64_t scaled = m.captured(2).toLongLong() * unit + (fraction.isEmpty() ? 0 : fraction.toLongLong());
     if (m.captured(1) == QStringLiteral("-"))
         scaled = -scaled;
-    const std::int64_t wire = roundedQuotient(scaled * shown.wire, shown.shown * unit);
-    if (wire < shown.min || wire > shown.max)
+    // Outside the range as shown (100.1 %), even where it would round into it.
+    const auto shownScaled = [&](std::int64_t wire) { return roundedQuotient(wire * shown.shown * unit, shown.wire); };
+    if (scaled < shownScaled(shown.min) || scaled > shownScaled(shown.max))
         return std::nullopt;
-    return wire;
+    return std::clamp(roundedQuotient(scaled * shown.wire, shown.shown * unit), shown.min, shown.max);
 }
 
 QString fieldCodeWord(rcm::ItemId id, int field, unsigned code)

@@ -29,7 +29,7 @@ QString unitSuffix(rcm::ItemId id);
 // wire, the nearest one; nothing when it is not a number with at most the
 // shown decimals or lies outside the range the console offers.
 std::optional<std::int64_t> parseNumber(rcm::ItemId id, QString text);
-// "Control source (Engine status): AUTO, GCS, RC"
+// "Control source (Engine status): Automatic, Ground station, RC transmitter"
 QString fieldToolTip(rcm::ItemId id, int field);
 // The table's name of a field code ("GCS"); "corrupt (00)" for a code meaning data corruption.
 QString fieldCodeName(rcm::ItemId id, int field, unsigned code);

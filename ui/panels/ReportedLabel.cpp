@@ -58,16 +58,14 @@ void ReportedLabel::refresh()
     const QString what = ItemText::label(m_id, m_field);
     const QString commanded = text(m_command->value(m_ref, m_id));
     if (mismatch && stale)
-        setToolTip(tr("%1: commanded %2, last reported %3 %n s ago; no status frame since to confirm it", nullptr,
-                      seconds)
-                       .arg(what, commanded, text(reported)));
+        setToolTip(
+            tr("%1: commanded %2, last reported %3 %n s ago; no status frame since to confirm it", nullptr, seconds)
+                .arg(what, commanded, text(reported)));
     else if (mismatch)
         setToolTip(tr("%1: commanded %2, reported %3 for %n status frames", nullptr, frames)
                        .arg(what, commanded, text(reported)));
     else if (stale)
-        setToolTip(tr("%1 as the aircraft reported it %n s ago; no status frame since", nullptr,
-                      seconds)
-                       .arg(what));
+        setToolTip(tr("%1 as the aircraft reported it %n s ago; no status frame since", nullptr, seconds).arg(what));
     else
         setToolTip(tr("%1 as the aircraft last reported it").arg(what));
 }

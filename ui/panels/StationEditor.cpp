@@ -161,7 +161,8 @@ StationEditor::Typed StationEditor::typed() const
         return {std::nullopt, m_country, tr("No country for unit %1").arg(unit)};
     const auto code = countryCode(country);
     if (!code)
-        return {std::nullopt, m_country, tr("%1 is not an ISO 3166 country with a dialling code").arg(country.toUpper())};
+        return {std::nullopt, m_country,
+                tr("%1 is not an ISO 3166 country with a dialling code").arg(country.toUpper())};
     if (unit.isEmpty())
         return {std::nullopt, m_unit, tr("No unit number for %1").arg(country.toUpper())};
     if (unit.toInt() > kUnitMax)
@@ -193,8 +194,8 @@ void StationEditor::fieldLeft()
     for (QLineEdit* f : {m_country, m_unit}) {
         f->setStyleSheet(differs ? DeliberateInput::editedStyle("QLineEdit") : QString());
         if (differs)
-            f->setToolTip(tr("Not sent yet: Enter, or leaving the station, sends it; the command keeps %1")
-                              .arg(commandedText()));
+            f->setToolTip(
+                tr("Not sent yet: Enter, or leaving the station, sends it; the command keeps %1").arg(commandedText()));
     }
 }
 
