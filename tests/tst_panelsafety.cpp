@@ -29,6 +29,7 @@
 #include <QAbstractButton>
 #include <QApplication>
 #include <QLineEdit>
+#include <QPushButton>
 #include <QScrollArea>
 #include <QScrollBar>
 #include <QStyle>
@@ -97,6 +98,25 @@ struct AllPanels {
     {
         return area.widget()->findChildren<T*>();
     }
+    // Every widget an operator changes the command with.
+    QList<QWidget*> commandControls() const
+    {
+        QList<QWidget*> controls;
+        for (auto* w : all<ItemSpinBox>())
+            controls << w;
+        for (auto* w : all<ItemSlider>())
+            controls << w;
+        for (auto* w : all<FieldComboBox>())
+            controls << w;
+        for (auto* w : all<StationEditor>())
+            controls << w->countryEdit() << w->unitEdit();
+        for (auto* group : all<FieldButtonGroup>())
+            for (auto* w : group->findChildren<QAbstractButton*>())
+                controls << w;
+        for (auto* w : area.widget()->findChildren<QPushButton*>(QStringLiteral("take_one_photo")))
+            controls << w;
+        return controls;
+    }
     QScrollArea area;
 };
 
@@ -162,19 +182,12 @@ private slots:
     {
         AllPanels panels(&m_command, &m_reported);
         QVERIFY(QTest::qWaitForWindowExposed(&panels.area));
-        QList<QWidget*> controls;
-        for (auto* w : panels.all<ItemSpinBox>())
-            controls << w << w->findChildren<QWidget*>();
-        for (auto* w : panels.all<ItemSlider>())
-            controls << w;
-        for (auto* w : panels.all<FieldComboBox>())
-            controls << w;
-        for (auto* w : panels.all<StationEditor>())
-            controls << w->countryEdit() << w->unitEdit();
-        QCOMPARE_GT(controls.size(), 50);
-        for (QWidget* w : std::as_const(controls))
-            for (const QPoint delta : {QPoint(0, 120), QPoint(0, -120), QPoint(120, 0)})
-                QVERIFY2(!turnWheel(w, delta), qPrintable(w->objectName()));
+        const QList<QWidget*> controls = panels.commandControls();
+        QCOMPARE(controls.size(), 30 + 6 + 8 + 7 * 2 + 18 * 2 + 2);
+        for (QWidget* control : controls)
+            for (QWidget* w : QList<QWidget*>{control} + control->findChildren<QWidget*>())
+                for (const QPoint delta : {QPoint(0, 120), QPoint(0, -120), QPoint(120, 0)})
+                    QVERIFY2(!turnWheel(w, delta), qPrintable(control->objectName()));
 
         // And the area does scroll with an event nobody below it took.
         QScrollBar* scroll = panels.area.verticalScrollBar();
@@ -187,20 +200,11 @@ private slots:
     void commandControlsNeverTakeFocusFromTheWheel()
     {
         AllPanels panels(&m_command, &m_reported);
-        QList<QWidget*> controls;
-        for (auto* w : panels.all<ItemSpinBox>())
-            controls << w;
-        for (auto* w : panels.all<FieldComboBox>())
-            controls << w;
-        for (auto* w : panels.all<StationEditor>())
-            controls << w->countryEdit() << w->unitEdit();
-        for (auto* group : panels.all<FieldButtonGroup>())
-            for (auto* w : group->findChildren<QAbstractButton*>())
-                controls << w;
-        for (QWidget* w : std::as_const(controls))
-            QVERIFY2(w->focusPolicy() == Qt::StrongFocus, qPrintable(w->objectName()));
-        for (auto* slider : panels.all<ItemSlider>())
-            QCOMPARE(slider->focusPolicy(), Qt::NoFocus);  // the spin box beside it takes the keyboard
+        for (QWidget* w : panels.commandControls()) {
+            // A slider takes no focus at all: the spin box beside it takes the keyboard.
+            const Qt::FocusPolicy wanted = qobject_cast<ItemSlider*>(w) ? Qt::NoFocus : Qt::StrongFocus;
+            QVERIFY2(w->focusPolicy() == wanted, qPrintable(w->objectName()));
+        }
     }
 
     // A key pressed by mistake on a focused control: nothing goes out.
