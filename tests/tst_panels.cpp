@@ -8,6 +8,7 @@
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/message/TextFormat.h"
 #include "link/simulation/SimulatedAircraft.h"
 #include "ui/panels/CameraPanel.h"
 #include "ui/panels/CommandState.h"
@@ -29,6 +30,8 @@
 #include "ui/panels/UnitCard.h"
 
 #include <QAbstractButton>
+#include <QAbstractItemView>
+#include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
 #include <QStyle>
@@ -93,7 +96,25 @@ QStringList changedItems(const Message& before, const Message& after)
 QString fieldName(const Unit& unit, ItemId id, int field)
 {
     const Value* v = unit.find(id);
-    return v ? ItemText::fieldValue(id, field, *v) : QString();
+    return v ? ItemText::fieldCodeName(id, field, fieldCode(static_cast<std::uint8_t>(v->number), field)) : QString();
+}
+
+// Chooses from a combo box's list as an operator does: Space opens it, the
+// arrow keys move in it (Key_End to the last entry), Enter takes the entry.
+void choose(QComboBox* combo, Qt::Key key, int times = 1)
+{
+    QTest::keyClick(combo, Qt::Key_Space);
+    QTRY_VERIFY(combo->view()->isVisible());
+    for (int i = 0; i < times; ++i)
+        QTest::keyClick(combo->view(), key);
+    QTest::keyClick(combo->view(), Qt::Key_Return);
+}
+
+// Steps a spin box with the arrow keys and sends the result with Enter.
+void stepAndEnter(QAbstractSpinBox* spinBox, Qt::Key key)
+{
+    QTest::keyClick(spinBox, key);
+    QTest::keyClick(spinBox, Qt::Key_Enter);
 }
 
 // Replaces a spin box's text by typing, then Enter: what an operator does.
@@ -203,24 +224,78 @@ private slots:
         QVERIFY(card);
         auto* pitch = child<ItemSpinBox>(card, QStringLiteral("eng_prop_pitch"));
         QVERIFY(pitch);
-        QCOMPARE(pitch->toolTip(), QStringLiteral("Propeller pitch, 0..255"));
+        QCOMPARE(pitch->toolTip(), QStringLiteral("Propeller pitch, 0.0..100.0 %"));
+        QCOMPARE(pitch->suffix(), QStringLiteral(" %"));
         QCOMPARE(pitch->minimum(), 0.0);
         QCOMPARE(pitch->maximum(), 255.0);
         auto* control = child<FieldComboBox>(card, QStringLiteral("eng_status.control"));
         QVERIFY(control);
         QCOMPARE(control->count(), 3);
-        QCOMPARE(control->itemText(0), QStringLiteral("AUTO"));
-        QCOMPARE(control->itemText(1), QStringLiteral("GCS"));
-        QCOMPARE(control->itemText(2), QStringLiteral("RC"));
-        QCOMPARE(control->currentText(), QStringLiteral("AUTO"));
+        QCOMPARE(control->itemText(0), QStringLiteral("Automatic"));
+        QCOMPARE(control->itemText(1), QStringLiteral("Ground station"));
+        QCOMPARE(control->itemText(2), QStringLiteral("RC transmitter"));
+        QCOMPARE(control->currentText(), QStringLiteral("Automatic"));
 
         auto camera = shown<CameraPanel>();
         auto* compass = child<ItemSpinBox>(camera.get(), QStringLiteral("cam_mag_compass"));
         QVERIFY(compass);
-        QCOMPARE(compass->toolTip(), QStringLiteral("Compass bearing, 0.00..359.99 deg"));
-        QCOMPARE(compass->decimals(), 2);
-        QCOMPARE(compass->maximum(), 359.99);
-        QCOMPARE(compass->suffix(), QStringLiteral(" deg"));
+        QCOMPARE(compass->toolTip(), QStringLiteral("Compass bearing, 0.00..359.99\u00b0"));
+        QCOMPARE(compass->maximum(), 35999.0);  // hundredths of a degree, as on the wire
+        QCOMPARE(compass->suffix(), QStringLiteral("\u00b0"));
+
+        // Frequencies in MHz, kHz on the wire; transmit power within what a real set gives.
+        auto radios = shown<RadioPanel>();
+        auto* rx = child<ItemSpinBox>(radios.get(), QStringLiteral("Rx_freq"));
+        QCOMPARE(rx->suffix(), QStringLiteral(" MHz"));
+        QCOMPARE(rx->textFromValue(127712), QStringLiteral("127.712"));
+        auto* power = child<ItemSpinBox>(radios.get(), QStringLiteral("Tx_OP_power"));
+        QCOMPARE(power->toolTip(), QStringLiteral("Transmit power, 0..50 dBm"));
+        QCOMPARE(power->maximum(), 50.0);
+    }
+
+    // Panels show words and units for people; the wire, the text format and
+    // the encoder keep the profile's codes, units and ranges.
+    void wordsAndUnitsForPeopleTheWireUnchanged()
+    {
+        for (const ItemInfo& item : itemTable())
+            for (int field = 0; field < static_cast<int>(item.fields.size()); ++field)
+                for (unsigned code : ItemText::validFieldCodes(item.id, field))
+                    QVERIFY2(
+                        ItemText::fieldCodeWord(item.id, field, code) != ItemText::fieldCodeName(item.id, field, code),
+                        qPrintable(ItemText::fieldCodeName(item.id, field, code)));
+        QCOMPARE(ItemText::fieldCodeWord(eng_status, 1, 2), QStringLiteral("Master and slave"));
+        QCOMPARE(ItemText::fieldCodeWord(ENABLE_fuel_dump, 1, 1), QStringLiteral("Keep fuel"));
+        QCOMPARE(ItemText::fieldCodeWord(eng_status, 1, 3), QStringLiteral("corrupt (11)"));
+
+        // Percent of a 0..255 setting: every value shows apart and reads back as itself.
+        for (ItemId id :
+             {eng_prop_pitch, eng_carb_SET, SA_zoom_LHS_cam, SA_zoom_FWD_cam, SA_zoom_RHS_cam, cam_zoom_set})
+            for (std::int64_t wire = 0; wire <= 255; ++wire)
+                QCOMPARE(ItemText::parseNumber(id, ItemText::number(id, wire)), std::optional<std::int64_t>(wire));
+        QCOMPARE(ItemText::value(eng_prop_pitch, Value::of(128)), QStringLiteral("50.2 %"));
+        QCOMPARE(ItemText::value(eng_prop_pitch, Value::of(255)), QStringLiteral("100.0 %"));
+        QCOMPARE(ItemText::parseNumber(eng_prop_pitch, QStringLiteral("50 %")), std::optional<std::int64_t>(128));
+        QCOMPARE(ItemText::parseNumber(eng_prop_pitch, QStringLiteral("100.1")), std::nullopt);
+        // MHz for kHz, to the kHz and no finer.
+        QCOMPARE(ItemText::value(Rx_freq, Value::of(127712)), QStringLiteral("127.712 MHz"));
+        QCOMPARE(ItemText::parseNumber(Tx_freq, QStringLiteral("127.712 MHz")), std::optional<std::int64_t>(127712));
+        QCOMPARE(ItemText::parseNumber(Tx_freq, QStringLiteral("127.7125")), std::nullopt);
+        QCOMPARE(ItemText::value(cam_elev, Value::of(-5464)), QStringLiteral("-54.64\u00b0"));
+        // Transmit power: the console offers 0..50 dBm (1 mW..100 W).
+        QCOMPARE(ItemText::parseNumber(Tx_OP_power, QStringLiteral("50")), std::optional<std::int64_t>(50));
+        QCOMPARE(ItemText::parseNumber(Tx_OP_power, QStringLiteral("51 dBm")), std::nullopt);
+        QCOMPARE(ItemText::parseNumber(Tx_OP_power, QStringLiteral("170")), std::nullopt);
+
+        // What the panels do not change: the text format and the encoder, in kHz, 0..255 dBm, codes.
+        Message m = m_command.message();
+        m.radios[0].set(Rx_freq, 127712);
+        m.radios[0].set(Tx_OP_power, 170);
+        const std::string text = formatMessage(m);
+        QVERIFY(text.find("Rx_freq 127712\n") != std::string::npos);
+        QVERIFY(text.find("Tx_OP_power 170\n") != std::string::npos);
+        QVERIFY(text.find("slave=NO_SLAVE") != std::string::npos);
+        QVERIFY(parseMessage(text).ok());
+        QVERIFY(!wireItems(m).empty());  // encodes
     }
 
     void enginePanel()
@@ -233,34 +308,34 @@ private slots:
 
         Message before = m_command.message();
         auto* control = child<FieldComboBox>(card, QStringLiteral("eng_status.control"));
-        QTest::keyClick(control, Qt::Key_Down);
+        choose(control, Qt::Key_Down);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 2 eng_status")});
         QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 0), QStringLiteral("GCS"));
         QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 1), QStringLiteral("NO_SLAVE"));
-        QTest::keyClick(control, Qt::Key_End);
+        choose(control, Qt::Key_End);
         QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 0), QStringLiteral("RC"));
 
         before = m_command.message();
-        QTest::keyClick(child<FieldComboBox>(card, QStringLiteral("eng_status.slave")), Qt::Key_Down);
+        choose(child<FieldComboBox>(card, QStringLiteral("eng_status.slave")), Qt::Key_Down);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 2 eng_status")});
         QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 1), QStringLiteral("MASTER_SLAVE"));
         QCOMPARE(fieldName(m_command.message().engines[1], eng_status, 0), QStringLiteral("RC"));
 
         before = m_command.message();
-        typeInto(child<ItemSpinBox>(card, QStringLiteral("eng_prop_pitch")), QStringLiteral("120"));
+        typeInto(child<ItemSpinBox>(card, QStringLiteral("eng_prop_pitch")), QStringLiteral("47.1"));
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 2 eng_prop_pitch")});
-        QCOMPARE(m_command.message().engines[1].number(eng_prop_pitch), 120);
+        QCOMPARE(m_command.message().engines[1].number(eng_prop_pitch), 120);  // 47.1 % of 255
 
         before = m_command.message();
-        QTest::keyClick(child<ItemSpinBox>(card, QStringLiteral("eng_carb_SET")), Qt::Key_Up);
+        stepAndEnter(child<ItemSpinBox>(card, QStringLiteral("eng_carb_SET")), Qt::Key_Up);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 2 eng_carb_SET")});
         QCOMPARE(m_command.message().engines[1].number(eng_carb_SET), 1);
 
-        // Typing does not command each digit on the way: one change for "200".
+        // Typing does not command each digit on the way: one change for "78.4" (200).
         QSignalSpy changed(&m_command, &CommandState::changed);
         auto* carb = child<ItemSpinBox>(card, QStringLiteral("eng_carb_SET"));
         QTest::keyClick(carb, Qt::Key_A, Qt::ControlModifier);
-        QTest::keyClicks(carb, QStringLiteral("200"));
+        QTest::keyClicks(carb, QStringLiteral("78.4"));
         QCOMPARE(changed.count(), 0);
         QTest::keyClick(carb, Qt::Key_Enter);
         QCOMPARE(changed.count(), 1);
@@ -275,13 +350,18 @@ private slots:
         QVERIFY(rudderSlider && rudderSpin);
         QCOMPARE(rudderSlider->minimum(), -127);
         QCOMPARE(rudderSlider->maximum(), 127);
-        QCOMPARE(rudderSpin->toolTip(), QStringLiteral("Rudder, -127..127 deg"));
+        QCOMPARE(rudderSpin->toolTip(), QStringLiteral("Rudder, -127..127\u00b0"));
 
+        // The handle dragged to the right.
         Message before = m_command.message();
-        QTest::keyClick(rudderSlider, Qt::Key_PageUp);
+        const QPoint middle(rudderSlider->width() / 2, rudderSlider->height() / 2);
+        QTest::mousePress(rudderSlider, Qt::LeftButton, {}, middle);
+        QTest::mouseMove(rudderSlider, middle + QPoint(10, 0));
+        QTest::mouseRelease(rudderSlider, Qt::LeftButton, {}, middle + QPoint(10, 0));
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps F_rudder_set")});
-        QCOMPARE(m_command.message().flaps.number(F_rudder_set), 10);
-        QCOMPARE(rudderSpin->value(), 10.0);
+        QCOMPARE_GT(m_command.message().flaps.number(F_rudder_set), 0);
+        QCOMPARE(m_command.message().flaps.number(F_rudder_set), rudderSlider->value());
+        QCOMPARE(rudderSpin->value(), double(rudderSlider->value()));
 
         before = m_command.message();
         auto* elevatorSpin = child<ItemSpinBox>(panel.get(), QStringLiteral("F_elev_set"));
@@ -290,23 +370,29 @@ private slots:
         QCOMPARE(m_command.message().flaps.number(F_elev_set), -20);
         QCOMPARE(child<ItemSlider>(panel.get(), QStringLiteral("F_elev_set.slider"))->value(), -20);
 
-        // -128 is not a valid angle: the spin box refuses the key that would make it.
+        // -128 is not a valid angle: shown as invalid, not sent, left for correction.
         typeInto(elevatorSpin, QStringLiteral("-128"));
-        QCOMPARE(m_command.message().flaps.number(F_elev_set), -12);
+        QCOMPARE(m_command.message().flaps.number(F_elev_set), -20);
+        QVERIFY(elevatorSpin->invalid());
+        QTest::keyClick(elevatorSpin, Qt::Key_Escape);
+        QVERIFY(!elevatorSpin->invalid());
+        QCOMPARE(elevatorSpin->text(), QStringLiteral("-20\u00b0"));
 
         before = m_command.message();
-        QTest::keyClick(child<ItemSlider>(panel.get(), QStringLiteral("F_aileron_LHS_set.slider")), Qt::Key_Left);
+        auto* aileron = child<ItemSpinBox>(panel.get(), QStringLiteral("F_aileron_LHS_set"));
+        stepAndEnter(aileron, Qt::Key_Down);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps F_aileron_LHS_set")});
         QCOMPARE(m_command.message().flaps.number(F_aileron_LHS_set), -1);
+        QCOMPARE(child<ItemSlider>(panel.get(), QStringLiteral("F_aileron_LHS_set.slider"))->value(), -1);
 
         before = m_command.message();
-        QTest::keyClick(child<FieldComboBox>(panel.get(), QStringLiteral("FLAP_status.slave_aileron")), Qt::Key_Down);
+        choose(child<FieldComboBox>(panel.get(), QStringLiteral("FLAP_status.slave_aileron")), Qt::Key_Down);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps FLAP_status")});
         QCOMPARE(fieldName(m_command.message().flaps, FLAP_status, 1), QStringLiteral("MASTER_SLAVE"));
         QCOMPARE(fieldName(m_command.message().flaps, FLAP_status, 0), QStringLiteral("AUTO"));
 
         before = m_command.message();
-        QTest::keyClick(child<FieldComboBox>(panel.get(), QStringLiteral("FLAP_status.control")), Qt::Key_Down);
+        choose(child<FieldComboBox>(panel.get(), QStringLiteral("FLAP_status.control")), Qt::Key_Down);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("flaps FLAP_status")});
         QCOMPARE(fieldName(m_command.message().flaps, FLAP_status, 0), QStringLiteral("GCS"));
     }
@@ -368,7 +454,7 @@ private slots:
         Message before = m_command.message();
         QTest::mouseClick(dump2, Qt::LeftButton);
         QCOMPARE(questions.size(), 1);
-        QVERIFY(questions.last().contains(QStringLiteral("Dump tank 2: DUMP?")));
+        QVERIFY2(questions.last().contains(QStringLiteral("Dump tank 2: Dump?")), qPrintable(questions.last()));
         QCOMPARE(changed.count(), 0);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{});
         QVERIFY(keep2->isChecked());
@@ -422,14 +508,14 @@ private slots:
 
         before = m_command.message();
         auto* rx = child<ItemSpinBox>(card, QStringLiteral("Rx_freq"));
-        QCOMPARE(rx->suffix(), QStringLiteral(" kHz"));
-        typeInto(rx, QStringLiteral("127712"));
+        QCOMPARE(rx->suffix(), QStringLiteral(" MHz"));
+        typeInto(rx, QStringLiteral("127.712"));
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("radio VHF2 Rx_freq")});
         QCOMPARE(m_command.message().radios[1].number(Rx_freq), 127712);
 
         // Frequencies are 32-bit: beyond what an int spin box holds.
         before = m_command.message();
-        typeInto(child<ItemSpinBox>(card, QStringLiteral("Tx_freq")), QStringLiteral("4000000000"));
+        typeInto(child<ItemSpinBox>(card, QStringLiteral("Tx_freq")), QStringLiteral("4000000.000"));
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("radio VHF2 Tx_freq")});
         QCOMPARE(m_command.message().radios[1].number(Tx_freq), 4000000000LL);
 
@@ -445,7 +531,7 @@ private slots:
         auto* sense = child<UnitCard>(panel.get(), QStringLiteral("SENSE"));
         QVERIFY(sense);
         Message before = m_command.message();
-        typeInto(child<ItemSpinBox>(sense, QStringLiteral("SA_zoom_FWD_cam")), QStringLiteral("105"));
+        typeInto(child<ItemSpinBox>(sense, QStringLiteral("SA_zoom_FWD_cam")), QStringLiteral("41.2"));
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("SENSE SA_zoom_FWD_cam")});
         QCOMPARE(m_command.message().sense.number(SA_zoom_FWD_cam), 105);
 
@@ -465,13 +551,13 @@ private slots:
         QCOMPARE(m_command.message().cameras[1].number(cam_elev), -5464);
 
         before = m_command.message();
-        QTest::keyClick(child<ItemSpinBox>(card, QStringLiteral("cam_zoom_set")), Qt::Key_Up);
+        stepAndEnter(child<ItemSpinBox>(card, QStringLiteral("cam_zoom_set")), Qt::Key_Up);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("camera NIK 2 cam_zoom_set")});
 
         before = m_command.message();
         auto* destination = child<StationEditor>(card, QStringLiteral("ID_GCS_destination"));
         typeInto(destination->countryEdit(), QStringLiteral("GB"));
-        typeInto(destination->unitSpinBox(), QStringLiteral("30226"));
+        typeInto(destination->unitEdit(), QStringLiteral("30226"));
         QCOMPARE(changedItems(before, m_command.message()),
                  QStringList{QStringLiteral("camera NIK 2 ID_GCS_destination")});
         QCOMPARE(*m_command.message().cameras[1].find(cam_GCS_destination), Value::station({44, 30226}));
@@ -536,7 +622,7 @@ private slots:
 
         Message before = m_command.message();
         typeInto(source->countryEdit(), QStringLiteral("gb"));
-        typeInto(source->unitSpinBox(), QStringLiteral("133"));
+        typeInto(source->unitEdit(), QStringLiteral("133"));
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("HEADER ID_UA_source")});
         QCOMPARE(*m_command.message().header.find(ID_UA_source), Value::station({44, 133}));
         QCOMPARE(source->countryEdit()->text(), QStringLiteral("GB"));
@@ -544,7 +630,7 @@ private slots:
         // A dialling code is as good as the two letters.
         before = m_command.message();
         auto* backup = child<StationEditor>(panel.get(), QStringLiteral("ID_GCS_backup"));
-        typeInto(backup->unitSpinBox(), QStringLiteral("41251"));
+        typeInto(backup->unitEdit(), QStringLiteral("41251"));
         QCOMPARE(changedItems(before, m_command.message()), QStringList{});  // no country yet: not sent
         typeInto(backup->countryEdit(), QStringLiteral("49"));
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("HEADER ID_GCS_backup")});
@@ -562,11 +648,15 @@ private slots:
         QCOMPARE(changed.count(), 0);
         QCOMPARE(m_command.message(), before);
 
-        // An empty country: the item is no longer sent.
+        // Country and unit both empty: the item is no longer sent.
         typeInto(source->countryEdit(), QString());
+        QVERIFY(source->incomplete());  // a unit without a country is not a station
+        QCOMPARE(m_command.message(), before);
+        typeInto(source->unitEdit(), QString());
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("HEADER ID_UA_source")});
         QVERIFY(!m_command.message().header.has(ID_UA_source));
         QVERIFY(!source->countryEdit()->property("invalid").toBool());
+        QVERIFY(!source->incomplete());
     }
 
     void statusFramesFillTheReportedValues()
@@ -587,14 +677,14 @@ private slots:
         m_reported.onStatus(aircraft.status(kT0));
         QCOMPARE(updated.count(), 1);
         QCOMPARE(m_reported.statusFrames(), 1);
-        QCOMPARE(pitch->text(), QStringLiteral("77"));
+        QCOMPARE(pitch->text(), QStringLiteral("30.2 %"));  // 77 of 255
         QVERIFY(!pitch->mismatch());
         auto* rx = child<ReportedLabel>(child<UnitCard>(radios.get(), QStringLiteral("radio VHF1")),
                                         QStringLiteral("reported:Rx_freq"));
-        QCOMPARE(rx->text(), QStringLiteral("127712 kHz"));
+        QCOMPARE(rx->text(), QStringLiteral("127.712 MHz"));
         auto* receiver = child<ReportedLabel>(child<UnitCard>(radios.get(), QStringLiteral("radio VHF1")),
                                               QStringLiteral("reported:receiver_control.receiver"));
-        QCOMPARE(receiver->text(), QStringLiteral("OFF"));
+        QCOMPARE(receiver->text(), QStringLiteral("Off"));
         // The aircraft's identity, though the console has not commanded one.
         QCOMPARE(child<ReportedLabel>(header.get(), QStringLiteral("reported:ID_UA_source"))->text(),
                  QStringLiteral("GB_133"));
@@ -624,7 +714,7 @@ private slots:
         Message status = m_command.message();
         status.flaps.set(F_rudder_set, 5);
         m_reported.onStatus(status);
-        QCOMPARE(rudder->text(), QStringLiteral("5 deg"));
+        QCOMPARE(rudder->text(), QStringLiteral("5\u00b0"));
         QCOMPARE(m_reported.mismatchFrames(flaps, F_rudder_set), 1);
         QVERIFY(!rudder->mismatch());
         m_reported.onStatus(m_command.message());
@@ -638,7 +728,7 @@ private slots:
             QCOMPARE(m_reported.mismatchPersistent(flaps, F_rudder_set), frame == 3);
         }
         QVERIFY(rudder->styleSheet().contains(QStringLiteral("background")));
-        QVERIFY2(rudder->toolTip().contains(QStringLiteral("commanded 0 deg, reported 5 deg")),
+        QVERIFY2(rudder->toolTip().contains(QStringLiteral("commanded 0\u00b0, reported 5\u00b0")),
                  qPrintable(rudder->toolTip()));
 
         // A new command restarts the count: the aircraft has not had a frame to answer it.
@@ -659,7 +749,7 @@ private slots:
         other.flaps.erase(F_rudder_set);
         m_reported.onStatus(other);
         QCOMPARE(m_reported.mismatchFrames(flaps, F_rudder_set), 0);
-        QCOMPARE(rudder->text(), QStringLiteral("9 deg"));  // still the last value reported
+        QCOMPARE(rudder->text(), QStringLiteral("9\u00b0"));  // still the last value reported
     }
 
     void gearInTransitIsHighlightedPerWheel()
@@ -682,7 +772,7 @@ private slots:
             aircraft.statusSent();
         };
         frame(1);
-        QCOMPARE(nose->text(), QStringLiteral("OUT"));
+        QCOMPARE(nose->text(), QStringLiteral("Out (down)"));
         QVERIFY(!nose->mismatch());
         frame(2);
         QVERIFY(!nose->mismatch());
@@ -691,13 +781,13 @@ private slots:
         QVERIFY(nose->mismatch());
         QVERIFY(m_reported.mismatchPersistent(settings, land_wheels, 2));
         QVERIFY(m_reported.mismatchPersistent(settings, land_wheels));
-        QVERIFY2(nose->toolTip().contains(QStringLiteral("commanded RETRACTED, reported OUT")),
+        QVERIFY2(nose->toolTip().contains(QStringLiteral("commanded Retracted, reported Out (down)")),
                  qPrintable(nose->toolTip()));
         QVERIFY(!tail->mismatch());  // the other wheels agree
         QVERIFY(!m_reported.mismatchPersistent(settings, land_wheels, 3));
         frame(4);
         QVERIFY(!aircraft.gearMoving());
-        QCOMPARE(nose->text(), QStringLiteral("RETRACTED"));
+        QCOMPARE(nose->text(), QStringLiteral("Retracted"));
         QVERIFY(!nose->mismatch());
     }
 
@@ -737,7 +827,7 @@ private slots:
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("radio UHF7 receiver_control")});
 
         before = m_command.message();
-        typeInto(child<ItemSpinBox>(engines.get(), QStringLiteral("eng_prop_pitch")), QStringLiteral("42"));
+        typeInto(child<ItemSpinBox>(engines.get(), QStringLiteral("eng_prop_pitch")), QStringLiteral("42"));  // %
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("engine 1 eng_prop_pitch")});
 
         before = m_command.message();
@@ -751,9 +841,9 @@ private slots:
         small.apply(m_command.message());
         m_reported.onStatus(small.status(kT0));
         QCOMPARE(child<ReportedLabel>(engines.get(), QStringLiteral("reported:eng_prop_pitch"))->text(),
-                 QStringLiteral("42"));
+                 QStringLiteral("42.0 %"));
         QCOMPARE(child<ReportedLabel>(uhf, QStringLiteral("reported:receiver_control.transmitter"))->text(),
-                 QStringLiteral("ON"));
+                 QStringLiteral("On"));
 
         // Back to the big one.
         m_command.setAirframe(Airframe::wellEquipped());

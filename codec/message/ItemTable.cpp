@@ -14,38 +14,58 @@ constexpr std::array<std::string_view, 4> kDump{"", "NO_DUMP", "DUMP", ""};
 constexpr std::array<std::string_view, 4> kFacility{"", "DISABLED", "ENABLED", ""};
 constexpr std::array<std::string_view, 4> kPhoto{"", "NONE", "TAKE", ""};
 
+// The same codes for people.
+constexpr std::array<std::string_view, 4> kControlWords{"", "Automatic", "Ground station", "RC transmitter"};
+constexpr std::array<std::string_view, 4> kSlaveWords{"", "Independent", "Master and slave", ""};
+constexpr std::array<std::string_view, 4> kOnOffWords{"", "Off", "On", ""};
+constexpr std::array<std::string_view, 4> kWheelWords{"", "Out (down)", "Retracted", ""};
+constexpr std::array<std::string_view, 4> kDumpWords{"", "Keep fuel", "Dump", ""};
+constexpr std::array<std::string_view, 4> kFacilityWords{"", "Disabled", "Enabled", ""};
+constexpr std::array<std::string_view, 4> kPhotoWords{"", "None", "Take", ""};
+
+// A 0..255 setting "between the two extremes" (propeller pitch, carburettor,
+// zoom): people read it as percent of the way from one extreme to the other.
+constexpr Presentation kPercent{"%", 255, 100, 1};
+// The radios tune in kHz on the wire; airband frequencies are read in MHz.
+constexpr Presentation kMegahertz{"MHz", 1000, 1, 3};
+// uint8 dBm allows 255 dBm (10^22 W). The console offers 0..50 dBm, 1 mW to
+// 100 W: airborne VHF sets transmit 8..25 W (39..44 dBm), and 100 W is the
+// most any ground or airborne airband set gives. The text format and the
+// encoder still take 0..255, as the profile does.
+constexpr Presentation kTransmitPower{"dBm", 1, 1, 0, 0, 50};
+
 constexpr FieldInfo kEngStatus[] = {
-    {"control", kControl, "Control source"},
-    {"slave", kSlave, "Master engine 1 + slave engine 3"},
+    {"control", kControl, "Control source", kControlWords},
+    {"slave", kSlave, "Master engine 1 + slave engine 3", kSlaveWords},
 };
 constexpr FieldInfo kFlapStatus[] = {
-    {"control", kControl, "Control source"},
-    {"slave_aileron", kSlave, "Master LH + slave RH aileron"},
+    {"control", kControl, "Control source", kControlWords},
+    {"slave_aileron", kSlave, "Master LH + slave RH aileron", kSlaveWords},
 };
 constexpr FieldInfo kFuelDump[] = {
-    {"facility", kFacility, "Fuel dump facility"},
-    {"tank1", kDump, "Dump tank 1"},
-    {"tank2", kDump, "Dump tank 2"},
-    {"tank3", kDump, "Dump tank 3"},
+    {"facility", kFacility, "Fuel dump facility", kFacilityWords},
+    {"tank1", kDump, "Dump tank 1", kDumpWords},
+    {"tank2", kDump, "Dump tank 2", kDumpWords},
+    {"tank3", kDump, "Dump tank 3", kDumpWords},
 };
 constexpr FieldInfo kWheels[] = {
-    {"LHS", kWheel, "Left wheel"},
-    {"RHS", kWheel, "Right wheel"},
-    {"NOSE", kWheel, "Nose wheel"},
-    {"TAIL", kWheel, "Tail wheel"},
+    {"LHS", kWheel, "Left wheel", kWheelWords},
+    {"RHS", kWheel, "Right wheel", kWheelWords},
+    {"NOSE", kWheel, "Nose wheel", kWheelWords},
+    {"TAIL", kWheel, "Tail wheel", kWheelWords},
 };
 constexpr FieldInfo kLights[] = {
-    {"wing_RHS", kOnOff, "Right wing light"},
-    {"wing_LHS", kOnOff, "Left wing light"},
-    {"tail", kOnOff, "Tail light"},
-    {"wheel_brake", kOnOff, "Wheel brake"},
+    {"wing_RHS", kOnOff, "Right wing light", kOnOffWords},
+    {"wing_LHS", kOnOff, "Left wing light", kOnOffWords},
+    {"tail", kOnOff, "Tail light", kOnOffWords},
+    {"wheel_brake", kOnOff, "Wheel brake", kOnOffWords},
 };
 constexpr FieldInfo kRadioControl[] = {
-    {"receiver", kOnOff, "Receiver"},
-    {"transmitter", kOnOff, "Transmitter"},
+    {"receiver", kOnOff, "Receiver", kOnOffWords},
+    {"transmitter", kOnOff, "Transmitter", kOnOffWords},
 };
 constexpr FieldInfo kPhotoField[] = {
-    {"photo", kPhoto, "Take one photograph"},
+    {"photo", kPhoto, "Take one photograph", kPhotoWords},
 };
 
 using enum ItemId;
@@ -67,8 +87,8 @@ constexpr ItemInfo kItems[] = {
 
     {eng_ID, "eng_ID", 1, Unsigned, 0, 255, 1, "", Engine, "Engine ID", {}, true},
     {eng_status, "eng_status", 1, Fields, 0, 255, 1, "", Engine, "Engine status", kEngStatus},
-    {eng_prop_pitch, "eng_prop_pitch", 1, Unsigned, 0, 255, 1, "", Engine, "Propeller pitch", {}},
-    {eng_carb_SET, "eng_carb_SET", 1, Unsigned, 0, 255, 1, "", Engine, "Carburettor setting", {}},
+    {eng_prop_pitch, "eng_prop_pitch", 1, Unsigned, 0, 255, 1, "", Engine, "Propeller pitch", {}, false, kPercent},
+    {eng_carb_SET, "eng_carb_SET", 1, Unsigned, 0, 255, 1, "", Engine, "Carburettor setting", {}, false, kPercent},
 
     {FLAP_status, "FLAP_status", 1, Fields, 0, 255, 1, "", Flaps, "Flaps status", kFlapStatus},
     {F_aileron_LHS_set, "F_aileron_LHS_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Left aileron", {}},
@@ -86,18 +106,18 @@ constexpr ItemInfo kItems[] = {
 
     {system_ID, "system_ID", 8, Text, 0, 8, 1, "", Radio, "System ID", {}, true},
     {receiver_control, "receiver_control", 1, Fields, 0, 255, 1, "", Radio, "Receiver and transmitter", kRadioControl},
-    {Rx_freq, "Rx_freq", 4, Unsigned, 0, 0xFFFFFFFF, 1, "kHz", Radio, "Receive frequency", {}},
-    {Tx_freq, "Tx_freq", 4, Unsigned, 0, 0xFFFFFFFF, 1, "kHz", Radio, "Transmit frequency", {}},
-    {Tx_OP_power, "Tx_OP_power", 1, Unsigned, 0, 255, 1, "dBm", Radio, "Transmit power", {}},
+    {Rx_freq, "Rx_freq", 4, Unsigned, 0, 0xFFFFFFFF, 1, "kHz", Radio, "Receive frequency", {}, false, kMegahertz},
+    {Tx_freq, "Tx_freq", 4, Unsigned, 0, 0xFFFFFFFF, 1, "kHz", Radio, "Transmit frequency", {}, false, kMegahertz},
+    {Tx_OP_power, "Tx_OP_power", 1, Unsigned, 0, 255, 1, "dBm", Radio, "Transmit power", {}, false, kTransmitPower},
 
-    {SA_zoom_LHS_cam, "SA_zoom_LHS_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Left camera zoom", {}},
-    {SA_zoom_FWD_cam, "SA_zoom_FWD_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Forward camera zoom", {}},
-    {SA_zoom_RHS_cam, "SA_zoom_RHS_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Right camera zoom", {}},
+    {SA_zoom_LHS_cam, "SA_zoom_LHS_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Left camera zoom", {}, false, kPercent},
+    {SA_zoom_FWD_cam, "SA_zoom_FWD_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Forward camera zoom", {}, false, kPercent},
+    {SA_zoom_RHS_cam, "SA_zoom_RHS_cam", 1, Unsigned, 0, 255, 1, "", Sense, "Right camera zoom", {}, false, kPercent},
 
     {cam_ID, "cam_ID", 4, CameraId, 0, 255, 1, "", Camera, "Camera ID", {}, true},
     {cam_mag_compass, "cam_mag_compass", 2, Unsigned, 0, 35999, 100, "deg", Camera, "Compass bearing", {}},
     {cam_elev, "cam_elev", 2, Signed, -32767, 32767, 100, "deg", Camera, "Elevation", {}},
-    {cam_zoom_set, "cam_zoom_set", 1, Unsigned, 0, 255, 1, "", Camera, "Zoom", {}},
+    {cam_zoom_set, "cam_zoom_set", 1, Unsigned, 0, 255, 1, "", Camera, "Zoom", {}, false, kPercent},
     {take_one_photo, "take_one_photo", 1, Fields, 0, 255, 1, "", Camera, "Take one photo", kPhotoField},
     {cam_GCS_destination, "ID_GCS_destination", 4, Station, 1, kCountryMax, 1, "", Camera, "Imagery destination GCS", {}},
     {cam_GCS_backup, "ID_GCS_backup", 4, Station, 1, kCountryMax, 1, "", Camera, "Imagery backup GCS", {}},
@@ -155,6 +175,21 @@ const ItemInfo* findItem(UnitKind owner, std::string_view name)
         if (item.owner == owner && item.name == name)
             return &item;
     return nullptr;
+}
+
+Presentation presentation(const ItemInfo& item)
+{
+    Presentation shown = item.presentation.value_or(Presentation{item.unit, item.scale, 1, 0});
+    if (!item.presentation)
+        for (int scale = item.scale; scale > 1; scale /= 10)
+            ++shown.decimals;
+    if (shown.unit == "deg")
+        shown.unit = "\u00b0";
+    if (shown.max < shown.min) {
+        shown.min = item.min;
+        shown.max = item.max;
+    }
+    return shown;
 }
 
 int canonicalRank(ItemId id) { return kIndexById[static_cast<std::uint8_t>(id)]; }

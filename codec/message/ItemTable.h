@@ -80,6 +80,23 @@ struct FieldInfo {
     std::string_view name;
     std::array<std::string_view, 4> codes;
     std::string_view label;  // for people: "Control source"
+    // For people, indexed like `codes`: "Independent" for NO_SLAVE; empty: the code name.
+    std::array<std::string_view, 4> words{};
+};
+
+// How the console shows a number to people where that is not the text
+// format's unit and scale: `wire` units of the value are `shown` units of
+// `unit` (kHz as MHz: 1000 -> 1; a 0..255 setting as percent: 255 -> 100),
+// with `decimals`. The console offers `min`..`max` (wire units) when they
+// are narrower than the item's range; the encoder and the text format keep
+// the item's range.
+struct Presentation {
+    std::string_view unit;
+    std::int64_t wire = 1;
+    std::int64_t shown = 1;
+    int decimals = 0;
+    std::int64_t min = 0;
+    std::int64_t max = -1;  // below min: the item's own range
 };
 
 struct ItemInfo {
@@ -95,6 +112,7 @@ struct ItemInfo {
     std::string_view label;  // for people: "Propeller pitch"
     std::span<const FieldInfo> fields;  // Fields kind only, most significant first
     bool key = false;        // starts a repeated unit
+    std::optional<Presentation> presentation{};  // nothing: unit and scale as above
 };
 
 // All items in canonical order: the order an encoder emits them in.
@@ -105,6 +123,10 @@ const ItemInfo* findItem(std::uint8_t id);
 inline const ItemInfo* findItem(ItemId id) { return findItem(static_cast<std::uint8_t>(id)); }
 const ItemInfo& itemInfo(ItemId id);  // for IDs known to be items
 const ItemInfo* findItem(UnitKind owner, std::string_view name);
+
+// How the console shows the item: its presentation, or else its own unit
+// and scale with the range of the table ("deg" written as the degree sign).
+Presentation presentation(const ItemInfo& item);
 
 // Position of an item in canonical order; used to keep units sorted.
 int canonicalRank(ItemId id);

@@ -43,7 +43,7 @@ QString hexDump(QByteArrayView bytes, const QList<HexDumpPart>& parts, const QLi
             return QStringLiteral("&amp;");
         return QString(QLatin1Char(c));
     };
-    const QString markOn = QStringLiteral("<span style=\"background-color:#ffe08a\">");
+    const QString markOn = QStringLiteral("<span style=\"background-color:#ffe08a; color:black\">");
     const QString markOff = QStringLiteral("</span>");
 
     QString out;

@@ -5,6 +5,7 @@
 #include "ui/framelog/HexDump.h"
 
 #include <QDateTime>
+#include <QEvent>
 #include <QFontDatabase>
 #include <QHash>
 #include <QLabel>
@@ -71,7 +72,18 @@ QTextEdit* codeView()
     return view;
 }
 
-const QString kMarkStyle = QStringLiteral("background-color:#ffe08a");
+// Dark on pale yellow whatever the theme's text colour.
+const QString kMarkStyle = QStringLiteral("background-color:#ffe08a; color:black");
+
+// Lines that are not items (section names): the theme's text colour a third
+// of the way to its background, readable in day and night themes alike.
+QString mutedColour(const QPalette& palette)
+{
+    const QColor text = palette.color(QPalette::Text);
+    const QColor base = palette.color(QPalette::Base);
+    auto mix = [](int a, int b) { return (2 * a + b) / 3; };
+    return QColor(mix(text.red(), base.red()), mix(text.green(), base.green()), mix(text.blue(), base.blue())).name();
+}
 
 }  // namespace
 
@@ -120,6 +132,13 @@ void CommandPreview::frameSent(quint32 messageId)
     refresh();
 }
 
+void CommandPreview::changeEvent(QEvent* event)
+{
+    QWidget::changeEvent(event);
+    if (event->type() == QEvent::PaletteChange)
+        refresh();
+}
+
 void CommandPreview::resetSent()
 {
     m_lastSent.reset();
@@ -142,6 +161,7 @@ void CommandPreview::refresh()
             if (!k.key.isEmpty())
                 previous.insert(k.key, k.line);
     QString html = QStringLiteral("<pre style=\"margin:0\">");
+    const QString muted = mutedColour(m_text->palette());
     m_changedItems = 0;
     for (const KeyedLine& k : keyedLines(rcm::formatMessage(next))) {
         const bool changed = before && !k.key.isEmpty() && previous.value(k.key) != k.line;
@@ -149,7 +169,7 @@ void CommandPreview::refresh()
             ++m_changedItems;
             html += QStringLiteral("<span style=\"%1\"><b>%2</b></span>\n").arg(kMarkStyle, k.line.toHtmlEscaped());
         } else if (k.key.isEmpty()) {
-            html += QStringLiteral("<span style=\"color:#6b6b6b\">%1</span>\n").arg(k.line.toHtmlEscaped());
+            html += QStringLiteral("<span style=\"color:%1\">%2</span>\n").arg(muted, k.line.toHtmlEscaped());
         } else {
             html += k.line.toHtmlEscaped() + QLatin1Char('\n');
         }
@@ -197,9 +217,8 @@ void CommandPreview::refresh()
             tr("Next frame: ID_msg %1, %2. Same command as the last frame sent.").arg(m_nextId).arg(framing));
     else
         m_summary->setText(
-            tr("Next frame: ID_msg %1, %2. <span style=\"%3\"><b>%n item(s) changed</b></span> since the last "
-               "frame sent.",
-               nullptr, m_changedItems)
+            tr("Next frame: ID_msg %1, %2. <span style=\"%3\"><b>%4</b></span> since the last frame sent.")
                 .arg(m_nextId)
-                .arg(framing, kMarkStyle));
+                .arg(framing, kMarkStyle,
+                     m_changedItems == 1 ? tr("1 item changed") : tr("%1 items changed").arg(m_changedItems)));
 }

@@ -37,6 +37,10 @@ public slots:
     // A new link: nothing has been sent on it yet.
     void resetSent();
 
+protected:
+    // A new theme: the muted colour of the text view follows it.
+    void changeEvent(QEvent* event) override;
+
 private:
     void refresh();
 

@@ -1,10 +1,12 @@
 #include "ui/panels/FieldButtonGroup.h"
 
 #include "ui/panels/CommandState.h"
+#include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
 
 #include <QButtonGroup>
 #include <QHBoxLayout>
+#include <QKeyEvent>
 #include <QRadioButton>
 
 FieldButtonGroup::FieldButtonGroup(CommandState* command, UnitRef ref, rcm::ItemId id, int field, QWidget* parent)
@@ -16,9 +18,10 @@ FieldButtonGroup::FieldButtonGroup(CommandState* command, UnitRef ref, rcm::Item
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     for (unsigned code : ItemText::validFieldCodes(id, field)) {
-        const QString name = ItemText::fieldCodeName(id, field, code);
-        auto* button = new QRadioButton(name, this);
-        button->setObjectName(name);
+        auto* button = new QRadioButton(ItemText::fieldCodeWord(id, field, code), this);
+        button->setObjectName(ItemText::fieldCodeName(id, field, code));
+        DeliberateInput::protect(button);
+        button->installEventFilter(this);
         m_group->addButton(button, static_cast<int>(code));
         layout->addWidget(button);
     }
@@ -26,6 +29,24 @@ FieldButtonGroup::FieldButtonGroup(CommandState* command, UnitRef ref, rcm::Item
     refresh();
     connect(m_group, &QButtonGroup::idClicked, this, &FieldButtonGroup::commit);
     connect(command, &CommandState::changed, this, &FieldButtonGroup::refresh);
+}
+
+bool FieldButtonGroup::eventFilter(QObject* watched, QEvent* event)
+{
+    // In an exclusive group an arrow key checks the next button: a stray key
+    // would switch a light or a wheel. Space or a click on the button does.
+    if (event->type() == QEvent::KeyPress) {
+        switch (static_cast<QKeyEvent*>(event)->key()) {
+            case Qt::Key_Left:
+            case Qt::Key_Right:
+            case Qt::Key_Up:
+            case Qt::Key_Down:
+                return true;
+            default:
+                break;
+        }
+    }
+    return QWidget::eventFilter(watched, event);
 }
 
 QAbstractButton* FieldButtonGroup::button(unsigned code) const

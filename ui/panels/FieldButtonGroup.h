@@ -1,8 +1,9 @@
 // Exclusive buttons bound to one two-bit field of one commanded unit, one per
-// valid code name from the item table (OUT | RETRACTED, OFF | ON): for the
-// switches an operator must see the position of at a glance. The buttons are
-// named after their codes. A guard, when set, may refuse a change before it
-// reaches the command (the fuel dump's confirmation).
+// valid code from the item table, in words (Out (down) | Retracted, Off | On):
+// for the switches an operator must see the position of at a glance. The
+// buttons are named after their codes (objectName "RETRACTED"). Only a click
+// or Space on a button changes the field, never an arrow key or the wheel. A guard, when set, may refuse a change
+// before it reaches the command (the fuel dump's confirmation).
 #pragma once
 
 #include "codec/message/ItemTable.h"
@@ -30,6 +31,9 @@ public:
     QAbstractButton* button(unsigned code) const;
     rcm::ItemId item() const { return m_id; }
     int field() const { return m_field; }
+
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
     void refresh();

@@ -1,8 +1,10 @@
 #include "ui/panels/FieldComboBox.h"
 
 #include "ui/panels/CommandState.h"
+#include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
 
+#include <QKeyEvent>
 #include <QSignalBlocker>
 
 FieldComboBox::FieldComboBox(CommandState* command, UnitRef ref, rcm::ItemId id, int field, QWidget* parent)
@@ -10,9 +12,10 @@ FieldComboBox::FieldComboBox(CommandState* command, UnitRef ref, rcm::ItemId id,
 {
     setObjectName(ItemText::name(id, field));
     for (unsigned code : ItemText::validFieldCodes(id, field))
-        addItem(ItemText::fieldCodeName(id, field, code), code);
+        addItem(ItemText::fieldCodeWord(id, field, code), code);
     setToolTip(ItemText::fieldToolTip(id, field));
     setAccessibleName(ItemText::label(id, field));
+    DeliberateInput::protect(this);
     refresh();
     connect(this, &QComboBox::currentIndexChanged, this, &FieldComboBox::commit);
     connect(command, &CommandState::changed, this, &FieldComboBox::refresh);
@@ -34,4 +37,16 @@ void FieldComboBox::commit(int index)
 {
     if (index < 0 || !m_command->setFieldCode(m_ref, m_id, m_field, itemData(index).toUInt()))
         refresh();
+}
+
+void FieldComboBox::keyPressEvent(QKeyEvent* event)
+{
+    // Keys that open the list go through; the arrows, Home, End and letters
+    // that would change the selection in place are not the combo box's.
+    const bool alt = event->modifiers() & Qt::AltModifier;
+    const int key = event->key();
+    if (key == Qt::Key_Space || key == Qt::Key_F4 || (alt && (key == Qt::Key_Down || key == Qt::Key_Up)))
+        QComboBox::keyPressEvent(event);
+    else
+        event->ignore();
 }

@@ -1,6 +1,9 @@
 // A combo box bound to one two-bit field of one commanded unit: its entries
-// are the field's valid code names from the item table (AUTO, GCS, RC), so
-// no corrupt code (00, or 11 where it has no meaning) can be chosen.
+// are the field's valid codes from the item table, in words ("Automatic",
+// "Ground station", "RC transmitter"), so no corrupt code (00, or 11 where it
+// has no meaning) can be chosen. A change is a choice from the open
+// list: neither the wheel nor a stray arrow or letter key changes the field
+// (Space, F4 or Alt+Down open the list).
 #pragma once
 
 #include "codec/message/ItemTable.h"
@@ -18,6 +21,9 @@ public:
 
     rcm::ItemId item() const { return m_id; }
     int field() const { return m_field; }
+
+protected:
+    void keyPressEvent(QKeyEvent* event) override;
 
 private:
     void refresh();

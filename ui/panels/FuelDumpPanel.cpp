@@ -40,7 +40,7 @@ bool FuelDumpPanel::confirm(int field, unsigned code)
     if (code == resting.fieldCode(kItem, field))
         return true;
     QString question =
-        tr("Command %1: %2?").arg(ItemText::label(kItem, field), ItemText::fieldCodeName(kItem, field, code));
+        tr("Command %1: %2?").arg(ItemText::label(kItem, field), ItemText::fieldCodeWord(kItem, field, code));
     const UnitRef unit{rcm::UnitKind::FcuGeneral, 0};
     const bool facilityOff =
         m_command->fieldCode(unit, kItem, kFacilityField) == resting.fieldCode(kItem, kFacilityField);
@@ -55,7 +55,7 @@ bool FuelDumpPanel::confirm(int field, unsigned code)
         question += QLatin1Char('\n') +
                     tr("%1 is %2 now; the tank dumps as soon as that changes.")
                         .arg(ItemText::label(kItem, kFacilityField),
-                             ItemText::fieldCodeName(kItem, kFacilityField, resting.fieldCode(kItem, kFacilityField)));
+                             ItemText::fieldCodeWord(kItem, kFacilityField, resting.fieldCode(kItem, kFacilityField)));
     }
     question += QLatin1Char('\n') + tr("Dumped fuel cannot be recovered.");
     return m_confirmer && m_confirmer(this, question);

@@ -1,8 +1,10 @@
 #include "ui/panels/ItemSlider.h"
 
 #include "ui/panels/CommandState.h"
+#include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
 
+#include <QKeyEvent>
 #include <QSignalBlocker>
 
 ItemSlider::ItemSlider(CommandState* command, UnitRef ref, rcm::ItemId id, QWidget* parent)
@@ -17,6 +19,10 @@ ItemSlider::ItemSlider(CommandState* command, UnitRef ref, rcm::ItemId id, QWidg
     setTickInterval(static_cast<int>(info.max - info.min) / 4);
     setToolTip(ItemText::toolTip(id));
     setAccessibleName(ItemText::label(id));
+    // Moved by the mouse only: the spin box beside it takes the keyboard, so
+    // an arrow key pressed by mistake while the slider has focus moves nothing.
+    setFocusPolicy(Qt::NoFocus);
+    DeliberateInput::protect(this);
     refresh();
     connect(this, &QSlider::valueChanged, this, &ItemSlider::commit);
     connect(command, &CommandState::changed, this, &ItemSlider::refresh);
@@ -36,4 +42,9 @@ void ItemSlider::commit(int value)
 {
     if (!m_command->setNumber(m_ref, m_id, value))
         refresh();
+}
+
+void ItemSlider::keyPressEvent(QKeyEvent* event)
+{
+    event->ignore();
 }

@@ -3,6 +3,10 @@
 #include "codec/message/CountryCodes.h"
 #include "codec/message/ValueCodec.h"
 
+#include <QRegularExpression>
+
+#include <algorithm>
+
 namespace ItemText {
 namespace {
 
@@ -11,9 +15,18 @@ QString fromView(std::string_view s)
     return QString::fromUtf8(s.data(), static_cast<qsizetype>(s.size()));
 }
 
-QString withUnit(const rcm::ItemInfo& info, const QString& number)
+// a / b rounded to the nearest, halves away from zero; b > 0.
+std::int64_t roundedQuotient(std::int64_t a, std::int64_t b)
 {
-    return info.unit.empty() ? number : number + QLatin1Char(' ') + fromView(info.unit);
+    return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b);
+}
+
+std::int64_t powerOfTen(int decimals)
+{
+    std::int64_t p = 1;
+    while (decimals-- > 0)
+        p *= 10;
+    return p;
 }
 
 QString station(const rcm::Value& v)
@@ -45,10 +58,10 @@ QString toolTip(rcm::ItemId id)
     QString range;
     switch (info.kind) {
         case rcm::ValueKind::Unsigned:
-        case rcm::ValueKind::Signed:
-            range = withUnit(info, QString::fromStdString(rcm::formatScaled(info, info.min)) + QStringLiteral("..") +
-                                       QString::fromStdString(rcm::formatScaled(info, info.max)));
-            break;
+        case rcm::ValueKind::Signed: {
+            const rcm::Presentation shown = rcm::presentation(info);
+            range = number(id, shown.min) + QStringLiteral("..") + number(id, shown.max) + unitSuffix(id);
+        } break;
         case rcm::ValueKind::Station:
             range = QStringLiteral("country as ISO alpha-2 or dialling code %1..%2, unit 0..65535")
                         .arg(info.min)
@@ -67,9 +80,61 @@ QString fieldToolTip(rcm::ItemId id, int field)
 {
     QStringList codes;
     for (unsigned code : validFieldCodes(id, field))
-        codes << fieldCodeName(id, field, code);
+        codes << fieldCodeWord(id, field, code);
     return label(id, field) + QStringLiteral(" (") + label(id) + QStringLiteral("): ") +
            codes.join(QStringLiteral(", "));
+}
+
+QString number(rcm::ItemId id, std::int64_t wire)
+{
+    const rcm::Presentation shown = rcm::presentation(rcm::itemInfo(id));
+    const std::int64_t unit = powerOfTen(shown.decimals);
+    const std::int64_t scaled = roundedQuotient(wire * shown.shown * unit, shown.wire);
+    const std::int64_t magnitude = scaled < 0 ? -scaled : scaled;
+    QString text = QString::number(magnitude / unit);
+    if (shown.decimals > 0)
+        text += QLatin1Char('.') + QString::number(magnitude % unit).rightJustified(shown.decimals, QLatin1Char('0'));
+    return scaled < 0 ? QLatin1Char('-') + text : text;
+}
+
+QString unitSuffix(rcm::ItemId id)
+{
+    const rcm::Presentation shown = rcm::presentation(rcm::itemInfo(id));
+    if (shown.unit.empty())
+        return {};
+    const QString unit = fromView(shown.unit);
+    return unit == QStringLiteral("\u00b0") ? unit : QLatin1Char(' ') + unit;
+}
+
+std::optional<std::int64_t> parseNumber(rcm::ItemId id, QString text)
+{
+    const rcm::Presentation shown = rcm::presentation(rcm::itemInfo(id));
+    text = text.trimmed();
+    const QString suffix = unitSuffix(id).trimmed();
+    if (!suffix.isEmpty() && text.endsWith(suffix))
+        text = text.chopped(suffix.size()).trimmed();
+    static const QRegularExpression kNumber(QStringLiteral("^([-+]?)([0-9]+)(?:\\.([0-9]*))?$"));
+    const QRegularExpressionMatch m = kNumber.match(text);
+    if (!m.hasMatch() || m.captured(3).size() > shown.decimals || m.captured(2).size() > 12)
+        return std::nullopt;
+    const std::int64_t unit = powerOfTen(shown.decimals);
+    const QString fraction = m.captured(3).leftJustified(shown.decimals, QLatin1Char('0'));
+    std::int64_t scaled = m.captured(2).toLongLong() * unit + (fraction.isEmpty() ? 0 : fraction.toLongLong());
+    if (m.captured(1) == QStringLiteral("-"))
+        scaled = -scaled;
+    // Outside the range as shown (100.1 %), even where it would round into it.
+    const auto shownScaled = [&](std::int64_t wire) { return roundedQuotient(wire * shown.shown * unit, shown.wire); };
+    if (scaled < shownScaled(shown.min) || scaled > shownScaled(shown.max))
+        return std::nullopt;
+    return std::clamp(roundedQuotient(scaled * shown.wire, shown.shown * unit), shown.min, shown.max);
+}
+
+QString fieldCodeWord(rcm::ItemId id, int field, unsigned code)
+{
+    const rcm::FieldInfo& info = rcm::itemInfo(id).fields[static_cast<std::size_t>(field)];
+    if (rcm::fieldCodeValid(info, code) && !info.words[code & 3u].empty())
+        return fromView(info.words[code & 3u]);
+    return fieldCodeName(id, field, code);
 }
 
 QString fieldCodeName(rcm::ItemId id, int field, unsigned code)
@@ -96,7 +161,7 @@ QString value(rcm::ItemId id, const rcm::Value& v)
     switch (info.kind) {
         case rcm::ValueKind::Unsigned:
         case rcm::ValueKind::Signed:
-            return withUnit(info, QString::fromStdString(rcm::formatScaled(info, v.number)));
+            return number(id, v.number) + unitSuffix(id);
         case rcm::ValueKind::Station:
             return station(v);
         case rcm::ValueKind::Time:
@@ -127,7 +192,7 @@ QString value(rcm::ItemId id, const rcm::Value& v)
 
 QString fieldValue(rcm::ItemId id, int field, const rcm::Value& v)
 {
-    return fieldCodeName(id, field, rcm::fieldCode(static_cast<std::uint8_t>(v.number), field));
+    return fieldCodeWord(id, field, rcm::fieldCode(static_cast<std::uint8_t>(v.number), field));
 }
 
 }  // namespace ItemText

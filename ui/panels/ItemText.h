@@ -9,6 +9,9 @@
 #include <QString>
 #include <QStringList>
 
+#include <cstdint>
+#include <optional>
+
 namespace ItemText {
 
 // The text format's name, "eng_status", or with a field "eng_status.control":
@@ -16,17 +19,27 @@ namespace ItemText {
 QString name(rcm::ItemId id, int field = -1);
 // "Propeller pitch"; with a field, the field's label: "Control source"
 QString label(rcm::ItemId id, int field = -1);
-// "Propeller pitch, 0..255"; "Compass bearing, 0.00..359.99 deg"
+// "Propeller pitch, 0.0..100.0 %"; "Compass bearing, 0.00..359.99°": the range the console offers
 QString toolTip(rcm::ItemId id);
-// "Control source (Engine status): AUTO, GCS, RC"
+// A number as people read it (rcm::presentation): 127712 kHz -> "127.712", 128 -> "50.2"; no unit.
+QString number(rcm::ItemId id, std::int64_t wire);
+// What follows a number: " MHz", " %", "°"; empty for items without a unit.
+QString unitSuffix(rcm::ItemId id);
+// A number typed as number() writes it (unit optional) to the value on the
+// wire, the nearest one; nothing when it is not a number with at most the
+// shown decimals or lies outside the range the console offers.
+std::optional<std::int64_t> parseNumber(rcm::ItemId id, QString text);
+// "Control source (Engine status): Automatic, Ground station, RC transmitter"
 QString fieldToolTip(rcm::ItemId id, int field);
 // The table's name of a field code ("GCS"); "corrupt (00)" for a code meaning data corruption.
 QString fieldCodeName(rcm::ItemId id, int field, unsigned code);
+// The code in words ("Ground station"), as panels show it; "corrupt (00)" likewise.
+QString fieldCodeWord(rcm::ItemId id, int field, unsigned code);
 // The valid codes of a field, in code order.
 QList<unsigned> validFieldCodes(rcm::ItemId id, int field);
-// A value as the text format writes it, with the unit: "120", "-54.64 deg", "GB_133", "NIK 1".
+// A value as people read it, with the unit: "47.1 %", "-54.64°", "127.712 MHz", "GB_133", "NIK 1".
 QString value(rcm::ItemId id, const rcm::Value& value);
-// One field of a Fields item's value: its code name.
+// One field of a Fields item's value, in words.
 QString fieldValue(rcm::ItemId id, int field, const rcm::Value& value);
 
 }  // namespace ItemText

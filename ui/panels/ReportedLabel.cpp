@@ -11,6 +11,11 @@ const QString kNothing = QStringLiteral("\u2014");  // an em dash: nothing repor
 // Dark text on amber: readable in daylight on a field laptop, and not the red
 // the console keeps for link loss.
 const QString kMismatchStyle = QStringLiteral("QLabel { background-color: #ffbf00; color: black; }");
+// Stale: what the aircraft said some seconds ago. Italic in a dashed frame, in
+// the theme's own text colour, so that it reads in the night theme too.
+const QString kStaleStyle = QStringLiteral("QLabel { font-style: italic; border: 1px dashed palette(text); }");
+const QString kStaleMismatchStyle =
+    QStringLiteral("QLabel { background-color: #ffbf00; color: black; font-style: italic; border: 1px dashed black; }");
 
 }  // namespace
 
@@ -23,6 +28,7 @@ ReportedLabel::ReportedLabel(const CommandState* command, const ReportedState* r
     setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("RETRACTED")));
     setTextInteractionFlags(Qt::TextSelectableByMouse);
     setProperty("mismatch", false);
+    setProperty("stale", false);
     refresh();
     connect(reported, &ReportedState::updated, this, &ReportedLabel::refresh);
     connect(command, &CommandState::changed, this, &ReportedLabel::refresh);
@@ -36,18 +42,30 @@ void ReportedLabel::refresh()
         return m_field < 0 ? ItemText::value(m_id, *v) : ItemText::fieldValue(m_id, m_field, *v);
     };
     const rcm::Value* reported = m_reported->value(m_ref, m_id);
-    setText(text(reported));
+    const auto age = reported ? m_reported->staleAge() : std::nullopt;
+    const int seconds = age ? static_cast<int>(age->count()) : 0;
+    setText(age ? tr("%1 (stale, %2 s)").arg(text(reported)).arg(seconds) : text(reported));
 
     const int frames = m_reported->mismatchFrames(m_ref, m_id, m_field);
-    const bool mismatch = frames > ReportedState::kTransientFrames;
-    if (mismatch != property("mismatch").toBool()) {
+    const bool mismatch =
+        frames > ReportedState::kTransientFrames || m_reported->mismatchWhileStale(m_ref, m_id, m_field);
+    const bool stale = age.has_value();
+    if (mismatch != property("mismatch").toBool() || stale != property("stale").toBool()) {
         setProperty("mismatch", mismatch);
-        setStyleSheet(mismatch ? kMismatchStyle : QString());
+        setProperty("stale", stale);
+        setStyleSheet(mismatch ? (stale ? kStaleMismatchStyle : kMismatchStyle) : stale ? kStaleStyle : QString());
     }
     const QString what = ItemText::label(m_id, m_field);
-    if (mismatch)
+    const QString commanded = text(m_command->value(m_ref, m_id));
+    if (mismatch && stale)
+        setToolTip(
+            tr("%1: commanded %2, last reported %3 %n s ago; no status frame since to confirm it", nullptr, seconds)
+                .arg(what, commanded, text(reported)));
+    else if (mismatch)
         setToolTip(tr("%1: commanded %2, reported %3 for %n status frames", nullptr, frames)
-                       .arg(what, text(m_command->value(m_ref, m_id)), text(reported)));
+                       .arg(what, commanded, text(reported)));
+    else if (stale)
+        setToolTip(tr("%1 as the aircraft reported it %n s ago; no status frame since", nullptr, seconds).arg(what));
     else
         setToolTip(tr("%1 as the aircraft last reported it").arg(what));
 }

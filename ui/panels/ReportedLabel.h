@@ -2,7 +2,10 @@
 // it), shown beside the control that commands it. When the report has
 // disagreed with the command for more than two status frames the label is
 // highlighted: property "mismatch" true, a warning background, and a tool tip
-// saying what was commanded and what is reported.
+// saying what was commanded and what is reported. While no status frame
+// comes (ReportedState::stale()) the value carries its age, "77 (stale, 12 s)",
+// in italics in a dashed frame (property "stale"), and a command that differs
+// from it shows as a mismatch at once.
 #pragma once
 
 #include "codec/message/ItemTable.h"
@@ -21,6 +24,7 @@ public:
                   int field = -1, QWidget* parent = nullptr);
 
     bool mismatch() const { return property("mismatch").toBool(); }
+    bool stale() const { return property("stale").toBool(); }
 
 private:
     void refresh();

@@ -1,5 +1,6 @@
 #include "ui/panels/ReportedState.h"
 
+#include "link/session/LinkWorker.h"
 #include "link/session/ReceivedMessage.h"
 #include "ui/panels/CommandState.h"
 
@@ -32,16 +33,62 @@ const rcm::Unit* findIn(const rcm::Message& message, const rcm::Unit& like)
 
 }  // namespace
 
-ReportedState::ReportedState(const CommandState* command, QObject* parent) : QObject(parent), m_command(command)
+ReportedState::ReportedState(const CommandState* command, QObject* parent, Clock clock,
+                             std::chrono::milliseconds staleAfter)
+    : QObject(parent),
+      m_command(command),
+      m_clock(clock ? std::move(clock) : Clock(&std::chrono::steady_clock::now)),
+      m_staleAfter(staleAfter)
 {
     connect(command, &CommandState::airframeChanged, this, &ReportedState::clear);
+    m_ageTimer.setInterval(std::chrono::seconds(1));
+    connect(&m_ageTimer, &QTimer::timeout, this, &ReportedState::checkAge);
+    m_ageTimer.start();
+}
+
+std::chrono::milliseconds ReportedState::defaultStaleAfter()
+{
+    return LinkWorker::Options{}.silenceTimeout;
 }
 
 void ReportedState::clear()
 {
     m_units.clear();
     m_statusFrames = 0;
+    m_lastStatus.reset();
+    m_shownAge.reset();
     emit updated();
+}
+
+std::optional<std::chrono::seconds> ReportedState::staleAge() const
+{
+    if (!m_lastStatus)
+        return std::nullopt;
+    const auto age = m_clock() - *m_lastStatus;
+    if (age < m_staleAfter)
+        return std::nullopt;
+    return std::chrono::duration_cast<std::chrono::seconds>(age);
+}
+
+void ReportedState::checkAge()
+{
+    const auto age = staleAge();
+    if (age == m_shownAge)
+        return;
+    m_shownAge = age;
+    emit updated();
+}
+
+bool ReportedState::mismatchWhileStale(UnitRef ref, rcm::ItemId id, int field) const
+{
+    const rcm::Value* commanded = m_command->value(ref, id);
+    const rcm::Value* reported = value(ref, id);
+    if (!stale() || !commanded || !reported || field >= 4)
+        return false;
+    if (field < 0)
+        return *commanded != *reported;
+    return rcm::fieldCode(static_cast<std::uint8_t>(commanded->number), field) !=
+           rcm::fieldCode(static_cast<std::uint8_t>(reported->number), field);
 }
 
 const ReportedState::ReportedUnit* ReportedState::find(UnitRef ref) const
@@ -110,6 +157,8 @@ void ReportedState::onStatus(const rcm::Message& status)
     m_command->message().forEachUnit(
         [&](const rcm::Unit& commanded) { compare(commanded, findIn(status, commanded)); });
     ++m_statusFrames;
+    m_lastStatus = m_clock();
+    m_shownAge.reset();
     emit updated();
 }
 

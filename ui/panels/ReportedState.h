@@ -3,6 +3,13 @@
 // many status frames in a row have disagreed with the command. A panel shows
 // the reported value beside the commanded one and highlights a disagreement
 // only once it outlasts what a moving part explains (two frames).
+//
+// Once no status frame has come for staleAfter() (the link's silence timeout)
+// the reported values are stale: they are what the aircraft said some seconds
+// ago, not what it does. A panel then marks them with their age, and any
+// item the command has changed since (or that disagreed already) shows as a
+// mismatch at once: no status frame will count it. Time comes from a clock
+// passed in, so that a test can move it.
 #pragma once
 
 #include "codec/message/Message.h"
@@ -10,8 +17,12 @@
 #include "ui/panels/UnitRef.h"
 
 #include <QObject>
+#include <QTimer>
 
 #include <array>
+#include <chrono>
+#include <functional>
+#include <optional>
 #include <map>
 #include <vector>
 
@@ -28,7 +39,19 @@ public:
     // Compares against `command`'s message as it is when each status frame
     // arrives; forgets everything when the command's airframe changes.
     // `command` must outlive this object.
-    explicit ReportedState(const CommandState* command, QObject* parent = nullptr);
+    using Clock = std::function<std::chrono::steady_clock::time_point()>;
+
+    // `clock` null: std::chrono::steady_clock.
+    explicit ReportedState(const CommandState* command, QObject* parent = nullptr, Clock clock = {},
+                           std::chrono::milliseconds staleAfter = defaultStaleAfter());
+
+    // LinkWorker's silence timeout: when the link calls itself lost, the reports are stale.
+    static std::chrono::milliseconds defaultStaleAfter();
+    std::chrono::milliseconds staleAfter() const { return m_staleAfter; }
+    // Whole seconds since the last status frame, once that is staleAfter() or
+    // more; nothing while reports are fresh or before any status frame.
+    std::optional<std::chrono::seconds> staleAge() const;
+    bool stale() const { return staleAge().has_value(); }
 
     // The last value reported for the item of the unit `ref` names in the
     // command (matched by key item); nullptr before any report of it.
@@ -46,6 +69,10 @@ public:
         return mismatchFrames(ref, id, field) > kTransientFrames;
     }
 
+    // While stale: the command differs from the last reported value of the
+    // item (field: of that field). False while fresh: mismatchFrames() counts.
+    bool mismatchWhileStale(UnitRef ref, rcm::ItemId id, int field = -1) const;
+
     int statusFrames() const { return m_statusFrames; }
     void clear();
 
@@ -53,6 +80,9 @@ public slots:
     void onStatus(const rcm::Message& status);
     // LinkController::messageReceived, for a direct connection.
     void onReceived(const ReceivedMessage& received);
+    // Reads the clock: emits updated() when the reports turn stale or their
+    // age in whole seconds changes. A timer calls it every second.
+    void checkAge();
 
 signals:
     void updated();
@@ -73,6 +103,11 @@ private:
     void compare(const rcm::Unit& commanded, const rcm::Unit* reported);
 
     const CommandState* m_command;
+    Clock m_clock;
+    std::chrono::milliseconds m_staleAfter;
     std::vector<ReportedUnit> m_units;
     int m_statusFrames = 0;
+    std::optional<std::chrono::steady_clock::time_point> m_lastStatus;
+    std::optional<std::chrono::seconds> m_shownAge;  // staleAge() when updated() was last emitted
+    QTimer m_ageTimer;
 };

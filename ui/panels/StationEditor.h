@@ -1,11 +1,17 @@
 // Edits one station item (a country and a unit number: ID_UA_source, the GCS
 // destination and backup, a camera's imagery stations) of one commanded unit.
-// The country is typed as ISO alpha-2 ("GB") or as the dialling code ("44");
-// an empty country means the item is not sent. A country that names no
-// dialling code is refused where it is typed, and the command keeps its value.
+// The country is typed as ISO alpha-2 ("GB") or as the dialling code ("44"),
+// the unit as its number (0..65535). The two are one value: only a complete,
+// valid station is commanded, on Enter in either field or when the focus
+// leaves the editor (Tab from country to unit is still typing it: "edited",
+// shown, not sent). A country without its unit number, a unit without its
+// country, or a country that names no dialling code is marked incomplete,
+// and the command keeps what it had meanwhile, so "GB" then Tab never sends
+// GB_0. Both fields empty: the item is not sent.
 #pragma once
 
 #include "codec/message/ItemTable.h"
+#include "codec/message/Message.h"
 #include "ui/panels/UnitRef.h"
 
 #include <QWidget>
@@ -15,7 +21,6 @@
 
 class CommandState;
 class QLineEdit;
-class QSpinBox;
 
 class StationEditor : public QWidget {
     Q_OBJECT
@@ -24,19 +29,32 @@ public:
     StationEditor(CommandState* command, UnitRef ref, rcm::ItemId id, QWidget* parent = nullptr);
 
     QLineEdit* countryEdit() const { return m_country; }
-    QSpinBox* unitSpinBox() const { return m_unit; }
+    QLineEdit* unitEdit() const { return m_unit; }
     rcm::ItemId item() const { return m_id; }
+    // What was typed is not a station the command can take: not sent.
+    bool incomplete() const { return property("incomplete").toBool(); }
+    // Complete and valid, differs from the command, not sent yet.
+    bool edited() const { return property("edited").toBool(); }
 
 private:
+    // What the two fields say: a station, nothing (both empty), or the field at fault and why.
+    struct Typed {
+        std::optional<rcm::Value> value;
+        QLineEdit* atFault = nullptr;
+        QString problem;
+    };
+    Typed typed() const;
+    QString commandedText() const;
     void refresh();
     void commit();
-    // Empty: the country is fine. Otherwise why it is not, shown on the country field.
-    void setInvalid(const QString& reason);
+    void fieldLeft();
+    // Empty: what is typed is commanded. Otherwise why it is not, on the field at fault.
+    void setProblem(QLineEdit* field, const QString& reason);
     static std::optional<std::int64_t> countryCode(const QString& text);
 
     CommandState* m_command;
     UnitRef m_ref;
     rcm::ItemId m_id;
     QLineEdit* m_country;
-    QSpinBox* m_unit;
+    QLineEdit* m_unit;
 };
