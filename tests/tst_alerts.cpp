@@ -16,12 +16,14 @@
 #include "ui/alerts/LinkAlarmBanner.h"
 #include "ui/alerts/ToneAlarmSound.h"
 #include "ui/eventlog/EventLogModel.h"
+#include "ui/window/StatusBarWidget.h"
 
 #include <QFile>
 #include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTest>
+#include <QTextDocumentFragment>
 #include <QUdpSocket>
 #include <QVBoxLayout>
 
@@ -342,6 +344,31 @@ private slots:
         alarm.setEnabled(false);
         QVERIFY(!alarm.isActive());
         QVERIFY(!sound.playing);
+    }
+
+    // The status bar in a replay: "Replay", the log's time, and a silence
+    // or the end of the log raises no alarm.
+    void statusBarInReplay()
+    {
+        StatusBarWidget status;
+        QSignalSpy alarmed(&status, &StatusBarWidget::alarm);
+        status.setLinkDescription(QStringLiteral("replay of rcm-2026-11-23T17-45-00Z.pcapng"));
+        status.setReplay(true);
+        status.setStatistics(stats(LinkState::Connected, 5, kT0));
+        const QString state = QTextDocumentFragment::fromHtml(status.stateText()).toPlainText();
+        QCOMPARE(state, QStringLiteral("\u25cf Replay replay of rcm-2026-11-23T17-45-00Z.pcapng"));
+        status.setReplayTime(kT0 + 20 * kSecond);
+        QCOMPARE(QTextDocumentFragment::fromHtml(status.ageText()).toPlainText(),
+                 QStringLiteral("Log time 2026-11-23 17:45:40 UTC"));
+        status.setStatistics(stats(LinkState::Lost, 5, kT0));
+        QVERIFY(!status.alarmActive());
+        QCOMPARE(alarmed.size(), 0);
+
+        // Live again: the same silence is an alarm.
+        status.setReplay(false);
+        QVERIFY(status.alarmActive());
+        QCOMPARE(QTextDocumentFragment::fromHtml(status.stateText()).toPlainText(),
+                 QStringLiteral("\u25cf Lost replay of rcm-2026-11-23T17-45-00Z.pcapng"));
     }
 
     void bannerShowsUntilRegained()
