@@ -57,6 +57,17 @@ LinkStatistics stats(LinkState state, quint64 frames, qint64 lastGood)
     return s;
 }
 
+// An alarm with its event log, the Events table and a fake sound card, on a
+// virtual clock.
+struct AlarmBench {
+    AlarmBench() { log.setClock([this] { return now; }); }
+    qint64 now = kT0;
+    EventLog log;
+    EventLogModel model{&log};
+    FakeSound sound;
+    LinkAlarm alarm{&sound, &log};
+};
+
 QStringList texts(const EventLogModel& model)
 {
     QStringList out;
@@ -213,12 +224,8 @@ private slots:
     // event log holds all three with their durations.
     void lossSilencedAndRegained()
     {
-        qint64 now = kT0;
-        EventLog log;
-        log.setClock([&now] { return now; });
-        EventLogModel model(&log);
-        FakeSound sound;
-        LinkAlarm alarm(&sound, &log);
+        AlarmBench bench;
+        auto& [now, log, model, sound, alarm] = bench;
         QSignalSpy changed(&alarm, &LinkAlarm::changed);
 
         alarm.setStatistics(stats(LinkState::Waiting, 0, 0));
@@ -274,11 +281,8 @@ private slots:
 
     void regainedStopsTheSound()
     {
-        qint64 now = kT0;
-        EventLog log;
-        log.setClock([&now] { return now; });
-        FakeSound sound;
-        LinkAlarm alarm(&sound, &log);
+        AlarmBench bench;
+        auto& [now, log, model, sound, alarm] = bench;
         alarm.setStatistics(stats(LinkState::Connected, 5, kT0));
         now += 3 * kSecond;
         alarm.setStatistics(stats(LinkState::Lost, 5, kT0));
@@ -292,10 +296,8 @@ private slots:
     // The operator's Disconnect ends the alarm without a word: nothing was lost.
     void closedEndsItQuietly()
     {
-        EventLog log;
-        EventLogModel model(&log);
-        FakeSound sound;
-        LinkAlarm alarm(&sound, &log);
+        AlarmBench bench;
+        auto& [now, log, model, sound, alarm] = bench;
         alarm.setStatistics(stats(LinkState::Connected, 5, kT0));
         alarm.setStatistics(stats(LinkState::Lost, 5, kT0));
         QVERIFY(alarm.isActive());
@@ -308,10 +310,8 @@ private slots:
     // Nothing ever arrived: a warning in the log, once; no alarm.
     void neverConnectedWarnsOnce()
     {
-        EventLog log;
-        EventLogModel model(&log);
-        FakeSound sound;
-        LinkAlarm alarm(&sound, &log);
+        AlarmBench bench;
+        auto& [now, log, model, sound, alarm] = bench;
         alarm.setStatistics(stats(LinkState::Waiting, 0, 0));
         alarm.setStatistics(stats(LinkState::Lost, 0, 0));
         QVERIFY(!alarm.isActive());
@@ -325,10 +325,8 @@ private slots:
     // A replay: the log's silences are not the aircraft's.
     void disabledInReplay()
     {
-        EventLog log;
-        EventLogModel model(&log);
-        FakeSound sound;
-        LinkAlarm alarm(&sound, &log);
+        AlarmBench bench;
+        auto& [now, log, model, sound, alarm] = bench;
         alarm.setEnabled(false);
         alarm.setStatistics(stats(LinkState::Connected, 5, kT0));
         alarm.setStatistics(stats(LinkState::Lost, 5, kT0));
@@ -373,11 +371,8 @@ private slots:
 
     void bannerShowsUntilRegained()
     {
-        qint64 now = kT0;
-        EventLog log;
-        log.setClock([&now] { return now; });
-        FakeSound sound;
-        LinkAlarm alarm(&sound, &log);
+        AlarmBench bench;
+        auto& [now, log, model, sound, alarm] = bench;
         QWidget window;
         auto* layout = new QVBoxLayout(&window);
         auto* banner = new LinkAlarmBanner(&alarm);
