@@ -11,14 +11,18 @@
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
 #include "ui/alerts/AlarmSound.h"
+#include "ui/alerts/ConsoleAlerts.h"
 #include "ui/alerts/ErrorBanner.h"
 #include "ui/alerts/LinkAlarm.h"
 #include "ui/alerts/LinkAlarmBanner.h"
 #include "ui/alerts/ToneAlarmSound.h"
 #include "ui/eventlog/EventLogModel.h"
+#include "ui/eventlog/EventLogView.h"
 #include "ui/window/StatusBarWidget.h"
 
+#include <QDir>
 #include <QFile>
+#include <QTemporaryDir>
 #include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -165,6 +169,9 @@ private slots:
         log.error(EventSource::Key, QStringLiteral("the key file is refused"));
         QCOMPARE(banner->count(), 1);
         QCOMPARE(banner->currentText(), QStringLiteral("the key file is refused"));
+        // The link-loss alarm has a banner of its own.
+        log.error(EventSource::Alarm, QStringLiteral("Link lost: no good frame for 3 s, after 5 frames in 4 s"));
+        QCOMPARE(banner->count(), 1);
     }
 
     // The failures operators met, from real ports and sockets: the reason the
@@ -192,15 +199,15 @@ private slots:
             reason = QStringLiteral("udp: cannot bind 127.0.0.1:%1: The bound address is already in use")
                          .arg(holder.localPort());
         }
-        EventLog log;
-        EventLogModel model(&log);
+        FakeSound sound;
+        ConsoleAlerts alerts(&sound);
         QWidget window;
-        auto* banner = new ErrorBanner(&window);
-        banner->follow(&log);
+        auto* layout = new QVBoxLayout(&window);
+        layout->addWidget(alerts.banners());
+        ErrorBanner* banner = alerts.errorBanner();
+        const EventLogModel& model = *alerts.model();
         LinkController controller(std::move(link));
-        // As the console routes them.
-        connect(&controller, &LinkController::errorOccurred, &log,
-                [&log](const QString& message) { log.error(EventSource::Link, message); });
+        alerts.follow(&controller);  // as the console follows every link it runs
         controller.start();
         QTRY_VERIFY(model.rowCount() > 0);
         QCOMPARE(texts(model), QStringList{QStringLiteral("error link: ") + reason});
@@ -406,6 +413,41 @@ private slots:
 
         alarm.setStatistics(stats(LinkState::Connected, 6, now));
         QVERIFY(!banner->isVisible());
+    }
+
+    // The console's alerts as one part: events kept in the session's
+    // directory, the real tone (silent here) saying once that it cannot be
+    // heard, no alarm in a replay.
+    void consoleAlerts()
+    {
+        QTemporaryDir dir;
+        ConsoleAlerts alerts;
+        alerts.events()->setClock([] { return kT0 + 4 * kSecond; });
+        QVERIFY(alerts.keepIn(dir.filePath(QStringLiteral("framelogs"))));
+        QVERIFY(alerts.events()->filePath().startsWith(dir.filePath(QStringLiteral("framelogs/rcm-"))));
+        QVERIFY(alerts.events()->filePath().endsWith(QStringLiteral(".events.txt")));
+        QCOMPARE(alerts.eventView()->fileText(),
+                 QStringLiteral("Kept in %1").arg(QDir::toNativeSeparators(alerts.events()->filePath())));
+
+        alerts.setReplay(true);
+        alerts.setStatistics(stats(LinkState::Connected, 5, kT0));
+        alerts.setStatistics(stats(LinkState::Lost, 5, kT0));
+        QVERIFY(!alerts.alarm()->isActive());
+        alerts.setReplay(false);
+        alerts.setStatistics(stats(LinkState::Connected, 6, kT0 + kSecond));
+        alerts.setStatistics(stats(LinkState::Lost, 6, kT0 + kSecond));
+        QVERIFY(alerts.alarm()->isActive());
+        QStringList lines;
+        QFile file(alerts.events()->filePath());
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        for (const QByteArray& line : file.readAll().split('\n'))
+            if (!line.isEmpty())
+                lines << QString::fromUtf8(line.mid(line.indexOf('\t') + 1));
+        QStringList expected{
+            QStringLiteral("error\talarm\tLink lost: no good frame for 3 s, after 1 frame in 0 s")};
+        if (!ToneAlarmSound::hasSoundCard())
+            expected.prepend(QStringLiteral("warning\talarm\tno sound card: the link-loss alarm is shown but not heard"));
+        QCOMPARE(lines, expected);
     }
 
     // The tone is built in; without a sound card it says so once and the

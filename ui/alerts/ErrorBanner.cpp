@@ -69,7 +69,8 @@ ErrorBanner::ErrorBanner(QWidget* parent)
 void ErrorBanner::follow(EventLog* log)
 {
     connect(log, &EventLog::recorded, this, [this](const ConsoleEvent& event) {
-        if (event.severity == EventSeverity::Error)
+        // The link-loss alarm has its own banner, which goes when the link is back.
+        if (event.severity == EventSeverity::Error && event.source != EventSource::Alarm)
             showError(event.text);
     });
 }

@@ -7,7 +7,8 @@
 // ("3 times").
 //
 // Fed by EventLog: every event of severity Error appears here, so an error
-// shown is always also an error recorded.
+// shown is always also an error recorded; all but the link-loss alarm's,
+// which LinkAlarmBanner shows until the link is back.
 
 #include "link/eventlog/ConsoleEvent.h"
 
@@ -24,7 +25,7 @@ class ErrorBanner : public QFrame {
 public:
     explicit ErrorBanner(QWidget* parent = nullptr);
 
-    // Shows every Error event `log` records from now on.
+    // Shows every Error event `log` records from now on, but the alarm's.
     void follow(EventLog* log);
 
     // Errors waiting to be dismissed, the shown one included.
