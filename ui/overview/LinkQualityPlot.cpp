@@ -36,12 +36,12 @@ LinkQualityPlot::LinkQualityPlot(const LinkQualityHistory* history, QWidget* par
 
 QSize LinkQualityPlot::sizeHint() const
 {
-    return {480, fontMetrics().height() * 9};
+    return {480, fontMetrics().height() * 6};
 }
 
 QSize LinkQualityPlot::minimumSizeHint() const
 {
-    return {240, fontMetrics().height() * 9};
+    return {240, fontMetrics().height() * 6};
 }
 
 void LinkQualityPlot::setNow(qint64 utcMicros)

@@ -97,6 +97,7 @@ OverviewPage::OverviewPage(CommandState* command, ReportedState* reported, QWidg
     layout->addWidget(scroll, 1);
     layout->addWidget(m_plot);
 
+    reflowFigures();
     rebuildUnits();
     connect(command, &CommandState::airframeChanged, this, &OverviewPage::rebuildUnits);
     connect(command, &CommandState::changed, this, &OverviewPage::refreshCommanded);
@@ -113,8 +114,9 @@ QWidget* OverviewPage::buildHealth()
     box->setObjectName(QStringLiteral("linkHealth"));
     box->setFrameShape(QFrame::StyledPanel);
     // Ignored: the page's width decides how many figures go to a row
-    // (reflow()), never the other way round.
+    // (reflowFigures()), never the other way round.
     box->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    box->installEventFilter(this);
     m_healthGrid = new QGridLayout(box);
     m_healthGrid->setContentsMargins(10, 6, 10, 6);
     m_healthGrid->setHorizontalSpacing(18);
@@ -136,7 +138,7 @@ QWidget* OverviewPage::buildHealth()
     };
     QFont big = font();
     big.setBold(true);
-    big.setPointSizeF(big.pointSizeF() * 1.5);
+    big.setPointSizeF(big.pointSizeF() * 1.4);
     for (const auto& f : figures) {
         auto* figureBox = new QWidget;
         auto* stack = new QVBoxLayout(figureBox);
@@ -304,14 +306,21 @@ void OverviewPage::resizeEvent(QResizeEvent* event)
     reflow();
 }
 
-void OverviewPage::reflow()
+bool OverviewPage::eventFilter(QObject* watched, QEvent* event)
+{
+    if (event->type() == QEvent::Resize && watched == m_healthGrid->parentWidget())
+        reflowFigures();
+    return QWidget::eventFilter(watched, event);
+}
+
+void OverviewPage::reflowFigures()
 {
     // The figures: as many to a row as fit, in rows of equal count.
     int figureWidth = 1;
     for (QWidget* box : m_figureBoxes)
         figureWidth = std::max(figureWidth, box->sizeHint().width());
     const int figureCount = int(m_figureBoxes.size());
-    const int fit = std::clamp((width() - 32) / (figureWidth + 18), 1, figureCount);
+    const int fit = std::clamp((m_healthGrid->parentWidget()->width() - 20) / (figureWidth + 18), 1, figureCount);
     const int perRow = (figureCount + (figureCount + fit - 1) / fit - 1) / ((figureCount + fit - 1) / fit);
     if (perRow != m_figuresPerRow) {
         m_figuresPerRow = perRow;
@@ -322,7 +331,10 @@ void OverviewPage::reflow()
         for (int c = 0; c <= figureCount; ++c)
             m_healthGrid->setColumnStretch(c, c == perRow ? 1 : 0);
     }
+}
 
+void OverviewPage::reflow()
+{
     int cardWidth = 1;
     for (QGroupBox* card : m_cards)
         cardWidth = std::max(cardWidth, card->sizeHint().width());

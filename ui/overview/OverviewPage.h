@@ -63,6 +63,7 @@ public slots:
 
 protected:
     void resizeEvent(QResizeEvent* event) override;
+    bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
     struct Row {
@@ -76,6 +77,7 @@ private:
     void rebuildUnits();
     void refreshCommanded();
     void reflow();
+    void reflowFigures();
     void updateFigures();
     const Row* findRow(UnitRef ref, rcm::ItemId id, int field) const;
 
