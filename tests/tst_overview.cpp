@@ -16,6 +16,7 @@
 
 #include <QGroupBox>
 #include <QImage>
+#include <QLabel>
 #include <QLocale>
 #include <QScrollArea>
 #include <QScrollBar>
@@ -184,6 +185,14 @@ private slots:
         s.state = LinkState::Lost;
         page.setStatistics(s);
         QCOMPARE(page.figure(QStringLiteral("state")), QStringLiteral("LINK LOST"));
+        auto* state = page.findChild<QLabel*>(QStringLiteral("figure:state"));
+        QVERIFY(state->text().contains(QStringLiteral("#b71c1c")));
+        // At night: a light red that reads on the dark window.
+        QPalette night = page.palette();
+        night.setColor(QPalette::Window, QColor(0x20, 0x20, 0x20));
+        night.setColor(QPalette::WindowText, QColor(0xe0, 0xe0, 0xe0));
+        page.setPalette(night);
+        QVERIFY(state->text().contains(QStringLiteral("#ef9a9a")));
     }
 
     // A replay says so, shows the log's time, and feeds no link-quality minutes.

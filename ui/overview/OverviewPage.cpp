@@ -52,19 +52,19 @@ QString stateName(LinkState state)
     return {};
 }
 
-// Text colours that hold 4.5:1 on a light window; the night theme's palette
-// has its own, so these are only used for the state word on a light base.
-QString stateColour(LinkState state, bool replay)
+// The state word's colour: dark tones on a light window, light tones on a
+// dark (night) one, each over 4.5:1 against its background; none when closed.
+QString stateColour(LinkState state, bool replay, bool dark)
 {
     if (replay)
-        return QStringLiteral("#0d47a1");
+        return dark ? QStringLiteral("#90caf9") : QStringLiteral("#0d47a1");
     switch (state) {
     case LinkState::Connected:
-        return QStringLiteral("#1b5e20");
+        return dark ? QStringLiteral("#81c784") : QStringLiteral("#1b5e20");
     case LinkState::Lost:
-        return QStringLiteral("#b71c1c");
+        return dark ? QStringLiteral("#ef9a9a") : QStringLiteral("#b71c1c");
     case LinkState::Waiting:
-        return QStringLiteral("#6d4c00");
+        return dark ? QStringLiteral("#ffd54f") : QStringLiteral("#6d4c00");
     case LinkState::Closed:
         break;
     }
@@ -213,7 +213,8 @@ void OverviewPage::updateFigures()
             if (n == QLatin1String(name))
                 label->setText(html);
     };
-    const QString colour = stateColour(s.state, m_replay);
+    const bool dark = palette().color(QPalette::Window).lightness() < 128;
+    const QString colour = stateColour(s.state, m_replay, dark);
     const QString state = m_replay ? tr("Replay") : stateName(s.state);
     set("state", colour.isEmpty() ? state.toHtmlEscaped()
                                   : QStringLiteral("<span style=\"color:%1\">%2</span>").arg(colour, state.toHtmlEscaped()));
@@ -304,6 +305,13 @@ void OverviewPage::resizeEvent(QResizeEvent* event)
 {
     QWidget::resizeEvent(event);
     reflow();
+}
+
+void OverviewPage::changeEvent(QEvent* event)
+{
+    QWidget::changeEvent(event);
+    if (event->type() == QEvent::PaletteChange)
+        updateFigures();  // the night theme's colours for the state
 }
 
 bool OverviewPage::eventFilter(QObject* watched, QEvent* event)
