@@ -12,8 +12,10 @@ UdpLink::UdpLink(const QHostAddress& localAddress, quint16 localPort, const QHos
       m_socket(this)
 {
     connect(&m_socket, &QUdpSocket::readyRead, this, &UdpLink::readPending);
-    connect(&m_socket, &QUdpSocket::errorOccurred, this,
-            [this] { reportOnce(QStringLiteral("udp: %1").arg(m_socket.errorString())); });
+    connect(&m_socket, &QUdpSocket::errorOccurred, this, [this] {
+        if (!m_binding)
+            reportOnce(QStringLiteral("udp: %1").arg(m_socket.errorString()));
+    });
 }
 
 UdpLink::~UdpLink()
@@ -43,7 +45,10 @@ void UdpLink::open()
 {
     if (isOpen())
         return;
-    if (!m_socket.bind(m_localAddress, m_localPort)) {
+    m_binding = true;
+    const bool bound = m_socket.bind(m_localAddress, m_localPort);
+    m_binding = false;
+    if (!bound) {
         reportOnce(QStringLiteral("udp: cannot bind %1: %2")
                        .arg(endpoint(m_localAddress, m_localPort), m_socket.errorString()));
         return;

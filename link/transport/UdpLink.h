@@ -70,4 +70,5 @@ private:
     QUdpSocket m_socket;
     std::atomic<quint16> m_boundPort{0};
     QString m_lastError;  // so a failure repeated every second shows once
+    bool m_binding = false;  // open() reports a failed bind itself, with the address
 };

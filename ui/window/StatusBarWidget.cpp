@@ -141,6 +141,19 @@ void StatusBarWidget::setLinkDescription(const QString& description)
     setState(m_statistics.state);
 }
 
+void StatusBarWidget::setReplay(bool replay)
+{
+    m_replay = replay;
+    m_replayTime = 0;
+    setState(m_statistics.state);
+}
+
+void StatusBarWidget::setReplayTime(qint64 utcMicros)
+{
+    m_replayTime = utcMicros;
+    updateAge();
+}
+
 void StatusBarWidget::setState(LinkState state)
 {
     m_statistics.state = state;
@@ -163,11 +176,16 @@ void StatusBarWidget::setState(LinkState state)
             colour = QStringLiteral("#b01c1c");
             break;
     }
+    if (m_replay && state != LinkState::Closed) {
+        // A log's silences and ends are not the aircraft's.
+        name = tr("Replay");
+        colour = QStringLiteral("#1565c0");
+    }
     QString text = QStringLiteral("<span style=\"color:%1\">\u25cf</span> <b>%2</b>").arg(colour, name);
     if (!m_description.isEmpty() && state != LinkState::Closed)
         text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(m_description.toHtmlEscaped());
     m_state->setText(text);
-    setAlarm(state == LinkState::Lost);
+    setAlarm(state == LinkState::Lost && !m_replay);
     if (state == LinkState::Closed)
         m_ageTimer.stop();
     else if (!m_ageTimer.isActive())
@@ -197,6 +215,13 @@ void StatusBarWidget::setStatistics(const LinkStatistics& statistics)
 
 void StatusBarWidget::updateAge()
 {
+    if (m_replay) {
+        const QString time = m_replayTime ? QDateTime::fromMSecsSinceEpoch(m_replayTime / 1000, Qt::UTC)
+                                                .toString(QStringLiteral("yyyy-MM-dd HH:mm:ss 'UTC'"))
+                                          : QStringLiteral("\u2014");
+        m_age->setText(field(tr("Log time"), time));
+        return;
+    }
     const qint64 age = m_statistics.lastGoodFrameAgeMicros(QDateTime::currentDateTimeUtc().toMSecsSinceEpoch() * 1000);
     QString text;
     if (age < 0)

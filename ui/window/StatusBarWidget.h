@@ -7,7 +7,8 @@
 // link-lost alarm. The alarm
 // is a red, blinking "LINK LOST" that stays until a good frame arrives again
 // or the operator disconnects, and a signal, alarm(bool), for whatever else
-// should sound it (a tone, a light).
+// should sound it (a tone, a light). In a replay it says "Replay" and the
+// log's time instead, and never the alarm.
 
 #include "link/session/LinkStatistics.h"
 
@@ -39,6 +40,10 @@ public slots:
     void setLinkDescription(const QString& description);
     // The key's fingerprint (16 hex digits) for the tooltip; empty: none.
     void setKeyFingerprint(const QString& fingerprint);
+    // A replay: the state reads "Replay", the age gives way to the log's own
+    // time, and a silence in the log raises no alarm.
+    void setReplay(bool replay);
+    void setReplayTime(qint64 utcMicros);
 
 signals:
     // True when the link is lost, false when it is back or was closed.
@@ -54,6 +59,8 @@ private:
     QString m_description;
     QString m_fingerprint;
     bool m_alarm = false;
+    bool m_replay = false;
+    qint64 m_replayTime = 0;
     bool m_blink = false;
     QTimer m_ageTimer;
     QTimer m_blinkTimer;

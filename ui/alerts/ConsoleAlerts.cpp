@@ -1,0 +1,102 @@
+#include "ui/alerts/ConsoleAlerts.h"
+
+#include "link/eventlog/EventLog.h"
+#include "link/session/LinkController.h"
+#include "ui/alerts/ErrorBanner.h"
+#include "ui/alerts/LinkAlarm.h"
+#include "ui/alerts/LinkAlarmBanner.h"
+#include "ui/alerts/ToneAlarmSound.h"
+#include "ui/eventlog/EventLogModel.h"
+#include "ui/eventlog/EventLogView.h"
+
+#include <QDateTime>
+#include <QDir>
+#include <QVBoxLayout>
+
+ConsoleAlerts::ConsoleAlerts(AlarmSound* sound, QObject* parent)
+    : QObject(parent), m_events(new EventLog(this)), m_model(new EventLogModel(m_events, this)), m_sound(sound)
+{
+    if (!m_sound) {
+        auto* tone = new ToneAlarmSound(this);
+        connect(tone, &ToneAlarmSound::unavailable, this,
+                [this](const QString& reason) { warning(EventSource::Alarm, reason); });
+        m_sound = tone;
+    }
+    m_alarm = new LinkAlarm(m_sound, m_events, this);
+}
+
+ConsoleAlerts::~ConsoleAlerts()
+{
+    // The sound may be ours (a child QObject); the alarm must not touch it after.
+    m_sound->stop();
+}
+
+bool ConsoleAlerts::keepIn(const QString& directory)
+{
+    const QString path = QDir(directory).filePath(EventLog::sessionFileName(QDateTime::currentDateTimeUtc()));
+    QString reason;
+    if (m_events->openFile(path, &reason)) {
+        if (m_view)
+            m_view->setFilePath(path);
+        return true;
+    }
+    warning(EventSource::Console, tr("Events are not kept in a file: %1").arg(reason));
+    return false;
+}
+
+QWidget* ConsoleAlerts::banners()
+{
+    if (!m_banners) {
+        m_banners = new QWidget;
+        auto* layout = new QVBoxLayout(m_banners);
+        layout->setContentsMargins(0, 0, 0, 0);
+        layout->setSpacing(2);
+        m_alarmBanner = new LinkAlarmBanner(m_alarm);
+        m_errorBanner = new ErrorBanner;
+        m_errorBanner->follow(m_events);
+        layout->addWidget(m_alarmBanner);
+        layout->addWidget(m_errorBanner);
+    }
+    return m_banners;
+}
+
+EventLogView* ConsoleAlerts::eventView()
+{
+    if (!m_view) {
+        m_view = new EventLogView(m_model);
+        m_view->setFilePath(m_events->filePath());
+    }
+    return m_view;
+}
+
+void ConsoleAlerts::follow(LinkController* controller)
+{
+    connect(controller, &LinkController::errorOccurred, this,
+            [this](const QString& message) { error(EventSource::Link, message); });
+    connect(controller, &LinkController::statisticsChanged, this, &ConsoleAlerts::setStatistics);
+}
+
+void ConsoleAlerts::info(EventSource source, const QString& text)
+{
+    m_events->info(source, text);
+}
+
+void ConsoleAlerts::warning(EventSource source, const QString& text)
+{
+    m_events->warning(source, text);
+}
+
+void ConsoleAlerts::error(EventSource source, const QString& text)
+{
+    m_events->error(source, text);
+}
+
+void ConsoleAlerts::setStatistics(const LinkStatistics& statistics)
+{
+    m_alarm->setStatistics(statistics);
+}
+
+void ConsoleAlerts::setReplay(bool replay)
+{
+    m_alarm->setEnabled(!replay);
+}

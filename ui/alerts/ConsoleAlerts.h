@@ -1,0 +1,69 @@
+#pragma once
+
+// Everything that tells the operator what happened or what is wrong, as one
+// part for the main window: the event log (and its file in the session's
+// frame log directory), the Events table, the error banner, the link-loss
+// alarm with its tone and its red banner. The window puts banners() above
+// its panels and eventView() in a dock, and hands every link it runs to
+// follow(); errors of its own it records with error().
+
+#include "link/eventlog/ConsoleEvent.h"
+#include "link/session/LinkStatistics.h"
+
+#include <QObject>
+
+class AlarmSound;
+class ErrorBanner;
+class EventLog;
+class EventLogModel;
+class EventLogView;
+class LinkAlarm;
+class LinkAlarmBanner;
+class LinkController;
+class QWidget;
+
+class ConsoleAlerts : public QObject {
+    Q_OBJECT
+
+public:
+    // `sound` null: the link-loss tone on the sound card (ToneAlarmSound).
+    explicit ConsoleAlerts(AlarmSound* sound = nullptr, QObject* parent = nullptr);
+    ~ConsoleAlerts() override;
+
+    // Keeps the events in `directory` too, in EventLog::sessionFileName(now);
+    // false, and the reason recorded as a warning, when it cannot.
+    bool keepIn(const QString& directory);
+
+    EventLog* events() const { return m_events; }
+    EventLogModel* model() const { return m_model; }
+    LinkAlarm* alarm() const { return m_alarm; }
+    // Created on first call, owned by whoever takes them into a layout.
+    QWidget* banners();
+    EventLogView* eventView();
+    ErrorBanner* errorBanner() const { return m_errorBanner; }
+    LinkAlarmBanner* alarmBanner() const { return m_alarmBanner; }
+
+    // The link's errors and statistics reach the event log, the banner and
+    // the alarm. The connections end with the controller.
+    void follow(LinkController* controller);
+
+public slots:
+    void info(EventSource source, const QString& text);
+    void warning(EventSource source, const QString& text);
+    // In the event log and on the banner.
+    void error(EventSource source, const QString& text);
+    void setStatistics(const LinkStatistics& statistics);
+    // A replay: no link alarm; live again: armed again.
+    void setReplay(bool replay);
+
+private:
+    EventLog* m_events;
+    EventLogModel* m_model;
+    AlarmSound* m_sound;
+    AlarmSound* m_ownSound = nullptr;
+    LinkAlarm* m_alarm;
+    QWidget* m_banners = nullptr;
+    ErrorBanner* m_errorBanner = nullptr;
+    LinkAlarmBanner* m_alarmBanner = nullptr;
+    EventLogView* m_view = nullptr;
+};

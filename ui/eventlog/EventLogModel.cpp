@@ -1,0 +1,119 @@
+#include "ui/eventlog/EventLogModel.h"
+
+#include "link/eventlog/EventLog.h"
+
+#include <QBrush>
+#include <QColor>
+#include <QDateTime>
+
+#include <algorithm>
+
+namespace {
+
+// Dark text on a light tint: over 7:1 contrast whatever the window's palette.
+struct Colours {
+    QColor text;
+    QColor background;
+};
+
+std::optional<Colours> coloursOf(EventSeverity severity)
+{
+    switch (severity) {
+    case EventSeverity::Error:
+        return Colours{QColor(0x7f, 0x00, 0x00), QColor(0xff, 0xd6, 0xd6)};
+    case EventSeverity::Warning:
+        return Colours{QColor(0x3d, 0x2b, 0x00), QColor(0xff, 0xe5, 0x99)};
+    case EventSeverity::Info:
+        break;
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+EventLogModel::EventLogModel(EventLog* log, QObject* parent) : QAbstractTableModel(parent)
+{
+    if (log)
+        connect(log, &EventLog::recorded, this, &EventLogModel::append);
+}
+
+int EventLogModel::rowCount(const QModelIndex& parent) const
+{
+    return parent.isValid() ? 0 : int(m_events.size());
+}
+
+int EventLogModel::columnCount(const QModelIndex& parent) const
+{
+    return parent.isValid() ? 0 : ColumnCount;
+}
+
+QVariant EventLogModel::data(const QModelIndex& index, int role) const
+{
+    if (!index.isValid() || index.row() >= m_events.size())
+        return {};
+    const ConsoleEvent& e = m_events.at(index.row());
+    switch (role) {
+    case Qt::DisplayRole:
+        switch (index.column()) {
+        case TimeColumn:
+            return QDateTime::fromMSecsSinceEpoch(e.utcMicros / 1000, Qt::UTC)
+                .toString(QStringLiteral("HH:mm:ss"));
+        case SeverityColumn:
+            return eventSeverityName(e.severity);
+        case SourceColumn:
+            return eventSourceName(e.source);
+        case TextColumn:
+            return e.text;
+        }
+        break;
+    case Qt::ToolTipRole:
+        return QDateTime::fromMSecsSinceEpoch(e.utcMicros / 1000, Qt::UTC)
+                   .toString(QStringLiteral("yyyy-MM-dd HH:mm:ss.zzz 'UTC'")) +
+               QStringLiteral("\n") + e.text;
+    case Qt::ForegroundRole:
+        if (const auto c = coloursOf(e.severity))
+            return QBrush(c->text);
+        break;
+    case Qt::BackgroundRole:
+        if (const auto c = coloursOf(e.severity))
+            return QBrush(c->background);
+        break;
+    }
+    return {};
+}
+
+QVariant EventLogModel::headerData(int section, Qt::Orientation orientation, int role) const
+{
+    if (orientation != Qt::Horizontal || role != Qt::DisplayRole)
+        return {};
+    switch (section) {
+    case TimeColumn:
+        return tr("Time (UTC)");
+    case SeverityColumn:
+        return tr("Severity");
+    case SourceColumn:
+        return tr("Source");
+    case TextColumn:
+        return tr("Event");
+    }
+    return {};
+}
+
+int EventLogModel::count(EventSeverity severity) const
+{
+    return int(std::count_if(m_events.begin(), m_events.end(),
+                             [severity](const ConsoleEvent& e) { return e.severity == severity; }));
+}
+
+void EventLogModel::append(const ConsoleEvent& event)
+{
+    if (m_events.size() >= kMaxEvents) {
+        beginRemoveRows({}, 0, 0);
+        m_events.removeFirst();
+        endRemoveRows();
+    }
+    const int row = int(m_events.size());
+    beginInsertRows({}, row, row);
+    m_events.append(event);
+    endInsertRows();
+}

@@ -1,0 +1,82 @@
+#include "ui/eventlog/EventLogView.h"
+
+#include "ui/eventlog/EventLogModel.h"
+
+#include <QDir>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QStringList>
+#include <QTableView>
+#include <QVBoxLayout>
+
+EventLogView::EventLogView(EventLogModel* model, QWidget* parent)
+    : QWidget(parent), m_model(model), m_table(new QTableView), m_counts(new QLabel), m_file(new QLabel)
+{
+    m_table->setObjectName(QStringLiteral("eventTable"));
+    m_table->setModel(model);
+    m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
+    m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    m_table->setWordWrap(false);
+    m_table->setTextElideMode(Qt::ElideRight);
+    m_table->verticalHeader()->hide();
+    m_table->verticalHeader()->setDefaultSectionSize(fontMetrics().height() + 6);
+    QHeaderView* header = m_table->horizontalHeader();
+    header->setSectionResizeMode(EventLogModel::TimeColumn, QHeaderView::ResizeToContents);
+    header->setSectionResizeMode(EventLogModel::SeverityColumn, QHeaderView::ResizeToContents);
+    header->setSectionResizeMode(EventLogModel::SourceColumn, QHeaderView::ResizeToContents);
+    header->setSectionResizeMode(EventLogModel::TextColumn, QHeaderView::Stretch);
+    // Long texts are elided in the row and whole in its tool tip: the dock
+    // never grows wider than the window gives it.
+    m_table->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+
+    m_file->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_file->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    setFilePath(QString());
+
+    auto* bar = new QHBoxLayout;
+    bar->addWidget(m_counts);
+    bar->addSpacing(12);
+    bar->addWidget(m_file, 1);
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(4, 4, 4, 4);
+    layout->addLayout(bar);
+    layout->addWidget(m_table, 1);
+
+    // The newest event in view as it arrives, wherever the operator scrolled.
+    connect(model, &QAbstractItemModel::rowsInserted, m_table, [this] {
+        updateCounts();
+        m_table->scrollToBottom();
+    });
+    connect(model, &QAbstractItemModel::rowsRemoved, this, &EventLogView::updateCounts);
+    updateCounts();
+}
+
+void EventLogView::setFilePath(const QString& path)
+{
+    m_file->setText(path.isEmpty() ? tr("not kept in a file") : tr("Kept in %1").arg(QDir::toNativeSeparators(path)));
+    m_file->setToolTip(m_file->text());
+}
+
+QString EventLogView::fileText() const
+{
+    return m_file->text();
+}
+
+QString EventLogView::countsText() const
+{
+    return m_counts->text();
+}
+
+void EventLogView::updateCounts()
+{
+    // Spelled out per number: without a translation loaded, tr()'s %n gives "1 event(s)".
+    const auto counted = [](int n, const QString& one, const QString& many) {
+        return n == 1 ? one : many.arg(n);
+    };
+    m_counts->setText(
+        QStringList{counted(m_model->rowCount(), tr("1 event"), tr("%1 events")),
+                    counted(m_model->count(EventSeverity::Error), tr("1 error"), tr("%1 errors")),
+                    counted(m_model->count(EventSeverity::Warning), tr("1 warning"), tr("%1 warnings"))}
+            .join(QStringLiteral(", ")));
+}
