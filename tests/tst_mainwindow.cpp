@@ -19,7 +19,7 @@
 #include "ui/plan/FlightPlanUpload.h"
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
-#include "ui/window/LinkSettings.h"
+#include "link/session/LinkSettings.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
 #include "ui/plan/MissionPlan.h"
@@ -470,9 +470,10 @@ void TestMainWindow::replaysAFrameLog()
     }
     MainWindow window(options());
     QSignalSpy finished(&window, &MainWindow::replayFinished);
-    QVERIFY(window.openFrameLog(path));
     window.setReplaySpeed(10.0);
-    QCOMPARE(window.frameLog()->rowCount(), 20);
+    window.openFrameLog(path);
+    // Indexed off the GUI thread, then shown whole.
+    QTRY_COMPARE_WITH_TIMEOUT(window.frameLog()->rowCount(), 20, kLinkTimeoutMs);
     QCOMPARE(window.frameLog()->logPath(), path);
     QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
     QTRY_COMPARE_WITH_TIMEOUT(window.statistics().framesReceived, quint64(20), kLinkTimeoutMs);
@@ -619,14 +620,19 @@ void TestMainWindow::refusedKeyFileSaysWhy()
     MainWindow window(options());
     LinkSettings s;
     s.keyPath = path;
-    QVERIFY(!window.connectWith(s));
+    QSignalSpy failed(window.session(), &ConsoleSession::failed);
+    window.connectWith(s);
+    QTRY_COMPARE_WITH_TIMEOUT(failed.count(), 1, kLinkTimeoutMs);
     QVERIFY(!window.isLinkRunning());
+    QVERIFY(!window.session()->isActive());
     const QString message = window.statusBar()->currentMessage();
     QVERIFY2(message.contains(QStringLiteral("chmod 600")), qPrintable(message));
     QVERIFY2(message.contains(QStringLiteral("shared.key")), qPrintable(message));
     // The rehearsal checks the key before it starts uasim.
+    window.statusBar()->clearMessage();
     window.linkSettings()->setSettings(s);
     window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
+    QTRY_COMPARE_WITH_TIMEOUT(failed.count(), 2, kLinkTimeoutMs);
     QVERIFY(!window.isLinkRunning());
     QVERIFY(window.statusBar()->currentMessage().contains(QStringLiteral("chmod 600")));
 }
@@ -675,7 +681,7 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
     s.remoteAddress = QStringLiteral("127.0.0.1");
     s.remotePort = far.boundPort();
     s.keyPath = keyFile(QStringLiteral("console.key"));
-    QVERIFY(window.connectWith(s));
+    window.connectWith(s);
     QTRY_VERIFY_WITH_TIMEOUT(farReceived.count() >= 1, kLinkTimeoutMs);
     QList<QByteArray> answers;
     for (std::uint32_t id = 1; id <= 3; ++id) {
@@ -687,6 +693,9 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
     QCOMPARE(window.linkStatus()->securityText(), QStringLiteral("encrypted and authenticated"));
     QCOMPARE(window.statistics().framesReceived, quint64(0));
     QVERIFY(!window.linkStatus()->stateText().contains(QStringLiteral("Connected")));
+    // Each refusal reaches the operator with its reason.
+    const QString refused = window.statusBar()->currentMessage();
+    QVERIFY2(refused.startsWith(QStringLiteral("A frame was refused: forged")), qPrintable(refused));
 
     // The log view has them as rejected, with the ciphertext as it arrived.
     FrameLogModel* log = window.frameLog();
