@@ -61,10 +61,17 @@ void ConsoleSession::offThread(std::function<void()> work, std::function<void()>
 {
     const quint64 request = ++m_request;
     // With `this` as the context, `done` runs in this thread, and not at all
-    // once this is gone; the work touches only what it captured.
+    // once this is gone; the work touches only what it captured. Work that
+    // is over before then() is called would have `done` run inside the
+    // action's own call: posted instead, it always comes from the event loop.
     QtConcurrent::run(std::move(work)).then(this, [this, request, done = std::move(done)] {
-        if (request == m_request)
-            done();
+        QMetaObject::invokeMethod(
+            this,
+            [this, request, done] {
+                if (request == m_request)
+                    done();
+            },
+            Qt::QueuedConnection);
     });
 }
 
@@ -137,9 +144,9 @@ void ConsoleSession::openReplay(const QString& path)
     auto complete = std::make_shared<bool>(false);
     offThread([path, reader, complete] { *complete = (*reader)->open(path); },
               [this, path, reader, complete] {
-                  m_preparing = Kind::None;
                   std::unique_ptr<FrameLogReader> index = std::move(*reader);
                   if (!*complete && index->count() == 0) {
+                      m_preparing = Kind::None;
                       emit failed(tr("Cannot open the frame log: %1").arg(index->errorString()));
                       return;
                   }
@@ -149,16 +156,27 @@ void ConsoleSession::openReplay(const QString& path)
                   if (!damage.isEmpty())
                       emit warning(
                           tr("The frame log is damaged part-way; replaying what comes before: %1").arg(damage));
-                  auto replay = std::make_unique<ReplayLink>(path);
-                  replay->setSpeed(m_replaySpeed);
-                  m_replayPaused = false;
-                  m_replay = replay.get();
-                  connect(replay.get(), &ReplayLink::stateChanged, this,
-                          [this](ReplayLink::State state) { m_replayPaused = state == ReplayLink::State::Paused; });
-                  Opened nothing;
-                  startController(std::move(replay), Kind::Replay, tr("replay of %1").arg(QFileInfo(path).fileName()),
-                                  nothing);
+                  // In a pass of the event loop of its own, so that showing a
+                  // day's index and starting the link are two short stalls,
+                  // not one long one.
+                  QMetaObject::invokeMethod(
+                      this, [this, path, request = m_request] { startReplay(path, request); }, Qt::QueuedConnection);
               });
+}
+
+void ConsoleSession::startReplay(const QString& path, quint64 request)
+{
+    if (request != m_request)
+        return;
+    m_preparing = Kind::None;
+    auto replay = std::make_unique<ReplayLink>(path);
+    replay->setSpeed(m_replaySpeed);
+    m_replayPaused = false;
+    m_replay = replay.get();
+    connect(replay.get(), &ReplayLink::stateChanged, this,
+            [this](ReplayLink::State state) { m_replayPaused = state == ReplayLink::State::Paused; });
+    Opened nothing;
+    startController(std::move(replay), Kind::Replay, tr("replay of %1").arg(QFileInfo(path).fileName()), nothing);
 }
 
 void ConsoleSession::prepare(std::unique_ptr<Link> link, Kind kind, const QString& description,

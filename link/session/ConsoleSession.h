@@ -138,6 +138,8 @@ private:
                  std::shared_ptr<rcm::secure::SecureEndpoint> key = nullptr);
     void startController(std::unique_ptr<Link> link, Kind kind, const QString& description, Opened& opened);
     void stopController();
+    // Plays the log indexed for `request`, unless another action came in since.
+    void startReplay(const QString& path, quint64 request);
     void rehearsalReady(quint16 port);
     void rehearsalFailed(const QString& reason);
 

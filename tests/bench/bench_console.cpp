@@ -19,8 +19,10 @@
 #include <QElapsedTimer>
 #include <QFile>
 #include <QTemporaryDir>
+#include <QThread>
 #include <QTimer>
 
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -236,9 +238,64 @@ private:
     std::vector<qint64> m_gaps;
 };
 
+// Every event the GUI thread handles, timed in the thread's own CPU time:
+// what the GUI thread itself spent on the longest one, whatever else the
+// machine was doing meanwhile (the probe's gaps include being descheduled).
+class ProbedApplication : public QApplication {
+public:
+    using QApplication::QApplication;
+
+    bool notify(QObject* receiver, QEvent* event) override
+    {
+        // Events of other threads (the link's) are theirs.
+        if (QThread::currentThread() != thread())
+            return QApplication::notify(receiver, event);
+        if (m_depth++ > 0 || !m_on) {
+            const bool handled = QApplication::notify(receiver, event);
+            --m_depth;
+            return handled;
+        }
+        const qint64 start = threadCpuNanos();
+        const int type = event->type();  // the event may be gone afterwards
+        const QString what = QStringLiteral("%1 to a %2").arg(type).arg(receiver->metaObject()->className());
+        const bool handled = QApplication::notify(receiver, event);
+        --m_depth;
+        const qint64 spent = threadCpuNanos() - start;
+        if (spent > m_longest) {
+            m_longest = spent;
+            m_longestWhat = what;
+        }
+        return handled;
+    }
+    void restart()
+    {
+        m_on = true;
+        m_longest = 0;
+        m_longestWhat.clear();
+    }
+    QString report() const
+    {
+        return QStringLiteral("longest event handled %1 ms of GUI-thread CPU time (event type %2)")
+            .arg(double(m_longest) / 1e6, 0, 'f', 2)
+            .arg(m_longestWhat);
+    }
+
+private:
+    static qint64 threadCpuNanos()
+    {
+        timespec t{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+        return qint64(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+    }
+    int m_depth = 0;
+    bool m_on = false;
+    qint64 m_longest = 0;
+    QString m_longestWhat;
+};
+
 // Opening the log (indexing, the log view's rows) until the first record
 // plays, then `seconds` of replay at 10x, each under its own probe.
-int reportStalls(QApplication& app, MainWindow& window, int frames, int seconds)
+int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int seconds)
 {
     QTemporaryDir dir;
     const QString path = dir.filePath(QStringLiteral("session.pcapng"));
@@ -247,6 +304,7 @@ int reportStalls(QApplication& app, MainWindow& window, int frames, int seconds)
     QCoreApplication::processEvents();  // the first layout and paint are startup, not replay
     ConsoleSession* session = window.session();
     std::unique_ptr<StallProbe> probe = std::make_unique<StallProbe>();
+    app.restart();
     bool playing = false;
     QObject::connect(session, &ConsoleSession::failed, &app, [](const QString& reason) {
         say(reason);
@@ -257,12 +315,13 @@ int reportStalls(QApplication& app, MainWindow& window, int frames, int seconds)
             if (next == 0 || playing)
                 return;
             playing = true;
-            say(QStringLiteral("opening a %1-frame log for replay, until its first frame played: %2")
+            say(QStringLiteral("opening a %1-frame log for replay, until its first frame played: %2; %3")
                     .arg(frames)
-                    .arg(probe->report()));
+                    .arg(probe->report(), app.report()));
             probe = std::make_unique<StallProbe>();
+            app.restart();
             QTimer::singleShot(seconds * 1000, &app, [&] {
-                say(QStringLiteral("%1 s of replay at 10x: %2").arg(seconds).arg(probe->report()));
+                say(QStringLiteral("%1 s of replay at 10x: %2; %3").arg(seconds).arg(probe->report(), app.report()));
                 QCoreApplication::quit();
             });
         });
@@ -276,7 +335,7 @@ int reportStalls(QApplication& app, MainWindow& window, int frames, int seconds)
 
 int main(int argc, char* argv[])
 {
-    QApplication app(argc, argv);
+    ProbedApplication app(argc, argv);
     const QStringList args = app.arguments().mid(1);
     const QString mode = args.value(0);
     if (mode != QLatin1String("startup") && mode != QLatin1String("memory") && mode != QLatin1String("stall")) {
