@@ -234,7 +234,7 @@ void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, cons
     m_controller = std::make_unique<LinkController>(std::move(link), std::move(opened.log), std::move(options));
     if (kind == Kind::Rehearsal)
         // Frames came back: from now on an exit of uasim is a failure, not a port clash.
-        connect(m_controller->worker(), &LinkWorker::messageReceived, m_rehearsal, [this] { m_rehearsal->confirm(); });
+        connect(m_controller.get(), &LinkController::messageReceived, m_rehearsal, [this] { m_rehearsal->confirm(); });
     if (m_command)
         m_controller->setCommand(*m_command);
     emit linkStarted(m_controller.get());

@@ -66,7 +66,7 @@ public:
     bool isRunning() const { return m_controller != nullptr; }
     // A link runs or is being started: what a new action would replace.
     bool isActive() const { return m_kind != Kind::None || m_preparing != Kind::None; }
-    // The link running, or null; for connecting to its worker's signals.
+    // The link running, or null; for connecting to its signals.
     const LinkController* controller() const { return m_controller.get(); }
     // The replay running, or null: it lives in the link thread, so connect
     // to its signals only and steer it with the replay slots below.
@@ -113,8 +113,8 @@ public slots:
 signals:
     // A link is being prepared; what happens, for people ("Starting uasim…").
     void starting(const QString& what);
-    // The link is made and starts at once: connect to controller->worker()
-    // (and to replay() for a replay) in the slot, before its first signal.
+    // The link is made and starts at once: connect to the controller (and
+    // to replay() for a replay) in the slot, before its first signal.
     void linkStarted(const LinkController* controller);
     // The link ended: by stop(), or replaced by another one.
     void linkStopped();

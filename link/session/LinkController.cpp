@@ -1,10 +1,11 @@
 #include "link/session/LinkController.h"
 
 #include <QDeadlineTimer>
+#include <QMetaMethod>
 
 LinkController::LinkController(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log, LinkWorker::Options options,
                                QObject* parent)
-    : QObject(parent), m_thread(new QThread), m_worker(new LinkWorker(std::move(link), std::move(log), std::move(options)))
+    : LinkEvents(parent), m_thread(new QThread), m_worker(new LinkWorker(std::move(link), std::move(log), std::move(options)))
 {
     LinkWorker::registerMetaTypes();
     m_thread->setObjectName(QStringLiteral("link"));
@@ -12,10 +13,17 @@ LinkController::LinkController(std::unique_ptr<Link> link, std::unique_ptr<Frame
     // Deleted in its own thread, where its sockets and timers live; QThread
     // runs deferred deletes posted from finished() before it ends.
     connect(m_thread, &QThread::finished, m_worker, &QObject::deleteLater);
-    // Queued to this thread by affinity, and connected first, so that anyone
-    // told of new statistics finds them in statistics() already.
-    connect(m_worker, &LinkWorker::statisticsChanged, this,
+    // Connected first, so that anyone told of new statistics finds them in
+    // statistics() already.
+    connect(this, &LinkEvents::statisticsChanged, this,
             [this](const LinkStatistics& statistics) { m_statistics = statistics; });
+    // Worker to GUI, every signal of LinkEvents: queued by thread affinity.
+    const QMetaObject& events = LinkEvents::staticMetaObject;
+    for (int i = events.methodOffset(); i < events.methodCount(); ++i) {
+        const QMetaMethod signal = events.method(i);
+        if (signal.methodType() == QMetaMethod::Signal)
+            connect(m_worker, signal, this, signal);
+    }
     m_thread->start();
 }
 

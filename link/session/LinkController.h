@@ -4,11 +4,11 @@
 // relays to it with queued calls. It does no I/O and never waits on the link,
 // except for the thread's end when destroyed, and that for a bounded time.
 //
-// What the worker says is not restated here: connect to worker()'s signals
-// with a receiver in the GUI thread and Qt queues them there. Connect before
-// start(), which is when the worker begins to speak.
+// It says, in the GUI thread, everything the worker says (LinkEvents), each
+// signal forwarded as it is, none of them named here.
 
 #include "codec/message/Message.h"
+#include "link/session/LinkEvents.h"
 #include "link/session/LinkStatistics.h"
 #include "link/session/LinkWorker.h"
 
@@ -18,7 +18,7 @@
 #include <chrono>
 #include <memory>
 
-class LinkController : public QObject {
+class LinkController : public LinkEvents {
     Q_OBJECT
 
 public:
@@ -36,10 +36,6 @@ public:
 
     LinkController(const LinkController&) = delete;
     LinkController& operator=(const LinkController&) = delete;
-
-    // The worker, for connecting to its signals only: it lives in the link
-    // thread, so call nothing on it from another. Valid while this lives.
-    const LinkWorker* worker() const { return m_worker; }
 
     // The latest statistics received from the worker.
     const LinkStatistics& statistics() const { return m_statistics; }

@@ -430,20 +430,18 @@ void MainWindow::linkStarted(const LinkController* controller)
         if (!logPath.isEmpty())
             m_logModel->setSessionLog(logPath);
     }
-    // Cross-thread: each of these is queued to the GUI thread.
-    const LinkWorker* worker = controller->worker();
-    connect(worker, &LinkWorker::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
+    connect(controller, &LinkController::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
     // A live session's frames become rows as the link logs them; a replay's
     // rows are its log file, opened already.
     if (!replay)
-        connect(worker, &LinkWorker::frameLogged, m_logModel, &FrameLogModel::appendLogged);
-    connect(worker, &LinkWorker::stateChanged, m_status, &StatusBarWidget::setState);
-    connect(worker, &LinkWorker::messageReceived, this, &MainWindow::messageReceived);
-    connect(worker, &LinkWorker::frameSent, this, &MainWindow::frameSent);
-    connect(worker, &LinkWorker::errorOccurred, this, &MainWindow::showError);
-    connect(worker, &LinkWorker::commandRejected, this,
+        connect(controller, &LinkController::frameLogged, m_logModel, &FrameLogModel::appendLogged);
+    connect(controller, &LinkController::stateChanged, m_status, &StatusBarWidget::setState);
+    connect(controller, &LinkController::messageReceived, this, &MainWindow::messageReceived);
+    connect(controller, &LinkController::frameSent, this, &MainWindow::frameSent);
+    connect(controller, &LinkController::errorOccurred, this, &MainWindow::showError);
+    connect(controller, &LinkController::commandRejected, this,
             [this](const QString& reasons) { showError(tr("The link refused the command: %1").arg(reasons)); });
-    connect(worker, &LinkWorker::frameRejected, this,
+    connect(controller, &LinkController::frameRejected, this,
             [this](const QString& reason) { showError(tr("A frame was refused: %1").arg(reason)); });
     if (const ReplayLink* r = m_session->replay()) {
         connect(r, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
