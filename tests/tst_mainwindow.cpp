@@ -25,7 +25,12 @@
 #include "ui/plan/MissionPlan.h"
 #include "ui/window/StatusBarWidget.h"
 
+#include <QAction>
+#include <QApplication>
 #include <QDateTime>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QTimer>
 #include <QDockWidget>
 #include <QImage>
 #include <QProcess>
@@ -98,6 +103,10 @@ private slots:
     void refusedKeyFileSaysWhy();
     void secureRehearsalWithMatchingKeys();
     void wrongKeyIsRejectedAsForged();
+    void asksBeforeEndingALiveLink_data();
+    void asksBeforeEndingALiveLink();
+    void quitEndsTheLinkOnceConfirmed();
+    void linkButtonsNeverHoldTheFocus();
 
 private:
     MainWindow::Options options() const;
@@ -710,6 +719,148 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
         }(),
         kLinkTimeoutMs);
     QCOMPARE(rejected, answers);
+    window.disconnectLink();
+}
+
+namespace {
+
+// What the confirmation showed, and the button pressed in it.
+struct Confirmation {
+    bool shown = false;
+    bool cancelIsDefault = false;
+    bool cancelHasFocus = false;
+    QString text;
+};
+
+// Answers the next modal message box with `button` ("Cancel" or the action).
+void answerNextBox(Confirmation* seen, bool cancel)
+{
+    QTimer::singleShot(0, [seen, cancel] {
+        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        if (!box)
+            return;
+        seen->shown = true;
+        seen->text = box->text();
+        QAbstractButton* cancelButton = box->button(QMessageBox::Cancel);
+        seen->cancelIsDefault = box->defaultButton() == cancelButton;
+        seen->cancelHasFocus = box->focusWidget() == cancelButton;
+        QAbstractButton* go = nullptr;
+        for (QAbstractButton* b : box->buttons())
+            if (b != cancelButton)
+                go = b;
+        (cancel ? cancelButton : go)->click();
+    });
+}
+
+// The console connected over UDP to a bare socket standing in for the aircraft.
+void connectToABareSocket(MainWindow& window, UdpLink& aircraft)
+{
+    aircraft.open();
+    LinkSettings s;
+    s.localAddress = QStringLiteral("127.0.0.1");
+    s.remoteAddress = QStringLiteral("127.0.0.1");
+    s.remotePort = aircraft.boundPort();
+    window.connectWith(s);
+}
+
+QAction* menuAction(MainWindow& window, const QString& text)
+{
+    for (QAction* a : window.findChildren<QAction*>())
+        if (a->text() == text)
+            return a;
+    return nullptr;
+}
+
+}  // namespace
+
+void TestMainWindow::asksBeforeEndingALiveLink_data()
+{
+    QTest::addColumn<QString>("action");
+    QTest::addColumn<QString>("asks");
+    QTest::newRow("Connect") << QString() << QStringLiteral("Connect ends the live link: UDP");
+    QTest::newRow("Start rehearsal") << QStringLiteral("Start &rehearsal with uasim")
+                                     << QStringLiteral("Start rehearsal ends the live link: UDP");
+    QTest::newRow("Open log for replay") << QStringLiteral("&Open frame log for replay\u2026")
+                                         << QStringLiteral("Open log for replay ends the live link: UDP");
+    QTest::newRow("Quit") << QStringLiteral("&Quit") << QStringLiteral("Quit ends the live link: UDP");
+}
+
+void TestMainWindow::asksBeforeEndingALiveLink()
+{
+    QFETCH(QString, action);
+    QFETCH(QString, asks);
+    UdpLink aircraft(QHostAddress::LocalHost, 0);
+    MainWindow window(options());
+    window.show();
+    connectToABareSocket(window, aircraft);
+    QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    const LinkController* live = window.session()->controller();
+
+    Confirmation seen;
+    answerNextBox(&seen, true);
+    if (action.isEmpty()) {
+        window.connectLink();  // its button and menu item are disabled while connected; Ctrl+K is the slot
+    } else {
+        QAction* a = menuAction(window, action);
+        QVERIFY(a);
+        a->trigger();
+    }
+    QVERIFY(seen.shown);
+    QVERIFY2(seen.text.startsWith(asks), qPrintable(seen.text));
+    QVERIFY(seen.cancelIsDefault);
+    QVERIFY(seen.cancelHasFocus);
+    // Cancel keeps the link as it was, and the window.
+    QCOMPARE(window.session()->controller(), live);
+    QCOMPARE(window.session()->kind(), ConsoleSession::Kind::Live);
+    QCOMPARE(window.session()->preparing(), ConsoleSession::Kind::None);
+    QVERIFY(window.isVisible());
+    window.disconnectLink();
+}
+
+void TestMainWindow::quitEndsTheLinkOnceConfirmed()
+{
+    UdpLink aircraft(QHostAddress::LocalHost, 0);
+    MainWindow window(options());
+    window.show();
+    // Nothing live: no question.
+    QVERIFY(window.close());
+    window.show();
+    connectToABareSocket(window, aircraft);
+    QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    Confirmation seen;
+    answerNextBox(&seen, false);
+    QVERIFY(window.close());
+    QVERIFY(seen.shown);
+    QVERIFY(!window.isVisible());
+    QVERIFY(!window.session()->isActive());
+}
+
+void TestMainWindow::linkButtonsNeverHoldTheFocus()
+{
+    UdpLink aircraft(QHostAddress::LocalHost, 0);
+    MainWindow window(options());
+    window.show();
+    QApplication::setActiveWindow(&window);
+    QVERIFY(QTest::qWaitForWindowActive(&window));
+    std::set<QString> linkButtons;
+    for (QPushButton* b : window.findChildren<QPushButton*>())
+        if (b->text() == QStringLiteral("Connect") || b->text() == QStringLiteral("Disconnect") ||
+            b->text() == QStringLiteral("Start rehearsal"))
+            linkButtons.insert(b->text());
+    QCOMPARE(linkButtons.size(), std::size_t(3));
+    // Clicked, a button takes no focus; Tab through the whole window never lands on one.
+    auto* connect = window.findChild<QPushButton*>();
+    for (QPushButton* b : window.findChildren<QPushButton*>())
+        if (b->text() == QStringLiteral("Connect"))
+            connect = b;
+    QTest::mouseClick(connect, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    for (int i = 0; i < 300; ++i) {
+        QWidget* focus = QApplication::focusWidget();
+        auto* button = qobject_cast<QPushButton*>(focus);
+        QVERIFY2(!button || !linkButtons.count(button->text()), qPrintable(button ? button->text() : QString()));
+        QTest::keyClick(focus ? focus : &window, Qt::Key_Tab);
+    }
     window.disconnectLink();
 }
 

@@ -62,6 +62,13 @@ public:
     // Of the link being started (a key or log opening, a log being indexed,
     // uasim starting); None when none is.
     Kind preparing() const { return m_preparing; }
+    // A link to an aircraft, real or simulated, runs or is being started:
+    // what the console asks about before replacing it (a replay is not one).
+    bool isLive() const
+    {
+        const auto live = [](Kind k) { return k == Kind::Live || k == Kind::Rehearsal; };
+        return live(m_kind) || live(m_preparing);
+    }
     // A link runs (its thread does; it may be waiting for the far end).
     bool isRunning() const { return m_controller != nullptr; }
     // A link runs or is being started: what a new action would replace.

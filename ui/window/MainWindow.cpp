@@ -179,6 +179,11 @@ void MainWindow::buildDocks()
     m_connectButton->setToolTip(tr("Open the link and start sending the command once a second (Ctrl+K)"));
     m_disconnectButton = new QPushButton(tr("Disconnect"));
     m_disconnectButton->setToolTip(tr("Stop sending and close the link (Ctrl+Shift+K)"));
+    // Buttons that start or end a link never hold the focus, so that a
+    // stray Space or Enter cannot press one (after Connect the focus would
+    // move on to Start rehearsal); their shortcuts and the mouse remain.
+    for (QPushButton* b : {m_connectButton, m_disconnectButton})
+        b->setFocusPolicy(Qt::NoFocus);
     auto* buttons = new QHBoxLayout;
     buttons->addWidget(m_connectButton);
     buttons->addWidget(m_disconnectButton);
@@ -187,6 +192,7 @@ void MainWindow::buildDocks()
     m_rehearsalButton->setToolTip(
         tr("Start the simulated aircraft (uasim) on this computer and connect to it "
            "(Ctrl+R)"));
+    m_rehearsalButton->setFocusPolicy(Qt::NoFocus);
     linkLayout->addWidget(m_rehearsalButton);
     m_linkNote = new QLabel;
     m_linkNote->setWordWrap(true);
@@ -329,6 +335,10 @@ void MainWindow::saveSession() const
 
 void MainWindow::closeEvent(QCloseEvent* event)
 {
+    if (!confirmEndingLink(tr("Quit"))) {
+        event->ignore();
+        return;
+    }
     saveSession();
     m_session->stop();
     event->accept();
@@ -353,9 +363,29 @@ bool MainWindow::loadAirframe(const QString& path, QString* error)
     return true;
 }
 
+bool MainWindow::confirmEndingLink(const QString& action)
+{
+    if (!m_session->isLive())
+        return true;
+    QMessageBox box(QMessageBox::Warning, kTitle,
+                    tr("%1 ends the live link: %2.").arg(action, m_session->description().isEmpty()
+                                                                    ? tr("a link being started")
+                                                                    : m_session->description()),
+                    QMessageBox::NoButton, this);
+    box.setInformativeText(tr("The aircraft stops receiving this console's commands."));
+    QPushButton* go = box.addButton(action, QMessageBox::DestructiveRole);
+    go->setFocusPolicy(Qt::NoFocus);
+    QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+    box.setDefaultButton(cancel);
+    box.setEscapeButton(cancel);
+    box.exec();
+    return box.clickedButton() == go;
+}
+
 void MainWindow::connectLink()
 {
-    connectWith(m_linkSettings->settings());
+    if (confirmEndingLink(tr("Connect")))
+        connectWith(m_linkSettings->settings());
 }
 
 void MainWindow::connectWith(const LinkSettings& settings)
@@ -374,7 +404,8 @@ void MainWindow::disconnectLink()
 
 void MainWindow::startRehearsal()
 {
-    startRehearsalWith(RehearsalLauncher::defaultProgram());
+    if (confirmEndingLink(tr("Start rehearsal")))
+        startRehearsalWith(RehearsalLauncher::defaultProgram());
 }
 
 void MainWindow::startRehearsalWith(const QString& uasimProgram)
@@ -541,6 +572,8 @@ void MainWindow::updateTitle()
 
 void MainWindow::chooseFrameLog()
 {
+    if (!confirmEndingLink(tr("Open log for replay")))
+        return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Replay a frame log"), m_session->frameLogDirectory(),
                                                       tr("Frame logs (*.pcapng);;All files (*)"));
     if (!path.isEmpty())

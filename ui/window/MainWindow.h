@@ -67,6 +67,10 @@ public:
     bool loadAirframe(const QString& path, QString* error = nullptr);
 
 public slots:
+    // Connect, Start rehearsal, Open log for replay and Quit, as the
+    // operator gives them, ask first while a link is live
+    // (ConsoleSession::isLive()); the calls named ...With and
+    // openFrameLog() do not, for scripts and tests.
     // The actions below start their link in the background (ConsoleSession):
     // isLinkRunning() once it runs, the reason in the status bar if it does not.
     void connectLink();                              // with the settings shown
@@ -107,6 +111,9 @@ private:
     // From the session's state: what can be started or stopped now.
     void updateLinkControls();
     void showNotConnected();
+    // True to go on with `action`, which would end the live link: asked
+    // first while one is live (or being started), Cancel the default.
+    bool confirmEndingLink(const QString& action);
     void updateTitle();
     void chooseFrameLog();
     void exportCsv();
