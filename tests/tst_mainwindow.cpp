@@ -19,13 +19,18 @@
 #include "ui/plan/FlightPlanUpload.h"
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
-#include "ui/window/LinkSettings.h"
+#include "link/session/LinkSettings.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
 #include "ui/plan/MissionPlan.h"
 #include "ui/window/StatusBarWidget.h"
 
+#include <QAction>
+#include <QApplication>
 #include <QDateTime>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QTimer>
 #include <QDockWidget>
 #include <QImage>
 #include <QProcess>
@@ -98,6 +103,10 @@ private slots:
     void refusedKeyFileSaysWhy();
     void secureRehearsalWithMatchingKeys();
     void wrongKeyIsRejectedAsForged();
+    void asksBeforeEndingALiveLink_data();
+    void asksBeforeEndingALiveLink();
+    void quitEndsTheLinkOnceConfirmed();
+    void linkButtonsNeverHoldTheFocus();
 
 private:
     MainWindow::Options options() const;
@@ -470,9 +479,10 @@ void TestMainWindow::replaysAFrameLog()
     }
     MainWindow window(options());
     QSignalSpy finished(&window, &MainWindow::replayFinished);
-    QVERIFY(window.openFrameLog(path));
     window.setReplaySpeed(10.0);
-    QCOMPARE(window.frameLog()->rowCount(), 20);
+    window.openFrameLog(path);
+    // Indexed off the GUI thread, then shown whole.
+    QTRY_COMPARE_WITH_TIMEOUT(window.frameLog()->rowCount(), 20, kLinkTimeoutMs);
     QCOMPARE(window.frameLog()->logPath(), path);
     QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
     QTRY_COMPARE_WITH_TIMEOUT(window.statistics().framesReceived, quint64(20), kLinkTimeoutMs);
@@ -619,14 +629,19 @@ void TestMainWindow::refusedKeyFileSaysWhy()
     MainWindow window(options());
     LinkSettings s;
     s.keyPath = path;
-    QVERIFY(!window.connectWith(s));
+    QSignalSpy failed(window.session(), &ConsoleSession::failed);
+    window.connectWith(s);
+    QTRY_COMPARE_WITH_TIMEOUT(failed.count(), 1, kLinkTimeoutMs);
     QVERIFY(!window.isLinkRunning());
+    QVERIFY(!window.session()->isActive());
     const QString message = window.statusBar()->currentMessage();
     QVERIFY2(message.contains(QStringLiteral("chmod 600")), qPrintable(message));
     QVERIFY2(message.contains(QStringLiteral("shared.key")), qPrintable(message));
     // The rehearsal checks the key before it starts uasim.
+    window.statusBar()->clearMessage();
     window.linkSettings()->setSettings(s);
     window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
+    QTRY_COMPARE_WITH_TIMEOUT(failed.count(), 2, kLinkTimeoutMs);
     QVERIFY(!window.isLinkRunning());
     QVERIFY(window.statusBar()->currentMessage().contains(QStringLiteral("chmod 600")));
 }
@@ -675,7 +690,7 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
     s.remoteAddress = QStringLiteral("127.0.0.1");
     s.remotePort = far.boundPort();
     s.keyPath = keyFile(QStringLiteral("console.key"));
-    QVERIFY(window.connectWith(s));
+    window.connectWith(s);
     QTRY_VERIFY_WITH_TIMEOUT(farReceived.count() >= 1, kLinkTimeoutMs);
     QList<QByteArray> answers;
     for (std::uint32_t id = 1; id <= 3; ++id) {
@@ -687,6 +702,9 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
     QCOMPARE(window.linkStatus()->securityText(), QStringLiteral("encrypted and authenticated"));
     QCOMPARE(window.statistics().framesReceived, quint64(0));
     QVERIFY(!window.linkStatus()->stateText().contains(QStringLiteral("Connected")));
+    // Each refusal reaches the operator with its reason.
+    const QString refused = window.statusBar()->currentMessage();
+    QVERIFY2(refused.startsWith(QStringLiteral("A frame was refused: forged")), qPrintable(refused));
 
     // The log view has them as rejected, with the ciphertext as it arrived.
     FrameLogModel* log = window.frameLog();
@@ -701,6 +719,148 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
         }(),
         kLinkTimeoutMs);
     QCOMPARE(rejected, answers);
+    window.disconnectLink();
+}
+
+namespace {
+
+// What the confirmation showed, and the button pressed in it.
+struct Confirmation {
+    bool shown = false;
+    bool cancelIsDefault = false;
+    bool cancelHasFocus = false;
+    QString text;
+};
+
+// Answers the next modal message box with `button` ("Cancel" or the action).
+void answerNextBox(Confirmation* seen, bool cancel)
+{
+    QTimer::singleShot(0, [seen, cancel] {
+        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        if (!box)
+            return;
+        seen->shown = true;
+        seen->text = box->text();
+        QAbstractButton* cancelButton = box->button(QMessageBox::Cancel);
+        seen->cancelIsDefault = box->defaultButton() == cancelButton;
+        seen->cancelHasFocus = box->focusWidget() == cancelButton;
+        QAbstractButton* go = nullptr;
+        for (QAbstractButton* b : box->buttons())
+            if (b != cancelButton)
+                go = b;
+        (cancel ? cancelButton : go)->click();
+    });
+}
+
+// The console connected over UDP to a bare socket standing in for the aircraft.
+void connectToABareSocket(MainWindow& window, UdpLink& aircraft)
+{
+    aircraft.open();
+    LinkSettings s;
+    s.localAddress = QStringLiteral("127.0.0.1");
+    s.remoteAddress = QStringLiteral("127.0.0.1");
+    s.remotePort = aircraft.boundPort();
+    window.connectWith(s);
+}
+
+QAction* menuAction(MainWindow& window, const QString& text)
+{
+    for (QAction* a : window.findChildren<QAction*>())
+        if (a->text() == text)
+            return a;
+    return nullptr;
+}
+
+}  // namespace
+
+void TestMainWindow::asksBeforeEndingALiveLink_data()
+{
+    QTest::addColumn<QString>("action");
+    QTest::addColumn<QString>("asks");
+    QTest::newRow("Connect") << QString() << QStringLiteral("Connect ends the live link: UDP");
+    QTest::newRow("Start rehearsal") << QStringLiteral("Start &rehearsal with uasim")
+                                     << QStringLiteral("Start rehearsal ends the live link: UDP");
+    QTest::newRow("Open log for replay") << QStringLiteral("&Open frame log for replay\u2026")
+                                         << QStringLiteral("Open log for replay ends the live link: UDP");
+    QTest::newRow("Quit") << QStringLiteral("&Quit") << QStringLiteral("Quit ends the live link: UDP");
+}
+
+void TestMainWindow::asksBeforeEndingALiveLink()
+{
+    QFETCH(QString, action);
+    QFETCH(QString, asks);
+    UdpLink aircraft(QHostAddress::LocalHost, 0);
+    MainWindow window(options());
+    window.show();
+    connectToABareSocket(window, aircraft);
+    QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    const LinkController* live = window.session()->controller();
+
+    Confirmation seen;
+    answerNextBox(&seen, true);
+    if (action.isEmpty()) {
+        window.connectLink();  // its button and menu item are disabled while connected; Ctrl+K is the slot
+    } else {
+        QAction* a = menuAction(window, action);
+        QVERIFY(a);
+        a->trigger();
+    }
+    QVERIFY(seen.shown);
+    QVERIFY2(seen.text.startsWith(asks), qPrintable(seen.text));
+    QVERIFY(seen.cancelIsDefault);
+    QVERIFY(seen.cancelHasFocus);
+    // Cancel keeps the link as it was, and the window.
+    QCOMPARE(window.session()->controller(), live);
+    QCOMPARE(window.session()->kind(), ConsoleSession::Kind::Live);
+    QCOMPARE(window.session()->preparing(), ConsoleSession::Kind::None);
+    QVERIFY(window.isVisible());
+    window.disconnectLink();
+}
+
+void TestMainWindow::quitEndsTheLinkOnceConfirmed()
+{
+    UdpLink aircraft(QHostAddress::LocalHost, 0);
+    MainWindow window(options());
+    window.show();
+    // Nothing live: no question.
+    QVERIFY(window.close());
+    window.show();
+    connectToABareSocket(window, aircraft);
+    QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    Confirmation seen;
+    answerNextBox(&seen, false);
+    QVERIFY(window.close());
+    QVERIFY(seen.shown);
+    QVERIFY(!window.isVisible());
+    QVERIFY(!window.session()->isActive());
+}
+
+void TestMainWindow::linkButtonsNeverHoldTheFocus()
+{
+    UdpLink aircraft(QHostAddress::LocalHost, 0);
+    MainWindow window(options());
+    window.show();
+    QApplication::setActiveWindow(&window);
+    QVERIFY(QTest::qWaitForWindowActive(&window));
+    std::set<QString> linkButtons;
+    for (QPushButton* b : window.findChildren<QPushButton*>())
+        if (b->text() == QStringLiteral("Connect") || b->text() == QStringLiteral("Disconnect") ||
+            b->text() == QStringLiteral("Start rehearsal"))
+            linkButtons.insert(b->text());
+    QCOMPARE(linkButtons.size(), std::size_t(3));
+    // Clicked, a button takes no focus; Tab through the whole window never lands on one.
+    auto* connect = window.findChild<QPushButton*>();
+    for (QPushButton* b : window.findChildren<QPushButton*>())
+        if (b->text() == QStringLiteral("Connect"))
+            connect = b;
+    QTest::mouseClick(connect, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    for (int i = 0; i < 300; ++i) {
+        QWidget* focus = QApplication::focusWidget();
+        auto* button = qobject_cast<QPushButton*>(focus);
+        QVERIFY2(!button || !linkButtons.count(button->text()), qPrintable(button ? button->text() : QString()));
+        QTest::keyClick(focus ? focus : &window, Qt::Key_Tab);
+    }
     window.disconnectLink();
 }
 

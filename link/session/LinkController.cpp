@@ -1,41 +1,51 @@
 #include "link/session/LinkController.h"
 
+#include <QDeadlineTimer>
+#include <QMetaMethod>
+
 LinkController::LinkController(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log, LinkWorker::Options options,
                                QObject* parent)
-    : QObject(parent), m_worker(new LinkWorker(std::move(link), std::move(log), std::move(options)))
+    : LinkEvents(parent), m_thread(new QThread), m_worker(new LinkWorker(std::move(link), std::move(log), std::move(options)))
 {
     LinkWorker::registerMetaTypes();
-    m_thread.setObjectName(QStringLiteral("link"));
-    m_worker->moveToThread(&m_thread);
+    m_thread->setObjectName(QStringLiteral("link"));
+    m_worker->moveToThread(m_thread);
     // Deleted in its own thread, where its sockets and timers live; QThread
     // runs deferred deletes posted from finished() before it ends.
-    connect(&m_thread, &QThread::finished, m_worker, &QObject::deleteLater);
-
-    // Worker to GUI: queued by thread affinity.
-    connect(m_worker, &LinkWorker::started, this, &LinkController::started);
-    connect(m_worker, &LinkWorker::stopped, this, &LinkController::stopped);
-    connect(m_worker, &LinkWorker::messageReceived, this, &LinkController::messageReceived);
-    connect(m_worker, &LinkWorker::frameSent, this, &LinkController::frameSent);
-    connect(m_worker, &LinkWorker::frameLogged, this, &LinkController::frameLogged);
-    connect(m_worker, &LinkWorker::statisticsChanged, this, [this](const LinkStatistics& statistics) {
-        m_statistics = statistics;
-        emit statisticsChanged(statistics);
-    });
-    connect(m_worker, &LinkWorker::stateChanged, this, &LinkController::stateChanged);
-    connect(m_worker, &LinkWorker::linkLost, this, &LinkController::linkLost);
-    connect(m_worker, &LinkWorker::linkRegained, this, &LinkController::linkRegained);
-    connect(m_worker, &LinkWorker::errorOccurred, this, &LinkController::errorOccurred);
-    connect(m_worker, &LinkWorker::commandRejected, this, &LinkController::commandRejected);
-
-    m_thread.start();
+    connect(m_thread, &QThread::finished, m_worker, &QObject::deleteLater);
+    // Connected first, so that anyone told of new statistics finds them in
+    // statistics() already.
+    connect(this, &LinkEvents::statisticsChanged, this,
+            [this](const LinkStatistics& statistics) { m_statistics = statistics; });
+    // Worker to GUI, every signal of LinkEvents: queued by thread affinity.
+    const QMetaObject& events = LinkEvents::staticMetaObject;
+    for (int i = events.methodOffset(); i < events.methodCount(); ++i) {
+        const QMetaMethod signal = events.method(i);
+        if (signal.methodType() == QMetaMethod::Signal)
+            connect(m_worker, signal, this, signal);
+    }
+    m_thread->start();
 }
 
 LinkController::~LinkController()
 {
     // No stop() first: a call queued now may never run once the loop is told
     // to quit. The worker's deletion in its own thread closes the link.
-    m_thread.quit();
-    m_thread.wait();
+    m_thread->quit();
+    // Connected before waiting, so that a thread that ends just after the
+    // wait gave up still deletes itself; a thread that ended in time is
+    // deleted here, and its queued deleteLater() with it.
+    connect(m_thread, &QThread::finished, m_thread, &QObject::deleteLater);
+    if (m_thread->wait(QDeadlineTimer(kJoinTimeout))) {
+        delete m_thread;
+        return;
+    }
+    // A transport stuck in the kernel (a serial driver that does not return
+    // from close) must not freeze the console: the thread is let go, to
+    // delete itself (and the worker) whenever it does end.
+    qWarning("LinkController: waited %lld ms for the link thread to close its transport and end; it has not, "
+             "going on without it",
+             static_cast<long long>(kJoinTimeout.count()));
 }
 
 void LinkController::start()

@@ -1,29 +1,37 @@
 #pragma once
 
 // The GUI side of one link: runs a LinkWorker in a thread of its own and
-// relays between them with queued calls and signals. It does no I/O and
-// never waits on the link, except for the thread's end when destroyed.
+// relays to it with queued calls. It does no I/O and never waits on the link,
+// except for the thread's end when destroyed, and that for a bounded time.
+//
+// It says, in the GUI thread, everything the worker says (LinkEvents), each
+// signal forwarded as it is, none of them named here.
 
 #include "codec/message/Message.h"
+#include "link/session/LinkEvents.h"
 #include "link/session/LinkStatistics.h"
 #include "link/session/LinkWorker.h"
-#include "link/session/ReceivedMessage.h"
 
 #include <QObject>
 #include <QThread>
 
+#include <chrono>
 #include <memory>
 
-class LinkController : public QObject {
+class LinkController : public LinkEvents {
     Q_OBJECT
 
 public:
+    // How long the destructor waits for the link thread to end before it
+    // gives up on it (and says so): closing a port or a socket takes far less.
+    static constexpr std::chrono::milliseconds kJoinTimeout{3000};
+
     // The link and the log move to the worker's thread with the worker; the
     // caller keeps no access to them (Link::description() and friends are
     // for the worker's thread). The thread starts now; the link opens on start().
     explicit LinkController(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log = {},
                             LinkWorker::Options options = {}, QObject* parent = nullptr);
-    // Stops the link and waits for the thread to finish.
+    // Stops the link and waits, at most kJoinTimeout, for the thread to finish.
     ~LinkController() override;
 
     LinkController(const LinkController&) = delete;
@@ -38,22 +46,8 @@ public slots:
     // Copied and queued: the worker picks it up for its next frame.
     void setCommand(const rcm::Message& command);
 
-signals:
-    void started();
-    void stopped();
-    void messageReceived(const ReceivedMessage& received);
-    void frameSent(quint32 messageId);
-    // LinkWorker::frameLogged, queued to this thread: one per frame logged.
-    void frameLogged(const LoggedFrame& frame);
-    void statisticsChanged(const LinkStatistics& statistics);
-    void stateChanged(LinkState state);
-    void linkLost();
-    void linkRegained();
-    void errorOccurred(const QString& message);
-    void commandRejected(const QString& reasons);
-
 private:
-    QThread m_thread;
+    QThread* m_thread;     // owned; let go, to delete itself, if it will not end in time
     LinkWorker* m_worker;  // lives in m_thread, deleted there when it finishes
     LinkStatistics m_statistics;
 };

@@ -56,7 +56,7 @@ std::span<const std::uint8_t> asBytes(const QByteArray& bytes)
 }  // namespace
 
 LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log, Options options, QObject* parent)
-    : QObject(parent),
+    : LinkEvents(parent),
       m_link(std::move(link)),
       m_log(std::move(log)),
       m_options(std::move(options)),

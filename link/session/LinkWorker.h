@@ -15,6 +15,7 @@
 #include "link/session/MessageMetaType.h"
 #include "link/framelog/FrameLog.h"
 #include "link/transport/Link.h"
+#include "link/session/LinkEvents.h"
 #include "link/session/LinkStatistics.h"
 #include "link/session/LoggedFrame.h"
 #include "link/session/ReceivedMessage.h"
@@ -39,7 +40,8 @@ enum class Rejection : std::uint8_t;
 
 class UdpLink;
 
-class LinkWorker : public QObject {
+// What it says (LinkEvents) reaches the GUI thread through LinkController.
+class LinkWorker : public LinkEvents {
     Q_OBJECT
 
 public:
@@ -103,27 +105,6 @@ public slots:
     // in commandRejected(), when it cannot be encoded; the previous command
     // then stays. No frame is sent before the first command.
     void setCommand(const rcm::Message& command);
-
-signals:
-    void started();
-    void stopped();
-    void messageReceived(const ReceivedMessage& received);
-    void frameSent(quint32 messageId);
-    // Every frame the worker logs, once, just after it went into the frame log:
-    // sent, received good or corrected, uncorrectable, rejected (secure link,
-    // wrong-size datagram). What the console's frame log view is built from.
-    void frameLogged(const LoggedFrame& frame);
-    void statisticsChanged(const LinkStatistics& statistics);
-    void stateChanged(LinkState state);
-    // Each once per outage: lost after the silence timeout or when the
-    // transport went away, regained with the first good frame after that.
-    void linkLost();
-    void linkRegained();
-    // Transport and frame log failures, once each; see Link::errorOccurred.
-    void errorOccurred(const QString& message);
-    void commandRejected(const QString& reasons);
-    // Secure link: a frame that decoded was refused; "forged: ..." and so on.
-    void frameRejected(const QString& reason);
 
 private:
     void armTick();

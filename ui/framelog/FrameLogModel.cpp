@@ -218,7 +218,12 @@ bool FrameLogModel::openLog(const QString& path, QString* error)
         *error = complete ? QString() : reader->errorString();
     if (!complete && reader->count() == 0)
         return false;
+    showLog(std::move(reader), path);
+    return true;
+}
 
+void FrameLogModel::showLog(std::unique_ptr<FrameLogReader> reader, const QString& path)
+{
     beginResetModel();
     m_pending.clear();
     m_liveBytes.clear();
@@ -245,7 +250,6 @@ bool FrameLogModel::openLog(const QString& path, QString* error)
     m_played = -1;
     m_decodedRows = 0;
     endResetModel();
-    return true;
 }
 
 void FrameLogModel::clear()

@@ -45,6 +45,9 @@ public:
     // corrupt part-way the records before the fault are shown and the
     // reader's reason is returned in `error`; false when nothing was readable.
     bool openLog(const QString& path, QString* error = nullptr);
+    // The same for a log another thread has indexed already (reader->open()
+    // found records), so that a day's log costs the GUI thread its rows only.
+    void showLog(std::unique_ptr<FrameLogReader> reader, const QString& path);
     // Removes every row (and closes the log file, if one was open).
     void clear();
     QString logPath() const { return m_logPath; }

@@ -5,7 +5,7 @@
 // e.g. a pseudo-terminal) and bit rate, or the UDP endpoints; and, for either,
 // the aircraft's key file (typed, or chosen in a file dialog) for a secure link.
 
-#include "ui/window/LinkSettings.h"
+#include "link/session/LinkSettings.h"
 
 #include <QWidget>
 

@@ -1,9 +1,6 @@
 #include "ui/window/MainWindow.h"
 
-#include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLogCsv.h"
-#include "link/session/LinkController.h"
-#include "link/framelog/ReplayLink.h"
 #include "link/simulation/AirframeLoader.h"
 #include "ui/panels/CameraPanel.h"
 #include "ui/panels/CommandPreview.h"
@@ -21,7 +18,6 @@
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/voice/PushToTalkWidget.h"
 #include "ui/panels/RadioPanel.h"
-#include "ui/window/RehearsalLauncher.h"
 #include "ui/framelog/ReplayControls.h"
 #include "ui/panels/ReportedState.h"
 #include "ui/window/StatusBarWidget.h"
@@ -97,9 +93,9 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
       m_reported(new ReportedState(m_command, this)),
       m_upload(new FlightPlanUpload(this)),
       m_logModel(new FrameLogModel(this)),
-      m_rehearsal(new RehearsalLauncher(this)),
-      m_frameLogDirectory(options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory()
-                                                              : options.frameLogDirectory)
+      m_session(new ConsoleSession(options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory()
+                                                                       : options.frameLogDirectory,
+                                   this))
 {
     LinkWorker::registerMetaTypes();
     setWindowTitle(kTitle);
@@ -119,38 +115,29 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
         m_reported->clear();
         updateTitle();
     });
-    connect(m_rehearsal, &RehearsalLauncher::ready, this, [this](quint16 port) {
-        LinkSettings s;
-        s.transport = LinkSettings::Transport::Udp;
-        s.localAddress = QStringLiteral("127.0.0.1");
-        s.localPort = 0;
-        s.remoteAddress = QStringLiteral("127.0.0.1");
-        s.remotePort = port;
-        QString error;
-        std::unique_ptr<Link> link = s.createLink(&error);
-        stopController();
-        startController(std::move(link), true, tr("rehearsal with uasim on %1:%2").arg(s.remoteAddress).arg(port), true,
-                        m_rehearsalKey);
-        m_rehearsing = true;
-        setLinkControlsRunning(true);
-    });
-    connect(m_rehearsal, &RehearsalLauncher::failed, this, [this](const QString& reason) {
-        m_rehearsalKey.reset();
-        showError(tr("Rehearsal: %1").arg(reason));
-        if (m_rehearsing)
-            disconnectLink();
-    });
+    // Every link carries the voice beside the commands (when it is on) and
+    // the flight plan upload; the uploader takes the section size of the
+    // link: 199 bytes when keyed.
+    m_session->setLinkWrapper([this](std::unique_ptr<Link> link) { return m_voice->attach(std::move(link)); });
+    m_session->setOptionsFilter([this](LinkWorker::Options o) { return m_upload->linkOptions(std::move(o)); });
+    connect(m_session, &ConsoleSession::linkStarted, this, &MainWindow::linkStarted);
+    connect(m_session, &ConsoleSession::linkStopped, this, &MainWindow::linkStopped);
+    connect(m_session, &ConsoleSession::replayIndexed, this, &MainWindow::replayIndexed);
+    connect(m_session, &ConsoleSession::failed, this, &MainWindow::actionFailed);
+    connect(m_session, &ConsoleSession::warning, this, &MainWindow::showError);
+    connect(m_session, &ConsoleSession::starting, m_linkNote, &QLabel::setText);
 
     restoreSession(options);
     commandChanged();
-    setLinkControlsRunning(false);
+    showNotConnected();
+    updateLinkControls();
     updateTitle();
 }
 
 MainWindow::~MainWindow()
 {
     // The link first: its thread calls into m_upload until it ends.
-    stopController();
+    m_session->stop();
 }
 
 void MainWindow::buildPanels()
@@ -192,6 +179,11 @@ void MainWindow::buildDocks()
     m_connectButton->setToolTip(tr("Open the link and start sending the command once a second (Ctrl+K)"));
     m_disconnectButton = new QPushButton(tr("Disconnect"));
     m_disconnectButton->setToolTip(tr("Stop sending and close the link (Ctrl+Shift+K)"));
+    // Buttons that start or end a link never hold the focus, so that a
+    // stray Space or Enter cannot press one (after Connect the focus would
+    // move on to Start rehearsal); their shortcuts and the mouse remain.
+    for (QPushButton* b : {m_connectButton, m_disconnectButton})
+        b->setFocusPolicy(Qt::NoFocus);
     auto* buttons = new QHBoxLayout;
     buttons->addWidget(m_connectButton);
     buttons->addWidget(m_disconnectButton);
@@ -200,6 +192,7 @@ void MainWindow::buildDocks()
     m_rehearsalButton->setToolTip(
         tr("Start the simulated aircraft (uasim) on this computer and connect to it "
            "(Ctrl+R)"));
+    m_rehearsalButton->setFocusPolicy(Qt::NoFocus);
     linkLayout->addWidget(m_rehearsalButton);
     m_linkNote = new QLabel;
     m_linkNote->setWordWrap(true);
@@ -216,10 +209,8 @@ void MainWindow::buildDocks()
 
     connect(m_replayControls, &ReplayControls::pauseRequested, this, &MainWindow::setReplayPaused);
     connect(m_replayControls, &ReplayControls::speedRequested, this, &MainWindow::setReplaySpeed);
-    connect(m_replayControls, &ReplayControls::seekRequested, this, [this](qint64 utc) {
-        if (m_replay)
-            QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), utc] { replay->seek(utc); });
-    });
+    connect(m_replayControls, &ReplayControls::seekRequested, this,
+            [this](qint64 utc) { m_session->seekReplay(utc); });
 
     m_preview = new CommandPreview;
     m_logView = new FrameLogView(m_logModel);
@@ -283,7 +274,7 @@ void MainWindow::buildMenus()
     m_rehearsalAction->setShortcut(QKeySequence(tr("Ctrl+R")));
     linkMenu->addSeparator();
     m_pauseAction =
-        linkMenu->addAction(tr("&Pause or resume replay"), this, [this] { setReplayPaused(!m_replayPaused); });
+        linkMenu->addAction(tr("&Pause or resume replay"), this, [this] { setReplayPaused(!m_session->isReplayPaused()); });
     m_pauseAction->setShortcut(QKeySequence(tr("Ctrl+P")));
     m_pauseAction->setEnabled(false);
     linkMenu->addAction(tr("Refresh serial ports"), m_linkSettings, &LinkSettingsWidget::refreshPorts);
@@ -344,9 +335,12 @@ void MainWindow::saveSession() const
 
 void MainWindow::closeEvent(QCloseEvent* event)
 {
+    if (!confirmEndingLink(tr("Quit"))) {
+        event->ignore();
+        return;
+    }
     saveSession();
-    stopController();
-    m_rehearsal->stop();
+    m_session->stop();
     event->accept();
 }
 
@@ -369,143 +363,86 @@ bool MainWindow::loadAirframe(const QString& path, QString* error)
     return true;
 }
 
-LinkStatistics MainWindow::statistics() const
+bool MainWindow::confirmEndingLink(const QString& action)
 {
-    return m_controller ? m_controller->statistics() : LinkStatistics();
+    if (!m_session->isLive())
+        return true;
+    QMessageBox box(QMessageBox::Warning, kTitle,
+                    tr("%1 ends the live link: %2.").arg(action, m_session->description().isEmpty()
+                                                                    ? tr("a link being started")
+                                                                    : m_session->description()),
+                    QMessageBox::NoButton, this);
+    box.setInformativeText(tr("The aircraft stops receiving this console's commands."));
+    QPushButton* go = box.addButton(action, QMessageBox::DestructiveRole);
+    go->setFocusPolicy(Qt::NoFocus);
+    QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+    box.setDefaultButton(cancel);
+    box.setEscapeButton(cancel);
+    box.exec();
+    return box.clickedButton() == go;
 }
 
 void MainWindow::connectLink()
 {
-    connectWith(m_linkSettings->settings());
+    if (confirmEndingLink(tr("Connect")))
+        connectWith(m_linkSettings->settings());
 }
 
-bool MainWindow::connectWith(const LinkSettings& settings)
+void MainWindow::connectWith(const LinkSettings& settings)
 {
     m_linkSettings->setSettings(settings);
-    QString error;
-    std::unique_ptr<Link> link = settings.createLink(&error);
-    if (!link) {
-        showError(error);
-        return false;
-    }
-    bool keyOk = false;
-    std::shared_ptr<rcm::secure::SecureEndpoint> secure = openKey(settings.keyPath, &keyOk);
-    if (!keyOk)
-        return false;
-    stopController();
-    m_rehearsal->stop();
-    m_rehearsalKey.reset();
-    m_rehearsing = false;
-    startController(std::move(link), settings.transport == LinkSettings::Transport::Udp, settings.summary(), true,
-                    std::move(secure));
-    setLinkControlsRunning(true);
-    return true;
+    m_session->connectWith(settings);
+    updateLinkControls();
 }
 
 void MainWindow::disconnectLink()
 {
-    stopController();
-    m_rehearsal->stop();
-    m_rehearsalKey.reset();
-    m_rehearsing = false;
-    setLinkControlsRunning(false);
-}
-
-std::shared_ptr<rcm::secure::SecureEndpoint> MainWindow::openKey(const QString& keyPath, bool* ok)
-{
-    *ok = true;
-    if (keyPath.isEmpty())
-        return nullptr;
-    // Reads the key and the state files beside it: small local files, once per connection.
-    std::string error;
-    std::shared_ptr<rcm::secure::SecureEndpoint> endpoint = rcm::secure::SecureEndpoint::open(
-        QDir::fromNativeSeparators(keyPath).toStdString(), rcm::secure::Direction::GcsToUa, error);
-    if (!endpoint) {
-        *ok = false;
-        // The reason names the file and the fix ("run: chmod 600 ..."); it never holds key bytes.
-        const QString reason = tr("Not connected: the key file is refused: %1").arg(QString::fromStdString(error));
-        m_linkNote->setText(reason);
-        showError(reason);
-    }
-    return endpoint;
+    m_session->stop();
+    showNotConnected();
+    updateLinkControls();
 }
 
 void MainWindow::startRehearsal()
 {
-    startRehearsalWith(RehearsalLauncher::defaultProgram());
+    if (confirmEndingLink(tr("Start rehearsal")))
+        startRehearsalWith(RehearsalLauncher::defaultProgram());
 }
 
 void MainWindow::startRehearsalWith(const QString& uasimProgram)
 {
-    stopController();
-    setLinkControlsRunning(false);
-    // The key is checked here, before uasim starts, so a refused key file is
-    // the console's message and not uasim's exit code.
-    const QString keyPath = m_linkSettings->settings().keyPath;
-    bool keyOk = false;
-    m_rehearsalKey = openKey(keyPath, &keyOk);
-    if (!keyOk)
-        return;
-    m_linkNote->setText(tr("Starting uasim\u2026"));
-    // ready() connects; failed() says why not.
-    m_rehearsal->start(m_command->airframe(), uasimProgram, QDir::fromNativeSeparators(keyPath));
+    m_session->startRehearsal(m_command->airframe(), m_linkSettings->settings().keyPath, uasimProgram);
+    updateLinkControls();
 }
 
-bool MainWindow::openFrameLog(const QString& path)
+void MainWindow::openFrameLog(const QString& path)
 {
-    disconnectLink();
-    QString error;
-    if (!m_logModel->openLog(path, &error)) {
-        showError(tr("Cannot open the frame log: %1").arg(error));
-        return false;
-    }
-    if (!error.isEmpty())
-        showError(tr("The frame log is damaged part-way; replaying what comes before: %1").arg(error));
-    auto replay = std::make_unique<ReplayLink>(path);
-    m_replay = replay.get();
+    m_session->openReplay(path);
+    updateLinkControls();
+}
+
+void MainWindow::replayIndexed(const QString& path)
+{
+    m_logModel->showLog(m_session->takeReplayIndex(), path);
     const int rows = m_logModel->rowCount();
     m_logModel->setPlayedRows(0);
     m_replayControls->setRange(rows ? m_logModel->utcMicros(0) : 0, rows ? m_logModel->utcMicros(rows - 1) : 0);
     m_replayControls->setPaused(false);
     m_replayControls->show();
     m_pauseAction->setEnabled(true);
-    // Cross-thread: each of these is queued to the GUI thread.
-    connect(m_replay, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
-        m_logModel->setPlayedRows(next);
-        m_replayControls->setPosition(utc);
-        if (m_logView->isFollowing() && next > 0)
-            m_logView->scrollToSourceRow(next - 1);
-    });
-    m_replayPaused = false;
-    connect(m_replay, &ReplayLink::stateChanged, this, [this](ReplayLink::State state) {
-        m_replayPaused = state == ReplayLink::State::Paused;
-        m_replayControls->setPaused(m_replayPaused);
-        m_replayControls->setFinished(state == ReplayLink::State::Finished);
-    });
-    connect(m_replay, &ReplayLink::endOfLog, this, [this] {
-        statusBar()->showMessage(tr("Replay: end of the frame log"), 8000);
-        emit replayFinished();
-    });
-    startController(std::move(replay), true, tr("replay of %1").arg(QFileInfo(path).fileName()), false);
-    setReplaySpeed(m_replayControls->speed());
-    setLinkControlsRunning(true);
-    return true;
 }
 
 void MainWindow::setReplayPaused(bool paused)
 {
-    if (!m_replay)
+    if (!m_session->replay())
         return;
-    m_replayPaused = paused;
-    QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), paused] { replay->setPaused(paused); });
+    m_session->setReplayPaused(paused);
     m_replayControls->setPaused(paused);
 }
 
 void MainWindow::setReplaySpeed(double speed)
 {
     m_replayControls->setSpeed(speed);
-    if (m_replay)
-        QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), speed] { replay->setSpeed(speed); });
+    m_session->setReplaySpeed(speed);
 }
 
 void MainWindow::showPanel(int index)
@@ -515,67 +452,62 @@ void MainWindow::showPanel(int index)
         page->setFocus(Qt::ShortcutFocusReason);
 }
 
-void MainWindow::startController(std::unique_ptr<Link> link, bool datagram, const QString& description, bool keepLog,
-                                 std::shared_ptr<rcm::secure::SecureEndpoint> secure)
+void MainWindow::linkStarted(const LinkController* controller)
 {
-    std::unique_ptr<FrameLog> log;
-    m_sessionLogPath.clear();
-    if (keepLog) {
-        log = std::make_unique<FrameLog>();
-        const QString path =
-            QDir(m_frameLogDirectory).filePath(FrameLog::sessionFileName(QDateTime::currentDateTimeUtc()));
-        QString error;
+    const bool replay = m_session->kind() == ConsoleSession::Kind::Replay;
+    const QString logPath = m_session->sessionLogPath();
+    if (!replay) {
         m_logModel->clear();
-        if (log->open(path, &error)) {
-            m_sessionLogPath = path;
-            m_logModel->setSessionLog(path);
-        } else {
-            showError(tr("No frame log for this session: %1").arg(error));
-            log.reset();
-        }
+        if (!logPath.isEmpty())
+            m_logModel->setSessionLog(logPath);
     }
-    m_linkDescription = description;
-
-    LinkWorker::Options options;
-    m_status->setKeyFingerprint(secure ? QString::fromStdString(secure->fingerprint) : QString());
-    options.secure = std::move(secure);
-    // The uploader takes the section size of this link: 199 bytes when keyed.
-    link = m_voice->attach(std::move(link));  // when voice is on
-    m_controller = std::make_unique<LinkController>(std::move(link), std::move(log), m_upload->linkOptions(options));
-    LinkController* c = m_controller.get();
-    connect(c, &LinkController::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
+    connect(controller, &LinkController::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
     // A live session's frames become rows as the link logs them; a replay's
     // rows are its log file, opened already.
-    if (keepLog)
-        connect(c, &LinkController::frameLogged, m_logModel, &FrameLogModel::appendLogged);
-    connect(c, &LinkController::stateChanged, m_status, &StatusBarWidget::setState);
-    connect(c, &LinkController::messageReceived, this, &MainWindow::messageReceived);
-    connect(c, &LinkController::frameSent, this, &MainWindow::frameSent);
-    connect(c, &LinkController::errorOccurred, this, &MainWindow::showError);
-    connect(c, &LinkController::commandRejected, this,
+    if (!replay)
+        connect(controller, &LinkController::frameLogged, m_logModel, &FrameLogModel::appendLogged);
+    connect(controller, &LinkController::stateChanged, m_status, &StatusBarWidget::setState);
+    connect(controller, &LinkController::messageReceived, this, &MainWindow::messageReceived);
+    connect(controller, &LinkController::frameSent, this, &MainWindow::frameSent);
+    connect(controller, &LinkController::errorOccurred, this, &MainWindow::showError);
+    connect(controller, &LinkController::commandRejected, this,
             [this](const QString& reasons) { showError(tr("The link refused the command: %1").arg(reasons)); });
+    connect(controller, &LinkController::frameRejected, this,
+            [this](const QString& reason) { showError(tr("A frame was refused: %1").arg(reason)); });
+    if (const ReplayLink* r = m_session->replay()) {
+        connect(r, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
+            m_logModel->setPlayedRows(next);
+            m_replayControls->setPosition(utc);
+            if (m_logView->isFollowing() && next > 0)
+                m_logView->scrollToSourceRow(next - 1);
+        });
+        connect(r, &ReplayLink::stateChanged, this, [this](ReplayLink::State state) {
+            m_replayControls->setPaused(state == ReplayLink::State::Paused);
+            m_replayControls->setFinished(state == ReplayLink::State::Finished);
+        });
+        connect(r, &ReplayLink::endOfLog, this, [this] {
+            statusBar()->showMessage(tr("Replay: end of the frame log"), 8000);
+            emit replayFinished();
+        });
+    }
 
-    m_preview->setDatagram(datagram);
+    const QString description = m_session->description();
+    m_preview->setDatagram(m_session->isDatagram());
     m_preview->resetSent();
     m_status->setLinkDescription(description);
+    m_status->setKeyFingerprint(m_session->keyFingerprint());
     m_status->setStatistics(LinkStatistics());
-    c->setCommand(m_command->message());
-    c->start();
-    m_flightPlan->setLinkReady(!m_replay);
-    m_linkNote->setText(m_sessionLogPath.isEmpty()
+    m_flightPlan->setLinkReady(!replay);
+    m_linkNote->setText(logPath.isEmpty()
                             ? description
-                            : tr("%1\nFrame log: %2").arg(description, QDir::toNativeSeparators(m_sessionLogPath)));
+                            : tr("%1\nFrame log: %2").arg(description, QDir::toNativeSeparators(logPath)));
     updateTitle();
+    updateLinkControls();
 }
 
-void MainWindow::stopController()
+void MainWindow::linkStopped()
 {
-    if (!m_controller)
-        return;
     m_upload->cancel();
-    m_replay.clear();
-    // Ends the link thread; the worker closes the link in it.
-    m_controller.reset();
     m_replayControls->hide();
     m_pauseAction->setEnabled(false);
     m_logModel->setPlayedRows(-1);
@@ -583,22 +515,27 @@ void MainWindow::stopController()
     m_status->setLinkDescription(QString());
     m_status->setKeyFingerprint(QString());
     m_status->setStatistics(LinkStatistics());
-    m_linkDescription.clear();
+    showNotConnected();
     updateTitle();
+    updateLinkControls();
+}
+
+void MainWindow::actionFailed(const QString& reason)
+{
+    m_linkNote->setText(reason);
+    showError(reason);
+    updateLinkControls();
 }
 
 void MainWindow::commandChanged()
 {
     m_preview->setCommand(m_command->message());
-    if (m_controller)
-        m_controller->setCommand(m_command->message());
+    m_session->setCommand(m_command->message());
 }
 
 void MainWindow::messageReceived(const ReceivedMessage& received)
 {
     m_reported->onReceived(received);
-    if (m_rehearsing)
-        m_rehearsal->confirm();
 }
 
 void MainWindow::frameSent(quint32 messageId)
@@ -607,30 +544,37 @@ void MainWindow::frameSent(quint32 messageId)
     m_preview->frameSent(messageId);
 }
 
-void MainWindow::setLinkControlsRunning(bool running)
+void MainWindow::updateLinkControls()
 {
+    const bool running = m_session->isRunning();
+    const bool active = m_session->isActive();
     m_linkSettings->setEnabled(!running);
     m_connectButton->setEnabled(!running);
     m_connectAction->setEnabled(!running);
-    m_disconnectButton->setEnabled(running || m_rehearsal->isRunning());
-    m_disconnectAction->setEnabled(running || m_rehearsal->isRunning());
-    if (!running && !m_rehearsal->isRunning())
-        m_linkNote->setText(
-            tr("Not connected. Connect to the aircraft's link, start a rehearsal against the "
-               "simulated aircraft, or open a frame log to replay it (Ctrl+O)."));
+    m_disconnectButton->setEnabled(active);
+    m_disconnectAction->setEnabled(active);
+}
+
+void MainWindow::showNotConnected()
+{
+    m_linkNote->setText(
+        tr("Not connected. Connect to the aircraft's link, start a rehearsal against the "
+           "simulated aircraft, or open a frame log to replay it (Ctrl+O)."));
 }
 
 void MainWindow::updateTitle()
 {
     QString title = kTitle + QStringLiteral(" \u2014 ") + QString::fromStdString(m_command->airframe().name);
-    if (!m_linkDescription.isEmpty())
-        title += QStringLiteral(" \u2014 ") + m_linkDescription;
+    if (!m_session->description().isEmpty())
+        title += QStringLiteral(" \u2014 ") + m_session->description();
     setWindowTitle(title);
 }
 
 void MainWindow::chooseFrameLog()
 {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Replay a frame log"), m_frameLogDirectory,
+    if (!confirmEndingLink(tr("Open log for replay")))
+        return;
+    const QString path = QFileDialog::getOpenFileName(this, tr("Replay a frame log"), m_session->frameLogDirectory(),
                                                       tr("Frame logs (*.pcapng);;All files (*)"));
     if (!path.isEmpty())
         openFrameLog(path);
@@ -638,7 +582,7 @@ void MainWindow::chooseFrameLog()
 
 void MainWindow::exportCsv()
 {
-    const QString source = m_logModel->logPath().isEmpty() ? m_sessionLogPath : m_logModel->logPath();
+    const QString source = m_logModel->logPath().isEmpty() ? m_session->sessionLogPath() : m_logModel->logPath();
     if (source.isEmpty()) {
         showError(tr("No frame log to export: connect, or open a log first"));
         return;

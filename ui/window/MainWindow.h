@@ -2,23 +2,19 @@
 
 // The operator console: the command panels in the middle, the link, the
 // next frame, the frame log and the flight plan in docks around them, the
-// link's health in the status bar. It owns the one LinkController, whichever
-// transport feeds it (serial, UDP, a rehearsal against uasim, a log replay),
-// and hands it the command whenever the panels change it.
+// link's health in the status bar. It binds them to a ConsoleSession, which
+// owns the link whichever transport feeds it (serial, UDP, a rehearsal
+// against uasim, a log replay), and hands it the command whenever the panels
+// change it.
 
 #include "codec/message/Airframe.h"
-#include "link/framelog/FrameLog.h"
+#include "link/session/ConsoleSession.h"
+#include "link/session/LinkSettings.h"
 #include "link/session/LinkStatistics.h"
-#include "ui/window/LinkSettings.h"
 
 #include <QMainWindow>
-#include <QPointer>
 
 #include <memory>
-
-namespace rcm::secure {
-struct SecureEndpoint;
-}
 
 class CommandPreview;
 class CommandState;
@@ -26,16 +22,13 @@ class FlightPlanUpload;
 class FlightPlanWidget;
 class FrameLogModel;
 class FrameLogView;
-class LinkController;
 class LinkSettingsWidget;
 class QActionGroup;
 class QLabel;
 class QMenu;
 class QPushButton;
 class QTabWidget;
-class RehearsalLauncher;
 class ReplayControls;
-class ReplayLink;
 class ReportedState;
 class StatusBarWidget;
 class VoiceChannel;
@@ -64,23 +57,30 @@ public:
     FlightPlanWidget* flightPlan() const { return m_flightPlan; }
     StatusBarWidget* linkStatus() const { return m_status; }
     LinkSettingsWidget* linkSettings() const { return m_linkSettings; }
+    ConsoleSession* session() const { return m_session; }
     // Statistics of the running link; the default ones when none runs.
-    LinkStatistics statistics() const;
-    bool isLinkRunning() const { return m_controller != nullptr; }
-    QString sessionLogPath() const { return m_sessionLogPath; }
+    LinkStatistics statistics() const { return m_session->statistics(); }
+    bool isLinkRunning() const { return m_session->isRunning(); }
+    QString sessionLogPath() const { return m_session->sessionLogPath(); }
 
     // False, with the reason, when the airframe file cannot be used.
     bool loadAirframe(const QString& path, QString* error = nullptr);
 
 public slots:
+    // Connect, Start rehearsal, Open log for replay and Quit, as the
+    // operator gives them, ask first while a link is live
+    // (ConsoleSession::isLive()); the calls named ...With and
+    // openFrameLog() do not, for scripts and tests.
+    // The actions below start their link in the background (ConsoleSession):
+    // isLinkRunning() once it runs, the reason in the status bar if it does not.
     void connectLink();                              // with the settings shown
-    bool connectWith(const LinkSettings& settings);  // shows them, then connects
+    void connectWith(const LinkSettings& settings);  // shows them, then connects
     void disconnectLink();
     // uasim on the loopback interface, and a UDP link to it; with the key
     // file of the link settings, both ends use it.
     void startRehearsal();
     void startRehearsalWith(const QString& uasimProgram);
-    bool openFrameLog(const QString& path);
+    void openFrameLog(const QString& path);
     void showPanel(int index);
     void setReplayPaused(bool paused);
     // 0.25 to 10 times the logged pace.
@@ -100,17 +100,20 @@ private:
     void restoreSession(const Options& options);
     void saveSession() const;
 
-    void startController(std::unique_ptr<class Link> link, bool datagram, const QString& description, bool keepLog,
-                         std::shared_ptr<rcm::secure::SecureEndpoint> secure = nullptr);
-    void stopController();
-    // The console's end of the secure link for the key file at `keyPath`;
-    // null with `ok` true for no key file, null with `ok` false (and the
-    // reason shown) when the key file is refused.
-    std::shared_ptr<rcm::secure::SecureEndpoint> openKey(const QString& keyPath, bool* ok);
+    // Binds the widgets to the link the session just started, and unbinds them.
+    void linkStarted(const LinkController* controller);
+    void linkStopped();
+    void replayIndexed(const QString& path);
+    void actionFailed(const QString& reason);
     void commandChanged();
     void messageReceived(const ReceivedMessage& received);
     void frameSent(quint32 messageId);
-    void setLinkControlsRunning(bool running);
+    // From the session's state: what can be started or stopped now.
+    void updateLinkControls();
+    void showNotConnected();
+    // True to go on with `action`, which would end the live link: asked
+    // first while one is live (or being started), Cancel the default.
+    bool confirmEndingLink(const QString& action);
     void updateTitle();
     void chooseFrameLog();
     void exportCsv();
@@ -121,9 +124,7 @@ private:
     ReportedState* m_reported;
     FlightPlanUpload* m_upload;
     FrameLogModel* m_logModel;
-    std::unique_ptr<LinkController> m_controller;
-    QPointer<ReplayLink> m_replay;  // lives in the link thread; only queued calls
-    RehearsalLauncher* m_rehearsal;
+    ConsoleSession* m_session;
     VoiceChannel* m_voice = nullptr;  // voice beside the commands, when the operator turns it on
 
     QTabWidget* m_panels = nullptr;
@@ -145,10 +146,4 @@ private:
     QAction* m_pauseAction = nullptr;
 
     QString m_airframePath;
-    QString m_sessionLogPath;
-    QString m_linkDescription;
-    QString m_frameLogDirectory;
-    std::shared_ptr<rcm::secure::SecureEndpoint> m_rehearsalKey;  // the console's end, while uasim starts
-    bool m_rehearsing = false;
-    bool m_replayPaused = false;
 };

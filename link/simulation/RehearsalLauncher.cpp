@@ -1,4 +1,4 @@
-#include "ui/window/RehearsalLauncher.h"
+#include "link/simulation/RehearsalLauncher.h"
 
 #include "link/simulation/AirframeLoader.h"
 

@@ -37,6 +37,8 @@ struct LinkSettings {
 
     // "HOST:PORT", as --udp-remote takes it.
     static std::optional<LinkSettings> udpRemote(const QString& hostAndPort, QString* error = nullptr);
+    // A serial port at a bit rate, as --serial and --baud take them.
+    static std::optional<LinkSettings> serial(const QString& port, const QString& baudRate, QString* error = nullptr);
 
     void save(QSettings& settings) const;
     static LinkSettings load(const QSettings& settings);

@@ -1,4 +1,4 @@
-#include "ui/window/LinkSettings.h"
+#include "link/session/LinkSettings.h"
 
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
@@ -55,6 +55,20 @@ std::optional<LinkSettings> LinkSettings::udpRemote(const QString& hostAndPort, 
     s.remoteAddress = host;
     s.remotePort = quint16(port);
     return s;
+}
+
+std::optional<LinkSettings> LinkSettings::serial(const QString& port, const QString& baudRate, QString* error)
+{
+    LinkSettings s;
+    bool ok = false;
+    s.transport = Transport::Serial;
+    s.serialPort = port;
+    s.baudRate = baudRate.toInt(&ok);
+    if (ok && s.baudRate > 0)
+        return s;
+    if (error)
+        *error = QObject::tr("\"%1\" is not a bit rate").arg(baudRate);
+    return std::nullopt;
 }
 
 void LinkSettings::save(QSettings& settings) const

@@ -1,0 +1,294 @@
+#include "link/session/ConsoleSession.h"
+
+#include "codec/secure/SecureCodec.h"
+#include "link/framelog/FrameLog.h"
+
+#include <QDateTime>
+#include <QDir>
+#include <QFileInfo>
+#include <QtConcurrent/QtConcurrentRun>
+
+// What the off-thread part of starting a link opened, for this thread to
+// take once it is done: the thread pool writes it, then this thread reads it.
+struct ConsoleSession::Opened {
+    std::shared_ptr<rcm::secure::SecureEndpoint> key;
+    QString keyError;
+    std::unique_ptr<FrameLog> log;
+    QString logPath;
+    QString logError;
+};
+
+namespace {
+
+// The console's end of the secure link; null with `error` set when refused.
+std::shared_ptr<rcm::secure::SecureEndpoint> openKey(const QString& keyPath, QString* error)
+{
+    std::string reason;
+    std::shared_ptr<rcm::secure::SecureEndpoint> endpoint = rcm::secure::SecureEndpoint::open(
+        QDir::fromNativeSeparators(keyPath).toStdString(), rcm::secure::Direction::GcsToUa, reason);
+    // The reason names the file and the fix ("run: chmod 600 ..."); it never holds key bytes.
+    if (!endpoint)
+        *error = QString::fromStdString(reason);
+    return endpoint;
+}
+
+QString keyRefused(const QString& reason)
+{
+    return ConsoleSession::tr("Not connected: the key file is refused: %1").arg(reason);
+}
+
+}  // namespace
+
+ConsoleSession::ConsoleSession(const QString& frameLogDirectory, QObject* parent)
+    : QObject(parent), m_frameLogDirectory(frameLogDirectory), m_rehearsal(new RehearsalLauncher(this))
+{
+    LinkWorker::registerMetaTypes();
+    connect(m_rehearsal, &RehearsalLauncher::ready, this, &ConsoleSession::rehearsalReady);
+    connect(m_rehearsal, &RehearsalLauncher::failed, this, &ConsoleSession::rehearsalFailed);
+}
+
+ConsoleSession::~ConsoleSession()
+{
+    stop();
+}
+
+LinkStatistics ConsoleSession::statistics() const
+{
+    return m_controller ? m_controller->statistics() : LinkStatistics();
+}
+
+void ConsoleSession::offThread(std::function<void()> work, std::function<void()> done)
+{
+    const quint64 request = ++m_request;
+    // With `this` as the context, `done` runs in this thread, and not at all
+    // once this is gone; the work touches only what it captured. Work that
+    // is over before then() is called would have `done` run inside the
+    // action's own call: posted instead, it always comes from the event loop.
+    QtConcurrent::run(std::move(work)).then(this, [this, request, done = std::move(done)] {
+        QMetaObject::invokeMethod(
+            this,
+            [this, request, done] {
+                if (request == m_request)
+                    done();
+            },
+            Qt::QueuedConnection);
+    });
+}
+
+void ConsoleSession::connectWith(const LinkSettings& settings)
+{
+    QString error;
+    std::unique_ptr<Link> link = settings.createLink(&error);
+    if (!link) {
+        emit failed(error);
+        return;
+    }
+    // The running link goes on until the key is accepted.
+    prepare(std::move(link), Kind::Live, settings.summary(), settings.keyPath);
+}
+
+void ConsoleSession::startRehearsal(const rcm::Airframe& airframe, const QString& keyPath,
+                                    const QString& uasimProgram)
+{
+    stop();
+    m_preparing = Kind::Rehearsal;
+    // The key is checked before uasim starts, so that a refused key file is
+    // the console's message and not uasim's exit code.
+    auto key = std::make_shared<std::shared_ptr<rcm::secure::SecureEndpoint>>();
+    auto error = std::make_shared<QString>();
+    offThread(
+        [keyPath, key, error] {
+            if (!keyPath.isEmpty())
+                *key = openKey(keyPath, error.get());
+        },
+        [this, airframe, keyPath, uasimProgram, key, error] {
+            if (!error->isEmpty()) {
+                m_preparing = Kind::None;
+                emit failed(keyRefused(*error));
+                return;
+            }
+            m_rehearsalKey = *key;
+            emit starting(tr("Starting uasim\u2026"));
+            // ready() connects; failed() says why not.
+            m_rehearsal->start(airframe, uasimProgram, QDir::fromNativeSeparators(keyPath));
+        });
+}
+
+void ConsoleSession::rehearsalReady(quint16 port)
+{
+    LinkSettings s;
+    s.transport = LinkSettings::Transport::Udp;
+    s.localAddress = QStringLiteral("127.0.0.1");
+    s.localPort = 0;
+    s.remoteAddress = QStringLiteral("127.0.0.1");
+    s.remotePort = port;
+    prepare(s.createLink(), Kind::Rehearsal, tr("rehearsal with uasim on %1:%2").arg(s.remoteAddress).arg(port),
+            QString(), m_rehearsalKey);
+}
+
+void ConsoleSession::rehearsalFailed(const QString& reason)
+{
+    m_rehearsalKey.reset();
+    if (m_kind == Kind::Rehearsal || m_preparing == Kind::Rehearsal)
+        stop();
+    emit failed(tr("Rehearsal: %1").arg(reason));
+}
+
+void ConsoleSession::openReplay(const QString& path)
+{
+    stop();
+    m_preparing = Kind::Replay;
+    // Constructed here, indexed in the pool (a day's log is 86,400 records),
+    // read here afterwards.
+    auto reader = std::make_shared<std::unique_ptr<FrameLogReader>>(std::make_unique<FrameLogReader>());
+    auto complete = std::make_shared<bool>(false);
+    offThread([path, reader, complete] { *complete = (*reader)->open(path); },
+              [this, path, reader, complete] {
+                  std::unique_ptr<FrameLogReader> index = std::move(*reader);
+                  if (!*complete && index->count() == 0) {
+                      m_preparing = Kind::None;
+                      emit failed(tr("Cannot open the frame log: %1").arg(index->errorString()));
+                      return;
+                  }
+                  const QString damage = *complete ? QString() : index->errorString();
+                  m_replayIndex = std::move(index);
+                  emit replayIndexed(path);
+                  if (!damage.isEmpty())
+                      emit warning(
+                          tr("The frame log is damaged part-way; replaying what comes before: %1").arg(damage));
+                  // In a pass of the event loop of its own, so that showing a
+                  // day's index and starting the link are two short stalls,
+                  // not one long one.
+                  QMetaObject::invokeMethod(
+                      this, [this, path, request = m_request] { startReplay(path, request); }, Qt::QueuedConnection);
+              });
+}
+
+void ConsoleSession::startReplay(const QString& path, quint64 request)
+{
+    if (request != m_request)
+        return;
+    m_preparing = Kind::None;
+    auto replay = std::make_unique<ReplayLink>(path);
+    replay->setSpeed(m_replaySpeed);
+    m_replayPaused = false;
+    m_replay = replay.get();
+    connect(replay.get(), &ReplayLink::stateChanged, this,
+            [this](ReplayLink::State state) { m_replayPaused = state == ReplayLink::State::Paused; });
+    Opened nothing;
+    startController(std::move(replay), Kind::Replay, tr("replay of %1").arg(QFileInfo(path).fileName()), nothing);
+}
+
+void ConsoleSession::prepare(std::unique_ptr<Link> link, Kind kind, const QString& description,
+                             const QString& keyPath, std::shared_ptr<rcm::secure::SecureEndpoint> key)
+{
+    m_preparing = kind;
+    m_preparedLink = std::move(link);
+    auto opened = std::make_shared<Opened>();
+    opened->key = std::move(key);
+    opened->log = std::make_unique<FrameLog>();
+    opened->logPath = QDir(m_frameLogDirectory).filePath(FrameLog::sessionFileName(QDateTime::currentDateTimeUtc()));
+    offThread(
+        [opened, keyPath] {
+            if (!opened->key && !keyPath.isEmpty()) {
+                opened->key = openKey(keyPath, &opened->keyError);
+                if (!opened->key)
+                    return;
+            }
+            if (!opened->log->open(opened->logPath, &opened->logError))
+                opened->log.reset();
+        },
+        [this, opened, kind, description] {
+            m_preparing = Kind::None;
+            std::unique_ptr<Link> link = std::move(m_preparedLink);
+            if (!opened->keyError.isEmpty()) {
+                emit failed(keyRefused(opened->keyError));
+                return;
+            }
+            startController(std::move(link), kind, description, *opened);
+        });
+}
+
+void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, const QString& description,
+                                     Opened& opened)
+{
+    stopController();
+    if (kind != Kind::Rehearsal) {
+        m_rehearsal->stop();
+        m_rehearsalKey.reset();
+    }
+    m_kind = kind;
+    m_datagram = !link->isStream();
+    m_description = description;
+    m_sessionLogPath = opened.log ? opened.logPath : QString();
+    if (!opened.logError.isEmpty())
+        emit warning(tr("No frame log for this session: %1").arg(opened.logError));
+    m_keyFingerprint = opened.key ? QString::fromStdString(opened.key->fingerprint) : QString();
+
+    LinkWorker::Options options;
+    options.secure = std::move(opened.key);
+    if (m_filterOptions)
+        options = m_filterOptions(std::move(options));
+    if (m_wrapLink)
+        link = m_wrapLink(std::move(link));
+    m_controller = std::make_unique<LinkController>(std::move(link), std::move(opened.log), std::move(options));
+    if (kind == Kind::Rehearsal)
+        // Frames came back: from now on an exit of uasim is a failure, not a port clash.
+        connect(m_controller.get(), &LinkController::messageReceived, m_rehearsal, [this] { m_rehearsal->confirm(); });
+    if (m_command)
+        m_controller->setCommand(*m_command);
+    emit linkStarted(m_controller.get());
+    m_controller->start();
+}
+
+void ConsoleSession::stopController()
+{
+    if (!m_controller)
+        return;
+    m_replay.clear();
+    // Ends the link thread; the worker closes the link in it.
+    m_controller.reset();
+    m_kind = Kind::None;
+    m_description.clear();
+    m_sessionLogPath.clear();
+    m_keyFingerprint.clear();
+    emit linkStopped();
+}
+
+void ConsoleSession::stop()
+{
+    ++m_request;  // what is being started is not any more
+    m_preparing = Kind::None;
+    m_preparedLink.reset();
+    stopController();
+    m_rehearsal->stop();
+    m_rehearsalKey.reset();
+}
+
+void ConsoleSession::setCommand(const rcm::Message& command)
+{
+    m_command = command;
+    if (m_controller)
+        m_controller->setCommand(command);
+}
+
+void ConsoleSession::setReplayPaused(bool paused)
+{
+    if (!m_replay)
+        return;
+    m_replayPaused = paused;
+    QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), paused] { replay->setPaused(paused); });
+}
+
+void ConsoleSession::setReplaySpeed(double speed)
+{
+    m_replaySpeed = speed;
+    if (m_replay)
+        QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), speed] { replay->setSpeed(speed); });
+}
+
+void ConsoleSession::seekReplay(qint64 utcMicros)
+{
+    if (m_replay)
+        QMetaObject::invokeMethod(m_replay, [replay = m_replay.data(), utcMicros] { replay->seek(utcMicros); });
+}

@@ -1,0 +1,172 @@
+#pragma once
+
+// One operator session's link, whichever feeds the console: a live link over
+// serial or UDP, a rehearsal against the simulated aircraft (uasim) on
+// loopback, or a frame log replayed. It owns each one's lifetime, from
+// connect or open to stop, with its key and its frame log, and it does the
+// slow parts off the GUI thread: opening the key file (two fsyncs), creating
+// the session's frame log and indexing a log for replay. Their results come
+// back as signals. It has no widgets: the console binds its own to it, and
+// tests drive it without a window.
+//
+// Each action that starts a link (connectWith, startRehearsal, openReplay)
+// is one call that replaces whatever link runs, so that a console can ask
+// before calling one while isActive().
+
+#include "codec/message/Airframe.h"
+#include "codec/message/Message.h"
+#include "link/framelog/FrameLogReader.h"
+#include "link/framelog/ReplayLink.h"
+#include "link/session/LinkController.h"
+#include "link/session/LinkSettings.h"
+#include "link/session/LinkStatistics.h"
+#include "link/session/LinkWorker.h"
+#include "link/simulation/RehearsalLauncher.h"
+
+#include <QObject>
+#include <QPointer>
+
+#include <functional>
+#include <memory>
+#include <optional>
+
+namespace rcm::secure {
+struct SecureEndpoint;
+}
+
+class ConsoleSession : public QObject {
+    Q_OBJECT
+
+public:
+    // What feeds the console: the link running or being started.
+    enum class Kind { None, Live, Rehearsal, Replay };
+    Q_ENUM(Kind)
+
+    // Wraps each transport before it goes to the worker (the console's voice
+    // beside the commands); unset, the transport goes as it is.
+    using LinkWrapper = std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)>;
+    // Completes the worker's options for each link, the secure endpoint set
+    // already (the flight plan upload's BLOCK 2 hooks, sized for that link).
+    using OptionsFilter = std::function<LinkWorker::Options(LinkWorker::Options)>;
+
+    // Live sessions keep their frame log in `frameLogDirectory`.
+    explicit ConsoleSession(const QString& frameLogDirectory, QObject* parent = nullptr);
+    // Stops the link (the link thread's join is bounded) and uasim.
+    ~ConsoleSession() override;
+
+    void setLinkWrapper(LinkWrapper wrapper) { m_wrapLink = std::move(wrapper); }
+    void setOptionsFilter(OptionsFilter filter) { m_filterOptions = std::move(filter); }
+
+    // Of the link running; None when none runs.
+    Kind kind() const { return m_kind; }
+    // Of the link being started (a key or log opening, a log being indexed,
+    // uasim starting); None when none is.
+    Kind preparing() const { return m_preparing; }
+    // A link to an aircraft, real or simulated, runs or is being started:
+    // what the console asks about before replacing it (a replay is not one).
+    bool isLive() const
+    {
+        const auto live = [](Kind k) { return k == Kind::Live || k == Kind::Rehearsal; };
+        return live(m_kind) || live(m_preparing);
+    }
+    // A link runs (its thread does; it may be waiting for the far end).
+    bool isRunning() const { return m_controller != nullptr; }
+    // A link runs or is being started: what a new action would replace.
+    bool isActive() const { return m_kind != Kind::None || m_preparing != Kind::None; }
+    // The link running, or null; for connecting to its signals.
+    const LinkController* controller() const { return m_controller.get(); }
+    // The replay running, or null: it lives in the link thread, so connect
+    // to its signals only and steer it with the replay slots below.
+    const ReplayLink* replay() const { return m_replay.data(); }
+    // Statistics of the running link; the default ones when none runs.
+    LinkStatistics statistics() const;
+    // One datagram a frame (UDP, rehearsal, replay), or a serial stream.
+    bool isDatagram() const { return m_datagram; }
+    // "UDP 127.0.0.1:5600", "replay of day.pcapng"; empty when none runs.
+    QString description() const { return m_description; }
+    // The running live session's frame log; empty for a replay, or when it could not be created.
+    QString sessionLogPath() const { return m_sessionLogPath; }
+    // The running link's key, "" for the plain link.
+    QString keyFingerprint() const { return m_keyFingerprint; }
+    QString frameLogDirectory() const { return m_frameLogDirectory; }
+    bool isReplayPaused() const { return m_replayPaused; }
+
+    // The index of the log opened for replay, for a log view, after
+    // replayIndexed(): handed over once, null after that.
+    std::unique_ptr<FrameLogReader> takeReplayIndex() { return std::move(m_replayIndex); }
+
+public slots:
+    // Opens the key file (if the settings name one) off the GUI thread, then
+    // replaces the running link with this one and a new frame log. A refused
+    // key leaves the running link as it was.
+    void connectWith(const LinkSettings& settings);
+    // Stops the running link, checks the key file (both ends use it), starts
+    // uasim for `airframe` on a free loopback port and connects to it.
+    void startRehearsal(const rcm::Airframe& airframe, const QString& keyPath = QString(),
+                        const QString& uasimProgram = RehearsalLauncher::defaultProgram());
+    // Stops the running link, indexes the log off the GUI thread, then plays it.
+    void openReplay(const QString& path);
+    // Stops whatever runs or is being started; uasim too.
+    void stop();
+
+    // The state to command, now and for every link started later.
+    void setCommand(const rcm::Message& command);
+
+    void setReplayPaused(bool paused);
+    // 0.25 to 10 times the logged pace; kept for the next replay.
+    void setReplaySpeed(double speed);
+    void seekReplay(qint64 utcMicros);
+
+signals:
+    // A link is being prepared; what happens, for people ("Starting uasim…").
+    void starting(const QString& what);
+    // The link is made and starts at once: connect to the controller (and
+    // to replay() for a replay) in the slot, before its first signal.
+    void linkStarted(const LinkController* controller);
+    // The link ended: by stop(), or replaced by another one.
+    void linkStopped();
+    // An action did not start its link; the reason for people, naming the
+    // file, port or program. Nothing was replaced.
+    void failed(const QString& reason);
+    // The link starts, but something is amiss: no frame log for the session,
+    // a replayed log damaged part-way.
+    void warning(const QString& message);
+    // A log opened for replay is indexed; takeReplayIndex() has it.
+    void replayIndexed(const QString& path);
+
+private:
+    struct Opened;
+    // Runs `work` in the thread pool and `done` back in this thread, unless
+    // another action came in meanwhile.
+    void offThread(std::function<void()> work, std::function<void()> done);
+    // Opens the key and, with `keepLog`, a frame log off the GUI thread, then starts `link`.
+    // The key is `key` when given, else opened from `keyPath` (none when empty).
+    void prepare(std::unique_ptr<Link> link, Kind kind, const QString& description, const QString& keyPath,
+                 std::shared_ptr<rcm::secure::SecureEndpoint> key = nullptr);
+    void startController(std::unique_ptr<Link> link, Kind kind, const QString& description, Opened& opened);
+    void stopController();
+    // Plays the log indexed for `request`, unless another action came in since.
+    void startReplay(const QString& path, quint64 request);
+    void rehearsalReady(quint16 port);
+    void rehearsalFailed(const QString& reason);
+
+    QString m_frameLogDirectory;
+    LinkWrapper m_wrapLink;
+    OptionsFilter m_filterOptions;
+    RehearsalLauncher* m_rehearsal;
+    std::unique_ptr<LinkController> m_controller;
+    std::unique_ptr<Link> m_preparedLink;  // the transport waiting for its key and log
+    QPointer<ReplayLink> m_replay;  // lives in the link thread; only queued calls
+    std::unique_ptr<FrameLogReader> m_replayIndex;
+    std::shared_ptr<rcm::secure::SecureEndpoint> m_rehearsalKey;  // the console's end, while uasim starts
+    std::optional<rcm::Message> m_command;
+    Kind m_kind = Kind::None;
+    Kind m_preparing = Kind::None;
+    quint64 m_request = 0;  // the action whose off-thread work counts; bumped by each action
+    QString m_description;
+    QString m_sessionLogPath;
+    QString m_keyFingerprint;
+    double m_replaySpeed = 1.0;
+    bool m_replayPaused = false;
+    bool m_datagram = true;
+};

@@ -1,0 +1,377 @@
+// The operator console's start-up, memory and GUI-thread stalls, for
+// docs/performance.md. Each mode prints its figures to stderr and exits; run
+// offscreen (QT_QPA_PLATFORM=offscreen) or on a display.
+//
+//   bench_console startup          time from process start to the window's first paint
+//   bench_console memory MODE [N]  resident memory before and after N frames (default
+//                                  172,800: a day both ways) reach the frame log view;
+//                                  MODE is live, records or file (see reportMemory)
+//   bench_console stall [N] [S]    the GUI thread's longest stall while a synthetic log
+//                                  of N frames (default 86,400) is opened for replay,
+//                                  then while it replays at 10x for S seconds (default 60)
+#include "codec/message/Airframe.h"
+#include "codec/message/MessageEncoder.h"
+#include "link/framelog/FrameLog.h"
+#include "ui/framelog/FrameLogModel.h"
+#include "ui/window/MainWindow.h"
+
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QTemporaryDir>
+#include <QThread>
+#include <QTimer>
+
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+namespace {
+
+constexpr int kUsageError = 2;
+
+void say(const QString& line)
+{
+    std::fprintf(stderr, "bench_console: %s\n", qPrintable(line));
+}
+
+// Milliseconds since the kernel started this process (Linux, 10 ms steps):
+// includes loading the program and its libraries, which no timer in main() sees.
+double millisSinceProcessStart()
+{
+    QFile stat(QStringLiteral("/proc/self/stat")), uptime(QStringLiteral("/proc/uptime"));
+    if (!stat.open(QIODevice::ReadOnly) || !uptime.open(QIODevice::ReadOnly))
+        return -1;
+    const QByteArray s = stat.readAll();
+    // Field 22 (starttime), counted after the parenthesised command name.
+    const QList<QByteArray> fields = s.mid(s.lastIndexOf(')') + 2).split(' ');
+    const double startTicks = fields.value(19).toDouble();
+    const double upSeconds = uptime.readAll().split(' ').value(0).toDouble();
+    return (upSeconds - startTicks / double(sysconf(_SC_CLK_TCK))) * 1000.0;
+}
+
+// Resident memory from /proc, in MiB: the whole, and the part that is the
+// process's own (anonymous) rather than mapped files (libraries, a mapped
+// frame log), which the kernel can drop and read again.
+QString memory()
+{
+    QFile status(QStringLiteral("/proc/self/status"));
+    if (!status.open(QIODevice::ReadOnly))
+        return QStringLiteral("?");
+    QString rss, anon, file;
+    for (const QByteArray& line : status.readAll().split('\n')) {
+        const auto mib = [&] {
+            return QString::number(line.simplified().split(' ').value(1).toDouble() / 1024, 'f', 1);
+        };
+        if (line.startsWith("VmRSS:"))
+            rss = mib();
+        if (line.startsWith("RssAnon:"))
+            anon = mib();
+        if (line.startsWith("RssFile:"))
+            file = mib();
+    }
+    return QStringLiteral("resident %1 MiB (own %2 MiB, mapped files %3 MiB)").arg(rss, anon, file);
+}
+
+// A session as a link would log it: a command and a status frame a second,
+// real datagrams of the default airframe with the gear and flaps moving so
+// that the panels have something to redraw.
+FrameRecord syntheticFrame(int i, qint64 t0)
+{
+    static const rcm::Message resting = rcm::restingCommand(rcm::Airframe::wellEquipped());
+    rcm::Message m = resting;
+    m.header.set(rcm::ItemId::ID_msg, i / 2);
+    m.flaps.set(rcm::ItemId::F_elev_set, (i / 2) % 41 - 20);
+    m.settings.set(rcm::ItemId::land_wheels, (i / 20) % 2 ? 0xAA : 0x55);
+    rcm::Diagnostics errors;
+    const auto datagram = rcm::encodeDatagram(m, errors);
+    FrameRecord r;
+    r.bytes = QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size()));
+    r.utcMicros = t0 + qint64(i) * 500'000;
+    r.transport = FrameTransport::Udp;
+    r.direction = i % 2 ? FrameDirection::Received : FrameDirection::Sent;
+    r.status = i % 2 ? FrameStatus::Decoded : FrameStatus::NotChecked;
+    if (i % 2)
+        r.correctedSymbols = {0, 0};
+    return r;
+}
+
+bool writeSyntheticLog(const QString& path, int frames)
+{
+    FrameLog log;
+    QString error;
+    if (!log.open(path, &error)) {
+        say(error);
+        return false;
+    }
+    const qint64 t0 = QDateTime::currentMSecsSinceEpoch() * 1000;
+    for (int i = 0; i < frames; ++i)
+        if (!log.append(syntheticFrame(i, t0)))
+            return false;
+    return true;
+}
+
+// One way a day of frames can reach the log view, in a fresh process each
+// so that one's freed memory does not hide in the next one's figure:
+//   live     as a live link feeds it (LinkWorker::frameLogged): each frame is
+//            written to the session's log and its row holds the offset; the
+//            last rows are then shown, reading their frames back from the file
+//   records  frames that are in no log file, their bytes kept in memory
+//   file     a log file opened for replay: its index, the frames read when shown
+int reportMemory(MainWindow& window, const QString& mode, int frames)
+{
+    say(QStringLiteral("window shown: %1").arg(memory()));
+    QElapsedTimer timer;
+    FrameLogModel* model = window.frameLog();
+    const qint64 t0 = QDateTime::currentMSecsSinceEpoch() * 1000;
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("day.pcapng"));
+    if (mode == QLatin1String("file")) {
+        if (!writeSyntheticLog(path, frames))
+            return 1;
+        say(QStringLiteral("log written: %1").arg(memory()));
+        timer.start();
+        if (!model->openLog(path))
+            return 1;
+    } else if (mode == QLatin1String("live")) {
+        FrameLog log;
+        QString error;
+        if (!log.open(path, &error)) {
+            say(error);
+            return 1;
+        }
+        model->setSessionLog(path);
+        timer.start();
+        for (int i = 0; i < frames; ++i) {
+            const FrameRecord r = syntheticFrame(i, t0);
+            LoggedFrame logged;
+            if (!log.append(r, &logged.entry.offset))
+                return 1;
+            logged.entry.utcMicros = r.utcMicros;
+            logged.entry.length = quint32(r.bytes.size());
+            logged.entry.direction = r.direction;
+            logged.entry.transport = r.transport;
+            logged.entry.status = r.status;
+            logged.correctedSymbols = r.correctedSymbols;
+            logged.messageId = quint32(i / 2);
+            model->appendLogged(logged);
+            if (i % 1000 == 999)
+                QCoreApplication::processEvents();  // a burst a second at most, live
+        }
+        QCoreApplication::processEvents();
+        // What the operator looks at: the newest frames, their bytes read back.
+        for (int row = std::max(0, model->rowCount() - 100); row < model->rowCount(); ++row) {
+            if (model->record(row).bytes.size() != syntheticFrame(row, t0).bytes.size()) {
+                say(QStringLiteral("row %1: the frame could not be read back from the log").arg(row));
+                return 1;
+            }
+        }
+    } else if (mode == QLatin1String("records")) {
+        timer.start();
+        for (int i = 0; i < frames; ++i) {
+            model->appendRecord(syntheticFrame(i, t0), quint32(i / 2));
+            if (i % 1000 == 999)
+                QCoreApplication::processEvents();
+        }
+    } else {
+        say(QStringLiteral("memory wants live, records or file"));
+        return kUsageError;
+    }
+    QCoreApplication::processEvents();
+    say(QStringLiteral("%1 frames in the log view (%2) after %3 ms, %4 with their bytes in memory: %5")
+            .arg(model->rowCount())
+            .arg(mode)
+            .arg(timer.elapsed())
+            .arg(model->rowsWithBytesInMemory())
+            .arg(memory()));
+    return 0;
+}
+
+// Ticks a 1 ms timer on the GUI thread and records the gaps between ticks: a
+// gap is as long as the longest thing the GUI thread did in between.
+class StallProbe : public QObject {
+public:
+    StallProbe()
+    {
+        m_timer.setTimerType(Qt::PreciseTimer);
+        m_timer.setInterval(1);
+        connect(&m_timer, &QTimer::timeout, this, [this] {
+            const qint64 now = m_clock.nsecsElapsed();
+            if (m_last >= 0) {
+                m_gaps.push_back(now - m_last);
+                if (now - m_last > m_longest) {
+                    m_longest = now - m_last;
+                    m_longestAt = m_last;
+                }
+            }
+            m_last = now;
+        });
+        m_clock.start();
+        m_timer.start();
+    }
+    QString report()
+    {
+        if (m_gaps.empty())
+            return QStringLiteral("no ticks");
+        std::sort(m_gaps.begin(), m_gaps.end());
+        const auto ms = [](qint64 ns) { return QString::number(double(ns) / 1e6, 'f', 2); };
+        const auto over = std::count_if(m_gaps.begin(), m_gaps.end(), [](qint64 g) { return g > 8'000'000; });
+        return QStringLiteral(
+                   "%1 ticks in %2 s; gap median %3 ms, 99.9th percentile %4 ms, longest %5 ms (%6 s in); "
+                   "%7 gaps over 8 ms")
+            .arg(m_gaps.size())
+            .arg(double(m_clock.nsecsElapsed()) / 1e9, 0, 'f', 2)
+            .arg(ms(m_gaps[m_gaps.size() / 2]), ms(m_gaps[m_gaps.size() * 999 / 1000]), ms(m_gaps.back()))
+            .arg(double(m_longestAt) / 1e9, 0, 'f', 2)
+            .arg(over);
+    }
+
+private:
+    QTimer m_timer;
+    QElapsedTimer m_clock;
+    qint64 m_last = -1;
+    qint64 m_longest = 0;
+    qint64 m_longestAt = 0;
+    std::vector<qint64> m_gaps;
+};
+
+// Every event the GUI thread handles, timed in the thread's own CPU time:
+// what the GUI thread itself spent on the longest one, whatever else the
+// machine was doing meanwhile (the probe's gaps include being descheduled).
+class ProbedApplication : public QApplication {
+public:
+    using QApplication::QApplication;
+
+    bool notify(QObject* receiver, QEvent* event) override
+    {
+        // Events of other threads (the link's) are theirs.
+        if (QThread::currentThread() != thread())
+            return QApplication::notify(receiver, event);
+        if (m_depth++ > 0 || !m_on) {
+            const bool handled = QApplication::notify(receiver, event);
+            --m_depth;
+            return handled;
+        }
+        const qint64 start = threadCpuNanos();
+        const int type = event->type();  // the event may be gone afterwards
+        const QString what = QStringLiteral("%1 to a %2").arg(type).arg(receiver->metaObject()->className());
+        const bool handled = QApplication::notify(receiver, event);
+        --m_depth;
+        const qint64 spent = threadCpuNanos() - start;
+        if (spent > m_longest) {
+            m_longest = spent;
+            m_longestWhat = what;
+        }
+        return handled;
+    }
+    void restart()
+    {
+        m_on = true;
+        m_longest = 0;
+        m_longestWhat.clear();
+    }
+    QString report() const
+    {
+        return QStringLiteral("longest event handled %1 ms of GUI-thread CPU time (event type %2)")
+            .arg(double(m_longest) / 1e6, 0, 'f', 2)
+            .arg(m_longestWhat);
+    }
+
+private:
+    static qint64 threadCpuNanos()
+    {
+        timespec t{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+        return qint64(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+    }
+    int m_depth = 0;
+    bool m_on = false;
+    qint64 m_longest = 0;
+    QString m_longestWhat;
+};
+
+// Opening the log (indexing, the log view's rows) until the first record
+// plays, then `seconds` of replay at 10x, each under its own probe.
+int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int seconds)
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("session.pcapng"));
+    if (!writeSyntheticLog(path, frames))
+        return 1;
+    QCoreApplication::processEvents();  // the first layout and paint are startup, not replay
+    ConsoleSession* session = window.session();
+    std::unique_ptr<StallProbe> probe = std::make_unique<StallProbe>();
+    app.restart();
+    bool playing = false;
+    QObject::connect(session, &ConsoleSession::failed, &app, [](const QString& reason) {
+        say(reason);
+        QCoreApplication::exit(1);
+    });
+    QObject::connect(session, &ConsoleSession::linkStarted, &app, [&] {
+        QObject::connect(session->replay(), &ReplayLink::positionChanged, &app, [&](qint64, int next) {
+            if (next == 0 || playing)
+                return;
+            playing = true;
+            say(QStringLiteral("opening a %1-frame log for replay, until its first frame played: %2; %3")
+                    .arg(frames)
+                    .arg(probe->report(), app.report()));
+            probe = std::make_unique<StallProbe>();
+            app.restart();
+            QTimer::singleShot(seconds * 1000, &app, [&] {
+                say(QStringLiteral("%1 s of replay at 10x: %2; %3").arg(seconds).arg(probe->report(), app.report()));
+                QCoreApplication::quit();
+            });
+        });
+    });
+    window.setReplaySpeed(10.0);
+    window.openFrameLog(path);
+    return app.exec();
+}
+
+}  // namespace
+
+int main(int argc, char* argv[])
+{
+    ProbedApplication app(argc, argv);
+    const QStringList args = app.arguments().mid(1);
+    const QString mode = args.value(0);
+    if (mode != QLatin1String("startup") && mode != QLatin1String("memory") && mode != QLatin1String("stall")) {
+        say(QStringLiteral("usage: bench_console startup | memory live|records|file [N] | stall [N] [SECONDS]"));
+        return kUsageError;
+    }
+    MainWindow::Options options;
+    options.restoreSettings = false;  // the defaults, not the last session's layout
+    QTemporaryDir logs;
+    options.frameLogDirectory = logs.path();
+    MainWindow window(options);
+    window.resize(1600, 1000);
+
+    if (mode == QLatin1String("startup")) {
+        // The first paint of the window is when the operator sees it.
+        struct FirstPaint : QObject {
+            bool eventFilter(QObject*, QEvent* event) override
+            {
+                if (event->type() == QEvent::Paint && !done) {
+                    done = true;
+                    say(QStringLiteral("window painted %1 ms after the process started")
+                            .arg(millisSinceProcessStart(), 0, 'f', 0));
+                    QTimer::singleShot(0, qApp, &QCoreApplication::quit);
+                }
+                return false;
+            }
+            bool done = false;
+        } firstPaint;
+        window.installEventFilter(&firstPaint);
+        window.show();
+        return app.exec();
+    }
+    window.show();
+    QCoreApplication::processEvents();
+    if (mode == QLatin1String("memory"))
+        return reportMemory(window, args.value(1), args.value(2, QStringLiteral("172800")).toInt());
+    return reportStalls(app, window, args.value(1, QStringLiteral("86400")).toInt(),
+                        args.value(2, QStringLiteral("60")).toInt());
+}
