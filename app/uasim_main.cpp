@@ -451,10 +451,10 @@ int main(int argc, char* argv[])
         worker.stop();
         if (const LinkStatistics& s = worker.statistics(); s.secure)
             say(QStringLiteral("rejected commands: %1 forged, %2 replayed, %3 stale time, %4 plaintext")
-                    .arg(s.rejectedForged)
-                    .arg(s.rejectedReplayed)
-                    .arg(s.rejectedStaleTime)
-                    .arg(s.rejectedPlaintext));
+                    .arg(s.refusedFor(rcm::Refusal::Forged))
+                    .arg(s.refusedFor(rcm::Refusal::Replayed))
+                    .arg(s.refusedFor(rcm::Refusal::TimeWindow))
+                    .arg(s.refusedFor(rcm::Refusal::Plaintext)));
         if (isVerbose && faultyLink) {
             const FaultInjector::Counters& n = faultyLink->faults().counters();
             say(QStringLiteral("faults: %1 frames offered, %2 sent (%3 damaged, %4 bits flipped, %5 bursts), "

@@ -105,6 +105,9 @@ QString TestConsoleSession::writeLog(const QString& name) const
     rcm::Message status = command(5);
     for (int i = 0; i < 20; ++i) {
         status.header.set(rcm::ItemId::ID_msg, i);
+        // 2026-11-22T07:32:00Z + i/2 s, as the record's time says.
+        status.header.set(rcm::ItemId::time_UTC, std::int64_t(73200 + i / 2));
+        status.header.set(rcm::ItemId::date_UTC, std::int64_t(261122));
         rcm::Diagnostics errors;
         const auto datagram = rcm::encodeDatagram(status, errors);
         FrameRecord r;
@@ -311,7 +314,7 @@ void TestConsoleSession::rehearsalAgainstUasim()
     QVERIFY(session.description().startsWith(QStringLiteral("rehearsal with uasim on 127.0.0.1:")));
     // uasim answers every command with a status frame.
     QTRY_VERIFY_WITH_TIMEOUT(session.statistics().framesReceived >= 2, kTimeoutMs);
-    QCOMPARE(session.statistics().uncorrectableFrames, quint64(0));
+    QCOMPARE(session.statistics().refusedFor(rcm::Refusal::Uncorrectable), quint64(0));
     QVERIFY(QFileInfo::exists(session.sessionLogPath()));
     session.stop();
     QVERIFY(!session.isActive());

@@ -15,6 +15,7 @@
 #include "ui/framelog/FrameLogView.h"
 
 #include <QApplication>
+#include <QDateTime>
 #include <QSignalSpy>
 #include <QTableView>
 #include <QTemporaryDir>
@@ -50,12 +51,19 @@ Kind kindOf(int i)
     return {FrameDirection::Received, FrameStatus::Decoded};
 }
 
-// Frame i: a real datagram whose ID_msg is i, damaged as its status says.
-FrameRecord frame(int i)
+// Frame i: a real datagram whose ID_msg is i, damaged as its status says,
+// its time_UTC and date_UTC those of `stampUtcMicros` (0: of its row's time).
+FrameRecord frame(int i, qint64 stampUtcMicros = 0)
 {
     static const rcm::Message resting = rcm::restingCommand(rcm::Airframe::wellEquipped());
     rcm::Message m = resting;
     m.header.set(rcm::ItemId::ID_msg, i);
+    const QDateTime stamp =
+        QDateTime::fromMSecsSinceEpoch((stampUtcMicros ? stampUtcMicros : kT0 + qint64(i) * 500'000) / 1000, Qt::UTC);
+    const QTime t = stamp.time();
+    const QDate d = stamp.date();
+    m.header.set(rcm::ItemId::time_UTC, std::int64_t(t.hour() * 10000 + t.minute() * 100 + t.second()));
+    m.header.set(rcm::ItemId::date_UTC, std::int64_t((d.year() % 100) * 10000 + d.month() * 100 + d.day()));
     rcm::Diagnostics errors;
     const auto datagram = rcm::encodeDatagram(m, errors);
     Q_ASSERT(datagram);
@@ -91,8 +99,13 @@ FrameRecord frame(int i)
 // each kind the link logs differently: clean, corrected, beyond correction,
 // and a datagram of the wrong size. Rows reach `model` from frameLogged();
 // `sent` gets the datagrams the far end received, in order.
+// When runSession() began: the live receive path refuses frames outside the
+// window of its clock, so the far end's frames carry this time.
+qint64 g_sessionStamp = 0;
+
 void runSession(FrameLogModel& model, std::unique_ptr<FrameLog> log, QList<QByteArray>& sent)
 {
+    g_sessionStamp = QDateTime::currentMSecsSinceEpoch() * 1000;
     UdpLink far(QHostAddress::LocalHost, 0);
     far.setReplyToSender(true);
     far.open();
@@ -109,9 +122,9 @@ void runSession(FrameLogModel& model, std::unique_ptr<FrameLog> log, QList<QByte
     controller.start();
     QTRY_VERIFY_WITH_TIMEOUT(farReceived.count() >= 1, 10000);
     for (int i : {5, 11, 3})  // decoded, corrected, uncorrectable: see kindOf()
-        far.write(frame(i).bytes);
+        far.write(frame(i, g_sessionStamp).bytes);
     far.write(QByteArray(100, '\x55'));
-    QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().wrongSizeDatagrams == 1, 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().refusedFor(rcm::Refusal::WrongSize) == 1, 10000);
     controller.stop();
     // Every frameLogged() emitted before stopped() has arrived with it.
     QTRY_COMPARE_WITH_TIMEOUT(stopped.count(), 1, 10000);
@@ -398,7 +411,7 @@ void TestFrameLogModel::liveRowsMatchTheSessionLog()
     QCOMPARE(cell(rowOf(FrameStatus::Decoded), FrameLogModel::MessageIdColumn), QStringLiteral("5"));
     QCOMPARE(cell(rowOf(FrameStatus::Corrected), FrameLogModel::CorrectedColumn), QStringLiteral("1 + 1"));
     QCOMPARE(cell(rowOf(FrameStatus::Uncorrectable), FrameLogModel::CorrectedColumn), QStringLiteral("beyond"));
-    QCOMPARE(model.record(rowOf(FrameStatus::Uncorrectable)).bytes, frame(3).bytes);
+    QCOMPARE(model.record(rowOf(FrameStatus::Uncorrectable)).bytes, frame(3, g_sessionStamp).bytes);
     QCOMPARE(model.record(rowOf(FrameStatus::Rejected)).bytes, QByteArray(100, '\x55'));
     QCOMPARE(cell(rowOf(FrameStatus::Rejected), FrameLogModel::MessageIdColumn), QStringLiteral("\u2014"));
 }
@@ -417,7 +430,7 @@ void TestFrameLogModel::liveRowsWithoutALogKeepTheirBytes()
         if (r.direction == FrameDirection::Sent)
             QCOMPARE(r.bytes, farReceived.value(sent++));
         else if (r.status == FrameStatus::Uncorrectable)
-            QCOMPARE(r.bytes, frame(3).bytes);
+            QCOMPARE(r.bytes, frame(3, g_sessionStamp).bytes);
         else if (r.status == FrameStatus::Rejected)
             QCOMPARE(r.bytes, QByteArray(100, '\x55'));
     }

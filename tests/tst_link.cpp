@@ -50,13 +50,22 @@ rcm::Message command(int gcsUnit)
     return m;
 }
 
+// When the test function began (init()): the receive path refuses a frame
+// outside the window of its clock (docs/protocol.md section 8), and these
+// tests run on the system clock. One stamp for all of a test's frames, so
+// that a frame built twice is the same bytes.
+QDateTime g_stamp;
+
 rcm::Message aircraftMessage(std::uint32_t id)
 {
+    const QDateTime now = g_stamp;
+    const QDate d = now.date();
+    const QTime t = now.time();
     rcm::Message m;
     m.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
     m.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
-    m.header.set(rcm::ItemId::time_UTC, std::int64_t(120000 + id % 60));
-    m.header.set(rcm::ItemId::date_UTC, std::int64_t(261122));
+    m.header.set(rcm::ItemId::time_UTC, std::int64_t(t.hour() * 10000 + t.minute() * 100 + t.second()));
+    m.header.set(rcm::ItemId::date_UTC, std::int64_t((d.year() % 100) * 10000 + d.month() * 100 + d.day()));
     return m;
 }
 
@@ -257,6 +266,7 @@ class TestLink : public QObject {
 
 private slots:
     void initTestCase() { LinkWorker::registerMetaTypes(); }
+    void init() { g_stamp = QDateTime::currentDateTimeUtc(); }
 
     void defaults();
     void udpFramesArriveDecodeAndCountUp();
@@ -356,8 +366,8 @@ void TestLink::udpFramesArriveDecodeAndCountUp()
         QCOMPARE(s.state, LinkState::Connected);
         QCOMPARE(s.correctedBytesBlock1, quint64(3));
         QCOMPARE(s.correctedBytesBlock2, quint64(2));
-        QCOMPARE(s.uncorrectableFrames, quint64(0));
-        QCOMPARE(s.wrongSizeDatagrams, quint64(0));
+        QCOMPARE(s.refusedFor(rcm::Refusal::Uncorrectable), quint64(0));
+        QCOMPARE(s.refusedFor(rcm::Refusal::WrongSize), quint64(0));
         QCOMPARE(s.bytesSkipped, quint64(0));
         QVERIFY(s.lastGoodFrameUtcMicros >= fromAircraft[1].utcMicros);
         QCOMPARE(s.sendDelaySamples, s.framesSent);
@@ -422,6 +432,7 @@ void TestLink::wrongSizeAndUndecodableDatagramsAreCountedNotFatal()
         LinkController controller(udpTo(far.port()), openLog(logPath), fastOptions());
         QSignalSpy received(&controller, &LinkController::messageReceived);
         QSignalSpy errors(&controller, &LinkController::errorOccurred);
+        QSignalSpy rejected(&controller, &LinkController::frameRejected);
         controller.setCommand(command(2));
         controller.start();
         QTRY_VERIFY_WITH_TIMEOUT(far.datagrams.count() >= 1, kPatience);  // the far end knows where to answer
@@ -434,9 +445,15 @@ void TestLink::wrongSizeAndUndecodableDatagramsAreCountedNotFatal()
         QCOMPARE(receivedAt(received, 0).message, aircraftMessage(7));
         QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().framesReceived == 1, kPatience);
         const LinkStatistics s = controller.statistics();
-        QCOMPARE(s.wrongSizeDatagrams, quint64(2));
-        QCOMPARE(s.uncorrectableFrames, quint64(1));
+        QCOMPARE(s.refusedFor(rcm::Refusal::WrongSize), quint64(2));
+        QCOMPARE(s.refusedFor(rcm::Refusal::Uncorrectable), quint64(1));
+        QCOMPARE(s.refusedTotal(), quint64(3));
         QCOMPARE(s.state, LinkState::Connected);
+        QCOMPARE(rejected.count(), 3);
+        QCOMPARE(rejected.at(0).at(0).toString(), QStringLiteral("wrong size: 100 bytes; a datagram is 510"));
+        QCOMPARE(rejected.at(1).at(0).toString(), QStringLiteral("wrong size: 600 bytes; a datagram is 510"));
+        QCOMPARE(rejected.at(2).at(0).toString(),
+                 QStringLiteral("uncorrectable: block 1 beyond correction, block 2 beyond correction"));
         QCOMPARE(errors.count(), 0);
 
         // And frames keep going out.
@@ -476,7 +493,7 @@ void TestLink::everyLoggedFrameIsSignalledWithItsOffset()
     QTRY_VERIFY_WITH_TIMEOUT(far.datagrams.count() >= 1, kPatience);
     for (const QByteArray& datagram : {aircraftDatagram(5), corrected, garbage, shortOne})
         QVERIFY(far.link.write(datagram));
-    QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().wrongSizeDatagrams == 1, kPatience);
+    QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().refusedFor(rcm::Refusal::WrongSize) == 1, kPatience);
 
     // While the link is still writing the log, the last frame signalled is
     // already there to read at its offset.
@@ -655,8 +672,18 @@ void TestLink::silenceReportsLostOnceThenRegained()
     QCOMPARE(lost.count(), 1);
     QCOMPARE(regained.count(), 0);
 
-    // Back on the air: regained with its first frame, on the next second.
+    // Back on the air, its ID_msg one on but its time 14 s on: the first
+    // frame is refused as implausible (counted, and said with its reason),
+    // and the second, which follows it, confirms the sender's new start.
+    QSignalSpy rejected(f.console.get(), &LinkWorker::frameRejected);
     f.aircraftWorker->start();
+    f.run(1000ms);
+    QCOMPARE(regained.count(), 0);
+    QCOMPARE(rejected.count(), 1);
+    QCOMPARE(rejected.at(0).at(0).toString(),
+             QStringLiteral("implausible: time step: time_UTC is 14 s after the last accepted, 1 messages later"));
+    QCOMPARE(f.console->statistics().refusedFor(rcm::Refusal::TimeStep), quint64(1));
+    QCOMPARE(f.console->statistics().refusedTotal(), quint64(1));
     f.run(999ms);
     QCOMPARE(regained.count(), 0);
     f.run(1ms);
@@ -793,7 +820,7 @@ void TestLink::serialFramesSynchronisedAcrossChunks()
         QCOMPARE(s.bytesSkipped, quint64(junk.size()));
         QCOMPARE(s.correctedBytesBlock1, quint64(3));
         QCOMPARE(s.correctedBytesBlock2, quint64(1));
-        QCOMPARE(s.uncorrectableFrames, quint64(0));
+        QCOMPARE(s.refusedFor(rcm::Refusal::Uncorrectable), quint64(0));
         QCOMPARE(s.state, LinkState::Connected);
         QCOMPARE(errors.count(), 0);
 

@@ -464,6 +464,9 @@ void TestMainWindow::replaysAFrameLog()
         rcm::Message status = rcm::restingCommand(rcm::Airframe::wellEquipped());
         for (int i = 0; i < 20; ++i) {
             status.header.set(rcm::ItemId::ID_msg, i);
+            // 2026-11-22T07:32:00Z + i/2 s, as the record's time says.
+            status.header.set(rcm::ItemId::time_UTC, std::int64_t(73200 + i / 2));
+            status.header.set(rcm::ItemId::date_UTC, std::int64_t(261122));
             rcm::Diagnostics errors;
             const auto datagram = rcm::encodeDatagram(status, errors);
             QVERIFY(datagram);
@@ -504,7 +507,7 @@ void TestMainWindow::rehearsalAgainstUasim()
     QTRY_VERIFY_WITH_TIMEOUT(window.statistics().framesReceived >= 2, kLinkTimeoutMs);
     QTRY_VERIFY_WITH_TIMEOUT(window.linkStatus()->stateText().contains(QStringLiteral("Connected")), kLinkTimeoutMs);
     QVERIFY(window.statistics().framesSent >= 2);
-    QCOMPARE(window.statistics().uncorrectableFrames, quint64(0));
+    QCOMPARE(window.statistics().refusedFor(rcm::Refusal::Uncorrectable), quint64(0));
     // Both directions reach the frame log view, and the session's log file.
     QTRY_VERIFY_WITH_TIMEOUT(window.frameLog()->rowCount() >= 4, kLinkTimeoutMs);
     QVERIFY(QFileInfo::exists(window.sessionLogPath()));
@@ -662,7 +665,7 @@ void TestMainWindow::secureRehearsalWithMatchingKeys()
     QVERIFY(window.statistics().secure);
     QCOMPARE(window.linkStatus()->securityText(), QStringLiteral("encrypted and authenticated"));
     QCOMPARE(window.linkStatus()->rejectedText(), QString());
-    QCOMPARE(window.statistics().rejectedForged, quint64(0));
+    QCOMPARE(window.statistics().refusedFor(rcm::Refusal::Forged), quint64(0));
 
     // The flight plan goes up in 199-byte sections and uasim acknowledges it.
     auto* upload = window.findChild<FlightPlanUpload*>();

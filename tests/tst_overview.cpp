@@ -72,7 +72,7 @@ private slots:
             const bool beyond = second >= 125 && second < 130;
             const bool silent = second >= 150 && second < 180;
             if (beyond)
-                ++link.s.uncorrectableFrames;
+                ++link.s.refused[std::size_t(rcm::Refusal::Uncorrectable)];
             else if (!silent)
                 link.frame(second, second % 10 == 0 ? 2 : 0);
             if (second == 153)
@@ -166,9 +166,9 @@ private slots:
         s.framesReceived = 1230;
         s.correctedBytesBlock1 = 40;
         s.correctedBytesBlock2 = 2;
-        s.uncorrectableFrames = 3;
-        s.rejectedForged = 1;
-        s.wrongSizeDatagrams = 2;
+        s.refused[std::size_t(rcm::Refusal::Uncorrectable)] = 3;
+        s.refused[std::size_t(rcm::Refusal::Forged)] = 1;
+        s.refused[std::size_t(rcm::Refusal::WrongSize)] = 2;
         s.lastGoodFrameUtcMicros = kT0 - 2'500'000;
         page.setStatistics(s);
         QCOMPARE(page.figure(QStringLiteral("state")), QStringLiteral("Connected"));

@@ -15,6 +15,7 @@
 #include <QNetworkDatagram>
 #include <QSignalSpy>
 #include <QTemporaryDir>
+#include <QDateTime>
 #include <QUdpSocket>
 #include <QtTest>
 
@@ -73,6 +74,13 @@ public:
     {
         Message m = command;
         m.header.set(ItemId::ID_msg, m_nextId++);
+        // Stamped now: uasim's receive path refuses a command without its
+        // time, or outside the window of its clock.
+        const QDateTime now = QDateTime::currentDateTimeUtc();
+        const QTime t = now.time();
+        const QDate d = now.date();
+        m.header.set(ItemId::time_UTC, std::int64_t(t.hour() * 10000 + t.minute() * 100 + t.second()));
+        m.header.set(ItemId::date_UTC, std::int64_t((d.year() % 100) * 10000 + d.month() * 100 + d.day()));
         Diagnostics errors;
         const auto datagram = encodeDatagram(m, errors);
         QVERIFY2(datagram, errors.empty() ? "" : errors.front().toString().c_str());

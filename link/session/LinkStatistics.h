@@ -7,7 +7,11 @@
 #include <QMetaType>
 #include <QtGlobal>
 
+#include "codec/receive/Refusal.h"
+
 #include <algorithm>
+#include <array>
+#include <numeric>
 
 enum class LinkState : quint8 {
     Closed,     // not started, or stopped
@@ -21,21 +25,17 @@ struct LinkStatistics {
 
     quint64 framesSent = 0;
     quint64 bytesReceived = 0;         // from the transport, datagrams of any size included
-    quint64 framesReceived = 0;        // good frames: both codewords decoded
-    quint64 correctedBytesBlock1 = 0;  // Reed-Solomon corrections over all good frames
+    quint64 framesReceived = 0;        // frames delivered: passed the receive path's acceptance decision
+    quint64 framesFromPrediction = 0;  // of those, read with what the receiver expected
+    quint64 correctedBytesBlock1 = 0;  // Reed-Solomon corrections over all delivered frames
     quint64 correctedBytesBlock2 = 0;
-    quint64 framesWithDiagnostics = 0;  // good frames whose items had problems
-    quint64 uncorrectableFrames = 0;    // full-size frames a codeword of which was beyond correction
-    quint64 wrongSizeDatagrams = 0;     // datagrams that are not 510 bytes
-    quint64 bytesSkipped = 0;           // stream bytes the synchroniser found no frame in
+    quint64 bytesSkipped = 0;          // stream bytes the synchroniser found no frame in
     // Secure link: frames are enciphered and authenticated ("encrypted and
-    // authenticated" in the status bar); frames that decoded but were
-    // refused, by reason (codec/secure/SecureCodec.h, secure::Rejection).
+    // authenticated" in the status bar).
     bool secure = false;
-    quint64 rejectedForged = 0;     // did not authenticate: not sent with this key and direction
-    quint64 rejectedReplayed = 0;   // authentic, but its ID_msg was not ahead of the last accepted
-    quint64 rejectedStaleTime = 0;  // authentic and new, but its time was outside the window
-    quint64 rejectedPlaintext = 0;  // an unencrypted frame on a keyed link
+    // Frames refused, by reason (codec/receive/Refusal.h): uncorrectable,
+    // wrong-size datagrams, forged, not exact, replayed, stale ...
+    std::array<quint64, rcm::kRefusalCount> refused{};
     qint64 lastGoodFrameUtcMicros = 0;  // 0: none yet
 
     // Delay from each ideal tick to the frame handed to the transport; the
@@ -57,6 +57,8 @@ struct LinkStatistics {
         sendDelayTotalMicros += micros;
         ++sendDelaySamples;
     }
+    quint64 refusedFor(rcm::Refusal r) const { return refused[std::size_t(r)]; }
+    quint64 refusedTotal() const { return std::accumulate(refused.begin(), refused.end(), quint64{0}); }
     // -1 when no good frame has arrived yet.
     qint64 lastGoodFrameAgeMicros(qint64 nowUtcMicros) const
     {

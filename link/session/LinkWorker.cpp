@@ -1,5 +1,6 @@
-// First: it names a member emit(), which Qt's headers define as a macro.
-#include "codec/frame/StreamSync.h"
+// First: StreamSync, under it, names a member emit(), which Qt's headers
+// define as a macro.
+#include "codec/receive/FrameReceiver.h"
 
 #include "link/session/LinkWorker.h"
 
@@ -53,6 +54,24 @@ std::span<const std::uint8_t> asBytes(const QByteArray& bytes)
     return {reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size())};
 }
 
+// Live, what arrives is judged against the worker's clock too; a replayed
+// log only for continuity between its own frames.
+rcm::FrameReceiver::Options receiverOptions(const LinkWorker::Options& options, const Link& link,
+                                            std::shared_ptr<Clock> clock)
+{
+    static_assert(rcm::kDatagramSize == 510, "LinkWorker::Options::retry spells the datagram size");
+    rcm::FrameReceiver::Options o;
+    o.mode = link.transport() == FrameTransport::Replay ? rcm::FrameReceiver::Mode::Recording
+                                                        : rcm::FrameReceiver::Mode::Live;
+    o.clock = [clock = std::move(clock)] { return clock->utcMicros(); };
+    if (options.secure) {
+        o.keys.codecs = {options.secure->receiver.get()};
+        o.keys.guard = options.secure->guard.get();
+    }
+    o.retry = options.retry;
+    return o;
+}
+
 }  // namespace
 
 LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log, Options options, QObject* parent)
@@ -60,13 +79,9 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
       m_link(std::move(link)),
       m_log(std::move(log)),
       m_options(std::move(options)),
-      m_sync(std::make_unique<rcm::StreamSync>([this](const rcm::SyncedFrame& frame) {
-          if (frame.ok())
-              receiveFrame(frame.raw, frame.blocks);
-          else
-              receiveUncorrectable(frame.raw, frame.blocks.corrected1, frame.blocks.corrected2);
-      })),
       m_clock(m_options.clock ? m_options.clock : std::make_shared<SystemClock>()),
+      m_receiver(std::make_unique<rcm::FrameReceiver>(receiverOptions(m_options, *m_link, m_clock),
+                                                      [this](const rcm::ReceivedFrame& frame) { receiveFrame(frame); })),
       m_tickTimer(m_clock->createTimer(this, Qt::PreciseTimer)),
       m_silenceTimer(m_clock->createTimer(this)),
       m_statisticsTimer(m_clock->createTimer(this)),
@@ -152,7 +167,7 @@ void LinkWorker::stop()
     m_statisticsTimer->stop();
     m_link->close();
     if (m_link->isStream())
-        m_sync->flush();
+        m_receiver->flush();
     setState(LinkState::Closed);
     emit stopped();
     emit statisticsChanged(m_statistics);
@@ -293,63 +308,64 @@ void LinkWorker::receiveBytes(const QByteArray& bytes)
 {
     m_statistics.bytesReceived += quint64(bytes.size());
     statisticsDirty();
-    m_sync->feed(asBytes(bytes));
-    m_statistics.bytesSkipped = m_sync->stats().bytesSkipped;
+    m_receiver->feed(asBytes(bytes));
+    m_statistics.bytesSkipped = m_receiver->syncStats().bytesSkipped;
 }
 
 void LinkWorker::receiveDatagram(const QByteArray& datagram)
 {
     m_statistics.bytesReceived += quint64(datagram.size());
-    if (std::size_t(datagram.size()) != rcm::kDatagramSize) {
-        ++m_statistics.wrongSizeDatagrams;
-        log(FrameDirection::Received, datagram, FrameStatus::Rejected);
-        statisticsDirty();
+    if (std::size_t(datagram.size()) == rcm::kDatagramSize) {
+        m_receiver->receive(asBytes(datagram));
         return;
     }
-    const std::span<const std::uint8_t, rcm::kDatagramSize> codewords(
-        reinterpret_cast<const std::uint8_t*>(datagram.constData()), rcm::kDatagramSize);
-    const rcm::DecodedBlocks blocks = rcm::decodeCodewords(codewords);
-    if (blocks.ok())
-        receiveFrame(codewords, blocks);
-    else
-        receiveUncorrectable(codewords, blocks.corrected1, blocks.corrected2);
+    // The receiver also takes a delimited 600-byte frame; on UDP that is a
+    // wrong size too.
+    rcm::ReceivedFrame frame;
+    frame.raw = asBytes(datagram);
+    frame.refusal = rcm::Refusal::WrongSize;
+    frame.detail = std::to_string(datagram.size()) + " bytes; a datagram is " + std::to_string(rcm::kDatagramSize);
+    receiveFrame(frame);
 }
 
-void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks)
+void LinkWorker::receiveFrame(const rcm::ReceivedFrame& frame)
 {
-    rcm::DecodeResult result;
-    if (m_options.secure) {
-        rcm::secure::Opened opened =
-            rcm::secure::openFrame(*m_options.secure->receiver, m_options.secure->guard.get(), blocks);
-        if (!opened.persistError.empty() && QString::fromStdString(opened.persistError) != m_lastPersistError) {
-            m_lastPersistError = QString::fromStdString(opened.persistError);
-            reportError(m_lastPersistError);
-        }
-        if (!opened.accepted) {
-            // Not a good frame: it neither counts as received nor keeps the link connected.
-            receiveRejected(raw, blocks, opened.rejection.value_or(rcm::secure::Rejection::Forged), opened.detail);
-            return;
-        }
-        result = std::move(opened.decoded);
-    } else {
-        result = rcm::decodeBlocks(blocks);
+    if (!frame.warning.empty() && QString::fromStdString(frame.warning) != m_lastPersistError) {
+        m_lastPersistError = QString::fromStdString(frame.warning);
+        reportError(m_lastPersistError);
+    }
+    const rcm::DecodedBlocks& blocks = frame.blocks;
+    // A wrong-size datagram was not read at all: no codewords to tell of.
+    const QList<int> corrected = frame.refusal == rcm::Refusal::WrongSize
+                                     ? QList<int>{}
+                                     : QList<int>{blocks.corrected1, blocks.corrected2};
+    if (frame.refusal) {
+        // Not delivered: it neither counts as received nor keeps the link
+        // connected. Logged with the bytes as they arrived (a keyed link's
+        // ciphertext, which `rcm decode --key` reads again).
+        ++m_statistics.refused[std::size_t(*frame.refusal)];
+        log(FrameDirection::Received, toByteArray(frame.raw),
+            frame.refusal == rcm::Refusal::Uncorrectable ? FrameStatus::Uncorrectable : FrameStatus::Rejected,
+            corrected);
+        statisticsDirty();
+        const std::string_view name = rcm::refusalName(*frame.refusal);
+        emit frameRejected(QString::fromLatin1(name.data(), qsizetype(name.size())) + QStringLiteral(": ") +
+                           QString::fromStdString(frame.detail));
+        return;
     }
     // For a datagram, still inside the link's datagramReceived(): its sender.
     if (m_udp)
         m_udp->acceptSender();
     const bool clean = blocks.corrected1 == 0 && blocks.corrected2 == 0;
-    const rcm::Unit& header = result.message.header;
-    log(FrameDirection::Received, toByteArray(raw), clean ? FrameStatus::Decoded : FrameStatus::Corrected,
-        {blocks.corrected1, blocks.corrected2},
-        header.has(rcm::ItemId::ID_msg) ? std::optional<quint32>(quint32(header.number(rcm::ItemId::ID_msg)))
-                                        : std::nullopt);
+    const rcm::Unit& header = frame.decoded.message.header;
+    log(FrameDirection::Received, toByteArray(frame.raw), clean ? FrameStatus::Decoded : FrameStatus::Corrected,
+        corrected, quint32(header.number(rcm::ItemId::ID_msg)));
 
     const std::int64_t now = m_clock->utcMicros();
     ++m_statistics.framesReceived;
+    m_statistics.framesFromPrediction += frame.fromPrediction;
     m_statistics.correctedBytesBlock1 += std::uint64_t(blocks.corrected1);
     m_statistics.correctedBytesBlock2 += std::uint64_t(blocks.corrected2);
-    if (!result.diagnostics.empty())
-        ++m_statistics.framesWithDiagnostics;
     m_statistics.lastGoodFrameUtcMicros = now;
     statisticsDirty();
 
@@ -361,49 +377,15 @@ void LinkWorker::receiveFrame(std::span<const std::uint8_t> raw, const rcm::Deco
             emit linkRegained();
     }
     if (m_options.block2Reply)
-        m_options.block2Reply(result.message.flightPlan);
+        m_options.block2Reply(frame.decoded.message.flightPlan);
 
     ReceivedMessage received;
-    received.message = std::move(result.message);
+    received.message = frame.decoded.message;
     received.corrected1 = blocks.corrected1;
     received.corrected2 = blocks.corrected2;
-    received.diagnostics = std::move(result.diagnostics);
     received.utcMicros = now;
     received.transport = m_link->transport();
     emit messageReceived(received);
-}
-
-void LinkWorker::receiveRejected(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks,
-                                  rcm::secure::Rejection rejection, const std::string& detail)
-{
-    using rcm::secure::Rejection;
-    switch (rejection) {
-    case Rejection::Forged:
-        ++m_statistics.rejectedForged;
-        break;
-    case Rejection::Replayed:
-        ++m_statistics.rejectedReplayed;
-        break;
-    case Rejection::StaleTime:
-        ++m_statistics.rejectedStaleTime;
-        break;
-    case Rejection::Plaintext:
-        ++m_statistics.rejectedPlaintext;
-        break;
-    }
-    // The bytes as they arrived: the ciphertext, which `rcm decode --key` reads again.
-    log(FrameDirection::Received, toByteArray(raw), FrameStatus::Rejected, {blocks.corrected1, blocks.corrected2});
-    statisticsDirty();
-    const std::string_view name = rcm::secure::rejectionName(rejection);
-    emit frameRejected(QString::fromLatin1(name.data(), qsizetype(name.size())) + QStringLiteral(": ") +
-                       QString::fromStdString(detail));
-}
-
-void LinkWorker::receiveUncorrectable(std::span<const std::uint8_t> raw, int corrected1, int corrected2)
-{
-    ++m_statistics.uncorrectableFrames;
-    log(FrameDirection::Received, toByteArray(raw), FrameStatus::Uncorrectable, {corrected1, corrected2});
-    statisticsDirty();
 }
 
 void LinkWorker::transportClosed()
@@ -412,7 +394,7 @@ void LinkWorker::transportClosed()
         return;
     // No frame spans the gap: what the synchroniser holds is decided now.
     if (m_link->isStream())
-        m_sync->flush();
+        m_receiver->flush();
     m_silenceTimer->stop();
     if (m_statistics.state == LinkState::Waiting || m_statistics.state == LinkState::Connected) {
         setState(LinkState::Lost);

@@ -7,8 +7,10 @@
 // never waits on a port or a socket.
 //
 // Each of its parts is passed in or owned, never global: the Link moves the
-// bytes, rcm::StreamSync finds frames in a stream, the codec encodes and
-// decodes, FrameLog records.
+// bytes, rcm::FrameReceiver (the one receive path: sync, RS, decipher,
+// decode, the acceptance decision of docs/protocol.md section 8) turns what
+// arrives into frames delivered or refused, the codec encodes, FrameLog
+// records.
 
 #include "codec/message/Message.h"
 #include "link/session/Clock.h"
@@ -28,13 +30,14 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace rcm {
-class StreamSync;
+class FrameReceiver;
+struct ReceivedFrame;
 struct DecodedBlocks;
 namespace secure {
 struct SecureEndpoint;
-enum class Rejection : std::uint8_t;
 }  // namespace secure
 }  // namespace rcm
 
@@ -69,10 +72,17 @@ public:
         // the plain link. With it every frame sent is enciphered, its ID_msg
         // taken from the endpoint's send counter (firstMessageId is then
         // unused); every frame received must authenticate, be new and be
-        // within the time window, or it is rejected: counted by reason in
-        // the statistics, logged as Rejected with its bytes as received, and
-        // reported by frameRejected(). Used by the link thread only.
+        // within the time window. Used by the link thread only.
+        // Plain or keyed, a frame the receive path refuses is counted by
+        // reason in the statistics, logged (Uncorrectable, or Rejected) with
+        // its bytes as received, and reported by frameRejected().
         std::shared_ptr<rcm::secure::SecureEndpoint> secure;
+        // Decoding with what the receiver expects (FrameReceiver::Options::
+        // retry); empty: plain decoding only. Called in the link thread.
+        std::function<std::vector<rcm::DecodedBlocks>(std::span<const std::uint8_t, 510> received,
+                                                      const rcm::DecodedBlocks& plain,
+                                                      const rcm::FrameReceiver& receiver)>
+            retry;
         // What stamps the frames and paces the ticks and timeouts; null: the
         // system clock. Tests pass a VirtualClock.
         std::shared_ptr<Clock> clock;
@@ -113,10 +123,7 @@ private:
     std::optional<QByteArray> encode(rcm::Message& message);
     void receiveBytes(const QByteArray& bytes);
     void receiveDatagram(const QByteArray& datagram);
-    void receiveFrame(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks);
-    void receiveUncorrectable(std::span<const std::uint8_t> raw, int corrected1, int corrected2);
-    void receiveRejected(std::span<const std::uint8_t> raw, const rcm::DecodedBlocks& blocks,
-                         rcm::secure::Rejection rejection, const std::string& detail);
+    void receiveFrame(const rcm::ReceivedFrame& frame);
     void transportClosed();
     void silenceElapsed();
     void setState(LinkState state);
@@ -131,10 +138,11 @@ private:
     UdpLink* m_udp = nullptr;
     std::unique_ptr<FrameLog> m_log;
     Options m_options;
-    // Held by pointer so that this header does not include StreamSync.h,
-    // whose private emit() clashes with Qt's emit macro in Qt headers.
-    std::unique_ptr<rcm::StreamSync> m_sync;
     std::shared_ptr<Clock> m_clock;
+    // Held by pointer so that this header does not include StreamSync.h
+    // (under FrameReceiver.h), whose private emit() clashes with Qt's emit
+    // macro in Qt headers.
+    std::unique_ptr<rcm::FrameReceiver> m_receiver;
     // Children, so that moveToThread() takes them along.
     ClockTimer* m_tickTimer;
     ClockTimer* m_silenceTimer;

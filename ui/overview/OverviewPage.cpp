@@ -221,9 +221,9 @@ void OverviewPage::updateFigures()
     set("sent", locale.toString(s.framesSent));
     set("received", locale.toString(s.framesReceived));
     set("corrected", locale.toString(s.correctedBytesBlock1 + s.correctedBytesBlock2));
-    set("uncorrectable", locale.toString(s.uncorrectableFrames));
-    set("refused", locale.toString(s.rejectedForged + s.rejectedReplayed + s.rejectedStaleTime + s.rejectedPlaintext +
-                                   s.wrongSizeDatagrams));
+    const quint64 uncorrectable = s.refusedFor(rcm::Refusal::Uncorrectable);
+    set("uncorrectable", locale.toString(uncorrectable));
+    set("refused", locale.toString(s.refusedTotal() - uncorrectable));
     QString age;
     if (m_replay) {
         age = m_replayTime ? tr("log %1 UTC").arg(QDateTime::fromMSecsSinceEpoch(m_replayTime / 1000, Qt::UTC)

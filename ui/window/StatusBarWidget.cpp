@@ -1,5 +1,7 @@
 #include "ui/window/StatusBarWidget.h"
 
+#include "codec/receive/Refusal.h"
+
 #include <QDateTime>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -41,7 +43,11 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
       m_age(counter(tr("Time since the last good frame from the aircraft"))),
       m_security(counter(QString())),
       m_rejectedSeparator(separator()),
-      m_rejected(counter(tr("Frames that decoded but were refused, by reason:\n"
+      m_rejected(counter(tr("Frames the receive path refused, by reason (docs/protocol.md section 8):\n"
+                            "wrong size: a datagram that is not 510 bytes\n"
+                            "enciphered: no key here, and the frame looks enciphered\n"
+                            "not exact: not exactly as the profile's encoder writes a frame\n"
+                            "implausible: does not follow the last frame accepted from its sender\n"
                             "forged: not sent with this aircraft's key (a wrong key file, or an injector)\n"
                             "replayed: authentic, but not newer than the last frame accepted\n"
                             "stale time: authentic and new, but its time is over 30 s from this computer's clock\n"
@@ -99,10 +105,13 @@ QString StatusBarWidget::rejectedText() const
         if (count)
             parts << QStringLiteral("%1 %2").arg(reason, locale.toString(count));
     };
-    add(m_statistics.rejectedForged, tr("forged"));
-    add(m_statistics.rejectedReplayed, tr("replayed"));
-    add(m_statistics.rejectedStaleTime, tr("stale time"));
-    add(m_statistics.rejectedPlaintext, tr("plaintext"));
+    // Uncorrectable frames have their own counter.
+    for (int r = 0; r < rcm::kRefusalCount; ++r) {
+        if (rcm::Refusal(r) == rcm::Refusal::Uncorrectable)
+            continue;
+        const std::string_view name = rcm::refusalName(rcm::Refusal(r));
+        add(m_statistics.refused[std::size_t(r)], QString::fromLatin1(name.data(), qsizetype(name.size())));
+    }
     return parts.join(QStringLiteral(", "));
 }
 
@@ -130,7 +139,7 @@ void StatusBarWidget::updateSecurity()
     }
     const QString rejected = rejectedText();
     m_rejected->setText(
-        field(tr("Rejected"), QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(rejected.toHtmlEscaped())));
+        field(tr("Refused"), QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(rejected.toHtmlEscaped())));
     m_rejected->setVisible(!rejected.isEmpty());
     m_rejectedSeparator->setVisible(!rejected.isEmpty());
 }
@@ -202,10 +211,11 @@ void StatusBarWidget::setStatistics(const LinkStatistics& statistics)
     m_received->setText(field(tr("Received"), locale.toString(statistics.framesReceived)));
     m_corrected->setText(field(tr("Corrected bytes"),
                                locale.toString(statistics.correctedBytesBlock1 + statistics.correctedBytesBlock2)));
-    const QString bad = locale.toString(statistics.uncorrectableFrames);
+    const quint64 uncorrectable = statistics.refusedFor(rcm::Refusal::Uncorrectable);
+    const QString bad = locale.toString(uncorrectable);
     m_uncorrectable->setText(field(
         tr("Uncorrectable"),
-        statistics.uncorrectableFrames ? QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(bad) : bad));
+        uncorrectable ? QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(bad) : bad));
     updateSecurity();
     if (stateChanged || statistics.state == LinkState::Closed)
         setState(statistics.state);
