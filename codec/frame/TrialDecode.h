@@ -10,7 +10,7 @@
 // errors in the parity: the channel's errors in the data bytes are gone. The
 // result is accepted only when the decoder corrected at most kTrialMargin
 // bytes, well inside its reach of 16: a wrong codeword must then lie within
-// 8 bytes of the trial word while every other codeword is at least 33 bytes
+// 12 bytes of the trial word while every other codeword is at least 33 bytes
 // from the sent one.
 #pragma once
 
@@ -18,7 +18,7 @@
 
 namespace rcm::rs {
 
-inline constexpr int kTrialMargin = 8;
+inline constexpr int kTrialMargin = 12;
 
 // Decodes `received` (255 bytes as received) with `predicted` (a codeword,
 // 255 bytes) into `out` (255 bytes). Returns the bytes corrected, or -1 when
