@@ -13,7 +13,6 @@ namespace {
 // Big enough that a large feed() is copied in few slices, small enough to
 // stay in L1; what must be carried between calls is under 800 bytes.
 constexpr std::size_t kBufferSize = 8192;
-constexpr std::size_t kSlipCheck = rs::kMaxCorrectable;
 // What a codeword beyond correction adds to a reading's score: it has at
 // least 17 byte errors, so at least 17 bit errors. Without it, a reading one
 // byte off that scrapes through with 16 corrections would beat the true one
@@ -101,256 +100,27 @@ void rsDecode(const std::uint8_t* codewords, const Decoded* near, std::int64_t j
     }
 }
 
-// A byte slip displaces a codeword, and read at its nominal place it is
-// then a cyclic shift of itself with k bytes changed: for k <= 16 it
-// "decodes", into shifted garbage. Slips inside codeword 1 displace codeword
-// 2; slips in its first 16 bytes displace codeword 1 as well (which still
-// "decodes": the preamble window cannot see such a slip).
-//
-// Evidence that decoded codeword D sits k bytes from where it was read: laid
-// at the displaced place, D rotated back differs from the stream only in the
-// |k| bytes at one end, where the bytes read were foreign and the bytes just
-// beyond the other end are D's. So for each k: were all |k| end bytes
-// corrected, and by how many bits do they differ from D more than the bytes
-// beyond do. A slip makes whole foreign bytes (about 4 bits each); bit errors
-// in a true reading rarely correct every end byte, and then by a bit or so,
-// and the bytes beyond rarely match D (when the data repeats, as 55 padding
-// next to a preamble does, they may: hence a margin of k + 1 bits, or k when
-// a slip is already likely).
-class Shifts {
-public:
-    // `received` has 16 readable bytes before it and `after` after its 255.
-    // A shift of k needs k + slack bits of evidence.
-    Shifts(const std::uint8_t* received, const std::uint8_t* decoded, std::size_t after, int slack)
-    {
-        constexpr std::size_t kLast = kCodewordSize - 1;
-        int early = 0;
-        int late = 0;
-        bool earlyAll = true;
-        bool lateAll = true;
-        for (std::size_t i = 0; i < kMax; ++i) {
-            const int inside = std::popcount(static_cast<unsigned>(received[i] ^ decoded[i]));
-            const int beyond = i < after ? std::popcount(static_cast<unsigned>(received[kCodewordSize + i] ^ decoded[i])) : 8;
-            early += inside - beyond;
-            earlyAll = earlyAll && inside > 0;
-            early_[i] = earlyAll && early >= static_cast<int>(i) + 1 + slack ? early : 0;
-
-            const std::uint8_t d = decoded[kLast - i];
-            const int insideL = std::popcount(static_cast<unsigned>(received[kLast - i] ^ d));
-            const int beyondL = std::popcount(static_cast<unsigned>(*(received - 1 - i) ^ d));
-            late += insideL - beyondL;
-            lateAll = lateAll && insideL > 0;
-            late_[i] = lateAll && late >= static_cast<int>(i) + 1 + slack ? late : 0;
-        }
-    }
-    // The most likely displacement: +k really begins k bytes later (bytes
-    // inserted before it), -k really begins k bytes earlier (bytes lost), 0 none.
-    int best() const
-    {
-        int k = 0;
-        int most = 0;
-        for (std::size_t i = 0; i < kMax; ++i) {
-            if (early_[i] > most) {
-                most = early_[i];
-                k = static_cast<int>(i) + 1;
-            }
-            if (late_[i] > most) {
-                most = late_[i];
-                k = -static_cast<int>(i) - 1;
-            }
-        }
-        return k;
-    }
-
-private:
-    static constexpr std::size_t kMax = rs::kMaxCorrectable;
-    int early_[kMax];
-    int late_[kMax];
-};
-
-// After a slip of `shift` bytes inside codeword 1 (as codeword 2 showed),
-// is its decoding D the codeword sent? A slip past D's first 16 bytes leaves
-// D right, the bytes after the slip read shifted (received[i] ==
-// D[i - shift]); a slip among the first 16 makes D a rotation of the codeword
-// sent, the bytes before the slip read where that codeword has them
-// (received[i] == D[i + shift]). Only the corrected bytes tell, and when they
-// tell neither (a slip right at either end), D may be either.
-bool slipLeavesCodeword(const std::uint8_t* received, const std::uint8_t* decoded, int shift)
+// The trial's score: the bit errors this reading of the stream has to
+// assume. Bits, not bytes: a reading one byte off "corrects" a whole byte
+// per codeword (about 4 bits each) where a true reading at a low bit error
+// rate corrects about 1 bit a byte, and the preamble window weighs its
+// errors in bits too.
+void score(const std::uint8_t* codewords, const Decoded& rs, Trial& t)
 {
-    constexpr int n = static_cast<int>(kCodewordSize);
-    int after = 0;
-    int before = 0;
-    for (int i = 0; i < n; ++i) {
-        if (received[i] == decoded[i])
-            continue;
-        after += received[i] == decoded[((i - shift) % n + n) % n];
-        before += received[i] == decoded[((i + shift) % n + n) % n];
-    }
-    return after > before;
-}
-
-// Is D the codeword sent, rotated by a slip of k bytes after its first o
-// bytes? Such a slip leaves those o bytes where the codeword sent has them,
-// which in D's terms is `shift` places on (received[i] == D[i + shift]), and
-// k foreign bytes: D's last k for bytes lost, the k after the first o for
-// bytes inserted. RS decodes when the o bytes hold few changes, as when the
-// slip was early, or inside repeated data such as padding: then only the
-// bytes where a run of 00 meets the 55s move. Over the first o bytes, each
-// change that the shift explains counts for the slip and each byte it
-// breaks against it; bit errors count against both. The changed bytes are
-// whole foreign bytes, about 4 bits from D each, where the bit errors of a
-// true reading differ by about 1; hence the margin of 2 bits a byte.
-bool headSlip(const std::uint8_t* received, const std::uint8_t* decoded, bool lostOnly)
-{
-    constexpr int n = static_cast<int>(kCodewordSize);
-    constexpr int kMax = rs::kMaxCorrectable;
-    int changes[kMax];
-    int count = 0;
-    for (int i = 0; i < n && count < kMax; ++i) {
-        if (received[i] != decoded[i])
-            changes[count++] = i;
-    }
-    for (int shift = -kMax; shift <= (lostOnly ? -1 : kMax); ++shift) {
-        if (shift == 0)
-            continue;
-        auto shifted = [&](int i) { return decoded[(i + shift + n) % n]; };
-        bool any = false;  // the slip must explain some change
-        for (int c = 0; c < count && !any; ++c)
-            any = received[changes[c]] == shifted(changes[c]);
-        if (!any)
-            continue;
-        const int k = shift < 0 ? -shift : shift;
-        int evidence = 0;
-        int best = 0;
-        int o = 0;
-        for (int i = 0; i < n - k; ++i) {
-            evidence += (received[i] != decoded[i]) - (received[i] != shifted(i));
-            if (evidence > best) {
-                best = evidence;
-                o = i + 1;
-            }
-        }
-        if (best == 0)
-            continue;
-        const int foreign = shift < 0 ? n - k : o;
-        if (foreign + k > n)
-            continue;
-        int bits = 0;
-        for (int i = 0; i < o; ++i) {
-            if (received[i] != decoded[i] && received[i] == shifted(i))
-                bits += std::popcount(static_cast<unsigned>(received[i] ^ decoded[i]));
-        }
-        bool all = true;
-        for (int i = foreign; i < foreign + k && all; ++i) {
-            all = received[i] != decoded[i];
-            bits += std::popcount(static_cast<unsigned>(received[i] ^ decoded[i]));
-        }
-        if (all && bits >= 2 * (best + k))
-            return true;
-    }
-    return false;
-}
-
-// headSlip, and its mirror image: D rotated, with the slip among its last
-// bytes (seen when the reading itself starts a byte or so early). Only the
-// mirror of a loss: the mirror of an insertion, the bytes before the slip
-// read k places early, is also what a slip near the end of a codeword read
-// in the right place leaves, and RS then rightly corrects it.
-bool slipNearEnd(const std::uint8_t* received, const std::uint8_t* decoded)
-{
-    if (headSlip(received, decoded, false))
-        return true;
-    if (received[kCodewordSize - 1] == decoded[kCodewordSize - 1])
-        return false;
-    std::uint8_t r[kCodewordSize];
-    std::uint8_t d[kCodewordSize];
-    std::reverse_copy(received, received + kCodewordSize, r);
-    std::reverse_copy(decoded, decoded + kCodewordSize, d);
-    return headSlip(r, d, true);
-}
-
-// Did RS "correct" preamble or padding fill into data? The padding both
-// blocks carry lines up with the next frame's preamble and with each other,
-// so a reading that runs k bytes past a block's end into 55s can be a
-// rotation of that block with only the bytes opposite the fill changed, and
-// decode. Bit errors in a true reading almost never leave a byte that RS
-// changes reading exactly 55 (padding, hit, no longer reads 55).
-bool filledFromPadding(const std::uint8_t* received, const std::uint8_t* decoded)
-{
-    // Bytes lost in a run at the head of a block (the zeros of a BLOCK 2
-    // without update, say) shift the next preamble's first 55s into the
-    // codeword's end and nothing else: RS then changes only those. A bit
-    // error rarely turns a byte into exactly 55, and by one bit, not two.
-    int run = 0;
-    for (int i = static_cast<int>(kCodewordSize) - 1; i >= 0 && received[i] != decoded[i]; --i) {
-        if (received[i] != kPreambleFillByte || std::popcount(static_cast<unsigned>(received[i] ^ decoded[i])) < 2) {
-            run = 0;
-            break;
-        }
-        ++run;
-    }
-    if (run > 0)
-        return true;
-
-    int changed = 0;
-    int fill = 0;
-    for (std::size_t i = 0; i < kCodewordSize; ++i) {
-        if (received[i] != decoded[i]) {
-            ++changed;
-            fill += received[i] == kPreambleFillByte;
-        }
-    }
-    return fill >= 3 && 2 * fill >= changed;
-}
-
-// Like decodeCodewords, but also counts the bits corrected and refuses
-// codewords a byte slip has displaced: a codeword whose ends show it sits
-// elsewhere, or whose corrections show it rotated by a slip near one end.
-// A slip inside codeword 1 displaces codeword 2 and leaves codeword 1 beyond
-// correction or corrected: when codeword 2 is displaced, codeword 1 goes too
-// unless its corrections show the slip left it whole.
-// Bits, not bytes: a reading one byte off "corrects" a whole byte per
-// codeword (about 4 bits each) where a true reading at a low bit error rate
-// corrects about 1 bit a byte, and the preamble window weighs its errors in
-// bits too.
-void decodeAt(const std::uint8_t* codewords, std::size_t after, const Decoded& rs, Trial& t)
-{
-    const std::uint8_t* received[2] = {codewords, codewords + kCodewordSize};
-    std::uint8_t cw[2][kCodewordSize];
-    int corrected[2];
-    std::memcpy(cw, rs.cw, sizeof cw);
-    std::memcpy(corrected, rs.corrected, sizeof corrected);
-    int shift[2] = {0, 0};
-    bool moved[2] = {false, false};
-    for (int b = 0; b < 2; ++b) {
-        if (corrected[b] <= 0)
-            continue;
-        // Codeword 2 after a codeword 1 beyond correction: a slip is likely.
-        const int slack = b == 1 && corrected[0] < 0 ? 0 : 1;
-        shift[b] = Shifts(received[b], cw[b], b == 0 ? kCodewordSize + after : after, slack).best();
-        moved[b] = shift[b] != 0 || slipNearEnd(received[b], cw[b]) || filledFromPadding(received[b], cw[b]);
-    }
-    if (shift[1] != 0 && corrected[0] > 0 && !slipLeavesCodeword(received[0], cw[0], shift[1]))
-        moved[0] = true;
-    for (int b = 0; b < 2; ++b) {
-        if (moved[b]) {
-            corrected[b] = -1;
-            std::memcpy(cw[b], received[b], kCodewordSize);
-        }
-    }
     t.score = 0;
     for (int b = 0; b < 2; ++b) {
-        if (corrected[b] < 0)
+        const std::uint8_t* received = codewords + b * kCodewordSize;
+        if (rs.corrected[b] < 0)
             t.score += kFailedCodewordBits;
-        if (corrected[b] > 0) {
+        if (rs.corrected[b] > 0) {
             for (std::size_t i = 0; i < kCodewordSize; ++i)
-                t.score += std::popcount(static_cast<unsigned>(cw[b][i] ^ received[b][i]));
+                t.score += std::popcount(static_cast<unsigned>(rs.cw[b][i] ^ received[i]));
         }
     }
-    std::memcpy(t.blocks.block1.data(), cw[0], kBlockSize);
-    std::memcpy(t.blocks.block2.data(), cw[1], kBlockSize);
-    t.blocks.corrected1 = corrected[0];
-    t.blocks.corrected2 = corrected[1];
+    std::memcpy(t.blocks.block1.data(), rs.corrected[0] >= 0 ? rs.cw[0] : codewords, kBlockSize);
+    std::memcpy(t.blocks.block2.data(), rs.corrected[1] >= 0 ? rs.cw[1] : codewords + kCodewordSize, kBlockSize);
+    t.blocks.corrected1 = rs.corrected[0];
+    t.blocks.corrected2 = rs.corrected[1];
 }
 
 // One codeword alone confirms a start only under a preamble window close to
@@ -376,7 +146,10 @@ bool better(const Trial& a, const Trial& b)
 
 }  // namespace
 
-StreamSync::StreamSync(Handler onFrame) : handler_(std::move(onFrame)), buf_(kBufferSize) {}
+StreamSync::StreamSync(Handler onFrame, Acceptor exact)
+    : handler_(std::move(onFrame)), exact_(std::move(exact)), buf_(kBufferSize)
+{
+}
 
 void StreamSync::reset()
 {
@@ -384,6 +157,7 @@ void StreamSync::reset()
     len_ = 0;
     scan_ = kWindowSize;
     expect_ = 0;
+    due_ = 0;
     failEnd_ = 0;
     covered_ = 0;
     hasPending_ = false;
@@ -416,12 +190,28 @@ void StreamSync::flush()
     len_ = 0;
     scan_ = end + kWindowSize;
     expect_ = 0;
+    due_ = 0;
     failEnd_ = 0;
 }
 
 std::size_t StreamSync::bufferedBytes() const
 {
     return static_cast<std::size_t>(base_ + len_ - keepFrom());
+}
+
+bool StreamSync::qualifies(std::uint64_t c, int distance) const
+{
+    if (distance <= kMaxWindowBitErrors)
+        return true;
+    if (c != due_ || distance > kMaxDueWindowBitErrors)
+        return false;
+    // Inside the preamble fill every window is 8 bits from the tail (its
+    // 0F 0F read 55 55), and one byte early 4 bits: so the due start must
+    // show the mark itself, its two bytes within 3 bits of 0F 0F (8 from 55 55).
+    const std::uint8_t* mark = at(c - 2);
+    return std::popcount(static_cast<unsigned>(mark[0] ^ kPreambleMark)) +
+               std::popcount(static_cast<unsigned>(mark[1] ^ kPreambleMark)) <=
+           3;
 }
 
 int StreamSync::distance(std::uint64_t c) const
@@ -476,7 +266,7 @@ void StreamSync::process(bool final)
         }
 
         std::uint64_t q = scan_;
-        while (q <= end && distance(q) > kMaxWindowBitErrors)
+        while (q <= end && !qualifies(q, distance(q)))
             ++q;
         scan_ = q;
         // Only a good frame whose preamble covers the failed start can show
@@ -486,9 +276,8 @@ void StreamSync::process(bool final)
         if (q > end)
             return;
 
-        // kSlipCheck: room to look past codeword 2 for a displaced one.
         const std::uint64_t last = q + kNeighbourhood - 1;
-        if (last + kDatagramSize + kSlipCheck <= end)
+        if (last + kDatagramSize <= end)
             decideNeighbourhood(q, last, end);
         else if (!final || !decideNeighbourhood(q, std::min(last, end), end))
             return;
@@ -523,7 +312,7 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
     int bar = std::numeric_limits<int>::max();
     for (std::uint64_t c = q; c <= last; ++c) {
         const int d = distance(c);
-        if (d > kMaxWindowBitErrors)
+        if (!qualifies(c, d))
             continue;
         if (c + kDatagramSize > end) {
             bar = std::min(bar, d);
@@ -540,25 +329,31 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
     if (n == 0 || cands[0].distance >= bar)
         return false;
 
-    Trial trials[2];
+    // The reading taken is the best the acceptance decision finds exact, or,
+    // when none is, the best of all (which it will then refuse); without an
+    // acceptor every reading counts as exact.
+    Trial trials[3];
     Decoded decoded[2];  // [0]: the closest window's, to predict the others near it
     int best = -1;
+    int exact = -1;
     DecodedBlocks firstBlocks;
     for (std::size_t i = 0; i < n; ++i) {
-        // score >= distance: once the distance alone exceeds the best score,
-        // no later candidate can win, nor tie with fewer corrections.
-        if (best >= 0) {
-            const Trial& b = trials[best];
+        // score >= distance: once the distance alone exceeds the score of the
+        // reading to be taken, no later candidate can win, nor tie with fewer
+        // corrections.
+        if (exact >= 0) {
+            const Trial& b = trials[exact];
             if (cands[i].distance > b.score || (cands[i].distance == b.score && corrections(b.blocks) == 0))
                 break;
         }
-        const int slot = best == 0 ? 1 : 0;
+        int slot = 0;
+        while (slot == best || slot == exact)
+            ++slot;
         Trial& t = trials[slot];
-        const std::uint64_t after = end - (cands[i].c + kDatagramSize);
         Decoded& d = decoded[i == 0 ? 0 : 1];
         rsDecode(at(cands[i].c), i == 0 ? nullptr : &decoded[0],
                  static_cast<std::int64_t>(cands[i].c - cands[0].c), d);
-        decodeAt(at(cands[i].c), static_cast<std::size_t>(std::min<std::uint64_t>(after, kSlipCheck)), d, t);
+        score(at(cands[i].c), d, t);
         t.c = cands[i].c;
         t.distance = cands[i].distance;
         t.score += t.distance;
@@ -574,25 +369,44 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
                 std::memcpy(firstBlocks.block2.data(), cw + kCodewordSize, kBlockSize);
             firstBlocks.corrected1 = firstBlocks.corrected2 = -1;
         }
-        if (confirms(t, t.c < failEnd_) && (best < 0 || better(t, trials[best])))
+        if (!confirms(t, t.c < failEnd_))
+            continue;
+        if (best < 0 || better(t, trials[best]))
             best = slot;
+        if ((exact < 0 || better(t, trials[exact])) && (!exact_ || exact_(t.blocks)))
+            exact = slot;
     }
     if (best >= 0) {
-        if (trials[best].distance >= bar)
+        const Trial& taken = trials[exact >= 0 ? exact : best];
+        if (taken.distance >= bar)
             return false;
-        confirm(trials[best].c, trials[best].distance, trials[best].blocks);
+        confirm(taken.c, taken.distance, taken.blocks);
         return true;
     }
 
-    const std::uint64_t p = cands[0].c;
+    // Reported where the next frame was due, if it was a candidate: at a
+    // high bit error rate the true window may be further from the preamble
+    // than one a byte early is.
+    std::uint64_t p = cands[0].c;
+    for (std::size_t i = 0; i < n; ++i)
+        if (cands[i].c == due_)
+            p = due_;
+    const int pDistance = distance(p);
+    if (p != cands[0].c) {
+        const std::uint8_t* cw = at(p);
+        std::memcpy(firstBlocks.block1.data(), cw, kBlockSize);
+        std::memcpy(firstBlocks.block2.data(), cw + kCodewordSize, kBlockSize);
+    }
     if (p >= failEnd_) {
         if (hasPending_)
             reportPending();
         hasPending_ = true;
         pendingC_ = p;
-        pendingDistance_ = cands[0].distance;
+        pendingDistance_ = pDistance;
         pendingBlocks_ = firstBlocks;
         failEnd_ = p + kDatagramSize;
+        if (p == due_)
+            due_ = p + kFrameSize;  // lock kept through a frame beyond correction
     }
     scan_ = q + kNeighbourhood;
     return true;
@@ -607,6 +421,7 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
             hasPending_ = false;  // a false start inside this frame's preamble
     }
     emitFrame(c, distance, blocks);
+    due_ = c + kFrameSize;
     if (blocks.corrected2 >= 0 || blocks.corrected1 < 0) {
         scan_ = c + kDatagramSize;
         expect_ = c + kFrameSize;

@@ -1,45 +1,44 @@
 // Finds 600-byte frames in a byte stream that arrives in pieces of any size,
 // with garbage between frames, lost or inserted bytes and bit errors.
 //
-// Candidate start c (first byte of codeword 1) is scored by the Hamming
-// distance between the 16 bytes before c and the preamble tail 55 x14, 0F,
-// 0F; it qualifies at <= 6 bits. RS decoding confirms it.
+// Candidates. Start c (the first byte of codeword 1) is scored by the
+// Hamming distance between the 16 bytes before c and the preamble tail
+// 55 x14, 0F 0F. It qualifies at <= 6 bits; where the next frame is due
+// (600 bytes after the last one reported, good or not) at <= 16 bits, if
+// its last two bytes are within 3 bits of 0F 0F. RS decoding confirms it.
 //
-// RS confirmation alone cannot tell a true start from one a few bytes off:
-// RS codes are cyclic, so codewords read k bytes early or late are cyclic
-// shifts with k bytes changed, and for k <= 16 they "decode" into shifted
-// garbage. So:
-// - From the first qualifying candidate q, all qualifying candidates in
-//   q .. q+89 compete, and the winner is the reading that assumes the fewest
-//   bit errors: window distance plus the bits RS corrected (plus 17 for a
-//   codeword beyond correction). A reading one byte off corrects a whole
-//   byte per codeword and its window is 4 bits or more further; by window
-//   distance alone, 3 unlucky bit errors in 16 bytes would decide. The
-//   neighbourhood spans a preamble because any all-55 window is 8 bits away
-//   and qualifies with two bit errors: a shorter one could hold only such a
-//   false start, a few bytes early, and RS would confirm it.
-// - A codeword whose decoding shows it was displaced by a byte slip (its
-//   ends, or its corrections, match a rotation of it better than where it
-//   was read) counts as beyond correction; so does codeword 1 after a slip
-//   inside it, unless its corrections show the slip left it whole.
-// - One codeword alone confirms a start only under a window within 3 bits
-//   and outside the codewords of a frame that failed: padding lines up with
-//   padding and with the next preamble, so a failed frame holds windows from
-//   which a codeword reads as a rotation of real data and decodes.
-// These stop short of the impossible: a slip inside repeated data that
-// leaves the received bytes a codeword, or that changes no byte RS can see,
-// is not detected.
+// Readings. RS confirmation alone cannot tell a true start from one a few
+// bytes off: RS codes are cyclic, so codewords read k bytes early or late
+// are cyclic shifts with k bytes changed, and for k <= 16 they "decode"
+// into shifted garbage. So from the first qualifying candidate q, all
+// qualifying candidates in q .. q+89 compete (89: any all-55 window is 8
+// bits away and qualifies with two bit errors, so a shorter neighbourhood
+// could hold only such a false start inside a preamble). Each is a reading
+// of the stream, scored by the bit errors it must assume: window distance
+// plus the bits RS corrected, plus 17 for a codeword beyond correction.
+// A reading confirms when both codewords decode, or one does under a window
+// within 3 bits outside the codewords of a frame that failed. Of the
+// readings that confirm, the one taken is the lowest-scored that the
+// acceptor (the acceptance decision's exactness rules, FrameReceiver)
+// finds exact, or, when none is, the lowest-scored of all, which the
+// acceptance decision will then refuse. So a frame within RS's reach is
+// found even when a reading a byte off scores as well, and a slip that
+// leaves a codeword decoding into its rotation costs that frame only.
 //
-// When nothing in a neighbourhood confirms, one "uncorrectable" frame is
-// reported at the lowest-distance candidate, and later failing candidates
-// that start inside its codewords are dropped silently; one there that
+// Failures. When nothing in a neighbourhood confirms, one "uncorrectable"
+// frame is reported where the next frame was due if that was a candidate,
+// else at the lowest-distance candidate; later failing candidates that
+// start inside its codewords are dropped silently, and one there that
 // confirms is still emitted, which is how the frame after lost bytes is
-// found. That report waits until scanning is 90 bytes past it: if a good
-// frame's preamble turns out to cover it, it was a false start and is
-// dropped.
+// found. The report waits until scanning is 90 bytes past it: if a good
+// frame's preamble covers it, it was a false start and is dropped.
 //
-// Plain C++20, no Qt. Not thread-safe; the handler must not call back into the
-// synchroniser. Memory is fixed: an 8 KiB buffer allocated once.
+// On a clean continuous stream the frame due is checked first: a perfect
+// window with two clean codewords cannot be beaten, so no search is made.
+//
+// Plain C++20, no Qt. Not thread-safe; the handler and the acceptor must
+// not call back into the synchroniser. Memory is fixed: an 8 KiB buffer
+// allocated once.
 #pragma once
 
 #include "codec/frame/Frame.h"
@@ -69,16 +68,21 @@ struct SyncedFrame {
 class StreamSync {
 public:
     using Handler = std::function<void(const SyncedFrame&)>;
+    // True when blocks whose codewords both decoded pass the acceptance
+    // decision's exactness rules (FrameReceiver's); no side effects.
+    using Acceptor = std::function<bool(const DecodedBlocks&)>;
 
     static constexpr std::size_t kWindowSize = 16;
     static constexpr int kMaxWindowBitErrors = 6;
+    // Where the next frame is due (600 bytes after the last one reported),
+    // a window this far from the preamble still qualifies.
+    static constexpr int kMaxDueWindowBitErrors = 16;
     static constexpr std::size_t kNeighbourhood = kPreambleSize;  // candidates q .. q+89
-    // Upper bound of bufferedBytes() between feed() calls: a neighbourhood,
-    // the frame after it and 16 bytes beyond (to see whether codeword 2 was
-    // displaced by a slip in codeword 1), plus the preamble of a failed frame
-    // whose report waits to see whether it was only a false start inside a
-    // real preamble.
-    static constexpr std::size_t kMaxCarried = 2 * kPreambleSize + kFrameSize + rs::kMaxCorrectable;
+    // Upper bound of bufferedBytes() between feed() calls: a neighbourhood
+    // and the frame after it, plus the preamble of a failed frame whose
+    // report waits to see whether it was only a false start inside a real
+    // preamble.
+    static constexpr std::size_t kMaxCarried = 2 * kPreambleSize + kFrameSize;
 
     struct Stats {
         std::uint64_t bytesIn = 0;
@@ -89,10 +93,10 @@ public:
         std::uint64_t corrected2 = 0;
     };
 
-    explicit StreamSync(Handler onFrame);
+    explicit StreamSync(Handler onFrame, Acceptor exact = {});
 
     // Frames are reported in stream order, each as soon as the bytes that
-    // decide it have arrived (up to 615 bytes after its codewords begin, 510
+    // decide it have arrived (up to 599 bytes after its codewords begin, 510
     // on a clean continuous stream).
     void feed(std::span<const std::uint8_t> bytes);
     // End of stream: decides what the bytes received allow (a last frame
@@ -119,14 +123,17 @@ private:
     void compact();
     std::uint64_t keepFrom() const;
     int distance(std::uint64_t c) const;
+    bool qualifies(std::uint64_t c, int distance) const;
     const std::uint8_t* at(std::uint64_t offset) const { return buf_.data() + (offset - base_); }
 
     Handler handler_;
+    Acceptor exact_;
     std::vector<std::uint8_t> buf_;
     std::uint64_t base_ = 0;     // stream offset of buf_[0]
     std::size_t len_ = 0;
     std::uint64_t scan_ = kWindowSize;  // next candidate not yet examined
     std::uint64_t expect_ = 0;   // where the next frame is likely to start (0: no guess)
+    std::uint64_t due_ = 0;      // where the next frame is due after the last reported, good or not
     std::uint64_t failEnd_ = 0;  // failing candidates before this are dropped silently
     std::uint64_t covered_ = 0;  // bytes before this are in an emitted frame or counted as skipped
     bool hasPending_ = false;    // a failed frame waiting to be reported

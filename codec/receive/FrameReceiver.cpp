@@ -1,19 +1,18 @@
 #include "codec/receive/FrameReceiver.h"
 
+#include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/secure/SecureCodec.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <utility>
 
 namespace rcm {
 namespace {
 
 constexpr std::uint32_t kIdMask = secure::kMessageIdModulus - 1;
-// Flight plan section IDs from here on are link control (acknowledgement),
-// not plan data: docs/protocol.md section 3.
-constexpr std::uint16_t kFirstControlSection = 0xFFF0;
 
 std::int64_t systemUtcMicros()
 {
@@ -62,13 +61,19 @@ std::string codewordsDetail(const DecodedBlocks& b)
            (b.corrected2 < 0 ? "beyond correction" : "good");
 }
 
-// Ciphertext has no structure: about one byte in 256 is 55, where a plain
-// frame's padding (BLOCK 1's, or an empty BLOCK 2's 215 bytes) has dozens.
+// Ciphertext looks random: about one byte in 256 is 55, where a plain
+// frame's padding (BLOCK 1's, or an empty BLOCK 2's 215 bytes) has dozens,
+// and BLOCK 1 holds some 150 distinct byte values, where a run of one
+// value (a preamble followed by constant bytes) holds one.
 bool looksEnciphered(const DecodedBlocks& b)
 {
     const auto count = std::count(b.block1.begin(), b.block1.end(), kPad55) +
                        std::count(b.block2.begin(), b.block2.end(), kPad55);
-    return count < 8;
+    bool seen[256] = {};
+    int distinct = 0;
+    for (std::uint8_t x : b.block1)
+        distinct += !std::exchange(seen[x], true);
+    return count < 8 && distinct >= 64;
 }
 
 // The exactness rules of docs/protocol.md section 8 for a plain frame whose
@@ -129,7 +134,7 @@ Verdict follows(const SenderHistory& h, std::uint32_t id, std::int64_t seconds, 
     if (elapsed < 0 || elapsed > std::int64_t{step} + kTimeStepSlackSeconds)
         return refuse(Refusal::TimeStep, "time_UTC is " + std::to_string(elapsed) + " s after the last accepted, " +
                                              std::to_string(step) + " messages later");
-    if (s.empty() || s.sectionId >= kFirstControlSection)
+    if (s.empty() || s.sectionId >= kFirstControlSectionId)
         return {};
     // A new plan starts at section 0; a plan being sent goes on, or wraps
     // to section 0 for its next pass; lost frames may have carried some.
@@ -151,7 +156,7 @@ SenderHistory historyOf(const DecodedBlocks& blocks, const Message& m, std::int6
     h.messageId = static_cast<std::uint32_t>(m.header.number(ItemId::ID_msg));
     h.stampSeconds = seconds;
     const FlightPlanSection& s = m.flightPlan;
-    if (!s.empty() && s.sectionId < kFirstControlSection) {
+    if (!s.empty() && s.sectionId < kFirstControlSectionId) {
         h.planId = s.planId;
         h.section = s.sectionId;
     } else if (before) {
@@ -204,13 +209,26 @@ FrameReceiver::FrameReceiver(Options options, Handler handler)
           frame.blocks = s.blocks;
           frame.preambleBitErrors = s.preambleBitErrors;
           judge(frame, s.raw.last<kDatagramSize>());
-      })
+      },
+             [this](const DecodedBlocks& blocks) { return exact(blocks); })
 {
     if (!m_options.clock)
         m_options.clock = systemUtcMicros;
 }
 
 FrameReceiver::~FrameReceiver() = default;
+
+bool FrameReceiver::exact(const DecodedBlocks& blocks) const
+{
+    if (!blocks.ok())
+        return false;
+    if (m_options.keys.codecs.empty()) {
+        DecodeResult r;
+        return !exactPlain(blocks, r).refusal;
+    }
+    return std::any_of(m_options.keys.codecs.begin(), m_options.keys.codecs.end(),
+                       [&](const secure::SecureCodec* c) { return c->decryptBlocks(blocks).authentic; });
+}
 
 void FrameReceiver::feed(std::span<const std::uint8_t> bytes) { m_sync.feed(bytes); }
 
@@ -273,19 +291,23 @@ void FrameReceiver::judge(ReceivedFrame& frame, std::span<const std::uint8_t, kD
 bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bool remember)
 {
     frame.blocks = blocks;
+    const bool keyed = !m_options.keys.codecs.empty();
     const auto no = [&](Verdict v) {
         frame.refusal = v.refusal;
         frame.detail = std::move(v.detail);
+        if (keyed) {
+            // Nothing read from a refused frame is passed on, authentic or not.
+            frame.decoded.message = Message{};
+            frame.decoded.diagnostics.clear();
+        }
         return false;
     };
     if (!blocks.ok()) {
         // A keyed link's blocks are ciphertext: nothing in them can be read.
-        if (m_options.keys.codecs.empty()) {
+        if (!keyed)
             frame.decoded = decodeBlocks(blocks);
-        } else {
-            frame.decoded.corrected1 = blocks.corrected1;
-            frame.decoded.corrected2 = blocks.corrected2;
-        }
+        frame.decoded.corrected1 = blocks.corrected1;
+        frame.decoded.corrected2 = blocks.corrected2;
         return no(refuse(Refusal::Uncorrectable, codewordsDetail(blocks)));
     }
 
@@ -293,7 +315,7 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
     // rules), the plain rules otherwise.
     DecodeResult& r = frame.decoded;
     secure::HeaderStamp stamp;
-    if (!m_options.keys.codecs.empty()) {
+    if (keyed) {
         bool plaintext = false;
         std::string why;
         for (const secure::SecureCodec* codec : m_options.keys.codecs) {

@@ -159,6 +159,9 @@ public:
     const Options& options() const { return m_options; }
     // Forgets senders and statistics (not the keys' replay state).
     void reset();
+    // The exactness rules alone (authentication on a keyed link): what
+    // StreamSync asks to choose between readings of one frame.
+    bool exact(const DecodedBlocks& blocks) const;
 
 private:
     void judge(ReceivedFrame& frame, std::span<const std::uint8_t, kDatagramSize> codewords);

@@ -1,0 +1,85 @@
+// Soak of the receive path: a realistic command session through each kind
+// of channel damage, 10^6 frames a row, and 100 MB of random bytes. Prints,
+// per row, frames sent, delivered correct, delivered WRONG, lost (sent and
+// not delivered correct) and the refusals by reason. Delivered WRONG must be
+// 0 in every row; the exit status is 1 otherwise.
+//
+//   soak_receive [FRAMES_PER_ROW [ROW_NAME_PREFIX]]
+#include "tests/ReceiveChannel.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+#include <vector>
+
+using namespace rcm;
+using namespace rcm::test;
+
+namespace {
+
+std::string refusals(const RowResult& r)
+{
+    std::string s;
+    for (int i = 0; i < kRefusalCount; ++i) {
+        if (r.refused[static_cast<std::size_t>(i)] == 0)
+            continue;
+        s += (s.empty() ? "" : ", ") + std::string(refusalName(static_cast<Refusal>(i))) + " " +
+             std::to_string(r.refused[static_cast<std::size_t>(i)]);
+    }
+    return s.empty() ? "-" : s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    const std::uint64_t frames = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1'000'000;
+    const std::string_view only = argc > 2 ? argv[2] : "";
+    using K = Channel::Kind;
+    const std::vector<Channel> rows = {
+        {K::Clean, 0, "clean"},
+        {K::Slip, 0, "slip 1-3 bytes"},
+        {K::OverwriteBurst, 0, "overwrite burst 20-60"},
+        {K::InsertBurst, 0, "insertion burst 20-60"},
+        {K::BitErrors, 1e-3, "BER 1e-3"},
+        {K::BitErrors, 3e-3, "BER 3e-3"},
+        {K::BitErrors, 1e-2, "BER 1e-2"},
+        {K::BitErrors, 2e-2, "BER 2e-2"},
+        {K::BitErrors, 3e-2, "BER 3e-2"},
+        {K::ByteErrors16, 0, "16 byte errors/codeword"},
+        {K::ConstantFollower, 0, "preamble + constant"},
+        {K::RandomFollower, 0, "preamble + random"},
+    };
+    const CommandSession session;
+    bool anyWrong = false;
+    std::printf("| channel (each frame) | sent | delivered correct | delivered WRONG | lost | refused by reason | s |\n");
+    std::printf("|---|---:|---:|---:|---:|---|---:|\n");
+    std::fflush(stdout);
+    std::uint64_t seed = 1;
+    const auto print = [&](const std::string& name, const RowResult& r, double seconds) {
+        anyWrong = anyWrong || r.wrong != 0;
+        std::printf("| %s | %llu | %llu | %llu | %llu | %s | %.0f |\n", name.c_str(),
+                    static_cast<unsigned long long>(r.sent), static_cast<unsigned long long>(r.correct),
+                    static_cast<unsigned long long>(r.wrong), static_cast<unsigned long long>(r.lost),
+                    refusals(r).c_str(), seconds);
+        if (r.wrong)
+            std::printf("|   first wrong: %s |\n", r.firstWrong.c_str());
+        std::fflush(stdout);
+    };
+    for (const Channel& c : rows) {
+        ++seed;
+        if (!only.empty() && c.name.rfind(only, 0) != 0)
+            continue;
+        const auto t0 = std::chrono::steady_clock::now();
+        const RowResult r = runRow(session, c, frames, seed);
+        print(c.name, r, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    if (only.empty() || std::string_view("100 MB random bytes").rfind(only, 0) == 0) {
+        const auto t0 = std::chrono::steady_clock::now();
+        print("100 MB random bytes", runRandomBytes(100, seed + 1),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return anyWrong ? 1 : 0;
+}
