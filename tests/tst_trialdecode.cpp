@@ -36,11 +36,12 @@ Codeword withErrors(Codeword c, std::initializer_list<int> positions)
     return c;
 }
 
-// `count` byte errors at distinct positions from `first` on, `step` apart.
+// `count` byte errors at distinct positions from `first` on, `step` apart,
+// of varied values (evenly spaced equal errors can sit next to a codeword).
 Codeword withSpreadErrors(Codeword c, int first, int count, int step)
 {
     for (int i = 0; i < count; ++i)
-        c[static_cast<std::size_t>(first + i * step)] ^= 0xC3;
+        c[static_cast<std::size_t>(first + i * step)] ^= static_cast<std::uint8_t>(1 + (i * 73 + 29) % 255);
     return c;
 }
 
