@@ -264,8 +264,10 @@ void FrameReceiver::receive(std::span<const std::uint8_t> bytes, std::int64_t of
 void FrameReceiver::judge(ReceivedFrame& frame, std::span<const std::uint8_t, kDatagramSize> codewords)
 {
     const DecodedBlocks plain = frame.blocks;
-    if (!accept(frame, plain, true) && m_options.retry && frame.refusal < Refusal::Replayed &&
-        frame.refusal != Refusal::Plaintext && frame.refusal != Refusal::WrongSize) {
+    // Predictions can only mend bytes: not a frame that was read right and
+    // refused for what it says (plaintext, not plausible).
+    const auto mendable = [](Refusal r) { return r != Refusal::Plaintext && r < Refusal::Replayed; };
+    if (!accept(frame, plain, true) && m_options.retry && mendable(*frame.refusal)) {
         for (const DecodedBlocks& candidate : m_options.retry(codewords, plain, *this)) {
             ReceivedFrame trial = frame;
             trial.refusal.reset();

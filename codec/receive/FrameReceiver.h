@@ -61,7 +61,7 @@ enum class Refusal : std::uint8_t {
     UnknownItem,        // an Item_ID the profile does not define, or an item cut off by the block's end
     NotCanonical,       // items not in the order the profile's encoder writes them
     Warning,            // any other diagnostic (orphan item, repeated item, unit without its key)
-    // not plausible
+    // not plausible (from here on: FrameReceiver retries no prediction)
     Replayed,           // ID_msg not ahead of the last accepted from this sender
     MessageIdStep,      // ID_msg ahead by more than kMaxMessageIdStep
     TimeStep,           // time_UTC behind the last accepted, or further ahead than the ID step allows
