@@ -12,8 +12,9 @@
 // a keyed link the prediction is enciphered first, and ciphertext changes
 // wholly with any plaintext byte, so the prediction must be exact; there
 // time_UTC is also tried one second either side of ID_msg's step, and, for
-// the frames just after the last accepted one, every single-byte change of
-// a command value (a few thousand candidates, compared by parity distance).
+// the frames up to 10 s after the last accepted one, every single-byte change of
+// a command value (about 10^5 candidates for a typical command frame, each
+// enciphered, RS-encoded and compared by parity distance).
 // Every result still goes through the receiver's acceptance decision.
 // docs/protocol.md, "Decoding with what the receiver expects", says why a
 // trial cannot turn a wrong prediction into a wrong frame.
