@@ -429,11 +429,19 @@ bool SecureCodec::encryptBlocks(EncodedBlocks& blocks, std::string& error) const
         error = "cannot be sent on the secure link: " + why;
         return false;
     }
-    const Block1Tweak t1 = block1Tweak(m_direction);
-    const Block2Tweak t2 = block2Tweak(m_direction, stamp);
-    m_cipher->encrypt(t1, blocks.block1, blocks.block1);
-    m_cipher->encrypt(t2, blocks.block2, blocks.block2);
+    encipherBlock1(blocks.block1);
+    encipherBlock2(blocks.block2, stamp);
     return true;
+}
+
+void SecureCodec::encipherBlock1(Block& block) const
+{
+    m_cipher->encrypt(block1Tweak(m_direction), block, block);
+}
+
+void SecureCodec::encipherBlock2(Block& block, const HeaderStamp& stamp) const
+{
+    m_cipher->encrypt(block2Tweak(m_direction, stamp), block, block);
 }
 
 std::optional<EncodedBlocks> SecureCodec::encode(const Message& message, Diagnostics& errors) const

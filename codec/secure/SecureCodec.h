@@ -232,6 +232,12 @@ public:
     // (see openFrame).
     Authenticated decryptBlocks(const DecodedBlocks& blocks) const;
 
+    // One plaintext block enciphered as encryptBlocks would, without its
+    // checks: a receiver enciphers its predictions of what its sender sent
+    // (codec/receive/TrialDecoder.h) to compare them with what arrived.
+    void encipherBlock1(Block& block) const;
+    void encipherBlock2(Block& block, const HeaderStamp& stamp) const;
+
 private:
     Direction m_direction;
     std::unique_ptr<Hctr2> m_cipher;
