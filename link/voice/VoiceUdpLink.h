@@ -16,7 +16,7 @@
 // Voice is paced by the host's monotonic clock, a frame every 20 ms, as the
 // voice phase of the serial line would carry it.
 
-#include "link/transport/Link.h"
+#include "link/transport/LinkWrapper.h"
 
 #include <QElapsedTimer>
 #include <QTimer>
@@ -28,7 +28,7 @@
 class VoiceSink;
 class VoiceSource;
 
-class VoiceUdpLink : public Link {
+class VoiceUdpLink : public LinkWrapper {
     Q_OBJECT
 
 public:
@@ -39,17 +39,12 @@ public:
     // sends no voice; a null sink drops what is received.
     VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink,
                  QObject* parent = nullptr);
-    ~VoiceUdpLink() override;
 
     // True for a datagram of the voice format above.
     static bool isVoiceDatagram(const QByteArray& datagram);
 
-    FrameTransport transport() const override { return m_inner->transport(); }
-    bool isStream() const override { return false; }
-    bool isOpen() const override { return m_inner->isOpen(); }
     QString description() const override;
 
-    Link* inner() const { return m_inner; }
     // The link's thread.
     std::uint64_t voiceDatagramsSent() const { return m_sent; }
     std::uint64_t voiceDatagramsReceived() const { return m_received; }
@@ -57,15 +52,14 @@ public:
 public slots:
     void open() override;
     void close() override;
-    // A command datagram, as it is.
-    bool write(const QByteArray& bytes) override;
 
 private:
+    void innerOpened() override;
+    void innerClosed() override;
+    void innerDatagramReceived(const QByteArray& datagram) override;
     void start();
     void pace();
-    void receive(const QByteArray& datagram);
 
-    Link* m_inner;  // a child
     std::shared_ptr<VoiceSource> m_source;
     std::shared_ptr<VoiceSink> m_sink;
     QTimer m_timer;
