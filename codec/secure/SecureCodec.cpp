@@ -1,6 +1,7 @@
 #include "codec/secure/SecureCodec.h"
 
 #include "codec/secure/Hctr2.h"
+#include "codec/message/DigitPairs.h"
 #include "codec/message/ItemTable.h"
 
 #include <openssl/core_names.h>
@@ -376,7 +377,7 @@ bool checkBlock2Structure(const Block& plain, FlightPlanSection& section, Diagno
     // The decoder checks the padding and End_Of_String (the counted bits) as
     // it reads; only the secure link's smaller section limit is extra.
     if (plain[0] > kMaxFlightPlanData) {
-        why = "BLOCK 2 carries more than 199 flight plan bytes";
+        why = "BLOCK 2 carries more than " + std::to_string(kMaxFlightPlanData) + " flight plan bytes";
         return false;
     }
     const std::size_t before = diagnostics.size();
@@ -527,12 +528,12 @@ std::int64_t systemUtcSeconds()
 
 std::optional<std::int64_t> stampSeconds(std::uint32_t timeUtc, std::uint32_t dateUtc)
 {
-    const unsigned hh = timeUtc / 10000, mm = timeUtc / 100 % 100, ss = timeUtc % 100;
+    const auto [hh, mm, ss] = DigitPairs::unpack(timeUtc);
     if (hh > 23 || mm > 59 || ss > 59)
         return std::nullopt;
     using namespace std::chrono;
-    const year_month_day ymd{year(2000 + static_cast<int>(dateUtc / 10000)), month(dateUtc / 100 % 100),
-                             day(dateUtc % 100)};
+    const auto [yy, mo, dd] = DigitPairs::unpack(dateUtc);
+    const year_month_day ymd{year(2000 + static_cast<int>(yy)), month(unsigned(mo)), day(unsigned(dd))};
     if (dateUtc > 991231 || !ymd.ok())
         return std::nullopt;
     return sys_days(ymd).time_since_epoch().count() * 86400LL + hh * 3600LL + mm * 60LL + ss;
