@@ -260,7 +260,8 @@ void MainWindow::buildDocks()
     events->raise();
     resizeDocks({link, voice}, {230, 230}, Qt::Horizontal);
     resizeDocks({log, preview}, {900, 600}, Qt::Horizontal);
-    resizeDocks({log}, {540}, Qt::Vertical);
+    // The panels and the overview keep most of the height, even at 1366x768.
+    resizeDocks({log}, {280}, Qt::Vertical);
 }
 
 void MainWindow::buildMenus()
