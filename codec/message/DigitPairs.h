@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 
 namespace rcm {
 
@@ -34,5 +35,20 @@ struct DigitPairs {
         return {int(date.year()) % 100, unsigned(date.month()), unsigned(date.day())};
     }
 };
+
+// time_UTC and date_UTC (years 2000-2099) as seconds since 1970, or nothing
+// when they name no real time.
+inline std::optional<std::int64_t> utcSeconds(std::int64_t timeUtc, std::int64_t dateUtc)
+{
+    using namespace std::chrono;
+    const auto [hh, mm, ss] = DigitPairs::unpack(timeUtc);
+    const auto [yy, mo, dd] = DigitPairs::unpack(dateUtc);
+    if (timeUtc < 0 || dateUtc < 0 || hh > 23 || mm > 59 || ss > 59 || dateUtc > 991231)
+        return std::nullopt;
+    const year_month_day ymd{year(2000 + static_cast<int>(yy)), month(unsigned(mo)), day(unsigned(dd))};
+    if (!ymd.ok())
+        return std::nullopt;
+    return sys_days(ymd).time_since_epoch().count() * 86400LL + hh * 3600LL + mm * 60LL + ss;
+}
 
 }  // namespace rcm

@@ -50,6 +50,9 @@ enum class ItemId : std::uint8_t {
     cam_GCS_backup = 0xC6,
 };
 
+// ID_msg counts up by one a frame and wraps here (3 value bytes).
+inline constexpr std::uint32_t kMessageIdModulus = 1u << 24;
+
 // The flaps unit's control surfaces, each a commanded angle, in canonical
 // order; and the sense-and-avoid cameras' zooms, left, forward, right.
 // ItemTable.cpp checks both against the table.

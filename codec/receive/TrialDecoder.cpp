@@ -33,7 +33,7 @@ Message advanced(const Message& last, std::uint32_t idStep, std::uint32_t timeSt
 {
     Message m = advanceMessage(last, timeStep);
     if (const Value* id = last.header.find(ItemId::ID_msg))
-        m.header.set(ItemId::ID_msg, (id->number + idStep) % secure::kMessageIdModulus);
+        m.header.set(ItemId::ID_msg, (id->number + idStep) % rcm::kMessageIdModulus);
     return m;
 }
 
@@ -190,7 +190,7 @@ std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t
     m_recent.clear();
     if (m_unaccepted) {
         const SenderHistory* last = histories.front();
-        const std::uint32_t ahead = (m_unaccepted->messageId - last->messageId) & (secure::kMessageIdModulus - 1);
+        const std::uint32_t ahead = (m_unaccepted->messageId - last->messageId) & (rcm::kMessageIdModulus - 1);
         if (ahead >= 1 && ahead <= m_options.maxGapSeconds)
             histories.insert(histories.begin(), &*m_unaccepted);
         else

@@ -528,15 +528,7 @@ std::int64_t systemUtcSeconds()
 
 std::optional<std::int64_t> stampSeconds(std::uint32_t timeUtc, std::uint32_t dateUtc)
 {
-    const auto [hh, mm, ss] = DigitPairs::unpack(timeUtc);
-    if (hh > 23 || mm > 59 || ss > 59)
-        return std::nullopt;
-    using namespace std::chrono;
-    const auto [yy, mo, dd] = DigitPairs::unpack(dateUtc);
-    const year_month_day ymd{year(2000 + static_cast<int>(yy)), month(unsigned(mo)), day(unsigned(dd))};
-    if (dateUtc > 991231 || !ymd.ok())
-        return std::nullopt;
-    return sys_days(ymd).time_since_epoch().count() * 86400LL + hh * 3600LL + mm * 60LL + ss;
+    return utcSeconds(timeUtc, dateUtc);
 }
 
 bool messageIdAhead(std::uint32_t id, std::uint32_t last)

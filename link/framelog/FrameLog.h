@@ -67,8 +67,9 @@ public:
 
     // AppDataLocation + "/framelogs"; not created until open() needs it.
     static QString defaultDirectory();
-    // "rcm-2026-11-22T07-32-00Z.pcapng" for that instant (converted to UTC).
-    static QString sessionFileName(const QDateTime& utc);
+    // "rcm-2026-11-22T07-32-00Z.pcapng" for that instant (converted to UTC);
+    // attempt 2 and on: "rcm-2026-11-22T07-32-00Z-2.pcapng", for a second session that second.
+    static QString sessionFileName(const QDateTime& utc, int attempt = 1);
 
     // Creates missing directories. Refuses to overwrite an existing file: a
     // name clash means another session's log, not a stale one.

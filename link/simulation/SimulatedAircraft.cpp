@@ -16,7 +16,6 @@ constexpr auto kSurfaces = kFlapSurfaces;
 constexpr unsigned kWheelOut = code::kOut, kWheelRetracted = code::kRetracted;
 constexpr unsigned kFacilityEnabled = code::kEnabled, kNoDump = code::kNoDump;
 constexpr unsigned kPhotoNone = code::kNone, kPhotoTake = code::kTake;
-constexpr std::uint32_t kMessageIdModulus = 1u << 24;
 
 double slewRate(ItemId surface)
 {

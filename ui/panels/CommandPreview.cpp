@@ -126,7 +126,7 @@ void CommandPreview::setCommand(const rcm::Message& command)
 void CommandPreview::frameSent(quint32 messageId)
 {
     m_lastSent = m_command;
-    m_nextId = (messageId + 1) % (1u << 24);
+    m_nextId = (messageId + 1) % rcm::kMessageIdModulus;
     refresh();
 }
 
