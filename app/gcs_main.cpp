@@ -8,10 +8,12 @@
 //   gcs ... --key FILE            the secure link with the aircraft's key file
 //                                 (with --rehearsal, uasim gets it too)
 //   gcs --screenshot FILE.png     lay the window out, save a picture of it, exit
+//   gcs --rehearse S --report DIR run a rehearsal scenario without a window
 //
 // Start-up, memory and GUI stall measurements: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
+#include "ui/rehearsal/RehearsalCommandLine.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
 
@@ -77,7 +79,10 @@ int main(int argc, char* argv[])
     const QCommandLineOption size(QStringLiteral("size"), QStringLiteral("Window size for --screenshot."),
                                   QStringLiteral("WxH"), QStringLiteral("1600x1000"));
     parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size});
+    const RehearsalCommandLine rehearse(parser);
     parser.process(app);
+    if (rehearse.requested())
+        return rehearse.run();
 
     const auto usage = [&](const QString& message) {
         say(message);
