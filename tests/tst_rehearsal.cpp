@@ -3,6 +3,8 @@
 // and gcs --rehearse on every sample scenario, with its exit status and reports.
 #include "RunProgram.h"
 
+#include "codec/frame/Frame.h"
+#include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/rehearsal/ScenarioRunner.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
@@ -54,6 +56,7 @@ private slots:
     void outageRunsToExactTimes();
     void pacedRunGivesTheSameReport();
     void frameLogHoldsBothDirections();
+    void keyEnciphersTheRun();
     void samplesHold_data();
     void samplesHold();
     void failedStepNamedInBothReports();
@@ -242,10 +245,50 @@ void TestRehearsal::frameLogHoldsBothDirections()
     QCOMPARE(sent, 120);
 }
 
+// The first frame the console sent in a run of `scenario`, as the session log has it.
+static QByteArray firstSentFrame(const QString& scenario, RehearsalReport* report)
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("session.pcapng"));
+    {
+        ScenarioRunner runner(load(scenario), path);
+        runner.runToEnd();
+        *report = runner.report();
+    }
+    FrameLogReader reader;
+    if (!reader.open(path) || reader.count() == 0)
+        return {};
+    return reader.recordAt(0).bytes;
+}
+
+static bool plaintext(const QByteArray& datagram)
+{
+    if (datagram.size() != int(rcm::kDatagramSize))
+        return false;
+    return rcm::secure::looksLikePlaintext(rcm::decodeCodewords(std::span<const std::uint8_t, rcm::kDatagramSize>(
+        reinterpret_cast<const std::uint8_t*>(datagram.constData()), rcm::kDatagramSize)));
+}
+
+void TestRehearsal::keyEnciphersTheRun()
+{
+    RehearsalReport secure;
+    const QByteArray enciphered = firstSentFrame(QStringLiteral("secure.json"), &secure);
+    QCOMPARE(enciphered.size(), int(rcm::kDatagramSize));
+    QVERIFY(!plaintext(enciphered));
+    QCOMPARE(secure.transport, QStringLiteral("udp (in process), secure link"));
+    QVERIFY(secure.passed());
+    QCOMPARE(secure.frames.wrong, 0);
+
+    RehearsalReport plain;
+    QVERIFY(plaintext(firstSentFrame(QStringLiteral("gear-outage-plan.json"), &plain)));
+    QCOMPARE(plain.transport, QStringLiteral("udp (in process)"));
+}
+
 void TestRehearsal::samplesHold_data()
 {
     QTest::addColumn<QString>("scenario");
-    for (const char* name : {"ber.json", "outage.json", "slip.json", "burst.json", "gear-outage-plan.json"})
+    for (const char* name :
+         {"ber.json", "outage.json", "slip.json", "burst.json", "gear-outage-plan.json", "secure.json"})
         QTest::newRow(name) << QString::fromLatin1(name);
 }
 

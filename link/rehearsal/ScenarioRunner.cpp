@@ -1,7 +1,9 @@
 #include "link/rehearsal/ScenarioRunner.h"
 
+#include "codec/frame/Frame.h"
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/MessageDecoder.h"
+#include "codec/secure/SecureCodec.h"
 #include "link/session/LinkWorker.h"
 #include "link/session/VirtualClock.h"
 #include "link/simulation/AircraftResponder.h"
@@ -27,11 +29,16 @@ constexpr int kQualityWindow = 10;
 // Passes over the plan before the upload gives up, as the console's.
 constexpr int kUploadPasses = 5;
 
-rcm::Message decoded(const QByteArray& frame)
+// The message in a frame as sent: deciphered with `cipher` on the secure link.
+rcm::Message decoded(const QByteArray& frame, const rcm::secure::SecureCodec* cipher)
 {
-    return rcm::decodeFrame(
-               std::span(reinterpret_cast<const std::uint8_t*>(frame.constData()), std::size_t(frame.size())))
-        .message;
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(frame.constData());
+    if (!cipher)
+        return rcm::decodeFrame(std::span(bytes, std::size_t(frame.size()))).message;
+    const std::size_t start = std::size_t(frame.size()) == rcm::kFrameSize ? rcm::kPreambleSize : 0;
+    const auto blocks =
+        rcm::decodeCodewords(std::span<const std::uint8_t, rcm::kDatagramSize>(bytes + start, rcm::kDatagramSize));
+    return cipher->decryptBlocks(blocks).decoded.message;
 }
 
 }  // namespace
@@ -55,8 +62,10 @@ ScenarioRunner::ScenarioRunner(Scenario scenario, const QString& frameLogPath, Q
     m_report.scenarioName = m_scenario.name;
     m_report.scenarioPath = m_scenario.path;
     m_report.duration = m_scenario.duration;
-    m_report.transport = m_scenario.transport == Scenario::Transport::Serial ? QStringLiteral("serial (in process)")
-                                                                             : QStringLiteral("udp (in process)");
+    m_report.transport =
+        QStringLiteral("%1 (in process)%2")
+            .arg(m_scenario.transport == Scenario::Transport::Serial ? QStringLiteral("serial") : QStringLiteral("udp"),
+                 m_scenario.key ? QStringLiteral(", secure link") : QString());
     std::unique_ptr<FrameLog> log;
     if (!frameLogPath.isEmpty()) {
         log = std::make_unique<FrameLog>();
@@ -67,12 +76,28 @@ ScenarioRunner::ScenarioRunner(Scenario scenario, const QString& frameLogPath, Q
     m_aircraft = std::make_unique<SimulatedAircraft>(m_scenario.airframe);
     LinkWorker::Options aircraftOptions;
     aircraftOptions.clock = m_clock;
+    LinkWorker::Options consoleOptions;
+    consoleOptions.clock = m_clock;
+    if (m_scenario.key) {
+        // A fresh key for each run, as the issue asks; its state kept in memory only.
+        const rcm::secure::SecretKey psk = rcm::secure::generateKey();
+        rcm::secure::SecureEndpoint::Options options;
+        options.persistState = false;
+        options.clock = [clock = m_clock] { return clock->utcMicros() / 1'000'000; };
+        std::string error;
+        consoleOptions.secure =
+            rcm::secure::SecureEndpoint::fromKey(psk, rcm::secure::Direction::GcsToUa, {}, error, options);
+        aircraftOptions.secure =
+            rcm::secure::SecureEndpoint::fromKey(psk, rcm::secure::Direction::UaToGcs, {}, error, options);
+        m_ciphers[RehearsalChannel::Console] =
+            std::make_unique<rcm::secure::SecureCodec>(psk, rcm::secure::Direction::GcsToUa);
+        m_ciphers[RehearsalChannel::Aircraft] =
+            std::make_unique<rcm::secure::SecureCodec>(psk, rcm::secure::Direction::UaToGcs);
+    }
     m_aircraftWorker = std::make_unique<LinkWorker>(m_channel.takeEnd(RehearsalChannel::Aircraft), nullptr,
                                                     std::move(aircraftOptions));
     m_responder = std::make_unique<AircraftResponder>(*m_aircraft, *m_aircraftWorker);
 
-    LinkWorker::Options consoleOptions;
-    consoleOptions.clock = m_clock;
     consoleOptions.block2Source = [this]() -> std::optional<rcm::FlightPlanSection> {
         return m_upload ? m_upload->next() : std::nullopt;
     };
@@ -158,7 +183,7 @@ void ScenarioRunner::applyStep(const ScenarioStep& step)
             m_upload = std::make_unique<rcm::FlightPlanUploader>(
                 0x52450000u + std::uint32_t(step.number),
                 std::span(reinterpret_cast<const std::uint8_t*>(step.plan.constData()), std::size_t(step.plan.size())),
-                rcm::FlightPlanSection::kMaxData, kUploadPasses);
+                m_scenario.key ? rcm::secure::kMaxFlightPlanData : rcm::FlightPlanSection::kMaxData, kUploadPasses);
             note(QStringLiteral("step"),
                  step.describe() + QStringLiteral(" (%1 sections)").arg(m_upload->sections().size()));
             break;
@@ -172,8 +197,8 @@ void ScenarioRunner::received(RehearsalChannel::End sender, const rcm::Message& 
 {
     ++m_goodReceived[sender];
     const auto& recent = m_channel.recentFrames(sender);
-    const bool sent =
-        std::any_of(recent.rbegin(), recent.rend(), [&](const QByteArray& f) { return decoded(f) == message; });
+    const bool sent = std::any_of(recent.rbegin(), recent.rend(),
+                                  [&](const QByteArray& f) { return decoded(f, m_ciphers[sender].get()) == message; });
     if (!sent) {
         ++m_report.frames.wrong;
         note(QStringLiteral("event"), sender == RehearsalChannel::Console

@@ -26,7 +26,10 @@ class SimulatedAircraft;
 class VirtualClock;
 namespace rcm {
 class FlightPlanUploader;
+namespace secure {
+class SecureCodec;
 }
+}  // namespace rcm
 
 class ScenarioRunner : public QObject {
     Q_OBJECT
@@ -76,6 +79,8 @@ private:
     std::unique_ptr<AircraftResponder> m_responder;
     std::unique_ptr<LinkWorker> m_console;
     std::unique_ptr<rcm::FlightPlanUploader> m_upload;
+    // Secure link: each sender's cipher, to read what it sent.
+    std::array<std::unique_ptr<rcm::secure::SecureCodec>, 2> m_ciphers;
     rcm::Message m_command;
     std::vector<Pending> m_pending;  // one per timed expectation
     std::size_t m_nextStep = 0;      // steps are applied in order of "at"
