@@ -287,8 +287,8 @@ void TestRehearsal::keyEnciphersTheRun()
 void TestRehearsal::samplesHold_data()
 {
     QTest::addColumn<QString>("scenario");
-    for (const char* name :
-         {"ber.json", "outage.json", "slip.json", "burst.json", "gear-outage-plan.json", "secure.json"})
+    for (const char* name : {"ber.json", "outage.json", "slip.json", "burst.json", "gear-outage-plan.json",
+                             "secure.json", "slip-serial.json"})
         QTest::newRow(name) << QString::fromLatin1(name);
 }
 
@@ -299,6 +299,11 @@ void TestRehearsal::samplesHold()
     const auto run = rcm::test::runProgram(
         QStringLiteral("gcs"), {QStringLiteral("--rehearse"), kScenarios + scenario, QStringLiteral("--report"),
                                 dir.path(), QStringLiteral("--rehearse-speed"), QStringLiteral("0")});
+    if (scenario == QLatin1String("slip-serial.json"))
+        QEXPECT_FAIL("slip-serial.json",
+                     "LinkWorker does not use FrameReceiver yet: a slipped codeword decodes into its rotation and is "
+                     "delivered (docs/rehearsal.md); remove this once it does",
+                     Abort);
     QVERIFY2(run.exitCode == 0, run.err.constData());
     const QJsonObject report = readJson(dir.filePath(QStringLiteral("report.json")));
     QCOMPARE(report.value(QStringLiteral("verdict")).toString(), QStringLiteral("passed"));
