@@ -8,6 +8,7 @@
 #include "link/framelog/FrameLogReader.h"
 #include "link/rehearsal/ScenarioRunner.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
+#include "ui/rehearsal/RehearsalDialog.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -61,6 +62,8 @@ private slots:
     void samplesHold();
     void failedStepNamedInBothReports();
     void malformedScenarioExitsTwo();
+    void dialogShowsTheRun();
+    void dialogSaysWhereTheScenarioIsWrong();
 };
 
 void TestRehearsal::issueExampleParses()
@@ -364,6 +367,31 @@ void TestRehearsal::malformedScenarioExitsTwo()
         run.err.contains(QStringLiteral("gcs: %1:7:22: step 2: the aircraft has no engine 7\n").arg(path).toUtf8()),
         run.err.constData());
     QVERIFY(!QFile::exists(dir.filePath(QStringLiteral("report.json"))));
+}
+
+void TestRehearsal::dialogShowsTheRun()
+{
+    QTemporaryDir dir;
+    RehearsalDialog dialog;
+    QSignalSpy finished(&dialog, &RehearsalDialog::finished);
+    QVERIFY(dialog.run(kScenarios + QStringLiteral("outage.json"), dir.path(), 100000));
+    QVERIFY(finished.wait(30000));
+    QCOMPARE(dialog.progressMaximum(), 900);
+    QCOMPARE(dialog.progressValue(), 900);
+    QCOMPARE(dialog.verdict(), QStringLiteral("PASSED: every expectation held (5).\nReport in %1").arg(dir.path()));
+    QVERIFY2(dialog.timeline().contains(QStringLiteral("  33.0 s  alarm  link-lost\n")), qPrintable(dialog.timeline()));
+    QVERIFY(dialog.timeline().contains(QStringLiteral("  51.0 s  alarm  link-regained")));
+    QCOMPARE(readJson(dir.filePath(QStringLiteral("report.json"))).value(QStringLiteral("verdict")).toString(),
+             QStringLiteral("passed"));
+    QVERIFY(QFileInfo(dir.filePath(QStringLiteral("session.pcapng"))).size() > 0);
+}
+
+void TestRehearsal::dialogSaysWhereTheScenarioIsWrong()
+{
+    RehearsalDialog dialog;
+    const QString path = kScenarios + QStringLiteral("malformed.json");
+    QVERIFY(!dialog.run(path, QDir::tempPath()));
+    QCOMPARE(dialog.verdict(), QStringLiteral("%1:7:22: step 2: the aircraft has no engine 7").arg(path));
 }
 
 QTEST_MAIN(TestRehearsal)

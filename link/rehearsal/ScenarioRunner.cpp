@@ -165,6 +165,7 @@ double ScenarioRunner::now() const
 void ScenarioRunner::note(const QString& kind, const QString& text)
 {
     m_report.timeline.push_back({now(), kind, text});
+    emit noted(now(), kind, text);
 }
 
 void ScenarioRunner::applyStep(const ScenarioStep& step)

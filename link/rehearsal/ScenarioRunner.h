@@ -53,6 +53,8 @@ public:
 
 signals:
     void progress(double scenarioSeconds, double duration);
+    // Each step, fault, alarm and event as it goes into the report's timeline.
+    void noted(double scenarioSeconds, const QString& kind, const QString& text);
     void finished();
 
 private:
