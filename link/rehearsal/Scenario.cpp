@@ -108,9 +108,8 @@ struct Reader {
     bool fail(const QString& where, int step, const QString& message) const
     {
         if (error) {
-            const QString position = jsonPosition(text, offsets.at(where));  // "line 3, column 7"
-            const QStringList parts = position.split(QLatin1Char(' '));
-            *error = ScenarioError{path, parts.value(1).chopped(1).toInt(), parts.value(3).toInt(), step, message};
+            const JsonLineColumn at = jsonLineColumn(text, offsets.at(where));
+            *error = ScenarioError{path, at.line, at.column, step, message};
         }
         return false;
     }
@@ -292,10 +291,10 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
     const QJsonDocument document = QJsonDocument::fromJson(text, &parseError);
     if (parseError.error != QJsonParseError::NoError || !document.isObject()) {
         if (error) {
-            const QStringList parts = jsonPosition(text, parseError.offset).split(QLatin1Char(' '));
+            const JsonLineColumn at = jsonLineColumn(text, parseError.offset);
             const QString why = parseError.error != QJsonParseError::NoError ? parseError.errorString()
                                                                              : QStringLiteral("not a JSON object");
-            *error = ScenarioError{path, parts.value(1).chopped(1).toInt(), parts.value(3).toInt(), -1, why};
+            *error = ScenarioError{path, at.line, at.column, -1, why};
         }
         return std::nullopt;
     }
@@ -356,9 +355,9 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
         const QJsonObject object = steps[i].toObject();
         ScenarioStep step;
         step.number = i + 1;
-        const QStringList position = jsonPosition(text, offsets.at(where)).split(QLatin1Char(' '));
-        step.line = position.value(1).chopped(1).toInt();
-        step.column = position.value(3).toInt();
+        const JsonLineColumn at = jsonLineColumn(text, offsets.at(where));
+        step.line = at.line;
+        step.column = at.column;
         if (object.contains(QStringLiteral("at"))) {
             const double at = object.value(QStringLiteral("at")).toDouble(-1);
             if (at < 0 || at > scenario.duration)
