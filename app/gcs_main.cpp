@@ -1,18 +1,10 @@
-// gcs: the operator console.
-//
-//   gcs                           the console, as it was left last time
-//   gcs --rehearsal               start uasim on loopback and connect to it
-//   gcs --udp-remote HOST:PORT    connect over UDP at once
-//   gcs --serial DEV [--baud N]   connect over a serial port at once
-//   gcs --replay LOG.pcapng       replay a frame log
-//   gcs ... --key FILE            the secure link with the aircraft's key file
-//                                 (with --rehearsal, uasim gets it too)
-//   gcs --screenshot FILE.png     lay the window out, save a picture of it, exit
-//     [--screenshot-after S]      ... once the link given with it ran S seconds
+// gcs: the operator console. `gcs --help` lists its options (the console,
+// a connection at start, replay, a screenshot, a rehearsal scenario run).
 //
 // Start-up, memory and GUI stall measurements: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
+#include "ui/rehearsal/RehearsalCommandLine.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
 #include "ui/window/Theme.h"
@@ -83,7 +75,10 @@ int main(int argc, char* argv[])
                                    QStringLiteral("s"), QStringLiteral("0"));
     const QCommandLineOption night(QStringLiteral("night"), QStringLiteral("The night theme."));
     parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, after, night});
+    const RehearsalCommandLine rehearse(parser);
     parser.process(app);
+    if (rehearse.requested())
+        return rehearse.run();
 
     const auto usage = [&](const QString& message) {
         say(message);

@@ -23,6 +23,7 @@
 #include "ui/panels/RadioPanel.h"
 #include "ui/framelog/ReplayControls.h"
 #include "ui/panels/ReportedState.h"
+#include "ui/rehearsal/RehearsalDialog.h"
 #include "ui/window/StatusBarWidget.h"
 #include "ui/voice/VoiceChannel.h"
 
@@ -287,6 +288,7 @@ void MainWindow::buildMenus()
     airframes->addSeparator();
     airframes->addAction(tr("From a &file\u2026"), this, &MainWindow::chooseAirframe);
     file->addSeparator();
+    file->addAction(tr("&Rehearse scenario\u2026"), this, [this] { RehearsalDialog::chooseAndRun(this); });
     QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
     quit->setShortcut(QKeySequence::Quit);
 
