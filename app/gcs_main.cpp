@@ -1,19 +1,13 @@
-// gcs: the operator console.
-//
-//   gcs                           the console, as it was left last time
-//   gcs --rehearsal               start uasim on loopback and connect to it
-//   gcs --udp-remote HOST:PORT    connect over UDP at once
-//   gcs --serial DEV [--baud N]   connect over a serial port at once
-//   gcs --replay LOG.pcapng       replay a frame log
-//   gcs ... --key FILE            the secure link with the aircraft's key file
-//                                 (with --rehearsal, uasim gets it too)
-//   gcs --screenshot FILE.png     lay the window out, save a picture of it, exit
+// gcs: the operator console. `gcs --help` lists its options (the console,
+// a connection at start, replay, a screenshot, a rehearsal scenario run).
 //
 // Start-up, memory and GUI stall measurements: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
+#include "ui/rehearsal/RehearsalCommandLine.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
+#include "ui/window/Theme.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -76,8 +70,15 @@ int main(int argc, char* argv[])
                                  QStringLiteral("file"));
     const QCommandLineOption size(QStringLiteral("size"), QStringLiteral("Window size for --screenshot."),
                                   QStringLiteral("WxH"), QStringLiteral("1600x1000"));
-    parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size});
+    const QCommandLineOption after(QStringLiteral("screenshot-after"),
+                                   QStringLiteral("Seconds the link runs before the picture (default 0)."),
+                                   QStringLiteral("s"), QStringLiteral("0"));
+    const QCommandLineOption night(QStringLiteral("night"), QStringLiteral("The night theme."));
+    parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, after, night});
+    const RehearsalCommandLine rehearse(parser);
     parser.process(app);
+    if (rehearse.requested())
+        return rehearse.run();
 
     const auto usage = [&](const QString& message) {
         say(message);
@@ -109,19 +110,18 @@ int main(int argc, char* argv[])
     options.airframePath = parser.value(airframe);
     if (parser.isSet(airframe) && !AirframeLoader::load(options.airframePath, &error))
         return usage(error);
+    if (parser.isSet(night))
+        Theme::apply(app, Theme::Kind::Night);
     MainWindow window(options);
-
     if (parser.isSet(screenshot)) {
         window.resize(windowSize);
-        window.show();
-        // After the first pass of the event loop, so that docks and layouts have settled.
-        QTimer::singleShot(0, &window, [&] {
+        // After the first pass of the event loop (docks and layouts settled), or once the link ran that long.
+        QTimer::singleShot(parser.value(after).toInt() * 1000, &window, [&] {
             const bool saved = window.grab().save(parser.value(screenshot));
             if (!saved)
                 say(QStringLiteral("cannot save %1").arg(parser.value(screenshot)));
             QCoreApplication::exit(saved ? 0 : 1);
         });
-        return app.exec();
     }
     window.show();
     if (parser.isSet(key)) {

@@ -8,6 +8,7 @@
 #include "codec/frame/StreamSync.h"
 
 #include "BandEnergy.h"
+#include "CommandFrame.h"
 
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -56,16 +57,6 @@ Pcm phrase()
 std::size_t phraseFrames()
 {
     return (phrase().size() + rcm::voice::kFrameSamples - 1) / rcm::voice::kFrameSamples;
-}
-
-QByteArray commandFrame(std::uint32_t id)
-{
-    rcm::Message m;
-    m.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
-    m.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
-    rcm::Diagnostics errors;
-    const auto frame = rcm::encodeFrame(m, errors).value();
-    return QByteArray(reinterpret_cast<const char*>(frame.data()), qsizetype(frame.size()));
 }
 
 // The aircraft's end of a pseudo-terminal: the master side, keeping every
@@ -284,7 +275,7 @@ void TestVoiceLink::framesQueuedTogetherGoBackToBack()
     QVERIFY(link.isOpen());
     QCOMPARE(opened.count(), 1);
     for (std::uint32_t id = 1; id <= 4; ++id)
-        QVERIFY(link.write(commandFrame(id)));
+        QVERIFY(link.write(rcm::test::commandFrame(id)));
     QTRY_COMPARE_WITH_TIMEOUT(hear(far.bytes()).frameIds.size(), std::size_t(4), kPatience);
 
     const Heard h = hear(far.bytes());
@@ -348,8 +339,8 @@ void TestVoiceLink::phraseOverTheSerialLine()
     source->endTalk();
     VoiceSerialLink link(std::make_unique<SerialLink>(far.slavePath()), source, nullptr, fastLine());
     link.open();
-    QVERIFY(link.write(commandFrame(7)));
-    QVERIFY(link.write(commandFrame(8)));
+    QVERIFY(link.write(rcm::test::commandFrame(7)));
+    QVERIFY(link.write(rcm::test::commandFrame(8)));
     QTRY_COMPARE_WITH_TIMEOUT(source->speechFramesSent(), std::uint64_t(phraseFrames()), kPatience);
     QTRY_COMPARE_WITH_TIMEOUT(hear(far.bytes()).frameIds.size(), std::size_t(2), kPatience);
     // Then a little idle, so the far end has the last voice frame whole.
@@ -368,11 +359,11 @@ void TestVoiceLink::writesOnlyWholeFrames()
     PtyLine far;
     QVERIFY(far.open());
     VoiceSerialLink link(std::make_unique<SerialLink>(far.slavePath()), nullptr, nullptr, fastLine());
-    QVERIFY(!link.write(commandFrame(1)));  // closed
+    QVERIFY(!link.write(rcm::test::commandFrame(1)));  // closed
     link.open();
     QVERIFY(!link.write(QByteArray(599, 'x')));
-    QVERIFY(!link.write(commandFrame(1).left(510)));
-    QVERIFY(link.write(commandFrame(1)));
+    QVERIFY(!link.write(rcm::test::commandFrame(1).left(510)));
+    QVERIFY(link.write(rcm::test::commandFrame(1)));
     QVERIFY(link.isStream());
     QCOMPARE(link.transport(), FrameTransport::Serial);
     QVERIFY(link.description().contains(QStringLiteral("voice multiplexed")));
@@ -393,7 +384,7 @@ void TestVoiceLink::voiceDatagramFormat()
     link.open();
     QVERIFY(link.isOpen());
     QVERIFY(!link.isStream());
-    const QByteArray command = commandFrame(3).mid(rcm::kPreambleSize);
+    const QByteArray command = rcm::test::commandFrame(3).mid(rcm::kPreambleSize);
     QVERIFY(link.write(command));
     QTRY_VERIFY_WITH_TIMEOUT(fromVoiceLink.count() >= 10, kPatience);
     int voice = 0;
@@ -456,7 +447,7 @@ void TestVoiceLink::phraseOverUdpBesideCommands()
                          nullptr, clock);
     QSignalSpy consoleCommands(&console, &Link::datagramReceived);
     console.open();
-    const QByteArray command = commandFrame(5).mid(rcm::kPreambleSize);
+    const QByteArray command = rcm::test::commandFrame(5).mid(rcm::kPreambleSize);
     QVERIFY(console.write(command));
     QTRY_COMPARE_WITH_TIMEOUT(aircraftCommands.count(), 1, kPatience);
     QCOMPARE(aircraftCommands.at(0).at(0).toByteArray(), command);

@@ -1,10 +1,13 @@
 #include "codec/cli/Encode.h"
 
+#include "codec/message/DigitPairs.h"
+
 #include "codec/cli/InputFile.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/message/TextFormat.h"
 #include "codec/secure/SecureCodec.h"
 
+#include <chrono>
 #include <unistd.h>
 
 #include <algorithm>
@@ -49,13 +52,11 @@ void fillHeaderDefaults(rcm::Message& m)
     using rcm::ItemId;
     if (!m.header.has(ItemId::ID_msg))
         m.header.set(ItemId::ID_msg, 0);
-    const std::time_t now = std::time(nullptr);
-    std::tm utc{};
-    gmtime_r(&now, &utc);
+    const auto now = std::chrono::system_clock::now();
     if (!m.header.has(ItemId::time_UTC))
-        m.header.set(ItemId::time_UTC, utc.tm_hour * 10000 + utc.tm_min * 100 + std::min(utc.tm_sec, 59));
+        m.header.set(ItemId::time_UTC, rcm::DigitPairs::timeOf(now).packed());
     if (!m.header.has(ItemId::date_UTC))
-        m.header.set(ItemId::date_UTC, (utc.tm_year % 100) * 10000 + (utc.tm_mon + 1) * 100 + utc.tm_mday);
+        m.header.set(ItemId::date_UTC, rcm::DigitPairs::dateOf(now).packed());
 }
 
 int encode(const Options& o)

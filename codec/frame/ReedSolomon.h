@@ -17,6 +17,9 @@ inline constexpr int kMaxCorrectable = 16;
 // Writes the 32 parity bytes of `data` (223 bytes).
 void encode(const std::uint8_t* data, std::uint8_t* parity);
 
+// libfec's encode_rs_ccsds, for tests that compare encode against it.
+void encodeLibfec(const std::uint8_t* data, std::uint8_t* parity);
+
 // True when `codeword` (255 bytes) is a codeword: its parity matches its data.
 bool isCodeword(const std::uint8_t* codeword);
 

@@ -16,39 +16,38 @@ Airframe Airframe::wellEquipped()
 Message restingCommand(const Airframe& airframe)
 {
     using enum ItemId;
-    constexpr unsigned kAuto = 1, kNoSlave = 1;
     Message m;
     for (const EngineSpec& e : airframe.engines) {
         Unit& u = m.addEngine(e.id);
-        u.setFieldCode(eng_status, 0, kAuto);
-        u.setFieldCode(eng_status, 1, kNoSlave);
+        u.setFieldCode(eng_status, 0, code::kAuto);
+        u.setFieldCode(eng_status, 1, code::kNoSlave);
         u.set(eng_prop_pitch, 0);
         u.set(eng_carb_SET, 0);
     }
-    m.flaps.setFieldCode(FLAP_status, 0, kAuto);
-    m.flaps.setFieldCode(FLAP_status, 1, kNoSlave);
-    for (ItemId id : {F_aileron_LHS_set, F_aileron_RHS_set, F_lift_set, F_rudder_set, F_elev_set, F_airbrake_set})
+    m.flaps.setFieldCode(FLAP_status, 0, code::kAuto);
+    m.flaps.setFieldCode(FLAP_status, 1, code::kNoSlave);
+    for (ItemId id : kFlapSurfaces)
         m.flaps.set(id, 0);
-    // Code 01 in every field: facility disabled, no tank dumped.
-    m.fuelDump.set(ENABLE_fuel_dump, 0x55);
-    m.settings.set(land_wheels, 0x55);  // all wheels out
-    m.settings.set(lights, 0x55);       // all off, brake off
+    static_assert(code::kDisabled == code::kNoDump && code::kOut == code::kOff);
+    m.fuelDump.set(ENABLE_fuel_dump, withEveryFieldCode(code::kDisabled));  // no tank dumped either
+    m.settings.set(land_wheels, withEveryFieldCode(code::kOut));
+    m.settings.set(lights, withEveryFieldCode(code::kOff));  // the brake too
     for (const RadioSpec& r : airframe.radios) {
         Unit& u = m.addRadio(r.systemId);
-        u.set(receiver_control, 0x50);  // receiver off, transmitter off
+        u.set(receiver_control, withEveryFieldCode(code::kOff, 2));  // receiver and transmitter
         u.set(Rx_freq, 0);
         u.set(Tx_freq, 0);
         u.set(Tx_OP_power, 0);
     }
     if (airframe.senseAndAvoid)
-        for (ItemId id : {SA_zoom_LHS_cam, SA_zoom_FWD_cam, SA_zoom_RHS_cam})
+        for (ItemId id : kSenseAndAvoidZooms)
             m.sense.set(id, 0);
     for (const CameraSpec& c : airframe.cameras) {
         Unit& u = m.addCamera(c.maker, c.number);
         u.set(cam_mag_compass, 0);
         u.set(cam_elev, 0);
         u.set(cam_zoom_set, 0);
-        u.set(take_one_photo, 0x40);  // none
+        u.set(take_one_photo, withEveryFieldCode(code::kNone, 1));
     }
     return m;
 }

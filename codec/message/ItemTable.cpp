@@ -1,18 +1,28 @@
 #include "codec/message/ItemTable.h"
 
+#include <initializer_list>
 #include <stdexcept>
+#include <utility>
 
 namespace rcm {
 namespace {
 
-// Code names, indexed by the two-bit code 00, 01, 10, 11.
-constexpr std::array<std::string_view, 4> kControl{"", "AUTO", "GCS", "RC"};
-constexpr std::array<std::string_view, 4> kSlave{"", "NO_SLAVE", "MASTER_SLAVE", ""};
-constexpr std::array<std::string_view, 4> kOnOff{"", "OFF", "ON", ""};
-constexpr std::array<std::string_view, 4> kWheel{"", "OUT", "RETRACTED", ""};
-constexpr std::array<std::string_view, 4> kDump{"", "NO_DUMP", "DUMP", ""};
-constexpr std::array<std::string_view, 4> kFacility{"", "DISABLED", "ENABLED", ""};
-constexpr std::array<std::string_view, 4> kPhoto{"", "NONE", "TAKE", ""};
+// Code names, indexed by the two-bit code 00, 01, 10, 11; "" where unnamed.
+constexpr std::array<std::string_view, 4> codeNames(std::initializer_list<std::pair<unsigned, std::string_view>> named)
+{
+    std::array<std::string_view, 4> names{};
+    for (const auto& [c, name] : named)
+        names[c] = name;
+    return names;
+}
+
+constexpr auto kControl = codeNames({{code::kAuto, "AUTO"}, {code::kGcs, "GCS"}, {code::kRc, "RC"}});
+constexpr auto kSlave = codeNames({{code::kNoSlave, "NO_SLAVE"}, {code::kMasterSlave, "MASTER_SLAVE"}});
+constexpr auto kOnOff = codeNames({{code::kOff, "OFF"}, {code::kOn, "ON"}});
+constexpr auto kWheel = codeNames({{code::kOut, "OUT"}, {code::kRetracted, "RETRACTED"}});
+constexpr auto kDump = codeNames({{code::kNoDump, "NO_DUMP"}, {code::kDump, "DUMP"}});
+constexpr auto kFacility = codeNames({{code::kDisabled, "DISABLED"}, {code::kEnabled, "ENABLED"}});
+constexpr auto kPhoto = codeNames({{code::kNone, "NONE"}, {code::kTake, "TAKE"}});
 
 // The same codes for people.
 constexpr std::array<std::string_view, 4> kControlWords{"", "Automatic", "Ground station", "RC transmitter"};
@@ -124,6 +134,19 @@ constexpr ItemInfo kItems[] = {
 };
 
 constexpr int kItemCount = static_cast<int>(std::size(kItems));
+
+// The items of `owner` of `kind` are exactly `ids`, in order.
+template <std::size_t N>
+constexpr bool itemsAre(UnitKind owner, ValueKind kind, const std::array<ItemId, N>& ids)
+{
+    std::size_t n = 0;
+    for (const ItemInfo& info : kItems)
+        if (info.owner == owner && info.kind == kind && (n == N || info.id != ids[n++]))
+            return false;
+    return n == N;
+}
+static_assert(itemsAre(Flaps, Signed, kFlapSurfaces));
+static_assert(itemsAre(Sense, Unsigned, kSenseAndAvoidZooms));
 
 // Item_ID -> index in kItems, -1 for bytes that are not items; built at
 // compile time because the decoder consults it for every byte it reads.

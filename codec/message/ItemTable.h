@@ -50,6 +50,30 @@ enum class ItemId : std::uint8_t {
     cam_GCS_backup = 0xC6,
 };
 
+// ID_msg counts up by one a frame and wraps here (3 value bytes).
+inline constexpr std::uint32_t kMessageIdModulus = 1u << 24;
+
+// The flaps unit's control surfaces, each a commanded angle, in canonical
+// order; and the sense-and-avoid cameras' zooms, left, forward, right.
+// ItemTable.cpp checks both against the table.
+inline constexpr std::array<ItemId, 6> kFlapSurfaces{ItemId::F_aileron_LHS_set, ItemId::F_aileron_RHS_set,
+                                                     ItemId::F_lift_set,        ItemId::F_rudder_set,
+                                                     ItemId::F_elev_set,        ItemId::F_airbrake_set};
+inline constexpr std::array<ItemId, 3> kSenseAndAvoidZooms{ItemId::SA_zoom_LHS_cam, ItemId::SA_zoom_FWD_cam,
+                                                           ItemId::SA_zoom_RHS_cam};
+
+// Two-bit field codes by meaning (PROFILE.md section 2); the table names
+// each field's codes by these. A code no field names means data corruption.
+namespace code {
+inline constexpr unsigned kAuto = 1, kGcs = 2, kRc = 3;  // control source
+inline constexpr unsigned kNoSlave = 1, kMasterSlave = 2;
+inline constexpr unsigned kOff = 1, kOn = 2;
+inline constexpr unsigned kOut = 1, kRetracted = 2;  // a wheel
+inline constexpr unsigned kNoDump = 1, kDump = 2;
+inline constexpr unsigned kDisabled = 1, kEnabled = 2;
+inline constexpr unsigned kNone = 1, kTake = 2;  // take one photo
+}  // namespace code
+
 // Bytes inside BLOCK 1 that are not items.
 inline constexpr std::uint8_t kPad55 = 0x55;    // NULL_0101
 inline constexpr std::uint8_t kPadAA = 0xAA;    // NULL_1010
@@ -151,6 +175,15 @@ constexpr std::uint8_t withFieldCode(std::uint8_t value, int field, unsigned cod
 {
     const int shift = 6 - 2 * field;
     return static_cast<std::uint8_t>((value & ~(0x3u << shift)) | ((code & 0x3u) << shift));
+}
+// A Fields item's byte with `code` in each of its first `fields` fields and
+// the rest reserved (00).
+constexpr std::uint8_t withEveryFieldCode(unsigned code, int fields = 4)
+{
+    std::uint8_t value = 0;
+    for (int f = 0; f < fields; ++f)
+        value = withFieldCode(value, f, code);
+    return value;
 }
 // True when the code has a meaning for this field (not corruption).
 inline bool fieldCodeValid(const FieldInfo& field, unsigned code) { return !field.codes[code & 3].empty(); }

@@ -23,7 +23,7 @@ bool Unit::set(ItemId id, Value value)
     if (m_items.empty() || canonicalRank(m_items.back().id) < rank) {
         if (m_items.empty())
             m_items.reserve(8);
-        m_items.emplace_back(id, std::move(value));
+        m_items.push_back(ItemValue{id, std::move(value)});
         return false;
     }
     auto it = std::find_if(m_items.begin(), m_items.end(),
@@ -61,13 +61,8 @@ void Unit::setFieldCode(ItemId id, int field, unsigned code)
 {
     const ItemInfo& info = itemInfo(id);
     const Value* v = find(id);
-    std::uint8_t byte = 0;
-    if (v) {
-        byte = static_cast<std::uint8_t>(v->number);
-    } else {
-        for (int f = 0; f < static_cast<int>(info.fields.size()); ++f)
-            byte = withFieldCode(byte, f, 1);
-    }
+    const std::uint8_t byte = v ? static_cast<std::uint8_t>(v->number)
+                                : withEveryFieldCode(1, static_cast<int>(info.fields.size()));
     set(id, Value::of(withFieldCode(byte, field, code)));
 }
 

@@ -1,6 +1,7 @@
 #include "codec/message/TextFormat.h"
 
 #include "codec/message/CountryCodes.h"
+#include "codec/message/DigitPairs.h"
 #include "codec/message/ValueCodec.h"
 
 #include <algorithm>
@@ -134,11 +135,12 @@ void appendValue(std::string& out, const ItemInfo& info, const Value& v)
         break;
     case ValueKind::Time:
         if (v.number >= 0 && v.number <= 999999) {
-            appendZeroPadded(out, v.number / 10000, 2);
+            const DigitPairs time = DigitPairs::unpack(v.number);
+            appendZeroPadded(out, time.high, 2);
             out += ':';
-            appendZeroPadded(out, v.number / 100 % 100, 2);
+            appendZeroPadded(out, time.middle, 2);
             out += ':';
-            appendZeroPadded(out, v.number % 100, 2);
+            appendZeroPadded(out, time.low, 2);
         } else {
             appendInt(out, v.number);
         }
@@ -1097,7 +1099,7 @@ private:
         readInteger(hh, h);
         readInteger(mm, m);
         readInteger(ss, sec);
-        out = h * 10000 + m * 100 + sec;
+        out = DigitPairs{h, m, sec}.packed();
         return true;
     }
 

@@ -1,6 +1,7 @@
 #include "codec/message/ValueCodec.h"
 
 #include "codec/message/Diagnostic.h"
+#include "codec/message/DigitPairs.h"
 
 #include <cstdio>
 
@@ -98,7 +99,7 @@ std::string checkValue(const ItemInfo& item, const Value& value)
         // Checked digit pair by digit pair so the reason names the part that is wrong.
         if (value.number < 0)
             return plainRange(value.number, 0, 235959, "time hhmmss");
-        const std::int64_t hh = value.number / 10000, mm = value.number / 100 % 100, ss = value.number % 100;
+        const auto [hh, mm, ss] = DigitPairs::unpack(value.number);
         if (hh > 23)
             return plainRange(hh, 0, 23, "hours");
         if (mm > 59)
@@ -108,7 +109,7 @@ std::string checkValue(const ItemInfo& item, const Value& value)
     case ValueKind::Date: {
         if (value.number < 0)
             return plainRange(value.number, 0, 991231, "date yymmdd");
-        const std::int64_t yy = value.number / 10000, mm = value.number / 100 % 100, dd = value.number % 100;
+        const auto [yy, mm, dd] = DigitPairs::unpack(value.number);
         if (yy > 99)
             return plainRange(yy, 0, 99, "year");
         if (mm < 1 || mm > 12)

@@ -12,7 +12,7 @@
 namespace rcm {
 namespace {
 
-constexpr std::uint32_t kIdMask = secure::kMessageIdModulus - 1;
+constexpr std::uint32_t kIdMask = rcm::kMessageIdModulus - 1;
 
 std::int64_t systemUtcMicros()
 {
@@ -123,7 +123,7 @@ std::optional<std::int64_t> stampOf(const Message& m)
 Verdict follows(const SenderHistory& h, std::uint32_t id, std::int64_t seconds, const FlightPlanSection& s)
 {
     const std::uint32_t step = (id - h.messageId) & kIdMask;
-    if (step == 0 || step >= secure::kMessageIdModulus / 2)
+    if (step == 0 || step >= rcm::kMessageIdModulus / 2)
         return refuse(Refusal::Replayed, "ID_msg " + std::to_string(id) + " is not ahead of the last accepted " +
                                              std::to_string(h.messageId));
     if (step > kMaxMessageIdStep)

@@ -54,7 +54,8 @@ std::atomic<bool> g_forcePortable{false};
 static_assert(std::endian::native == std::endian::little || std::endian::native == std::endian::big,
               "Hctr2: mixed-endian hosts are not supported");
 
-constexpr std::uint64_t bswap64(std::uint64_t v)
+// Used on big-endian hosts only (below).
+[[maybe_unused]] constexpr std::uint64_t bswap64(std::uint64_t v)
 {
     v = ((v & 0x00FF00FF00FF00FFu) << 8) | ((v >> 8) & 0x00FF00FF00FF00FFu);
     v = ((v & 0x0000FFFF0000FFFFu) << 16) | ((v >> 16) & 0x0000FFFF0000FFFFu);

@@ -1,6 +1,7 @@
 #include "codec/secure/SecureCodec.h"
 
 #include "codec/secure/Hctr2.h"
+#include "codec/message/DigitPairs.h"
 #include "codec/message/ItemTable.h"
 
 #include <openssl/core_names.h>
@@ -376,7 +377,7 @@ bool checkBlock2Structure(const Block& plain, FlightPlanSection& section, Diagno
     // The decoder checks the padding and End_Of_String (the counted bits) as
     // it reads; only the secure link's smaller section limit is extra.
     if (plain[0] > kMaxFlightPlanData) {
-        why = "BLOCK 2 carries more than 199 flight plan bytes";
+        why = "BLOCK 2 carries more than " + std::to_string(kMaxFlightPlanData) + " flight plan bytes";
         return false;
     }
     const std::size_t before = diagnostics.size();
@@ -429,11 +430,19 @@ bool SecureCodec::encryptBlocks(EncodedBlocks& blocks, std::string& error) const
         error = "cannot be sent on the secure link: " + why;
         return false;
     }
-    const Block1Tweak t1 = block1Tweak(m_direction);
-    const Block2Tweak t2 = block2Tweak(m_direction, stamp);
-    m_cipher->encrypt(t1, blocks.block1, blocks.block1);
-    m_cipher->encrypt(t2, blocks.block2, blocks.block2);
+    encipherBlock1(blocks.block1);
+    encipherBlock2(blocks.block2, stamp);
     return true;
+}
+
+void SecureCodec::encipherBlock1(Block& block) const
+{
+    m_cipher->encrypt(block1Tweak(m_direction), block, block);
+}
+
+void SecureCodec::encipherBlock2(Block& block, const HeaderStamp& stamp) const
+{
+    m_cipher->encrypt(block2Tweak(m_direction, stamp), block, block);
 }
 
 std::optional<EncodedBlocks> SecureCodec::encode(const Message& message, Diagnostics& errors) const
@@ -519,15 +528,7 @@ std::int64_t systemUtcSeconds()
 
 std::optional<std::int64_t> stampSeconds(std::uint32_t timeUtc, std::uint32_t dateUtc)
 {
-    const unsigned hh = timeUtc / 10000, mm = timeUtc / 100 % 100, ss = timeUtc % 100;
-    if (hh > 23 || mm > 59 || ss > 59)
-        return std::nullopt;
-    using namespace std::chrono;
-    const year_month_day ymd{year(2000 + static_cast<int>(dateUtc / 10000)), month(dateUtc / 100 % 100),
-                             day(dateUtc % 100)};
-    if (dateUtc > 991231 || !ymd.ok())
-        return std::nullopt;
-    return sys_days(ymd).time_since_epoch().count() * 86400LL + hh * 3600LL + mm * 60LL + ss;
+    return utcSeconds(timeUtc, dateUtc);
 }
 
 bool messageIdAhead(std::uint32_t id, std::uint32_t last)

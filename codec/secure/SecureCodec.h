@@ -79,7 +79,6 @@ namespace secure {
 inline constexpr std::size_t kKeySize = 32;                 // the PSK and each direction's key
 inline constexpr std::size_t kMinBlock1Padding = 16;        // checked: 128 bits
 inline constexpr std::size_t kMaxFlightPlanData = 199;      // leaves >= 16 checked padding bytes in BLOCK 2
-inline constexpr std::uint32_t kMessageIdModulus = 1u << 24;
 inline constexpr std::int64_t kDefaultWindowSeconds = 30;
 
 // What encodeBlocks must be given for a block the secure link can send.
@@ -231,6 +230,12 @@ public:
     // Deciphers RS-decoded blocks and checks their redundancy; no replay check
     // (see openFrame).
     Authenticated decryptBlocks(const DecodedBlocks& blocks) const;
+
+    // One plaintext block enciphered as encryptBlocks would, without its
+    // checks: a receiver enciphers its predictions of what its sender sent
+    // (codec/receive/TrialDecoder.h) to compare them with what arrived.
+    void encipherBlock1(Block& block) const;
+    void encipherBlock2(Block& block, const HeaderStamp& stamp) const;
 
 private:
     Direction m_direction;

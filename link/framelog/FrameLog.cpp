@@ -208,11 +208,12 @@ QString FrameLog::defaultDirectory()
     return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/framelogs");
 }
 
-QString FrameLog::sessionFileName(const QDateTime& utc)
+QString FrameLog::sessionFileName(const QDateTime& utc, int attempt)
 {
-    // No colons: they are illegal in Windows file names.
+    // No colons: they are illegal in Windows file names. A second session
+    // started within the same second gets "-2", and so on.
     return QStringLiteral("rcm-") + utc.toUTC().toString(QStringLiteral("yyyy-MM-dd'T'HH-mm-ss'Z'")) +
-           QStringLiteral(".pcapng");
+           (attempt > 1 ? QStringLiteral("-%1").arg(attempt) : QString()) + QStringLiteral(".pcapng");
 }
 
 void FrameLog::setErrorHandler(std::function<void(const QString&)> handler)

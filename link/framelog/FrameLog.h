@@ -10,6 +10,8 @@
 // timestamps (if_tsresol = 6), direction in epb_flags, decode status in an
 // opt_comment such as "rcm corrected symbols=3/0".
 
+#include "link/framelog/FrameFacts.h"
+
 #include <QByteArray>
 #include <QDateTime>
 #include <QFile>
@@ -38,24 +40,8 @@ constexpr quint32 kEpbInbound = 1;  // epb_flags bits 0-1
 constexpr quint32 kEpbOutbound = 2;
 }  // namespace pcapng
 
-enum class FrameDirection : quint8 { Sent, Received };
-
-enum class FrameTransport : quint8 { Serial, Udp, Replay, Simulated };
-
-enum class FrameStatus : quint8 {
-    Decoded,        // both codewords clean
-    Corrected,      // Reed-Solomon repaired symbols
-    Uncorrectable,  // Reed-Solomon gave up
-    Rejected,       // decoded, then refused by a later check
-    NotChecked,     // logged before or without decoding, e.g. our own sends
-};
-
-struct FrameRecord {
-    QByteArray bytes;      // the whole frame: 600 serial or 510 UDP bytes
-    qint64 utcMicros = 0;  // microseconds since 1970-01-01T00:00:00Z
-    FrameDirection direction = FrameDirection::Received;
-    FrameTransport transport = FrameTransport::Serial;
-    FrameStatus status = FrameStatus::NotChecked;
+struct FrameRecord : FrameFacts {
+    QByteArray bytes;             // the whole frame: 600 serial or 510 UDP bytes
     QList<int> correctedSymbols;  // per codeword; empty when not known
 
     friend bool operator==(const FrameRecord&, const FrameRecord&) = default;
@@ -81,8 +67,9 @@ public:
 
     // AppDataLocation + "/framelogs"; not created until open() needs it.
     static QString defaultDirectory();
-    // "rcm-2026-11-22T07-32-00Z.pcapng" for that instant (converted to UTC).
-    static QString sessionFileName(const QDateTime& utc);
+    // "rcm-2026-11-22T07-32-00Z.pcapng" for that instant (converted to UTC);
+    // attempt 2 and on: "rcm-2026-11-22T07-32-00Z-2.pcapng", for a second session that second.
+    static QString sessionFileName(const QDateTime& utc, int attempt = 1);
 
     // Creates missing directories. Refuses to overwrite an existing file: a
     // name clash means another session's log, not a stale one.

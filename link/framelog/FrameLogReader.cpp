@@ -350,10 +350,7 @@ FrameRecord FrameLogReader::recordAt(int i) const
     const FrameIndexEntry& e = m_index[i];
     const uchar* p = m_data + e.offset;
     const bool be = sectionIsBigEndian(e.offset);
-    r.utcMicros = e.utcMicros;
-    r.direction = e.direction;
-    r.transport = e.transport;
-    r.status = e.status;
+    static_cast<FrameFacts&>(r) = e;
     // Validated while indexing, so the block needs no check here.
     readPacket(p, rd32(p + 4, be), be, e.length, r);
     return r;
@@ -418,10 +415,7 @@ std::optional<FrameRecord> FrameLogReader::recordAt(const FrameIndexEntry& entry
     if (captured != entry.length || 32 + padded4(captured) > qint64(length))
         return refuse(QStringLiteral("the packet there has %1 bytes").arg(captured));
     FrameRecord r;
-    r.utcMicros = entry.utcMicros;
-    r.direction = entry.direction;
-    r.transport = entry.transport;
-    r.status = entry.status;
+    static_cast<FrameFacts&>(r) = entry;
     readPacket(block, length, be, captured, r);
     return r;
 }

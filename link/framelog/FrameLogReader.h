@@ -15,13 +15,9 @@
 
 #include <optional>
 
-struct FrameIndexEntry {
-    qint64 offset = 0;  // of the Enhanced Packet Block in the file
-    qint64 utcMicros = 0;
+struct FrameIndexEntry : FrameFacts {
+    qint64 offset = 0;   // of the Enhanced Packet Block in the file
     quint32 length = 0;  // frame bytes
-    FrameDirection direction = FrameDirection::Received;
-    FrameTransport transport = FrameTransport::Serial;
-    FrameStatus status = FrameStatus::NotChecked;
 };
 
 class FrameLogReader {

@@ -187,13 +187,20 @@ void ConsoleSession::prepare(std::unique_ptr<Link> link, Kind kind, const QStrin
     auto opened = std::make_shared<Opened>();
     opened->key = std::move(key);
     opened->log = std::make_unique<FrameLog>();
-    opened->logPath = QDir(m_frameLogDirectory).filePath(FrameLog::sessionFileName(QDateTime::currentDateTimeUtc()));
+    const QDateTime started = QDateTime::currentDateTimeUtc();
     offThread(
-        [opened, keyPath] {
+        [opened, keyPath, started, directory = QDir(m_frameLogDirectory)] {
             if (!opened->key && !keyPath.isEmpty()) {
                 opened->key = openKey(keyPath, &opened->keyError);
                 if (!opened->key)
                     return;
+            }
+            // Never over another session's log: the next free name of that second.
+            constexpr int kMaxSessionsASecond = 100;
+            for (int attempt = 1; attempt <= kMaxSessionsASecond; ++attempt) {
+                opened->logPath = directory.filePath(FrameLog::sessionFileName(started, attempt));
+                if (!QFileInfo::exists(opened->logPath))
+                    break;
             }
             if (!opened->log->open(opened->logPath, &opened->logError))
                 opened->log.reset();

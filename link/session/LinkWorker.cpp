@@ -4,6 +4,7 @@
 
 #include "link/session/LinkWorker.h"
 
+#include "codec/message/DigitPairs.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/secure/SecureCodec.h"
@@ -18,16 +19,9 @@ namespace {
 // time_UTC hhmmss and date_UTC yymmdd of that instant.
 void setTimeItems(rcm::Message& message, std::int64_t utcMicros)
 {
-    using namespace std::chrono;
-    const sys_time<microseconds> instant{microseconds{utcMicros}};
-    const sys_days day = floor<days>(instant);
-    const year_month_day date{day};
-    const hh_mm_ss time{floor<seconds>(instant - day)};
-    message.header.set(rcm::ItemId::time_UTC, std::int64_t(time.hours().count() * 10000 + time.minutes().count() * 100 +
-                                                           time.seconds().count()));
-    message.header.set(
-        rcm::ItemId::date_UTC,
-        std::int64_t((int(date.year()) % 100) * 10000 + int(unsigned(date.month())) * 100 + int(unsigned(date.day()))));
+    const std::chrono::sys_time<std::chrono::microseconds> instant{std::chrono::microseconds{utcMicros}};
+    message.header.set(rcm::ItemId::time_UTC, rcm::DigitPairs::timeOf(instant).packed());
+    message.header.set(rcm::ItemId::date_UTC, rcm::DigitPairs::dateOf(instant).packed());
 }
 
 QString joinDiagnostics(const rcm::Diagnostics& diagnostics)
@@ -434,11 +428,8 @@ void LinkWorker::log(FrameDirection direction, QByteArray bytes, FrameStatus sta
 
     LoggedFrame logged;
     logged.entry.offset = -1;
-    logged.entry.utcMicros = record.utcMicros;
+    static_cast<FrameFacts&>(logged.entry) = record;
     logged.entry.length = quint32(record.bytes.size());
-    logged.entry.direction = direction;
-    logged.entry.transport = record.transport;
-    logged.entry.status = status;
     logged.messageId = messageId;
     if (m_log && m_log->isOpen())
         m_log->append(record, &logged.entry.offset);

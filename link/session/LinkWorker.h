@@ -88,7 +88,7 @@ public:
         std::shared_ptr<Clock> clock;
     };
 
-    static constexpr std::uint32_t kMessageIdModulus = 1u << 24;
+    static constexpr std::uint32_t kMessageIdModulus = rcm::kMessageIdModulus;
 
     // `log` may be null (no frame log) and must already be open otherwise.
     LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log, Options options, QObject* parent = nullptr);

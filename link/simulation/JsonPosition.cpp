@@ -1,15 +1,21 @@
 #include "link/simulation/JsonPosition.h"
 
-QString jsonPosition(const QByteArray& text, int offset)
+JsonLineColumn jsonLineColumn(const QByteArray& text, int offset)
 {
-    int line = 1, column = 1;
+    JsonLineColumn at;
     for (int i = 0; i < offset && i < text.size(); ++i) {
         if (text[i] == '\n') {
-            ++line;
-            column = 1;
+            ++at.line;
+            at.column = 1;
         } else {
-            ++column;
+            ++at.column;
         }
     }
-    return QStringLiteral("line %1, column %2").arg(line).arg(column);
+    return at;
+}
+
+QString jsonPosition(const QByteArray& text, int offset)
+{
+    const JsonLineColumn at = jsonLineColumn(text, offset);
+    return QStringLiteral("line %1, column %2").arg(at.line).arg(at.column);
 }

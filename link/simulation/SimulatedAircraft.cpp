@@ -1,5 +1,6 @@
 #include "link/simulation/SimulatedAircraft.h"
 
+#include "codec/message/DigitPairs.h"
 #include "codec/message/ValueCodec.h"
 
 #include <algorithm>
@@ -9,14 +10,12 @@ using namespace rcm;
 
 namespace {
 
-constexpr std::array<ItemId, 6> kSurfaces{ItemId::F_aileron_LHS_set, ItemId::F_aileron_RHS_set, ItemId::F_lift_set,
-                                          ItemId::F_rudder_set,      ItemId::F_elev_set,        ItemId::F_airbrake_set};
+constexpr auto kSurfaces = kFlapSurfaces;
 
 // Two-bit codes the simulation acts on (PROFILE.md section 2).
-constexpr unsigned kWheelOut = 1, kWheelRetracted = 2;
-constexpr unsigned kFacilityEnabled = 2, kNoDump = 1;
-constexpr unsigned kPhotoNone = 1, kPhotoTake = 2;
-constexpr std::uint32_t kMessageIdModulus = 1u << 24;
+constexpr unsigned kWheelOut = code::kOut, kWheelRetracted = code::kRetracted;
+constexpr unsigned kFacilityEnabled = code::kEnabled, kNoDump = code::kNoDump;
+constexpr unsigned kPhotoNone = code::kNone, kPhotoTake = code::kTake;
 
 double slewRate(ItemId surface)
 {
@@ -218,17 +217,12 @@ void SimulatedAircraft::statusSent()
 Message SimulatedAircraft::status(std::chrono::system_clock::time_point utc) const
 {
     using enum ItemId;
-    namespace chr = std::chrono;
     Message m = m_commanded;
 
-    const auto day = chr::floor<chr::days>(utc);
-    const chr::year_month_day date{day};
-    const chr::hh_mm_ss time{chr::floor<chr::seconds>(utc - day)};
     m.header.set(ID_msg, m_statusFrames);
     m.header.set(ID_UA_source, Value::station(identity()));
-    m.header.set(time_UTC, time.hours().count() * 10000 + time.minutes().count() * 100 + time.seconds().count());
-    m.header.set(date_UTC, (static_cast<int>(date.year()) % 100) * 10000 + static_cast<unsigned>(date.month()) * 100 +
-                               static_cast<unsigned>(date.day()));
+    m.header.set(time_UTC, DigitPairs::timeOf(utc).packed());
+    m.header.set(date_UTC, DigitPairs::dateOf(utc).packed());
 
     for (std::size_t i = 0; i < kSurfaces.size(); ++i)
         m.flaps.set(kSurfaces[i], std::lround(m_surfaceAngle[i]));

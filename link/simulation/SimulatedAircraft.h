@@ -94,7 +94,7 @@ private:
         unsigned target = 1;
     };
     struct Camera {
-        unsigned lastPhotoCode = 1;  // NONE
+        unsigned lastPhotoCode = rcm::code::kNone;
         int photos = 0;
         bool photoSinceStatus = false;
     };

@@ -42,8 +42,7 @@ private:
 
 VoiceSerialLink::VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
                                  std::shared_ptr<VoiceSink> sink, Options options, QObject* parent)
-    : Link(parent),
-      m_inner(inner.release()),
+    : LinkWrapper(std::move(inner), parent),
       m_source(source ? std::move(source) : std::make_shared<IdleVoice>()),
       m_sink(std::move(sink)),
       m_options(options),
@@ -59,22 +58,11 @@ VoiceSerialLink::VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<Vo
       m_clock(m_options.clock ? m_options.clock : std::make_shared<SystemClock>()),
       m_timer(m_clock->createTimer(this, Qt::PreciseTimer))
 {
-    Q_ASSERT(m_inner && m_inner->isStream());
-    m_inner->setParent(this);
+    Q_ASSERT(LinkWrapper::inner()->isStream());
     connect(m_timer, &ClockTimer::timeout, this, [this] {
         m_timer->start(m_options.tick);
         pace();
     });
-    connect(m_inner, &Link::opened, this, [this] {
-        start();
-        emit opened();
-    });
-    connect(m_inner, &Link::closed, this, [this] {
-        m_timer->stop();
-        emit closed();
-    });
-    connect(m_inner, &Link::errorOccurred, this, &Link::errorOccurred);
-    connect(m_inner, &Link::bytesReceived, this, &VoiceSerialLink::receive);
 }
 
 VoiceSerialLink::VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
@@ -83,27 +71,17 @@ VoiceSerialLink::VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<Vo
 {
 }
 
-VoiceSerialLink::~VoiceSerialLink()
-{
-    // Quietly, and before the demultiplexer its signals would reach.
-    m_timer->stop();
-    disconnect(m_inner, nullptr, this, nullptr);
-}
+VoiceSerialLink::~VoiceSerialLink() = default;
 
 QString VoiceSerialLink::description() const
 {
-    return m_inner->description() + QStringLiteral(", voice multiplexed at %1 bit/s").arg(m_options.bytesPerSecond * 8);
-}
-
-void VoiceSerialLink::open()
-{
-    m_inner->open();
+    return inner()->description() + QStringLiteral(", voice multiplexed at %1 bit/s").arg(m_options.bytesPerSecond * 8);
 }
 
 void VoiceSerialLink::close()
 {
     m_timer->stop();
-    m_inner->close();
+    inner()->close();
 }
 
 bool VoiceSerialLink::write(const QByteArray& bytes)
@@ -118,7 +96,7 @@ bool VoiceSerialLink::write(const QByteArray& bytes)
     return true;
 }
 
-void VoiceSerialLink::start()
+void VoiceSerialLink::innerOpened()
 {
     // A new line: what was half sent or half received is gone.
     m_mux = std::make_unique<rcm::VoiceMultiplexer>();
@@ -131,9 +109,14 @@ void VoiceSerialLink::start()
     pace();
 }
 
+void VoiceSerialLink::innerClosed()
+{
+    m_timer->stop();
+}
+
 void VoiceSerialLink::pace()
 {
-    if (!m_inner->isOpen())
+    if (!inner()->isOpen())
         return;
     const std::int64_t now = nanosSinceOpened();
     const auto lineTime = static_cast<std::uint64_t>(now / 1000 * m_options.bytesPerSecond / 1000000);
@@ -152,7 +135,7 @@ void VoiceSerialLink::pace()
     QByteArray line(qsizetype(2 * pairs), Qt::Uninitialized);
     m_mux->setHoldFill(now < m_holdUntil);
     m_mux->multiplex(voice, std::span(reinterpret_cast<std::uint8_t*>(line.data()), 2 * pairs));
-    m_inner->write(line);
+    inner()->write(line);
     m_written += 2 * pairs;
 }
 
@@ -161,7 +144,7 @@ std::int64_t VoiceSerialLink::nanosSinceOpened() const
     return (m_clock->steadyMicros() - m_openedMicros) * 1000;
 }
 
-void VoiceSerialLink::receive(const QByteArray& bytes)
+void VoiceSerialLink::innerBytesReceived(const QByteArray& bytes)
 {
     m_demux->feed({reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size())});
 }

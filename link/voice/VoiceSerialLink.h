@@ -27,26 +27,23 @@
 // 100 ppm drifts 0.12 bytes a second against it: its buffer holds `lead`
 // bytes, so that is minutes before it runs dry or grows by a frame.
 
+#include "codec/voice/VoiceMux.h"
 #include "link/session/Clock.h"
-#include "link/transport/Link.h"
+#include "link/transport/LinkWrapper.h"
 
 #include <chrono>
 #include <cstdint>
 #include <memory>
 
-namespace rcm {
-class VoiceDemultiplexer;
-class VoiceMultiplexer;
-}  // namespace rcm
 class VoiceSink;
 class VoiceSource;
 
-class VoiceSerialLink : public Link {
+class VoiceSerialLink : public LinkWrapper {
     Q_OBJECT
 
 public:
     struct Options {
-        int bytesPerSecond = 1200;  // the line: 9,600 bps
+        int bytesPerSecond = int(rcm::kMuxedFrameSize);  // the line: a frame and its voice each second
         std::chrono::milliseconds tick{10};
         int lead = 24;  // bytes written ahead of the line: 20 ms
         std::chrono::milliseconds frameHold{200};
@@ -61,12 +58,8 @@ public:
     VoiceSerialLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink);
     ~VoiceSerialLink() override;
 
-    FrameTransport transport() const override { return m_inner->transport(); }
-    bool isStream() const override { return true; }
-    bool isOpen() const override { return m_inner->isOpen(); }
     QString description() const override;
 
-    Link* inner() const { return m_inner; }
     // The link's thread.
     const rcm::VoiceMultiplexer& multiplexer() const { return *m_mux; }
     const rcm::VoiceDemultiplexer& demultiplexer() const { return *m_demux; }
@@ -74,19 +67,18 @@ public:
     std::uint64_t lineBytesWritten() const { return m_written; }
 
 public slots:
-    void open() override;
     void close() override;
     // One 600-byte frame, to go out at the next frame boundary of the line.
     // False when closed or for anything else than 600 bytes.
     bool write(const QByteArray& bytes) override;
 
 private:
-    void start();
+    void innerOpened() override;
+    void innerClosed() override;
+    void innerBytesReceived(const QByteArray& bytes) override;
     void pace();
     std::int64_t nanosSinceOpened() const;
-    void receive(const QByteArray& bytes);
 
-    Link* m_inner;  // a child
     std::shared_ptr<VoiceSource> m_source;
     std::shared_ptr<VoiceSink> m_sink;
     Options m_options;

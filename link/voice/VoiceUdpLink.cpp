@@ -22,36 +22,17 @@ VoiceUdpLink::VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSou
 
 VoiceUdpLink::VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source,
                            std::shared_ptr<VoiceSink> sink, std::shared_ptr<Clock> clock, QObject* parent)
-    : Link(parent),
-      m_inner(inner.release()),
+    : LinkWrapper(std::move(inner), parent),
       m_source(std::move(source)),
       m_sink(std::move(sink)),
       m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>()),
       m_timer(m_clock->createTimer(this, Qt::PreciseTimer))
 {
-    Q_ASSERT(m_inner && !m_inner->isStream());
-    m_inner->setParent(this);
+    Q_ASSERT(!LinkWrapper::inner()->isStream());
     connect(m_timer, &ClockTimer::timeout, this, [this] {
         m_timer->start(kTick);
         pace();
     });
-    connect(m_inner, &Link::opened, this, [this] {
-        start();
-        emit opened();
-    });
-    connect(m_inner, &Link::closed, this, [this] {
-        m_timer->stop();
-        emit closed();
-    });
-    connect(m_inner, &Link::errorOccurred, this, &Link::errorOccurred);
-    connect(m_inner, &Link::datagramReceived, this, &VoiceUdpLink::receive);
-    connect(m_inner, &Link::bytesReceived, this, &Link::bytesReceived);
-}
-
-VoiceUdpLink::~VoiceUdpLink()
-{
-    m_timer->stop();
-    disconnect(m_inner, nullptr, this, nullptr);
 }
 
 bool VoiceUdpLink::isVoiceDatagram(const QByteArray& datagram)
@@ -63,26 +44,31 @@ bool VoiceUdpLink::isVoiceDatagram(const QByteArray& datagram)
 
 QString VoiceUdpLink::description() const
 {
-    return m_inner->description() + QStringLiteral(", voice in datagrams of its own");
+    return inner()->description() + QStringLiteral(", voice in datagrams of its own");
 }
 
 void VoiceUdpLink::open()
 {
-    m_inner->open();
+    inner()->open();
     // A transport may open at once, before anyone heard opened().
-    if (m_inner->isOpen() && !m_timer->isActive())
+    if (inner()->isOpen() && !m_timer->isActive())
         start();
 }
 
 void VoiceUdpLink::close()
 {
     m_timer->stop();
-    m_inner->close();
+    inner()->close();
 }
 
-bool VoiceUdpLink::write(const QByteArray& bytes)
+void VoiceUdpLink::innerOpened()
 {
-    return m_inner->write(bytes);
+    start();
+}
+
+void VoiceUdpLink::innerClosed()
+{
+    m_timer->stop();
 }
 
 void VoiceUdpLink::start()
@@ -97,7 +83,7 @@ void VoiceUdpLink::start()
 
 void VoiceUdpLink::pace()
 {
-    if (!m_source || !m_inner->isOpen())
+    if (!m_source || !inner()->isOpen())
         return;
     using rcm::voice::kFrameBytes;
     using rcm::voice::kFramesPerSecond;
@@ -111,12 +97,12 @@ void VoiceUdpLink::pace()
     for (; m_frames < due; ++m_frames) {
         m_source->readVoice({reinterpret_cast<std::uint8_t*>(datagram.data()) + kMagicSize, kFrameBytes});
         // No peer yet: the frame is gone, as on a line nobody listens to.
-        if (m_inner->write(datagram))
+        if (inner()->write(datagram))
             ++m_sent;
     }
 }
 
-void VoiceUdpLink::receive(const QByteArray& datagram)
+void VoiceUdpLink::innerDatagramReceived(const QByteArray& datagram)
 {
     if (!isVoiceDatagram(datagram)) {
         emit datagramReceived(datagram);

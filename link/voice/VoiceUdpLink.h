@@ -18,8 +18,7 @@
 // would carry it.
 
 #include "link/session/Clock.h"
-#include "link/transport/Link.h"
-
+#include "link/transport/LinkWrapper.h"
 
 #include <chrono>
 #include <cstdint>
@@ -28,7 +27,7 @@
 class VoiceSink;
 class VoiceSource;
 
-class VoiceUdpLink : public Link {
+class VoiceUdpLink : public LinkWrapper {
     Q_OBJECT
 
 public:
@@ -42,17 +41,12 @@ public:
     // Paced by `clock`; the system clock when null.
     VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSource> source, std::shared_ptr<VoiceSink> sink,
                  std::shared_ptr<Clock> clock, QObject* parent = nullptr);
-    ~VoiceUdpLink() override;
 
     // True for a datagram of the voice format above.
     static bool isVoiceDatagram(const QByteArray& datagram);
 
-    FrameTransport transport() const override { return m_inner->transport(); }
-    bool isStream() const override { return false; }
-    bool isOpen() const override { return m_inner->isOpen(); }
     QString description() const override;
 
-    Link* inner() const { return m_inner; }
     // The link's thread.
     std::uint64_t voiceDatagramsSent() const { return m_sent; }
     std::uint64_t voiceDatagramsReceived() const { return m_received; }
@@ -60,15 +54,14 @@ public:
 public slots:
     void open() override;
     void close() override;
-    // A command datagram, as it is.
-    bool write(const QByteArray& bytes) override;
 
 private:
+    void innerOpened() override;
+    void innerClosed() override;
+    void innerDatagramReceived(const QByteArray& datagram) override;
     void start();
     void pace();
-    void receive(const QByteArray& datagram);
 
-    Link* m_inner;  // a child
     std::shared_ptr<VoiceSource> m_source;
     std::shared_ptr<VoiceSink> m_sink;
     std::shared_ptr<Clock> m_clock;

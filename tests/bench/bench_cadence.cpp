@@ -9,6 +9,7 @@
 //
 //   bench_cadence [ticks] [--pty]      (default: 60 ticks over UDP)
 
+#include "Spread.h"
 #include "link/session/LinkController.h"
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
@@ -31,20 +32,6 @@ std::int64_t utcMicrosNow()
 {
     using namespace std::chrono;
     return duration_cast<microseconds>(system_clock::now().time_since_epoch()).count();
-}
-
-void printSpread(const char* what, std::vector<std::int64_t> micros)
-{
-    if (micros.empty())
-        return;
-    std::sort(micros.begin(), micros.end());
-    double total = 0;
-    for (std::int64_t m : micros)
-        total += double(m);
-    const auto at = [&](double q) { return double(micros[std::size_t(q * double(micros.size() - 1))]) / 1000.0; };
-    std::printf("%-8s n=%zu  min %.3f ms  median %.3f ms  p99 %.3f ms  max %.3f ms  mean %.3f ms\n", what,
-                micros.size(), double(micros.front()) / 1000.0, at(0.5), at(0.99), double(micros.back()) / 1000.0,
-                total / double(micros.size()) / 1000.0);
 }
 
 }  // namespace
@@ -116,7 +103,7 @@ int main(int argc, char** argv)
                 static_cast<unsigned long long>(s.sendDelaySamples), double(s.sendDelayMinMicros) / 1000.0,
                 double(s.sendDelayMaxMicros) / 1000.0, s.sendDelayMeanMicros() / 1000.0,
                 static_cast<unsigned long long>(s.ticksMissed));
-    printSpread("arrival", arrivals);
+    rcm::bench::printSpread("arrival", arrivals, 0.99, 3);
     if (master >= 0) {
         notifier.reset();
         ::close(master);

@@ -19,6 +19,8 @@
 //
 //   bench_voice [bursts]      (default 40, about 20 s)
 
+#include "../CommandFrame.h"
+#include "Spread.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/voice/VoiceCodec.h"
 #include "codec/voice/VoiceMux.h"
@@ -45,30 +47,6 @@ namespace {
 
 constexpr int kBytesPerSecond = 1200;
 constexpr int kBurstIntervalMs = 490;
-
-void printSpread(const char* what, std::vector<std::int64_t> micros)
-{
-    if (micros.empty())
-        return;
-    std::sort(micros.begin(), micros.end());
-    double total = 0;
-    for (std::int64_t m : micros)
-        total += double(m);
-    const auto at = [&](double q) { return double(micros[std::size_t(q * double(micros.size() - 1))]) / 1000.0; };
-    std::printf("%-6s n=%zu  min %.1f ms  median %.1f ms  p95 %.1f ms  max %.1f ms  mean %.1f ms\n", what,
-                micros.size(), double(micros.front()) / 1000.0, at(0.5), at(0.95), double(micros.back()) / 1000.0,
-                total / double(micros.size()) / 1000.0);
-}
-
-QByteArray commandFrame(std::uint32_t id)
-{
-    rcm::Message m;
-    m.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
-    m.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
-    rcm::Diagnostics errors;
-    const auto frame = rcm::encodeFrame(m, errors).value();
-    return QByteArray(reinterpret_cast<const char*>(frame.data()), qsizetype(frame.size()));
-}
 
 }  // namespace
 
@@ -101,9 +79,9 @@ int main(int argc, char** argv)
     std::uint32_t nextId = 0;
     QTimer commands;
     commands.setTimerType(Qt::PreciseTimer);
-    QObject::connect(&commands, &QTimer::timeout, [&] { link.write(commandFrame(nextId++)); });
+    QObject::connect(&commands, &QTimer::timeout, [&] { link.write(rcm::test::commandFrame(nextId++)); });
     commands.start(1000);
-    link.write(commandFrame(nextId++));
+    link.write(rcm::test::commandFrame(nextId++));
 
     std::vector<std::int16_t> tone(rcm::voice::kFrameSamples);
     for (std::size_t i = 0; i < tone.size(); ++i)
@@ -168,8 +146,8 @@ int main(int argc, char** argv)
         "voice latency added by the link: frame complete -> frame decoded (the codec's 20 ms frame time "
         "excluded), %d bursts of 20 ms\n",
         bursts);
-    printSpread("pty", overPty);
-    printSpread("line", onLine);
+    rcm::bench::printSpread("pty", overPty, 0.95, 1);
+    rcm::bench::printSpread("line", onLine, 0.95, 1);
     if (std::int64_t(overPty.size()) != bursts)
         std::printf("only %zu of %d bursts were heard\n", overPty.size(), bursts);
     std::printf("codec: Codec 2 3200, 20 ms frames; link: %d bytes/s, 10 ms ticks, 24 bytes ahead\n", kBytesPerSecond);

@@ -233,12 +233,9 @@ void FrameLogModel::showLog(std::unique_ptr<FrameLogReader> reader, const QStrin
     for (qsizetype i = 0; i < index.size(); ++i) {
         const FrameIndexEntry& e = index[i];
         Row row;
-        row.utcMicros = e.utcMicros;
+        static_cast<FrameFacts&>(row) = e;
         row.source = qint32(i);
         row.length = e.length;
-        row.direction = e.direction;
-        row.transport = e.transport;
-        row.status = e.status;
         row.from = Source::OpenedLog;
         row.corrected1 = row.corrected2 = kNotKnown;
         m_rows.push_back(row);
@@ -278,11 +275,8 @@ FrameRecord FrameLogModel::record(int row) const
         if (std::optional<FrameRecord> logged = fromSessionLog(r))
             return *logged;
     FrameRecord record;
+    static_cast<FrameFacts&>(record) = r;
     record.bytes = bytesOf(r);
-    record.utcMicros = r.utcMicros;
-    record.direction = r.direction;
-    record.transport = r.transport;
-    record.status = r.status;
     decodeRow(r);
     if (r.corrected1 != kNotKnown && r.corrected2 != kNotKnown)
         record.correctedSymbols = {r.corrected1, r.corrected2};
@@ -310,12 +304,9 @@ std::optional<FrameRecord> FrameLogModel::fromSessionLog(const Row& row) const
         m_sessionLog = std::move(reader);
     }
     FrameIndexEntry entry;
+    static_cast<FrameFacts&>(entry) = row;
     entry.offset = row.source;
-    entry.utcMicros = row.utcMicros;
     entry.length = row.length;
-    entry.direction = row.direction;
-    entry.transport = row.transport;
-    entry.status = row.status;
     std::optional<FrameRecord> record = m_sessionLog->recordAt(entry);
     if (!record)
         qWarning("%s", qPrintable(m_sessionLog->errorString()));
@@ -347,11 +338,8 @@ void FrameLogModel::setPlayedRows(int count)
 void FrameLogModel::appendLogged(const LoggedFrame& frame)
 {
     Row row;
-    row.utcMicros = frame.entry.utcMicros;
+    static_cast<FrameFacts&>(row) = frame.entry;
     row.length = frame.entry.length;
-    row.direction = frame.entry.direction;
-    row.transport = frame.entry.transport;
-    row.status = frame.entry.status;
     row.corrected1 = row.corrected2 = kNotKnown;
     if (frame.correctedSymbols.size() == 2) {
         row.corrected1 = clampCorrected(frame.correctedSymbols[0]);
@@ -384,12 +372,9 @@ void FrameLogModel::appendLogged(const LoggedFrame& frame)
 void FrameLogModel::appendRecord(const FrameRecord& record, std::optional<quint32> messageId)
 {
     LoggedFrame frame;
+    static_cast<FrameFacts&>(frame.entry) = record;
     frame.entry.offset = -1;
-    frame.entry.utcMicros = record.utcMicros;
     frame.entry.length = quint32(record.bytes.size());
-    frame.entry.direction = record.direction;
-    frame.entry.transport = record.transport;
-    frame.entry.status = record.status;
     frame.correctedSymbols = record.correctedSymbols;
     frame.messageId = messageId;
     frame.bytes = record.bytes;

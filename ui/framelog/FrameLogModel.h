@@ -105,19 +105,16 @@ private:
         None,        // no bytes anywhere
     };
     // 32 bytes a frame: 172,800 frames (a day, both ways) take 5.5 MB.
-    struct Row {
-        qint64 utcMicros = 0;
-        qint64 source = 0;  // see Source
-        quint32 length = 0;
-        mutable quint32 messageId = 0;
-        FrameDirection direction = FrameDirection::Received;
-        FrameTransport transport = FrameTransport::Serial;
-        FrameStatus status = FrameStatus::NotChecked;
+    // The small members first: they fill FrameFacts' last bytes.
+    struct Row : FrameFacts {
         Source from = Source::None;
         mutable qint8 corrected1 = 0;  // kNotKnown until decoded
         mutable qint8 corrected2 = 0;
         mutable bool decoded = false;  // messageId and corrected* are known
         mutable bool hasMessageId = false;
+        quint32 length = 0;
+        mutable quint32 messageId = 0;
+        qint64 source = 0;  // see Source
     };
     static_assert(sizeof(Row) == 32, "a day of rows is budgeted at 32 bytes each");
     static constexpr qint8 kNotKnown = -2;

@@ -29,7 +29,7 @@ void CameraPanel::rebuild()
     if (m_command->airframe().senseAndAvoid) {
         auto* sense = new UnitCard(m_command, m_reported, {rcm::UnitKind::Sense, 0},
                                    QString::fromUtf8(rcm::unitLabel(rcm::UnitKind::Sense).data()), this);
-        for (rcm::ItemId id : {SA_zoom_LHS_cam, SA_zoom_FWD_cam, SA_zoom_RHS_cam})
+        for (rcm::ItemId id : rcm::kSenseAndAvoidZooms)
             sense->addSpinBox(id);
         m_layout->addWidget(sense);
     }

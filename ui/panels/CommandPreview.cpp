@@ -1,5 +1,6 @@
 #include "ui/panels/CommandPreview.h"
 
+#include "codec/message/DigitPairs.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/message/TextFormat.h"
 #include "ui/framelog/HexDump.h"
@@ -10,7 +11,6 @@
 #include <QHash>
 #include <QLabel>
 #include <QTextEdit>
-#include <QTimeZone>
 #include <QVBoxLayout>
 
 namespace {
@@ -19,12 +19,10 @@ namespace {
 // next whole second, as LinkWorker stamps them.
 void stampAsLink(rcm::Message& message, quint32 messageId)
 {
-    const QDateTime next = QDateTime::fromSecsSinceEpoch(QDateTime::currentSecsSinceEpoch() + 1, QTimeZone::utc());
-    const QTime t = next.time();
-    const QDate d = next.date();
+    const std::chrono::sys_seconds next{std::chrono::seconds(QDateTime::currentSecsSinceEpoch() + 1)};
     message.header.set(rcm::ItemId::ID_msg, std::int64_t(messageId));
-    message.header.set(rcm::ItemId::time_UTC, t.hour() * 10000 + t.minute() * 100 + t.second());
-    message.header.set(rcm::ItemId::date_UTC, (d.year() % 100) * 10000 + d.month() * 100 + d.day());
+    message.header.set(rcm::ItemId::time_UTC, rcm::DigitPairs::timeOf(next).packed());
+    message.header.set(rcm::ItemId::date_UTC, rcm::DigitPairs::dateOf(next).packed());
 }
 
 // Each line of a message's text with a key naming the item it sets: the
@@ -128,7 +126,7 @@ void CommandPreview::setCommand(const rcm::Message& command)
 void CommandPreview::frameSent(quint32 messageId)
 {
     m_lastSent = m_command;
-    m_nextId = (messageId + 1) % (1u << 24);
+    m_nextId = (messageId + 1) % rcm::kMessageIdModulus;
     refresh();
 }
 

@@ -16,8 +16,7 @@ FlapsPanel::FlapsPanel(CommandState* command, ReportedState* reported, QWidget* 
         new UnitCard(command, reported, flaps, QString::fromUtf8(rcm::unitLabel(rcm::UnitKind::Flaps).data()), this);
     card->addComboBox(FLAP_status, 0);
     card->addComboBox(FLAP_status, 1);
-    for (rcm::ItemId id :
-         {F_aileron_LHS_set, F_aileron_RHS_set, F_lift_set, F_rudder_set, F_elev_set, F_airbrake_set}) {
+    for (rcm::ItemId id : rcm::kFlapSurfaces) {
         auto* control = new QWidget(card);
         control->setObjectName(ItemText::name(id) + QStringLiteral(".control"));
         auto* row = new QHBoxLayout(control);

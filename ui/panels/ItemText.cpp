@@ -1,6 +1,7 @@
 #include "ui/panels/ItemText.h"
 
 #include "codec/message/CountryCodes.h"
+#include "codec/message/DigitPairs.h"
 #include "codec/message/ValueCodec.h"
 
 #include <QRegularExpression>
@@ -164,11 +165,13 @@ QString value(rcm::ItemId id, const rcm::Value& v)
             return number(id, v.number) + unitSuffix(id);
         case rcm::ValueKind::Station:
             return station(v);
-        case rcm::ValueKind::Time:
+        case rcm::ValueKind::Time: {
+            const rcm::DigitPairs time = rcm::DigitPairs::unpack(v.number);
             return QStringLiteral("%1:%2:%3")
-                .arg(v.number / 10000, 2, 10, QLatin1Char('0'))
-                .arg(v.number / 100 % 100, 2, 10, QLatin1Char('0'))
-                .arg(v.number % 100, 2, 10, QLatin1Char('0'));
+                .arg(time.high, 2, 10, QLatin1Char('0'))
+                .arg(time.middle, 2, 10, QLatin1Char('0'))
+                .arg(time.low, 2, 10, QLatin1Char('0'));
+        }
         case rcm::ValueKind::Date:
             return QStringLiteral("%1").arg(v.number, 6, 10, QLatin1Char('0'));
         case rcm::ValueKind::BytePair:

@@ -1,0 +1,220 @@
+#include "link/rehearsal/RehearsalReport.h"
+
+#include <QDir>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+
+#include <algorithm>
+
+namespace {
+
+QString seconds(double s)
+{
+    return QString::number(s, 'f', 1);
+}
+
+QJsonValue optionalNumber(const std::optional<double>& value)
+{
+    return value ? QJsonValue(*value) : QJsonValue(QJsonValue::Null);
+}
+
+// Link quality for each direction, 0-100 % against scenario time.
+QString qualityPlot(const std::vector<RehearsalReport::QualitySample>& samples, double duration)
+{
+    constexpr int width = 800, height = 200, left = 40, bottom = 20;
+    const auto x = [&](double t) { return left + (width - left - 10) * t / std::max(duration, 1.0); };
+    const auto y = [&](double q) { return 10 + (height - bottom - 10) * (1.0 - q); };
+    QString svg = QStringLiteral(
+                      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%1\" height=\"%2\" "
+                      "role=\"img\" aria-label=\"link quality\">\n")
+                      .arg(width)
+                      .arg(height);
+    for (int percent : {0, 50, 100})
+        svg += QStringLiteral(
+                   "<line x1=\"%1\" x2=\"%2\" y1=\"%3\" y2=\"%3\" stroke=\"#ccc\"/>"
+                   "<text x=\"2\" y=\"%4\" font-size=\"11\">%5%</text>\n")
+                   .arg(left)
+                   .arg(width - 10)
+                   .arg(y(percent / 100.0), 0, 'f', 1)
+                   .arg(y(percent / 100.0) + 4, 0, 'f', 1)
+                   .arg(percent);
+    svg += QStringLiteral(
+               "<text x=\"%1\" y=\"%2\" font-size=\"11\">0 s</text><text x=\"%3\" y=\"%2\" "
+               "font-size=\"11\">%4 s</text>\n")
+               .arg(left)
+               .arg(height - 4)
+               .arg(width - 50)
+               .arg(seconds(duration));
+    const auto line = [&](auto member, const char* colour, const char* name) {
+        QString points;
+        for (const auto& s : samples)
+            points += QStringLiteral("%1,%2 ").arg(x(s.time), 0, 'f', 1).arg(y(s.*member), 0, 'f', 1);
+        return QStringLiteral(
+                   "<polyline fill=\"none\" stroke=\"%1\" stroke-width=\"1.5\" points=\"%2\">"
+                   "<title>%3</title></polyline>\n")
+            .arg(QLatin1String(colour), points.trimmed(), QLatin1String(name));
+    };
+    svg += line(&RehearsalReport::QualitySample::up, "#1f77b4", "up (to the aircraft)");
+    svg += line(&RehearsalReport::QualitySample::down, "#d62728", "down (to the console)");
+    return svg + QStringLiteral("</svg>\n");
+}
+
+// One bar per control set: seconds until it was reported.
+QString latencyPlot(const std::vector<RehearsalReport::Latency>& latencies)
+{
+    if (latencies.empty())
+        return QStringLiteral("<p>No command was set.</p>\n");
+    double longest = 1;
+    for (const auto& l : latencies)
+        longest = std::max(longest, l.seconds.value_or(0));
+    constexpr int row = 22, labelWidth = 360, barWidth = 380;
+    QString svg = QStringLiteral(
+                      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%1\" height=\"%2\" role=\"img\" "
+                      "aria-label=\"command to report latency\">\n")
+                      .arg(labelWidth + barWidth + 80)
+                      .arg(row * int(latencies.size()) + 4);
+    for (std::size_t i = 0; i < latencies.size(); ++i) {
+        const auto& l = latencies[i];
+        const int top = int(i) * row + 2;
+        svg += QStringLiteral("<text x=\"0\" y=\"%1\" font-size=\"12\">%2</text>")
+                   .arg(top + 15)
+                   .arg(l.control.toHtmlEscaped());
+        if (l.seconds)
+            svg += QStringLiteral(
+                       "<rect x=\"%1\" y=\"%2\" width=\"%3\" height=\"16\" fill=\"#1f77b4\"/>"
+                       "<text x=\"%4\" y=\"%5\" font-size=\"12\">%6 s</text>\n")
+                       .arg(labelWidth)
+                       .arg(top)
+                       .arg(std::max(1.0, barWidth * *l.seconds / longest), 0, 'f', 1)
+                       .arg(labelWidth + barWidth * *l.seconds / longest + 6, 0, 'f', 1)
+                       .arg(top + 13)
+                       .arg(seconds(*l.seconds));
+        else
+            svg += QStringLiteral("<text x=\"%1\" y=\"%2\" font-size=\"12\" fill=\"#b00\">never reported</text>\n")
+                       .arg(labelWidth)
+                       .arg(top + 13);
+    }
+    return svg + QStringLiteral("</svg>\n");
+}
+
+}  // namespace
+
+bool RehearsalReport::passed() const
+{
+    return std::all_of(expectations.begin(), expectations.end(), [](const Expectation& e) { return e.held; });
+}
+
+QByteArray RehearsalReport::toJson() const
+{
+    QJsonObject root;
+    root.insert(QStringLiteral("scenario"), scenarioName);
+    root.insert(QStringLiteral("file"), scenarioPath);
+    root.insert(QStringLiteral("verdict"), passed() ? QStringLiteral("passed") : QStringLiteral("failed"));
+    root.insert(QStringLiteral("duration"), duration);
+    root.insert(QStringLiteral("transport"), transport);
+    QJsonArray expected;
+    for (const Expectation& e : expectations)
+        expected.append(
+            QJsonObject{{QStringLiteral("step"), e.step},
+                        {QStringLiteral("expectation"), e.description},
+                        {QStringLiteral("result"), e.held ? QStringLiteral("held") : QStringLiteral("failed")},
+                        {QStringLiteral("measured"), optionalNumber(e.measured)},
+                        {QStringLiteral("detail"), e.detail}});
+    root.insert(QStringLiteral("expectations"), expected);
+    root.insert(QStringLiteral("frames"), QJsonObject{{QStringLiteral("sent-up"), frames.sentUp},
+                                                      {QStringLiteral("sent-down"), frames.sentDown},
+                                                      {QStringLiteral("received-up"), frames.receivedUp},
+                                                      {QStringLiteral("received-down"), frames.receivedDown},
+                                                      {QStringLiteral("in-outage"), frames.inOutage},
+                                                      {QStringLiteral("damaged"), frames.damaged},
+                                                      {QStringLiteral("lost"), frames.lost},
+                                                      {QStringLiteral("wrong"), frames.wrong}});
+    QJsonArray timelineJson;
+    for (const TimelineEntry& t : timeline)
+        timelineJson.append(QJsonObject{
+            {QStringLiteral("time"), t.time}, {QStringLiteral("kind"), t.kind}, {QStringLiteral("text"), t.text}});
+    root.insert(QStringLiteral("timeline"), timelineJson);
+    QJsonArray latencyJson;
+    for (const Latency& l : latencies)
+        latencyJson.append(QJsonObject{{QStringLiteral("step"), l.step},
+                                       {QStringLiteral("control"), l.control},
+                                       {QStringLiteral("seconds"), optionalNumber(l.seconds)}});
+    root.insert(QStringLiteral("latency"), latencyJson);
+    QJsonArray qualityJson;
+    for (const QualitySample& q : quality)
+        qualityJson.append(QJsonArray{q.time, q.up, q.down});
+    root.insert(QStringLiteral("link-quality"), qualityJson);
+    return QJsonDocument(root).toJson(QJsonDocument::Indented);
+}
+
+QString RehearsalReport::toHtml() const
+{
+    const bool ok = passed();
+    const auto e = [](const QString& s) { return s.toHtmlEscaped(); };
+    QString html = QStringLiteral(
+                       "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Rehearsal: %1</title>\n"
+                       "<style>body{font-family:sans-serif;margin:2em;max-width:60em}table{border-collapse:collapse}"
+                       "td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}.held{color:#060}"
+                       ".failed{color:#b00;font-weight:bold}.verdict{font-size:1.6em;padding:.4em;border-radius:4px}"
+                       ".pass{background:#dfd}.fail{background:#fdd}</style></head><body>\n")
+                       .arg(e(scenarioName));
+    int failed = 0;
+    for (const Expectation& x : expectations)
+        failed += x.held ? 0 : 1;
+    html += QStringLiteral("<p class=\"verdict %1\">%2: %3</p>\n")
+                .arg(ok ? QStringLiteral("pass") : QStringLiteral("fail"),
+                     ok ? QStringLiteral("PASSED") : QStringLiteral("FAILED"),
+                     ok ? QStringLiteral("every expectation held (%1)").arg(expectations.size())
+                        : QStringLiteral("%1 of %2 expectations failed").arg(failed).arg(expectations.size()));
+    html += QStringLiteral("<h1>%1</h1>\n<p>%2 &middot; %3 s of scenario time &middot; %4</p>\n")
+                .arg(e(scenarioName), e(scenarioPath), seconds(duration), e(transport));
+    html += QStringLiteral(
+        "<h2>Expectations</h2>\n<table><tr><th>Step</th><th>Expectation</th><th>Result</th>"
+        "<th>Measured</th><th>Detail</th></tr>\n");
+    for (const Expectation& x : expectations)
+        html += QStringLiteral("<tr><td>%1</td><td>%2</td><td class=\"%3\">%3</td><td>%4</td><td>%5</td></tr>\n")
+                    .arg(x.step)
+                    .arg(e(x.description), x.held ? QStringLiteral("held") : QStringLiteral("failed"),
+                         x.measured ? QString::number(*x.measured) : QStringLiteral("&mdash;"), e(x.detail));
+    html += QStringLiteral(
+                "</table>\n<h2>Frames</h2>\n<p>Up (to the aircraft): %1 sent, %2 received good. Down: %3 "
+                "sent, %4 received good. %5 lost to outages, %6 damaged by faults, %7 lost, %8 wrong.</p>\n")
+                .arg(frames.sentUp)
+                .arg(frames.receivedUp)
+                .arg(frames.sentDown)
+                .arg(frames.receivedDown)
+                .arg(frames.inOutage)
+                .arg(frames.damaged)
+                .arg(frames.lost)
+                .arg(frames.wrong);
+    html += QStringLiteral(
+        "<h2>Link quality</h2>\n<p>Good frames received per frame sent over the last 10 s: "
+        "<span style=\"color:#1f77b4\">up</span>, <span style=\"color:#d62728\">down</span>.</p>\n");
+    html += qualityPlot(quality, duration);
+    html += QStringLiteral("<h2>Command to report latency</h2>\n") + latencyPlot(latencies);
+    html += QStringLiteral("<h2>Timeline</h2>\n<table><tr><th>Time (s)</th><th>Kind</th><th>What</th></tr>\n");
+    for (const TimelineEntry& t : timeline)
+        html +=
+            QStringLiteral("<tr><td>%1</td><td>%2</td><td>%3</td></tr>\n").arg(seconds(t.time), e(t.kind), e(t.text));
+    return html + QStringLiteral("</table>\n</body></html>\n");
+}
+
+bool RehearsalReport::write(const QString& directory, QString* error) const
+{
+    if (!QDir().mkpath(directory)) {
+        if (error)
+            *error = QStringLiteral("cannot create %1").arg(directory);
+        return false;
+    }
+    const auto save = [&](const QString& name, const QByteArray& bytes) {
+        QFile file(QDir(directory).filePath(name));
+        if (file.open(QIODevice::WriteOnly | QIODevice::Truncate) && file.write(bytes) == bytes.size())
+            return true;
+        if (error)
+            *error = QStringLiteral("cannot write %1: %2").arg(file.fileName(), file.errorString());
+        return false;
+    };
+    return save(QStringLiteral("report.json"), toJson()) && save(QStringLiteral("report.html"), toHtml().toUtf8());
+}

@@ -1,0 +1,491 @@
+#include "link/rehearsal/Scenario.h"
+
+#include "codec/message/ItemTable.h"
+#include "codec/message/TextFormat.h"
+#include "link/simulation/AirframeLoader.h"
+#include "link/simulation/JsonPosition.h"
+
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QHash>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+
+#include <cmath>
+
+namespace {
+
+// `//` comments blanked to spaces, so that offsets stay those of the file.
+QByteArray withoutComments(QByteArray text)
+{
+    bool inString = false;
+    for (qsizetype i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            while (i < text.size() && text[i] != '\n')
+                text[i++] = ' ';
+        }
+    }
+    return text;
+}
+
+// Offsets of every value in a JSON text that QJsonDocument has accepted, by
+// its path: "/steps/3" for the fourth step, "/steps/3/within" for a member.
+// QJsonDocument keeps no positions, and errors must say where.
+class JsonOffsets {
+public:
+    explicit JsonOffsets(const QByteArray& text) : m_text(text) { value(QString()); }
+    int at(const QString& path) const { return m_offsets.value(path, 0); }
+
+private:
+    void skipSpace()
+    {
+        while (m_pos < m_text.size() && QChar::isSpace(uchar(m_text[m_pos])))
+            ++m_pos;
+    }
+    QString string()
+    {
+        const qsizetype start = ++m_pos;
+        while (m_pos < m_text.size() && m_text[m_pos] != '"')
+            m_pos += m_text[m_pos] == '\\' ? 2 : 1;
+        return QString::fromUtf8(m_text.mid(start, m_pos++ - start));
+    }
+    void value(const QString& path)
+    {
+        skipSpace();
+        m_offsets.insert(path, int(m_pos));
+        if (m_pos >= m_text.size())
+            return;
+        const char c = m_text[m_pos];
+        if (c == '{' || c == '[') {
+            ++m_pos;
+            for (int index = 0;; ++index) {
+                skipSpace();
+                if (m_pos >= m_text.size() || m_text[m_pos] == '}' || m_text[m_pos] == ']') {
+                    ++m_pos;
+                    return;
+                }
+                QString member = QString::number(index);
+                if (c == '{') {
+                    member = string();
+                    skipSpace();
+                    ++m_pos;  // ':'
+                }
+                value(path + QLatin1Char('/') + member);
+                skipSpace();
+                if (m_pos < m_text.size() && m_text[m_pos] == ',')
+                    ++m_pos;
+            }
+        }
+        if (c == '"') {
+            string();
+            return;
+        }
+        while (m_pos < m_text.size() && !QByteArrayView(",]} \t\r\n").contains(m_text[m_pos]))
+            ++m_pos;
+    }
+
+    const QByteArray& m_text;
+    qsizetype m_pos = 0;
+    QHash<QString, int> m_offsets;
+};
+
+struct Reader {
+    const QByteArray& text;
+    const QString& path;
+    const JsonOffsets& offsets;
+    ScenarioError* error;
+
+    bool fail(const QString& where, int step, const QString& message) const
+    {
+        if (error) {
+            const JsonLineColumn at = jsonLineColumn(text, offsets.at(where));
+            *error = ScenarioError{path, at.line, at.column, step, message};
+        }
+        return false;
+    }
+};
+
+struct Unit {
+    std::string_view section;
+    rcm::UnitKind kind;
+};
+
+// The text of a unit's key for `key` ("2", "VHF1", "1"), as the text format reads it.
+std::optional<std::string> keyLine(rcm::UnitKind kind, const std::string& key, const rcm::Message& command)
+{
+    const auto* units = command.repeated(kind);
+    const rcm::ItemId keyItem = *rcm::unitKey(kind);
+    for (const rcm::Unit& unit : *units) {
+        const rcm::Value& value = *unit.find(keyItem);
+        const bool match = kind == rcm::UnitKind::Radio ? value.text == key : std::to_string(value.number) == key;
+        if (!match)
+            continue;
+        std::string line(rcm::itemInfo(keyItem).name);
+        line += ' ';
+        if (kind == rcm::UnitKind::Camera)
+            line += value.text + ' ' + key;
+        else
+            line += key;
+        return line;
+    }
+    return std::nullopt;
+}
+
+bool isInteger(double v)
+{
+    return std::isfinite(v) && v == std::floor(v);
+}
+
+}  // namespace
+
+QString ScenarioError::text() const
+{
+    QString where = QStringLiteral("%1:%2:%3: ").arg(file).arg(line).arg(column);
+    if (step > 0)
+        where += QStringLiteral("step %1: ").arg(step);
+    return where + message;
+}
+
+std::optional<rcm::Message> parseUnitLine(const QString& line, const rcm::Message& command, QString* error)
+{
+    std::string text = line.toStdString();
+    const auto colon = text.find(':');
+    const auto space = text.find(' ');
+    if (colon != std::string::npos && space != std::string::npos && space < colon) {
+        const std::string section = text.substr(0, space);
+        const std::string key = text.substr(space + 1, colon - space - 1);
+        const auto kind = rcm::unitKindFromSection(section);
+        if (!kind || !rcm::isRepeated(*kind)) {
+            if (error)
+                *error = QStringLiteral("\"%1\" is not a repeated unit (engine, comms_system, camera)")
+                             .arg(QString::fromStdString(section));
+            return std::nullopt;
+        }
+        const auto keyText = keyLine(*kind, key, command);
+        if (!keyText) {
+            if (error)
+                *error = QStringLiteral("the aircraft has no %1 %2")
+                             .arg(QString::fromStdString(section), QString::fromStdString(key));
+            return std::nullopt;
+        }
+        text = *keyText + '\n' + text.substr(colon + 1);
+    }
+    const rcm::ParseResult parsed = rcm::parseMessage(text);
+    if (!parsed.ok()) {
+        if (error)
+            *error = QStringLiteral("\"%1\": %2").arg(line, QString::fromStdString(parsed.errors.front().message));
+        return std::nullopt;
+    }
+    return parsed.message;
+}
+
+namespace {
+
+// The unit of `target` that `unit` names: the single one, or the repeated one with its key.
+template <typename M>
+auto* matchingUnit(M& target, const rcm::Unit& unit)
+{
+    using U = std::remove_reference_t<decltype(*target.single(unit.kind()))>;
+    if (!rcm::isRepeated(unit.kind()))
+        return target.single(unit.kind());
+    const rcm::ItemId key = *rcm::unitKey(unit.kind());
+    for (U& candidate : *target.repeated(unit.kind()))
+        if (*candidate.find(key) == *unit.find(key))
+            return &candidate;
+    return static_cast<U*>(nullptr);
+}
+
+}  // namespace
+
+void applyItems(rcm::Message& command, const rcm::Message& items)
+{
+    items.forEachUnit([&](const rcm::Unit& unit) {
+        if (unit.empty())
+            return;
+        if (rcm::Unit* target = matchingUnit(command, unit))
+            for (const rcm::ItemValue& item : unit.items())
+                target->set(item.id, item.value);
+    });
+}
+
+bool reportsItems(const rcm::Message& status, const rcm::Message& items)
+{
+    bool all = true;
+    items.forEachUnit([&](const rcm::Unit& unit) {
+        if (unit.empty())
+            return;
+        const rcm::Unit* reported = matchingUnit(status, unit);
+        for (const rcm::ItemValue& item : unit.items()) {
+            const rcm::Value* value = reported ? reported->find(item.id) : nullptr;
+            all = all && value && *value == item.value;
+        }
+    });
+    return all;
+}
+
+QString ScenarioStep::describe() const
+{
+    QString what;
+    switch (kind) {
+        case Kind::Set:
+            what = QStringLiteral("set %1").arg(text);
+            break;
+        case Kind::Fault: {
+            static const char* const names[] = {"ber", "outage", "slip", "burst", "clear"};
+            what = fault.kind == FaultSpec::Kind::Clear
+                       ? QStringLiteral("clear faults")
+                       : QStringLiteral("fault %1 %2").arg(QLatin1String(names[int(fault.kind)])).arg(fault.value);
+            if (fault.direction != FaultDirection::Both)
+                what += fault.direction == FaultDirection::Up ? QStringLiteral(" up") : QStringLiteral(" down");
+            break;
+        }
+        case Kind::Upload:
+            what = QStringLiteral("upload %1").arg(text);
+            break;
+        case Kind::ExpectReported:
+            what = QStringLiteral("expect \"%1\" reported within %2 s").arg(text).arg(within);
+            break;
+        case Kind::ExpectAlarm:
+            what = QStringLiteral("expect alarm %1 within %2 s").arg(text).arg(within);
+            break;
+        case Kind::ExpectPlan:
+            what = QStringLiteral("expect plan acknowledged within %1 s").arg(within);
+            break;
+        case Kind::ExpectWrongFrames:
+            what = QStringLiteral("expect %1 wrong frames").arg(count);
+            break;
+        case Kind::ExpectFramesLost:
+            what = QStringLiteral("expect at most %1 frames lost").arg(count);
+            break;
+    }
+    const QString when = at ? QStringLiteral(" at %1 s").arg(*at) : QStringLiteral(" over the whole run");
+    return QStringLiteral("step %1%2: %3").arg(number).arg(when, what);
+}
+
+std::optional<Scenario> Scenario::load(const QString& path, const PlanLoader& loadPlan, ScenarioError* error)
+{
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly)) {
+        if (error)
+            *error = ScenarioError{path, 0, 0, -1, QStringLiteral("cannot read: %1").arg(file.errorString())};
+        return std::nullopt;
+    }
+    return fromJson(file.readAll(), path, loadPlan, error);
+}
+
+std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString& path, const PlanLoader& loadPlan,
+                                           ScenarioError* error)
+{
+    const QByteArray text = withoutComments(raw);
+    QJsonParseError parseError;
+    const QJsonDocument document = QJsonDocument::fromJson(text, &parseError);
+    if (parseError.error != QJsonParseError::NoError || !document.isObject()) {
+        if (error) {
+            const JsonLineColumn at = jsonLineColumn(text, parseError.offset);
+            const QString why = parseError.error != QJsonParseError::NoError ? parseError.errorString()
+                                                                             : QStringLiteral("not a JSON object");
+            *error = ScenarioError{path, at.line, at.column, -1, why};
+        }
+        return std::nullopt;
+    }
+    const JsonOffsets offsets(text);
+    const Reader reader{text, path, offsets, error};
+    const QJsonObject root = document.object();
+    const QDir base = QFileInfo(path).absoluteDir();
+
+    Scenario scenario;
+    scenario.path = path;
+    static const QStringList known = {QStringLiteral("name"), QStringLiteral("airframe"), QStringLiteral("transport"),
+                                      QStringLiteral("key"),  QStringLiteral("speed"),    QStringLiteral("duration"),
+                                      QStringLiteral("steps")};
+    for (auto it = root.begin(); it != root.end(); ++it)
+        if (!known.contains(it.key()))
+            return reader.fail(QStringLiteral("/") + it.key(), -1,
+                               QStringLiteral("unknown member \"%1\" (known: %2)")
+                                   .arg(it.key(), known.join(QStringLiteral(", ")))),
+                   std::nullopt;
+
+    scenario.name = root.value(QStringLiteral("name")).toString(QFileInfo(path).completeBaseName());
+    scenario.airframeName = root.value(QStringLiteral("airframe")).toString(QStringLiteral("well-equipped"));
+    QString airframeError;
+    const QString builtIn = QStringLiteral(":/airframes/%1.json").arg(scenario.airframeName);
+    const QString airframePath =
+        AirframeLoader::builtIn().contains(builtIn) ? builtIn : base.absoluteFilePath(scenario.airframeName);
+    const auto airframe = AirframeLoader::load(airframePath, &airframeError);
+    if (!airframe)
+        return reader.fail(QStringLiteral("/airframe"), -1, airframeError), std::nullopt;
+    scenario.airframe = *airframe;
+
+    const QString transport = root.value(QStringLiteral("transport")).toString(QStringLiteral("udp"));
+    if (transport != QLatin1String("udp") && transport != QLatin1String("serial"))
+        return reader.fail(QStringLiteral("/transport"), -1, QStringLiteral("transport is \"udp\" or \"serial\"")),
+               std::nullopt;
+    scenario.transport = transport == QLatin1String("udp") ? Transport::Udp : Transport::Serial;
+    if (root.contains(QStringLiteral("key")) && !root.value(QStringLiteral("key")).isBool())
+        return reader.fail(QStringLiteral("/key"), -1, QStringLiteral("key is true or false")), std::nullopt;
+    scenario.key = root.value(QStringLiteral("key")).toBool();
+    scenario.speed = root.value(QStringLiteral("speed")).toDouble(1);
+    if (!(scenario.speed >= 1))
+        return reader.fail(QStringLiteral("/speed"), -1, QStringLiteral("speed is a number, 1 or more")), std::nullopt;
+    scenario.duration = root.value(QStringLiteral("duration")).toDouble(-1);
+    if (!(scenario.duration > 0))
+        return reader.fail(QStringLiteral("/duration"), -1, QStringLiteral("duration is seconds, more than 0")),
+               std::nullopt;
+
+    const rcm::Message command = rcm::restingCommand(scenario.airframe);
+    const QJsonArray steps = root.value(QStringLiteral("steps")).toArray();
+    for (int i = 0; i < steps.size(); ++i) {
+        const QString where = QStringLiteral("/steps/%1").arg(i);
+        const auto fail = [&](const QString& member, const QString& message) {
+            return reader.fail(member.isEmpty() ? where : where + QLatin1Char('/') + member, i + 1, message),
+                   std::nullopt;
+        };
+        if (!steps[i].isObject())
+            return fail(QString(), QStringLiteral("a step is an object"));
+        const QJsonObject object = steps[i].toObject();
+        ScenarioStep step;
+        step.number = i + 1;
+        const JsonLineColumn at = jsonLineColumn(text, offsets.at(where));
+        step.line = at.line;
+        step.column = at.column;
+        if (object.contains(QStringLiteral("at"))) {
+            const double at = object.value(QStringLiteral("at")).toDouble(-1);
+            if (at < 0 || at > scenario.duration)
+                return fail(QStringLiteral("at"),
+                            QStringLiteral("at is seconds from 0 to the duration, %1").arg(scenario.duration));
+            step.at = at;
+        }
+        const QStringList actions = {QStringLiteral("set"), QStringLiteral("fault"), QStringLiteral("upload"),
+                                     QStringLiteral("expect")};
+        QStringList found;
+        for (auto it = object.begin(); it != object.end(); ++it) {
+            if (actions.contains(it.key()))
+                found << it.key();
+            else if (it.key() != QLatin1String("at"))
+                return fail(it.key(), QStringLiteral("unknown member \"%1\" (a step has at and one of %2)")
+                                          .arg(it.key(), actions.join(QStringLiteral(", "))));
+        }
+        if (found.size() != 1)
+            return fail(QString(), QStringLiteral("a step has exactly one of set, fault, upload, expect"));
+        const QString action = found.front();
+        const QJsonValue value = object.value(action);
+        if (action != QLatin1String("expect") && !step.at)
+            return fail(QString(), QStringLiteral("%1 needs \"at\"").arg(action));
+
+        if (action == QLatin1String("set")) {
+            step.kind = ScenarioStep::Kind::Set;
+            step.text = value.toString();
+            QString why;
+            const auto items = parseUnitLine(step.text, command, &why);
+            if (!items)
+                return fail(action, why);
+            step.items = *items;
+        } else if (action == QLatin1String("upload")) {
+            step.kind = ScenarioStep::Kind::Upload;
+            step.text = value.toString();
+            QString why = QStringLiteral("no plan loader");
+            const auto plan = loadPlan ? loadPlan(base.absoluteFilePath(step.text), &why) : std::nullopt;
+            if (!plan)
+                return fail(action, why);
+            step.plan = *plan;
+        } else if (action == QLatin1String("fault")) {
+            step.kind = ScenarioStep::Kind::Fault;
+            if (value.toString() == QLatin1String("clear")) {
+                step.fault.kind = FaultSpec::Kind::Clear;
+            } else if (value.isObject()) {
+                const QJsonObject fault = value.toObject();
+                static const QStringList kinds = {QStringLiteral("ber"), QStringLiteral("outage"),
+                                                  QStringLiteral("slip"), QStringLiteral("burst")};
+                QStringList given;
+                for (auto it = fault.begin(); it != fault.end(); ++it) {
+                    if (kinds.contains(it.key()))
+                        given << it.key();
+                    else if (it.key() != QLatin1String("direction"))
+                        return fail(
+                            QStringLiteral("fault/") + it.key(),
+                            QStringLiteral("unknown fault \"%1\" (ber, outage, slip, burst, direction)").arg(it.key()));
+                }
+                if (given.size() != 1)
+                    return fail(action, QStringLiteral("a fault step has one of ber, outage, slip, burst"));
+                step.fault.kind = FaultSpec::Kind(kinds.indexOf(given.front()));
+                step.fault.value = fault.value(given.front()).toDouble(-1);
+                const bool seconds = step.fault.kind == FaultSpec::Kind::Outage;
+                if (seconds ? !(step.fault.value > 0) : !(step.fault.value >= 0 && step.fault.value <= 1))
+                    return fail(QStringLiteral("fault/") + given.front(),
+                                seconds ? QStringLiteral("outage is seconds, more than 0")
+                                        : QStringLiteral("%1 is a probability from 0 to 1").arg(given.front()));
+                const QString direction = fault.value(QStringLiteral("direction")).toString(QStringLiteral("both"));
+                static const QStringList directions = {QStringLiteral("both"), QStringLiteral("up"),
+                                                       QStringLiteral("down")};
+                if (!directions.contains(direction))
+                    return fail(QStringLiteral("fault/direction"), QStringLiteral("direction is \"up\" or \"down\""));
+                step.fault.direction = FaultDirection(directions.indexOf(direction));
+            } else {
+                return fail(action, QStringLiteral("a fault is an object or \"clear\""));
+            }
+        } else {
+            if (!value.isObject())
+                return fail(action, QStringLiteral("expect is an object"));
+            const QJsonObject expect = value.toObject();
+            const auto within = [&]() -> bool {
+                step.within = expect.value(QStringLiteral("within")).toDouble(-1);
+                return step.at && step.within >= 0;
+            };
+            const QString needsWithin = QStringLiteral("this expectation needs \"at\" and \"within\" (seconds)");
+            if (expect.contains(QStringLiteral("reported"))) {
+                step.kind = ScenarioStep::Kind::ExpectReported;
+                step.text = expect.value(QStringLiteral("reported")).toString();
+                QString why;
+                const auto items = parseUnitLine(step.text, command, &why);
+                if (!items)
+                    return fail(QStringLiteral("expect/reported"), why);
+                step.items = *items;
+                if (!within())
+                    return fail(action, needsWithin);
+            } else if (expect.contains(QStringLiteral("alarm"))) {
+                step.kind = ScenarioStep::Kind::ExpectAlarm;
+                step.text = expect.value(QStringLiteral("alarm")).toString();
+                if (step.text != QLatin1String("link-lost") && step.text != QLatin1String("link-regained"))
+                    return fail(QStringLiteral("expect/alarm"),
+                                QStringLiteral("alarm is \"link-lost\" or \"link-regained\""));
+                if (!within())
+                    return fail(action, needsWithin);
+            } else if (expect.contains(QStringLiteral("plan"))) {
+                step.kind = ScenarioStep::Kind::ExpectPlan;
+                step.text = expect.value(QStringLiteral("plan")).toString();
+                if (step.text != QLatin1String("acknowledged"))
+                    return fail(QStringLiteral("expect/plan"), QStringLiteral("plan is \"acknowledged\""));
+                if (!within())
+                    return fail(action, needsWithin);
+            } else if (expect.contains(QStringLiteral("wrong-frames")) ||
+                       expect.contains(QStringLiteral("frames-lost-at-most"))) {
+                const bool wrong = expect.contains(QStringLiteral("wrong-frames"));
+                const QString member = wrong ? QStringLiteral("wrong-frames") : QStringLiteral("frames-lost-at-most");
+                step.kind = wrong ? ScenarioStep::Kind::ExpectWrongFrames : ScenarioStep::Kind::ExpectFramesLost;
+                const double count = expect.value(member).toDouble(-1);
+                if (!isInteger(count) || count < 0)
+                    return fail(QStringLiteral("expect/") + member,
+                                QStringLiteral("%1 is a whole number, 0 or more").arg(member));
+                step.count = qint64(count);
+                if (step.at)
+                    return fail(QStringLiteral("at"),
+                                QStringLiteral("%1 holds over the whole run: no \"at\"").arg(member));
+            } else {
+                return fail(action,
+                            QStringLiteral("expect one of reported, alarm, plan, wrong-frames, frames-lost-at-most"));
+            }
+        }
+        scenario.steps.push_back(std::move(step));
+    }
+    return scenario;
+}

@@ -1,0 +1,99 @@
+#pragma once
+
+// Runs a scenario in process: the console's LinkWorker, commanding what the
+// steps set, and the simulated aircraft behind its own LinkWorker (as uasim
+// flies it), joined by a RehearsalChannel that applies the faults, all on one
+// VirtualClock. Scenario time is paced at the scenario's speed against the
+// wall clock (start()), or runs as fast as the machine goes (runToEnd()),
+// with the same result: nothing in a run depends on the wall clock.
+//
+// Every expectation is judged as the run goes, and what it found is the
+// RehearsalReport; the console's frames both ways go to a frame log.
+
+#include "link/rehearsal/RehearsalChannel.h"
+#include "link/rehearsal/RehearsalReport.h"
+#include "link/rehearsal/Scenario.h"
+
+#include <QElapsedTimer>
+#include <QObject>
+
+#include <memory>
+
+class AircraftResponder;
+class LinkWorker;
+class QTimer;
+class SimulatedAircraft;
+class VirtualClock;
+namespace rcm {
+class FlightPlanUploader;
+namespace secure {
+class SecureCodec;
+}
+}  // namespace rcm
+
+class ScenarioRunner : public QObject {
+    Q_OBJECT
+
+public:
+    // `frameLogPath`: the run's frame log (pcapng); empty for none.
+    ScenarioRunner(Scenario scenario, const QString& frameLogPath, QObject* parent = nullptr);
+    ~ScenarioRunner() override;
+
+    // Paced: `speed` scenario seconds per wall-clock second (the scenario's
+    // own when 0 or less); returns at once, progress() as it goes, finished() at the end.
+    void start(double speed = 0);
+    // As fast as it goes, without an event loop; finished() before it returns.
+    void runToEnd();
+    bool isFinished() const { return m_finished; }
+
+    const Scenario& scenario() const { return m_scenario; }
+    const RehearsalReport& report() const { return m_report; }
+    // Why the frame log could not be written; empty when it was.
+    QString frameLogError() const { return m_frameLogError; }
+
+signals:
+    void progress(double scenarioSeconds, double duration);
+    // Each step, fault, alarm and event as it goes into the report's timeline.
+    void noted(double scenarioSeconds, const QString& kind, const QString& text);
+    void finished();
+
+private:
+    struct Pending;
+    double now() const;
+    void advanceTo(double seconds);
+    void applyStep(const ScenarioStep& step);
+    void received(RehearsalChannel::End sender, const rcm::Message& message);
+    void statusReceived(const rcm::Message& status);
+    void alarm(const QString& name);
+    void note(const QString& kind, const QString& text);
+    void judgeDeadlines();
+    void sampleQuality();
+    void finish();
+    void paceTick();
+
+    Scenario m_scenario;
+    QString m_frameLogError;
+    std::shared_ptr<VirtualClock> m_clock;
+    std::int64_t m_startUtcMicros;
+    RehearsalChannel m_channel;
+    std::unique_ptr<SimulatedAircraft> m_aircraft;
+    std::unique_ptr<LinkWorker> m_aircraftWorker;
+    std::unique_ptr<AircraftResponder> m_responder;
+    std::unique_ptr<LinkWorker> m_console;
+    std::unique_ptr<rcm::FlightPlanUploader> m_upload;
+    // Secure link: each sender's cipher, to read what it sent.
+    std::array<std::unique_ptr<rcm::secure::SecureCodec>, 2> m_ciphers;
+    rcm::Message m_command;
+    std::vector<Pending> m_pending;  // one per timed expectation
+    std::size_t m_nextStep = 0;      // steps are applied in order of "at"
+    std::vector<std::size_t> m_order;
+    std::array<qint64, 2> m_goodReceived{};          // by sender
+    std::vector<std::array<qint64, 4>> m_perSecond;  // cumulative sent up/down, received up/down
+    RehearsalReport m_report;
+    QTimer* m_paceTimer = nullptr;
+    QElapsedTimer m_wall;
+    double m_speed = 1;
+    double m_done = 0;
+    bool m_started = false;
+    bool m_finished = false;
+};

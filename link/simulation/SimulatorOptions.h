@@ -1,0 +1,37 @@
+#pragma once
+
+// uasim's command line: its options, read into SimulatorSession::Settings.
+// The rehearsal faults' options are FaultOptions'.
+
+#include "link/simulation/FaultOptions.h"
+#include "link/simulation/SimulatorSession.h"
+
+#include <QCommandLineOption>
+
+#include <optional>
+
+class QCommandLineParser;
+
+class SimulatorOptions {
+public:
+    SimulatorOptions();
+
+    void addTo(QCommandLineParser& parser) const;
+    // The settings the parsed command line asks for, with the airframe file
+    // read and the voice to speak opened; null when the command line is
+    // wrong, with *error saying what is wrong.
+    std::optional<SimulatorSession::Settings> read(const QCommandLineParser& parser, QString* error) const;
+
+private:
+    QCommandLineOption m_udp;
+    QCommandLineOption m_serial;
+    QCommandLineOption m_baud;
+    QCommandLineOption m_log;
+    QCommandLineOption m_airframe;
+    QCommandLineOption m_uaId;
+    FaultOptions m_faults;
+    QCommandLineOption m_verbose;
+    QCommandLineOption m_key;
+    QCommandLineOption m_voiceOut;
+    QCommandLineOption m_voiceIn;
+};

@@ -1,0 +1,239 @@
+// A realistic command session sent through bit errors into the one receive
+// path, for tests/bench/bench_ber and tst_trialdecode: command frames one
+// second apart, a few command changes a minute (an operator moving one
+// control), one flight plan upload, on the plain or the secure link.
+// Deterministic for a given seed.
+#pragma once
+
+#include "codec/message/FlightPlanTransfer.h"
+#include "codec/message/MessageEncoder.h"
+#include "codec/message/MessagePrediction.h"
+#include "codec/receive/FrameReceiver.h"
+#include "codec/receive/TrialDecoder.h"
+#include "codec/secure/SecureCodec.h"
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rcm::test {
+
+struct BerSessionResult {
+    std::uint64_t frames = 0;          // sent and counted
+    std::uint64_t deliveredCorrect = 0;
+    std::uint64_t deliveredWrong = 0;  // delivered, but not what was sent with that ID_msg
+    std::uint64_t refused = 0;         // judged and refused (may include false starts)
+    std::map<std::string, std::uint64_t> refusedBy;  // refusalName -> count
+    std::uint64_t fromPrediction = 0;  // of delivered
+    std::uint64_t planFrames = 0;      // frames carrying a flight plan section
+    std::uint64_t planDelivered = 0;
+    TrialDecoder::Stats trials;
+};
+
+struct BerSessionOptions {
+    double ber = 0;
+    std::uint64_t frames = 1000;
+    bool secure = false;
+    bool predictions = true;         // false: plain RS only
+    std::uint64_t cleanStart = 5;    // frames before the counted ones at BER 0 (link set up on the ground)
+    double changesPerMinute = 3;
+    std::uint64_t planAt = 60;       // counted frame at which the plan upload starts
+    std::size_t planBytes = 1200;
+    std::uint64_t seed = 1;
+};
+
+// Probability that a codeword with byte error rate q has at most 16 errors.
+inline double codewordReadable(double q)
+{
+    double sum = 0;
+    for (int k = 0; k <= 16; ++k)
+        sum += std::exp(std::lgamma(256.0) - std::lgamma(k + 1.0) - std::lgamma(256.0 - k) + k * std::log(q) +
+                        (255 - k) * std::log1p(-q));
+    return sum;
+}
+
+// The plain RS bound: both codewords within 16 byte errors.
+inline double plainRsBound(double ber)
+{
+    const double q = 1 - std::pow(1 - ber, 8);
+    const double p = codewordReadable(q);
+    return p * p;
+}
+
+inline Message sessionStartMessage()
+{
+    Message m;
+    m.header.set(ItemId::ID_msg, 4'000'000);
+    m.header.set(ItemId::ID_UA_source, Value::station({44, 133}));
+    m.header.set(ItemId::time_UTC, 235800);  // two minutes before midnight: date_UTC rolls over
+    m.header.set(ItemId::date_UTC, 261231);
+    m.header.set(ItemId::ID_BLK12_format, Value::pair(1, 1));
+    m.header.set(ItemId::ID_GCS_destination, Value::station({44, 1}));
+    for (std::uint8_t e = 1; e <= 2; ++e) {
+        Unit& engine = m.addEngine(e);
+        engine.set(ItemId::eng_status, 0x90);  // GCS control, no slave
+        engine.set(ItemId::eng_prop_pitch, 120);
+        engine.set(ItemId::eng_carb_SET, 137);
+    }
+    m.flaps.set(ItemId::FLAP_status, 0x90);
+    for (ItemId f : {ItemId::F_aileron_LHS_set, ItemId::F_aileron_RHS_set, ItemId::F_lift_set, ItemId::F_rudder_set,
+                     ItemId::F_elev_set, ItemId::F_airbrake_set})
+        m.flaps.set(f, 0);
+    m.settings.set(ItemId::land_wheels, 0xAA);
+    m.settings.set(ItemId::lights, 0x99);
+    Unit& radio = m.addRadio("VHF1");
+    radio.set(ItemId::receiver_control, 0xA0);
+    radio.set(ItemId::Rx_freq, 121500);
+    radio.set(ItemId::Tx_freq, 121500);
+    radio.set(ItemId::Tx_OP_power, 30);
+    m.sense.set(ItemId::SA_zoom_FWD_cam, 10);
+    Unit& camera = m.addCamera("NIK", 1);
+    camera.set(ItemId::cam_mag_compass, 9000);
+    camera.set(ItemId::cam_elev, -1500);
+    camera.set(ItemId::cam_zoom_set, 40);
+    return m;
+}
+
+// One change an operator makes: a new value for one single-byte command.
+inline void changeOneCommand(Message& m, std::mt19937_64& rng)
+{
+    auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    switch (pick(0, 4)) {
+    case 0: m.engines[static_cast<std::size_t>(pick(0, 1))].set(ItemId::eng_carb_SET, pick(0, 255)); break;
+    case 1: m.engines[static_cast<std::size_t>(pick(0, 1))].set(ItemId::eng_prop_pitch, pick(0, 255)); break;
+    case 2: m.flaps.set(ItemId::F_elev_set, pick(-30, 30)); break;
+    case 3: m.flaps.set(ItemId::F_rudder_set, pick(-30, 30)); break;
+    default: m.cameras[0].set(ItemId::cam_zoom_set, pick(0, 255)); break;
+    }
+}
+
+// Flips each bit with probability `ber` (gaps between flips drawn geometrically).
+class BitErrorChannel {
+public:
+    BitErrorChannel(double ber, std::uint64_t seed) : m_rng(seed), m_ber(ber) { draw(); }
+    void apply(std::vector<std::uint8_t>& bytes)
+    {
+        if (m_ber <= 0)
+            return;
+        const std::uint64_t bits = bytes.size() * 8;
+        while (m_next < m_at + bits) {
+            const std::uint64_t b = m_next - m_at;
+            bytes[b / 8] ^= static_cast<std::uint8_t>(0x80u >> (b % 8));
+            draw();
+        }
+        m_at += bits;
+    }
+
+private:
+    void draw() { m_next += 1 + std::geometric_distribution<std::uint64_t>(m_ber)(m_rng); }
+    std::mt19937_64 m_rng;
+    double m_ber;
+    std::uint64_t m_at = 0;
+    std::uint64_t m_next = 0;
+};
+
+inline BerSessionResult runBerSession(const BerSessionOptions& o)
+{
+    std::mt19937_64 rng(o.seed);
+    BitErrorChannel channel(o.ber, o.seed * 7919 + 1);
+    const std::int64_t startSeconds = *secure::stampSeconds(235800, 261231);
+    std::int64_t nowMicros = startSeconds * 1'000'000;
+
+    std::unique_ptr<secure::SecureEndpoint> console, aircraft;
+    if (o.secure) {
+        secure::SecretKey psk;
+        std::mt19937_64 keyRng(o.seed ^ 0x5EC);
+        for (std::uint8_t& b : psk.mutableBytes())
+            b = static_cast<std::uint8_t>(keyRng());
+        secure::SecureEndpoint::Options eo;
+        eo.persistState = false;
+        eo.clock = [&nowMicros] { return nowMicros / 1'000'000; };
+        std::string error;
+        console = secure::SecureEndpoint::fromKey(psk, secure::Direction::GcsToUa, "", error, eo);
+        aircraft = secure::SecureEndpoint::fromKey(psk, secure::Direction::UaToGcs, "", error, eo);
+        if (!console || !aircraft)
+            throw std::runtime_error("secure endpoint: " + error);
+    }
+
+    TrialDecoder trial;
+    FrameReceiver::Options ro;
+    ro.clock = [&nowMicros] { return nowMicros; };
+    if (o.secure) {
+        ro.keys.codecs = {aircraft->receiver.get()};
+        ro.keys.guard = aircraft->guard.get();
+    }
+    if (o.predictions)
+        ro.retry = TrialDecoder::retryFor(trial);
+
+    BerSessionResult result;
+    std::map<std::uint32_t, Message> sent;  // by ID_msg, counted frames only
+    std::map<std::uint32_t, bool> planFrame;
+    FrameReceiver receiver(ro, [&](const ReceivedFrame& f) {
+        if (!f.delivered()) {
+            ++result.refused;
+            ++result.refusedBy[std::string(refusalName(*f.refusal))];
+            return;
+        }
+        const auto id = static_cast<std::uint32_t>(f.decoded.message.header.number(ItemId::ID_msg));
+        const auto it = sent.find(id);
+        if (it == sent.end())
+            return;  // a clean start frame
+        if (it->second == f.decoded.message) {
+            ++result.deliveredCorrect;
+            result.planDelivered += planFrame[id];
+        } else {
+            ++result.deliveredWrong;
+        }
+        result.fromPrediction += f.fromPrediction;
+    });
+
+    Message m = sessionStartMessage();
+    std::vector<std::uint8_t> plan(o.planBytes);
+    for (std::uint8_t& b : plan)
+        b = static_cast<std::uint8_t>(rng());
+    std::unique_ptr<FlightPlanUploader> uploader;
+    const double changeChance = o.changesPerMinute / 60.0;
+    const std::uint64_t total = o.cleanStart + o.frames;
+    for (std::uint64_t i = 0; i < total; ++i) {
+        if (i > 0) {
+            m = advanceMessage(m, 1);
+            if (std::uniform_real_distribution<double>(0, 1)(rng) < changeChance)
+                changeOneCommand(m, rng);
+        }
+        const bool counted = i >= o.cleanStart;
+        if (counted && i - o.cleanStart == o.planAt)
+            uploader = std::make_unique<FlightPlanUploader>(7, plan, o.secure ? secure::kMaxFlightPlanData
+                                                                             : FlightPlanSection::kMaxData);
+        m.flightPlan = {};
+        if (uploader)
+            if (std::optional<FlightPlanSection> s = uploader->next())
+                m.flightPlan = *s;
+        Diagnostics errors;
+        std::optional<EncodedBlocks> blocks =
+            o.secure ? console->sender->encode(m, errors) : encodeBlocks(m, errors);
+        if (!blocks)
+            throw std::runtime_error("session message does not encode: " + (errors.empty() ? std::string() : errors.front().toString()));
+        const FrameBytes frame = makeFrame(blocks->block1, blocks->block2);
+        std::vector<std::uint8_t> bytes(frame.begin(), frame.end());
+        if (counted) {
+            const auto id = static_cast<std::uint32_t>(m.header.number(ItemId::ID_msg));
+            sent[id] = m;
+            planFrame[id] = !m.flightPlan.empty();
+            result.planFrames += !m.flightPlan.empty();
+            channel.apply(bytes);
+            ++result.frames;
+        }
+        nowMicros = (startSeconds + static_cast<std::int64_t>(i)) * 1'000'000 + 500'000;
+        receiver.feed(bytes);
+    }
+    receiver.flush();
+    result.trials = trial.stats();
+    return result;
+}
+
+}  // namespace rcm::test

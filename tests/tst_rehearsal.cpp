@@ -1,0 +1,393 @@
+// Rehearsal scenarios (issue 12): the scenario file's vocabulary and its
+// errors, runs in process on the virtual clock with exact times and counts,
+// and gcs --rehearse on every sample scenario, with its exit status and reports.
+#include "RunProgram.h"
+
+#include "codec/frame/Frame.h"
+#include "codec/secure/SecureCodec.h"
+#include "link/framelog/FrameLogReader.h"
+#include "link/rehearsal/ScenarioRunner.h"
+#include "ui/rehearsal/RehearsalCommandLine.h"
+#include "ui/rehearsal/RehearsalDialog.h"
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QSignalSpy>
+#include <QTemporaryDir>
+#include <QtTest>
+
+namespace {
+
+const QString kScenarios = QStringLiteral(RCM_SOURCE_DIR "/resources/scenarios/");
+
+Scenario load(const QString& name)
+{
+    ScenarioError error;
+    auto scenario = Scenario::load(kScenarios + name, RehearsalCommandLine::planLoader(), &error);
+    if (!scenario)
+        qFatal("%s", qPrintable(error.text()));
+    return *scenario;
+}
+
+QJsonObject readJson(const QString& path)
+{
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly))
+        return {};
+    return QJsonDocument::fromJson(file.readAll()).object();
+}
+
+QString readText(const QString& path)
+{
+    QFile file(path);
+    return file.open(QIODevice::ReadOnly) ? QString::fromUtf8(file.readAll()) : QString();
+}
+
+}  // namespace
+
+class TestRehearsal : public QObject {
+    Q_OBJECT
+
+private slots:
+    void issueExampleParses();
+    void setLinesNameTheirUnit();
+    void wrongScenariosSayWhere_data();
+    void wrongScenariosSayWhere();
+    void outageRunsToExactTimes();
+    void pacedRunGivesTheSameReport();
+    void frameLogHoldsBothDirections();
+    void keyEnciphersTheRun();
+    void samplesHold_data();
+    void samplesHold();
+    void failedStepNamedInBothReports();
+    void malformedScenarioExitsTwo();
+    void dialogShowsTheRun();
+    void dialogSaysWhereTheScenarioIsWrong();
+};
+
+void TestRehearsal::issueExampleParses()
+{
+    const Scenario s = load(QStringLiteral("gear-outage-plan.json"));
+    QCOMPARE(s.name, QStringLiteral("gear, outage and a plan"));
+    QCOMPARE(s.airframe.engines.size(), std::size_t(3));
+    QCOMPARE(s.transport, Scenario::Transport::Udp);
+    QCOMPARE(s.key, false);
+    QCOMPARE(s.speed, 20.0);
+    QCOMPARE(s.duration, 180.0);
+    QCOMPARE(s.steps.size(), std::size_t(16));
+    using K = ScenarioStep::Kind;
+    const std::vector<K> kinds = {K::Set,
+                                  K::Set,
+                                  K::Set,
+                                  K::Set,
+                                  K::ExpectReported,
+                                  K::Fault,
+                                  K::Fault,
+                                  K::ExpectAlarm,
+                                  K::ExpectAlarm,
+                                  K::Fault,
+                                  K::Fault,
+                                  K::Fault,
+                                  K::Upload,
+                                  K::ExpectPlan,
+                                  K::ExpectWrongFrames,
+                                  K::ExpectFramesLost};
+    for (std::size_t i = 0; i < kinds.size(); ++i)
+        QCOMPARE(s.steps[i].kind, kinds[i]);
+    QCOMPARE(s.steps[6].fault.kind, FaultSpec::Kind::Outage);
+    QCOMPARE(s.steps[6].fault.value, 15.0);
+    QCOMPARE(s.steps[9].fault.kind, FaultSpec::Kind::Slip);
+    QCOMPARE(s.steps[10].fault.kind, FaultSpec::Kind::Burst);
+    QCOMPARE(s.steps[11].fault.kind, FaultSpec::Kind::Clear);
+    QCOMPARE(s.steps[12].plan.size(), 16 + 6 * 34);  // MissionPlan's header and six items
+    QCOMPARE(s.steps[15].at.has_value(), false);
+    QCOMPARE(s.steps[15].count, 25);
+    QCOMPARE(s.steps[4].line, 13);
+    QCOMPARE(s.steps[4].column, 5);
+    QCOMPARE(s.steps[7].describe(), QStringLiteral("step 8 at 40 s: expect alarm link-lost within 6 s"));
+}
+
+void TestRehearsal::setLinesNameTheirUnit()
+{
+    const rcm::Message command = rcm::restingCommand(rcm::Airframe::wellEquipped());
+    QString error;
+    const auto engine = parseUnitLine(QStringLiteral("engine 2: eng_prop_pitch 140"), command, &error);
+    QVERIFY2(engine, qPrintable(error));
+    QCOMPARE(engine->engines.size(), std::size_t(1));
+    QCOMPARE(engine->engines[0].number(rcm::ItemId::eng_ID), 2);
+    QCOMPARE(engine->engines[0].number(rcm::ItemId::eng_prop_pitch), 140);
+
+    const auto camera = parseUnitLine(QStringLiteral("camera 1: cam_zoom_set 40"), command, &error);
+    QVERIFY2(camera, qPrintable(error));
+    rcm::Message commanded = command;
+    applyItems(commanded, *camera);
+    QCOMPARE(commanded.cameras[0].number(rcm::ItemId::cam_zoom_set), 40);
+    QCOMPARE(commanded.cameras[1], command.cameras[1]);
+    QVERIFY(reportsItems(commanded, *camera));
+    QVERIFY(!reportsItems(command, *camera));
+
+    QVERIFY(!parseUnitLine(QStringLiteral("comms_system HF9: Tx_freq 121500"), command, &error));
+    QCOMPARE(error, QStringLiteral("the aircraft has no comms_system HF9"));
+    QVERIFY(!parseUnitLine(QStringLiteral("flaps 1: F_elev_set 3"), command, &error));
+    QCOMPARE(error, QStringLiteral("\"flaps\" is not a repeated unit (engine, comms_system, camera)"));
+}
+
+void TestRehearsal::wrongScenariosSayWhere_data()
+{
+    QTest::addColumn<QByteArray>("json");
+    QTest::addColumn<QString>("error");
+    QTest::newRow("syntax") << QByteArray("{\n  \"duration\": 10,\n  \"steps\": [}\n")
+                            << QStringLiteral("s.json:3:14: object is missing after a comma");
+    QTest::newRow("no duration") << QByteArray("{\"steps\": []}")
+                                 << QStringLiteral("s.json:1:1: duration is seconds, more than 0");
+    QTest::newRow("transport") << QByteArray("{\"duration\": 5,\n \"transport\": \"tcp\"}")
+                               << QStringLiteral("s.json:2:15: transport is \"udp\" or \"serial\"");
+    QTest::newRow("unknown fault")
+        << QByteArray("{\"duration\": 5, \"steps\": [\n  {\"at\": 1, \"fault\": {\"drop\": 0.1}}]}")
+        << QStringLiteral("s.json:2:31: step 1: unknown fault \"drop\" (ber, outage, slip, burst, direction)");
+    QTest::newRow("ber over 1") << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 1, \"fault\": {\"ber\": 2}}]}")
+                                << QStringLiteral("s.json:2:29: step 1: ber is a probability from 0 to 1");
+    QTest::newRow("at past the end") << QByteArray(
+                                            "{\"duration\": 5, \"steps\": [{\"at\": 0, \"set\": \"F_elev_set 3\"},\n "
+                                            "{\"at\": 9, \"set\": \"F_elev_set 3\"}]}")
+                                     << QStringLiteral("s.json:2:9: step 2: at is seconds from 0 to the duration, 5");
+    QTest::newRow("bad item")
+        << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"set\": \"F_elev_set 900\"}]}")
+        << QStringLiteral("s.json:2:19: step 1: \"F_elev_set 900\": 900 is above the maximum 127 by 773");
+    QTest::newRow("alarm name")
+        << QByteArray(
+               "{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"expect\": {\"alarm\": \"lost\", \"within\": 3}}]}")
+        << QStringLiteral("s.json:2:32: step 1: alarm is \"link-lost\" or \"link-regained\"");
+    QTest::newRow("within missing")
+        << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"expect\": {\"alarm\": \"link-lost\"}}]}")
+        << QStringLiteral("s.json:2:22: step 1: this expectation needs \"at\" and \"within\" (seconds)");
+    QTest::newRow("missing plan")
+        << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"upload\": \"nowhere.plan\"}]}")
+        << QStringLiteral("s.json:2:22: step 1: /nonexistent/nowhere.plan: No such file or directory");
+}
+
+void TestRehearsal::wrongScenariosSayWhere()
+{
+    QFETCH(QByteArray, json);
+    QFETCH(QString, error);
+    ScenarioError e;
+    QVERIFY(!Scenario::fromJson(json, QStringLiteral("/nonexistent/s.json"), RehearsalCommandLine::planLoader(), &e));
+    QCOMPARE(e.text(), QStringLiteral("/nonexistent/") + error);
+}
+
+void TestRehearsal::outageRunsToExactTimes()
+{
+    ScenarioRunner runner(load(QStringLiteral("outage.json")), QString());
+    QSignalSpy finished(&runner, &ScenarioRunner::finished);
+    runner.runToEnd();
+    QCOMPARE(finished.count(), 1);
+    const RehearsalReport& r = runner.report();
+    QVERIFY(r.passed());
+    QCOMPARE(r.expectations.size(), std::size_t(5));
+    QCOMPARE(r.expectations[0].measured, 2.0);  // commanded at 1 s, reported at 2 s
+    QCOMPARE(r.expectations[1].measured, 3.0);  // the silence timeout
+    QCOMPARE(r.expectations[2].measured, 1.0);  // the first status after the outage
+    QCOMPARE(r.frames.sentUp, 90);
+    QCOMPARE(r.frames.sentDown, 90);
+    QCOMPARE(r.frames.inOutage, 40);
+    QCOMPARE(r.frames.receivedUp, 70);
+    QCOMPARE(r.frames.receivedDown, 70);
+    QCOMPARE(r.frames.lost, 0);
+    QCOMPARE(r.frames.wrong, 0);
+    QCOMPARE(r.latencies.size(), std::size_t(1));
+    QCOMPARE(r.latencies[0].seconds, 2.0);
+    QStringList alarms;
+    for (const auto& t : r.timeline)
+        if (t.kind == QLatin1String("alarm"))
+            alarms << QStringLiteral("%1 %2").arg(t.time).arg(t.text);
+    QCOMPARE(alarms, (QStringList{QStringLiteral("33 link-lost"), QStringLiteral("51 link-regained")}));
+    // Quality over the last 10 s: none during the outage, all again 10 s after it.
+    QCOMPARE(r.quality.size(), std::size_t(91));
+    QCOMPARE(r.quality[45].up, 0.0);
+    QCOMPARE(r.quality[45].down, 0.0);
+    QCOMPARE(r.quality[62].up, 1.0);
+}
+
+void TestRehearsal::pacedRunGivesTheSameReport()
+{
+    ScenarioRunner fast(load(QStringLiteral("burst.json")), QString());
+    fast.runToEnd();
+    ScenarioRunner paced(load(QStringLiteral("burst.json")), QString());
+    QSignalSpy progress(&paced, &ScenarioRunner::progress);
+    QSignalSpy finished(&paced, &ScenarioRunner::finished);
+    paced.start(100000);
+    QVERIFY(finished.wait(30000));
+    QVERIFY(progress.count() >= 1);
+    QCOMPARE(progress.constLast().at(0).toDouble(), 120.0);
+    QCOMPARE(paced.report().toJson(), fast.report().toJson());
+    QCOMPARE(fast.report().frames.wrong, 0);
+    QVERIFY(fast.report().frames.lost > 0);  // the bursts cost frames: the run did inject them
+}
+
+void TestRehearsal::frameLogHoldsBothDirections()
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("session.pcapng"));
+    qint64 sent = 0;
+    qint64 received = 0;
+    {
+        ScenarioRunner runner(load(QStringLiteral("ber.json")), path);
+        QCOMPARE(runner.frameLogError(), QString());
+        runner.runToEnd();
+        sent = runner.report().frames.sentUp;
+        received = runner.report().frames.receivedDown;
+    }
+    FrameLogReader reader;
+    QVERIFY2(reader.open(path), qPrintable(reader.errorString()));
+    int up = 0, down = 0;
+    for (const FrameIndexEntry& e : reader.index())
+        ++(e.direction == FrameDirection::Sent ? up : down);
+    QCOMPARE(up, sent);
+    QCOMPARE(down, received);  // every frame arrived, each corrected
+    QCOMPARE(sent, 120);
+}
+
+// The first frame the console sent in a run of `scenario`, as the session log has it.
+static QByteArray firstSentFrame(const QString& scenario, RehearsalReport* report)
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("session.pcapng"));
+    {
+        ScenarioRunner runner(load(scenario), path);
+        runner.runToEnd();
+        *report = runner.report();
+    }
+    FrameLogReader reader;
+    if (!reader.open(path) || reader.count() == 0)
+        return {};
+    return reader.recordAt(0).bytes;
+}
+
+static bool plaintext(const QByteArray& datagram)
+{
+    if (datagram.size() != int(rcm::kDatagramSize))
+        return false;
+    return rcm::secure::looksLikePlaintext(rcm::decodeCodewords(std::span<const std::uint8_t, rcm::kDatagramSize>(
+        reinterpret_cast<const std::uint8_t*>(datagram.constData()), rcm::kDatagramSize)));
+}
+
+void TestRehearsal::keyEnciphersTheRun()
+{
+    RehearsalReport secure;
+    const QByteArray enciphered = firstSentFrame(QStringLiteral("secure.json"), &secure);
+    QCOMPARE(enciphered.size(), int(rcm::kDatagramSize));
+    QVERIFY(!plaintext(enciphered));
+    QCOMPARE(secure.transport, QStringLiteral("udp (in process), secure link"));
+    QVERIFY(secure.passed());
+    QCOMPARE(secure.frames.wrong, 0);
+
+    RehearsalReport plain;
+    QVERIFY(plaintext(firstSentFrame(QStringLiteral("gear-outage-plan.json"), &plain)));
+    QCOMPARE(plain.transport, QStringLiteral("udp (in process)"));
+}
+
+void TestRehearsal::samplesHold_data()
+{
+    QTest::addColumn<QString>("scenario");
+    for (const char* name : {"ber.json", "outage.json", "slip.json", "burst.json", "gear-outage-plan.json",
+                             "secure.json", "slip-serial.json"})
+        QTest::newRow(name) << QString::fromLatin1(name);
+}
+
+void TestRehearsal::samplesHold()
+{
+    QFETCH(QString, scenario);
+    QTemporaryDir dir;
+    const auto run = rcm::test::runProgram(
+        QStringLiteral("gcs"), {QStringLiteral("--rehearse"), kScenarios + scenario, QStringLiteral("--report"),
+                                dir.path(), QStringLiteral("--rehearse-speed"), QStringLiteral("0")});
+    QVERIFY2(run.exitCode == 0, run.err.constData());
+    const QJsonObject report = readJson(dir.filePath(QStringLiteral("report.json")));
+    QCOMPARE(report.value(QStringLiteral("verdict")).toString(), QStringLiteral("passed"));
+    QCOMPARE(report.value(QStringLiteral("frames")).toObject().value(QStringLiteral("wrong")).toInt(), 0);
+    for (const QJsonValue& e : report.value(QStringLiteral("expectations")).toArray())
+        QCOMPARE(e.toObject().value(QStringLiteral("result")).toString(), QStringLiteral("held"));
+    const QString html = readText(dir.filePath(QStringLiteral("report.html")));
+    QVERIFY(html.indexOf(QStringLiteral("PASSED: every expectation held")) < html.indexOf(QStringLiteral("<h2>")));
+    QVERIFY(html.contains(QStringLiteral("<svg")));
+    QVERIFY(!html.contains(QStringLiteral("src=")));  // self-contained
+    QVERIFY(QFileInfo(dir.filePath(QStringLiteral("session.pcapng"))).size() > 0);
+}
+
+void TestRehearsal::failedStepNamedInBothReports()
+{
+    QTemporaryDir dir;
+    const auto run = rcm::test::runProgram(
+        QStringLiteral("gcs"),
+        {QStringLiteral("--rehearse"), kScenarios + QStringLiteral("cannot-hold.json"), QStringLiteral("--report"),
+         dir.path(), QStringLiteral("--rehearse-speed"), QStringLiteral("0")});
+    QCOMPARE(run.exitCode, 1);
+    QVERIFY(
+        run.err.contains("gcs: failed: step 2 at 0 s: expect \"engine 1: eng_prop_pitch 150\" reported within 10 s "
+                         "(not seen by 10 s)\n"));
+    const QJsonObject report = readJson(dir.filePath(QStringLiteral("report.json")));
+    QCOMPARE(report.value(QStringLiteral("verdict")).toString(), QStringLiteral("failed"));
+    const QJsonArray expectations = report.value(QStringLiteral("expectations")).toArray();
+    QCOMPARE(expectations.size(), 3);
+    const QJsonObject never = expectations[0].toObject();
+    QCOMPARE(never.value(QStringLiteral("step")).toInt(), 2);
+    QCOMPARE(never.value(QStringLiteral("result")).toString(), QStringLiteral("failed"));
+    QCOMPARE(never.value(QStringLiteral("measured")).isNull(), true);
+    QCOMPARE(never.value(QStringLiteral("detail")).toString(), QStringLiteral("not seen by 10 s"));
+    const QJsonObject regained = expectations[1].toObject();
+    QCOMPARE(regained.value(QStringLiteral("expectation")).toString(),
+             QStringLiteral("step 4 at 20 s: expect alarm link-regained within 2 s"));
+    QCOMPARE(regained.value(QStringLiteral("result")).toString(), QStringLiteral("failed"));
+    QCOMPARE(expectations[2].toObject().value(QStringLiteral("result")).toString(), QStringLiteral("held"));
+
+    const QString html = readText(dir.filePath(QStringLiteral("report.html")));
+    QVERIFY(html.contains(QStringLiteral("<p class=\"verdict fail\">FAILED: 2 of 3 expectations failed</p>")));
+    QVERIFY(
+        html.contains(QStringLiteral("<tr><td>2</td><td>step 2 at 0 s: expect &quot;engine 1: eng_prop_pitch "
+                                     "150&quot; reported within 10 s</td><td class=\"failed\">failed</td>")));
+    QVERIFY(
+        html.contains(QStringLiteral("<td>step 4 at 20 s: expect alarm link-regained within 2 s</td><td "
+                                     "class=\"failed\">failed</td>")));
+}
+
+void TestRehearsal::malformedScenarioExitsTwo()
+{
+    QTemporaryDir dir;
+    const QString path = kScenarios + QStringLiteral("malformed.json");
+    const auto run = rcm::test::runProgram(
+        QStringLiteral("gcs"), {QStringLiteral("--rehearse"), path, QStringLiteral("--report"), dir.path()});
+    QCOMPARE(run.exitCode, 2);
+    QVERIFY2(
+        run.err.contains(QStringLiteral("gcs: %1:7:22: step 2: the aircraft has no engine 7\n").arg(path).toUtf8()),
+        run.err.constData());
+    QVERIFY(!QFile::exists(dir.filePath(QStringLiteral("report.json"))));
+}
+
+void TestRehearsal::dialogShowsTheRun()
+{
+    QTemporaryDir dir;
+    RehearsalDialog dialog;
+    QSignalSpy finished(&dialog, &RehearsalDialog::finished);
+    QVERIFY(dialog.run(kScenarios + QStringLiteral("outage.json"), dir.path(), 100000));
+    QVERIFY(finished.wait(30000));
+    QCOMPARE(dialog.progressMaximum(), 900);
+    QCOMPARE(dialog.progressValue(), 900);
+    QCOMPARE(dialog.verdict(), QStringLiteral("PASSED: every expectation held (5).\nReport in %1").arg(dir.path()));
+    QVERIFY2(dialog.timeline().contains(QStringLiteral("  33.0 s  alarm  link-lost\n")), qPrintable(dialog.timeline()));
+    QVERIFY(dialog.timeline().contains(QStringLiteral("  51.0 s  alarm  link-regained")));
+    QCOMPARE(readJson(dir.filePath(QStringLiteral("report.json"))).value(QStringLiteral("verdict")).toString(),
+             QStringLiteral("passed"));
+    QVERIFY(QFileInfo(dir.filePath(QStringLiteral("session.pcapng"))).size() > 0);
+}
+
+void TestRehearsal::dialogSaysWhereTheScenarioIsWrong()
+{
+    RehearsalDialog dialog;
+    const QString path = kScenarios + QStringLiteral("malformed.json");
+    QVERIFY(!dialog.run(path, QDir::tempPath()));
+    QCOMPARE(dialog.verdict(), QStringLiteral("%1:7:22: step 2: the aircraft has no engine 7").arg(path));
+}
+
+QTEST_MAIN(TestRehearsal)
+#include "tst_rehearsal.moc"

@@ -1,0 +1,210 @@
+// Decoding with a prediction: the RS trial (exact corrections, the margin),
+// the prediction of the next message, and a realistic session through bit
+// errors far beyond the Reed-Solomon bound, plain and secure, never a wrong frame.
+#include "BerSession.h"
+
+#include "codec/frame/ReedSolomon.h"
+#include "codec/frame/TrialDecode.h"
+#include "codec/message/MessagePrediction.h"
+
+#include <QtTest>
+
+#include <array>
+#include <cstdint>
+#include <random>
+
+using namespace rcm;
+
+namespace {
+
+using Codeword = std::array<std::uint8_t, rs::kCodewordSize>;
+
+Codeword randomCodeword(std::mt19937_64& rng)
+{
+    Codeword c;
+    for (std::size_t i = 0; i < rs::kDataSize; ++i)
+        c[i] = static_cast<std::uint8_t>(rng());
+    rs::encode(c.data(), c.data() + rs::kDataSize);
+    return c;
+}
+
+// Adds a non-zero error to each byte at `positions`.
+Codeword withErrors(Codeword c, std::initializer_list<int> positions)
+{
+    for (int p : positions)
+        c[static_cast<std::size_t>(p)] ^= static_cast<std::uint8_t>(0x5A + p % 7);
+    return c;
+}
+
+// `count` byte errors at distinct positions from `first` on, `step` apart,
+// of varied values (evenly spaced equal errors can sit next to a codeword).
+Codeword withSpreadErrors(Codeword c, int first, int count, int step)
+{
+    for (int i = 0; i < count; ++i)
+        c[static_cast<std::size_t>(first + i * step)] ^= static_cast<std::uint8_t>(1 + (i * 73 + 29) % 255);
+    return c;
+}
+
+}  // namespace
+
+class TstTrialDecode : public QObject {
+    Q_OBJECT
+
+private slots:
+    void encodeMatchesLibfec()
+    {
+        std::mt19937_64 rng(11);
+        for (int i = 0; i < 1000; ++i) {
+            std::uint8_t data[rs::kDataSize];
+            for (std::uint8_t& b : data)
+                b = static_cast<std::uint8_t>(rng());
+            std::uint8_t ours[rs::kParitySize], libfec[rs::kParitySize];
+            rs::encode(data, ours);
+            rs::encodeLibfec(data, libfec);
+            QVERIFY(std::equal(ours, ours + rs::kParitySize, libfec));
+        }
+    }
+
+    void predictionEqualToSent()
+    {
+        std::mt19937_64 rng(1);
+        const Codeword sent = randomCodeword(rng);
+        // 40 data byte errors (far beyond 16) and 5 in the parity.
+        Codeword received = withSpreadErrors(sent, 0, 40, 5);
+        received = withErrors(received, {223, 230, 240, 250, 254});
+        Codeword copy = received;
+        QCOMPARE(rs::decode(copy.data()), -1);
+        Codeword out{};
+        QCOMPARE(rs::parityDistance(received.data(), sent.data()), 5);
+        QCOMPARE(rs::decodeWithPrediction(received.data(), sent.data(), out.data()), 5);
+        QCOMPARE(out, sent);
+    }
+
+    void predictionDifferingInACommandByte()
+    {
+        // The prediction still holds the old eng_carb_SET; the sender sent a
+        // new one. The changed byte is an error RS corrects to the sent value.
+        std::mt19937_64 rng(2);
+        const Codeword sent = randomCodeword(rng);
+        Codeword predicted = sent;
+        predicted[150] = static_cast<std::uint8_t>(sent[150] ^ 0x1E);
+        rs::encode(predicted.data(), predicted.data() + rs::kDataSize);
+        QCOMPARE(rs::parityDistance(sent.data(), predicted.data()), 32);
+        Codeword received = withSpreadErrors(sent, 1, 30, 7);
+        received = withErrors(received, {224, 237, 249, 254});
+        Codeword out{};
+        QCOMPARE(rs::decodeWithPrediction(received.data(), predicted.data(), out.data()), 5);
+        QCOMPARE(out, sent);
+    }
+
+    void wrongPredictionGivesNoFrame()
+    {
+        std::mt19937_64 rng(3);
+        const Codeword sent = randomCodeword(rng);
+        const Codeword received = withErrors(sent, {10, 20, 230});
+        Codeword out{};
+        // Another message altogether.
+        const Codeword other = randomCodeword(rng);
+        QCOMPARE(rs::decodeWithPrediction(received.data(), other.data(), out.data()), -1);
+        // The prediction wrong in 13 data bytes and the channel clean: RS
+        // could correct them (13 <= 16), but the margin is 12.
+        Codeword off = withSpreadErrors(sent, 3, 13, 11);
+        rs::encode(off.data(), off.data() + rs::kDataSize);
+        QCOMPARE(rs::decodeWithPrediction(sent.data(), off.data(), out.data()), -1);
+        QCOMPARE(rs::decodeWithPrediction(sent.data(), off.data(), out.data(), 13), 13);
+        QCOMPARE(out, sent);
+        // Wrong in 12 and two parity errors on the channel: 14 > 12.
+        Codeword off12 = withSpreadErrors(sent, 3, 12, 11);
+        rs::encode(off12.data(), off12.data() + rs::kDataSize);
+        QCOMPARE(rs::decodeWithPrediction(withErrors(sent, {240, 241}).data(), off12.data(), out.data()), -1);
+        QCOMPARE(rs::decodeWithPrediction(sent.data(), off12.data(), out.data()), 12);
+        QCOMPARE(out, sent);
+    }
+
+    void majorityOfNoisyCopies()
+    {
+        std::mt19937_64 rng(4);
+        const Codeword sent = randomCodeword(rng);
+        const Codeword a = withErrors(sent, {1, 2, 3});
+        const Codeword b = withErrors(sent, {3, 4});
+        const Codeword c = withErrors(sent, {5});
+        const std::uint8_t* copies[] = {a.data(), b.data(), c.data()};
+        Codeword vote{};
+        rs::majorityBytes(copies, 3, vote.data());
+        // Byte 3 is wrong in two copies, the same way: the majority keeps it.
+        Codeword expected = sent;
+        expected[3] = a[3];
+        QCOMPARE(vote, expected);
+        // Two copies that disagree: the last one's byte.
+        const std::uint8_t* two[] = {a.data(), c.data()};
+        rs::majorityBytes(two, 2, vote.data());
+        QCOMPARE(vote, c);
+    }
+
+    void advanceTimeAndDateRollsOver()
+    {
+        std::uint32_t t = 235959, d = 261231;
+        QVERIFY(advanceTimeAndDate(t, d, 1));
+        QCOMPARE(t, 0u);
+        QCOMPARE(d, 270101u);
+        t = 235958, d = 280228;  // 2028 is a leap year
+        QVERIFY(advanceTimeAndDate(t, d, 3));
+        QCOMPARE(t, 1u);
+        QCOMPARE(d, 280229u);
+        t = 120000, d = 260228;
+        QVERIFY(advanceTimeAndDate(t, d, 86400 + 61));
+        QCOMPARE(t, 120101u);
+        QCOMPARE(d, 260301u);
+        t = 126000, d = 260101;  // 60 minutes: not a time
+        QVERIFY(!advanceTimeAndDate(t, d, 1));
+        QCOMPARE(t, 126000u);
+        QCOMPARE(d, 260101u);
+    }
+
+    void advanceMessageKeepsCommands()
+    {
+        Message last = test::sessionStartMessage();
+        last.header.set(ItemId::ID_msg, 16'777'214);
+        const Message next = advanceMessage(last, 3);
+        QCOMPARE(next.header.number(ItemId::ID_msg), 1);
+        QCOMPARE(next.header.number(ItemId::time_UTC), 235803);
+        QCOMPARE(next.header.number(ItemId::date_UTC), 261231);
+        Message expected = next;
+        expected.header = last.header;
+        QCOMPARE(expected, last);
+    }
+
+    void sessionThroughBitErrors_data()
+    {
+        QTest::addColumn<bool>("secure");
+        QTest::addColumn<double>("ber");
+        QTest::addColumn<double>("atLeast");
+        QTest::newRow("plain 1e-2") << false << 1e-2 << 0.99;
+        QTest::newRow("plain 2e-2") << false << 2e-2 << 0.90;
+        QTest::newRow("secure 1e-2") << true << 1e-2 << 0.99;
+        QTest::newRow("secure 2e-2") << true << 2e-2 << 0.90;
+    }
+
+    void sessionThroughBitErrors()
+    {
+        // 1,000 frames with a 400-byte plan (two sections, three passes):
+        // the plan's frames are the ones predictions cannot read.
+        QFETCH(bool, secure);
+        QFETCH(double, ber);
+        QFETCH(double, atLeast);
+        test::BerSessionOptions o;
+        o.ber = ber;
+        o.frames = 1000;
+        o.secure = secure;
+        o.planBytes = 400;
+        const test::BerSessionResult r = test::runBerSession(o);
+        QCOMPARE(r.frames, 1000u);
+        QCOMPARE(r.deliveredWrong, 0u);
+        QVERIFY2(r.deliveredCorrect >= atLeast * r.frames, qPrintable(QString::number(r.deliveredCorrect)));
+        // Plain RS alone reads at most 5.3 % of these frames at 1e-2.
+        QVERIFY(r.fromPrediction > r.deliveredCorrect * 9 / 10);
+    }
+};
+
+QTEST_GUILESS_MAIN(TstTrialDecode)
+#include "tst_trialdecode.moc"
