@@ -111,6 +111,7 @@ private slots:
     void failedOpenSaysWhy();
     void secureRehearsalWithMatchingKeys();
     void wrongKeyIsRejectedAsForged();
+    void statusBarListsRefusalsByReason();
     void asksBeforeEndingALiveLink_data();
     void asksBeforeEndingALiveLink();
     void quitEndsTheLinkOnceConfirmed();
@@ -733,6 +734,21 @@ void TestMainWindow::secureRehearsalWithMatchingKeys()
     QTRY_COMPARE_WITH_TIMEOUT(upload->progress().state, FlightPlanUpload::State::Acknowledged, kLinkTimeoutMs);
     window.disconnectLink();
     QVERIFY(!window.isLinkRunning());
+}
+
+// Every reason the receive path refuses for, but uncorrectable (a counter
+// of its own), in the order of rcm::Refusal, with its count.
+void TestMainWindow::statusBarListsRefusalsByReason()
+{
+    StatusBarWidget bar;
+    LinkStatistics s;
+    s.refused[std::size_t(rcm::Refusal::Uncorrectable)] = 5;
+    s.refused[std::size_t(rcm::Refusal::TimeStep)] = 2;
+    s.refused[std::size_t(rcm::Refusal::WrongSize)] = 1;
+    s.refused[std::size_t(rcm::Refusal::BadPadding)] = 3;
+    bar.setStatistics(s);
+    QCOMPARE(bar.rejectedText(),
+             QStringLiteral("wrong size 1, not exact: bad padding 3, implausible: time step 2"));
 }
 
 void TestMainWindow::wrongKeyIsRejectedAsForged()
