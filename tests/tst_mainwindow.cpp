@@ -16,6 +16,8 @@
 #include "link/transport/UdpLink.h"
 #include "ui/panels/CommandPreview.h"
 #include "ui/panels/CommandState.h"
+#include "ui/panels/FieldButtonGroup.h"
+#include "ui/panels/ReportedState.h"
 #include "ui/plan/FlightPlanUpload.h"
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
@@ -98,6 +100,7 @@ private slots:
     void linkLostAlarm();
     void linkSettingsAreKept();
     void replaysAFrameLog();
+    void replayShowsTheLogsCommandReadOnly();
     void rehearsalAgainstUasim();
     void keyedUploadUses199ByteSections();
     void refusedKeyFileSaysWhy();
@@ -275,6 +278,7 @@ void TestMainWindow::importsTheSamplePlan()
     const MissionPlan& plan = *widget->plan();
     QCOMPARE(plan.items.size(), 9);
     QCOMPARE(widget->table()->rowCount(), 9);
+    QCOMPARE(widget->summary(), QStringLiteral("9 mission items, 322 bytes, 2 BLOCK 2 sections"));
 
     const MissionItem& takeoff = plan.items[0];
     QCOMPARE(takeoff.seq, quint16(0));
@@ -490,6 +494,79 @@ void TestMainWindow::replaysAFrameLog()
     QCOMPARE(window.statistics().framesSent, quint64(0));  // a replay sends nothing
     window.disconnectLink();
     QVERIFY(!window.isLinkRunning());
+}
+
+void TestMainWindow::replayShowsTheLogsCommandReadOnly()
+{
+    // A log the link's FrameLog wrote: each second a command with the
+    // rudder at 7 degrees went out, and the aircraft reported doing that.
+    using rcm::ItemId;
+    const UnitRef flaps{rcm::UnitKind::Flaps, 0};
+    CommandState logged;
+    QVERIFY(logged.setNumber(flaps, ItemId::F_rudder_set, 7));
+    const QString path = m_dir.filePath(QStringLiteral("commanded.pcapng"));
+    {
+        FrameLog log;
+        QVERIFY(log.open(path));
+        for (int i = 0; i < 10; ++i) {
+            for (const FrameDirection direction : {FrameDirection::Sent, FrameDirection::Received}) {
+                rcm::Message message = logged.message();
+                message.header.set(ItemId::ID_msg, i);
+                rcm::Diagnostics errors;
+                const auto datagram = rcm::encodeDatagram(message, errors);
+                QVERIFY(datagram);
+                FrameRecord r;
+                r.bytes = QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size()));
+                r.utcMicros = 1795332720000000 + i * 1'000'000 + (direction == FrameDirection::Sent ? 0 : 100'000);
+                r.direction = direction;
+                r.transport = FrameTransport::Udp;
+                r.status = direction == FrameDirection::Sent ? FrameStatus::NotChecked : FrameStatus::Decoded;
+                QVERIFY(log.append(r));
+            }
+        }
+    }
+    MainWindow window(options());
+    CommandState* command = window.command();
+    const rcm::Message own = command->message();
+    QCOMPARE(command->value(flaps, ItemId::F_rudder_set)->number, 0);
+    QSignalSpy finished(&window, &MainWindow::replayFinished);
+    window.setReplaySpeed(10.0);
+    window.openFrameLog(path);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
+    QTRY_COMPARE_WITH_TIMEOUT(window.reported()->statusFrames(), 10, kLinkTimeoutMs);
+
+    // The panels show what the log commanded, and the reports agree with it.
+    QCOMPARE(command->value(flaps, ItemId::F_rudder_set)->number, 7);
+    QCOMPARE(window.reported()->value(flaps, ItemId::F_rudder_set)->number, 7);
+    QCOMPARE(window.reported()->mismatchFrames(flaps, ItemId::F_rudder_set), 0);
+    QVERIFY(window.linkStatus()->stateText().contains(QStringLiteral("<b>Replay</b>")));
+    QVERIFY(window.linkStatus()->ageText().contains(QStringLiteral("2026-11-22 07:32:09 UTC")));
+
+    // Read only: a click on a command button changes nothing.
+    auto* nose = window.findChild<FieldButtonGroup*>(QStringLiteral("land_wheels.NOSE"));
+    QVERIFY(nose);
+    auto* retract = nose->findChild<QAbstractButton*>(QStringLiteral("RETRACTED"));
+    QVERIFY(retract);
+    window.showPanel(3);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const rcm::Message shown = command->message();
+    QTest::mouseClick(retract, Qt::LeftButton);
+    QCOMPARE(command->message(), shown);
+
+    // The log's silence after its end is the link's Lost, but no alarm, and
+    // the reports age in the log's time: not stale.
+    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().state, LinkState::Lost, kLinkTimeoutMs);
+    QVERIFY(!window.linkStatus()->alarmActive());
+    QVERIFY(window.linkStatus()->stateText().contains(QStringLiteral("<b>Replay</b>")));
+    window.reported()->checkAge();
+    QVERIFY(!window.reported()->stale());
+
+    // Afterwards the console's own command, and its panels take clicks again.
+    window.disconnectLink();
+    QCOMPARE(command->message(), own);
+    QTest::mouseClick(retract, Qt::LeftButton);
+    QVERIFY(command->message() != own);
 }
 
 void TestMainWindow::rehearsalAgainstUasim()

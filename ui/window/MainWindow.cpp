@@ -1,6 +1,8 @@
 #include "ui/window/MainWindow.h"
 
+#include "codec/message/MessageDecoder.h"
 #include "link/framelog/FrameLogCsv.h"
+#include "link/framelog/ReplayLink.h"
 #include "link/simulation/AirframeLoader.h"
 #include "ui/panels/CameraPanel.h"
 #include "ui/panels/CommandPreview.h"
@@ -41,6 +43,8 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
+#include <QScrollBar>
+#include <QTabBar>
 #include <QTabWidget>
 #include <QThread>
 #include <QVBoxLayout>
@@ -85,12 +89,51 @@ QDockWidget* dock(const QString& title, const QString& name, QWidget* content, Q
 
 const QString kTitle = QStringLiteral("RCM ground control station");
 
+// Makes the widgets inside `area` read only while it is installed on the
+// application: clicks and keys never reach them, so that a replay's panels
+// show the log's command and cannot be edited. Tabs and scroll bars still
+// move, to look around.
+class ReadOnlyArea : public QObject {
+public:
+    ReadOnlyArea(QWidget* area, QObject* parent) : QObject(parent), m_area(area) {}
+
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override
+    {
+        switch (event->type()) {
+            case QEvent::MouseButtonPress:
+            case QEvent::MouseButtonRelease:
+            case QEvent::MouseButtonDblClick:
+            case QEvent::KeyPress:
+            case QEvent::KeyRelease:
+                break;
+            default:
+                return false;
+        }
+        auto* widget = qobject_cast<QWidget*>(watched);
+        if (!widget || !m_area->isAncestorOf(widget) || qobject_cast<QTabBar*>(widget) ||
+            qobject_cast<QScrollBar*>(widget))
+            return false;
+        return true;
+    }
+
+private:
+    QWidget* m_area;
+};
+
 }  // namespace
 
 MainWindow::MainWindow(const Options& options, QWidget* parent)
     : QMainWindow(parent),
       m_command(new CommandState(rcm::Airframe::wellEquipped(), this)),
-      m_reported(new ReportedState(m_command, this)),
+      // In a replay the reports age in the log's time: a pause or the log's
+      // end is not a silence of the aircraft.
+      m_reported(new ReportedState(m_command, this,
+                                   [this] {
+                                       return m_ownCommand ? std::chrono::steady_clock::time_point(
+                                                                 std::chrono::microseconds(m_replayMicros))
+                                                           : std::chrono::steady_clock::now();
+                                   })),
       m_upload(new FlightPlanUpload(this)),
       m_logModel(new FrameLogModel(this)),
       m_session(new ConsoleSession(options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory()
@@ -164,6 +207,10 @@ void MainWindow::buildPanels()
         const int index = m_panels->addTab(scrolled(p.panel), p.title);
         m_panels->setTabToolTip(index, tr("%1 (Alt+%2)").arg(p.title).arg(index + 1));
     }
+    m_replayNote = new QLabel(tr("Replay: the log's commands, read only"));
+    m_replayNote->setContentsMargins(8, 0, 8, 0);
+    m_replayNote->hide();
+    m_panels->setCornerWidget(m_replayNote, Qt::TopRightCorner);
     setCentralWidget(m_panels);
 }
 
@@ -197,7 +244,6 @@ void MainWindow::buildDocks()
     m_linkNote = new QLabel;
     m_linkNote->setWordWrap(true);
     m_linkNote->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    m_linkNote->setStyleSheet(QStringLiteral("color: palette(mid);"));
     linkLayout->addWidget(m_linkNote);
     m_replayControls = new ReplayControls;
     m_replayControls->hide();
@@ -294,6 +340,13 @@ void MainWindow::buildMenus()
         m_viewMenu->addAction(toggle);
     }
 
+    m_viewMenu->addSeparator();
+    m_nightAction = m_viewMenu->addAction(tr("&Night theme"));
+    m_nightAction->setCheckable(true);
+    m_nightAction->setToolTip(tr("Light text on a dark window, for a dim room or a night operation"));
+    connect(m_nightAction, &QAction::toggled, this,
+            [](bool night) { Theme::apply(*qApp, night ? Theme::Kind::Night : Theme::Kind::Day); });
+
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(tr("&About"), this, [this] {
         QMessageBox::about(this, kTitle,
@@ -307,14 +360,17 @@ void MainWindow::buildMenus()
 void MainWindow::restoreSession(const Options& options)
 {
     QString airframe = options.airframePath;
+    Theme::Kind theme = Theme::Kind::Day;
     if (options.restoreSettings) {
         QSettings settings;
         restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
         restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
         m_linkSettings->setSettings(LinkSettings::load(settings));
+        theme = Theme::fromName(settings.value(QStringLiteral("theme")).toString()).value_or(Theme::Kind::Day);
         if (airframe.isEmpty())
             airframe = settings.value(QStringLiteral("airframe")).toString();
     }
+    setTheme(theme);
     if (airframe.isEmpty())
         airframe = AirframeLoader::kDefaultPath;
     QString error;
@@ -331,6 +387,19 @@ void MainWindow::saveSession() const
     settings.setValue(QStringLiteral("window/state"), saveState());
     m_linkSettings->settings().save(settings);
     settings.setValue(QStringLiteral("airframe"), m_airframePath);
+    settings.setValue(QStringLiteral("theme"), Theme::name(theme()));
+}
+
+Theme::Kind MainWindow::theme() const
+{
+    return m_nightAction->isChecked() ? Theme::Kind::Night : Theme::Kind::Day;
+}
+
+void MainWindow::setTheme(Theme::Kind kind)
+{
+    m_nightAction->setChecked(kind == Theme::Kind::Night);
+    // The action applies a change; the first call applies the day theme too.
+    Theme::apply(*qApp, kind);
 }
 
 void MainWindow::closeEvent(QCloseEvent* event)
@@ -475,6 +544,7 @@ void MainWindow::linkStarted(const LinkController* controller)
     connect(controller, &LinkController::frameRejected, this,
             [this](const QString& reason) { showError(tr("A frame was refused: %1").arg(reason)); });
     if (const ReplayLink* r = m_session->replay()) {
+        beginReplay(r);
         connect(r, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
             m_logModel->setPlayedRows(next);
             m_replayControls->setPosition(utc);
@@ -507,6 +577,7 @@ void MainWindow::linkStarted(const LinkController* controller)
 
 void MainWindow::linkStopped()
 {
+    endReplay();
     m_upload->cancel();
     m_replayControls->hide();
     m_pauseAction->setEnabled(false);
@@ -518,6 +589,61 @@ void MainWindow::linkStopped()
     showNotConnected();
     updateTitle();
     updateLinkControls();
+}
+
+void MainWindow::beginReplay(const ReplayLink* replay)
+{
+    m_ownCommand = m_command->message();
+    m_replayMicros = replay->startMicros();
+    m_reported->clear();
+    m_status->setReplay(true);
+    m_status->setReplayTime(m_replayMicros);
+    m_replayNote->show();
+    m_replayReadOnly = new ReadOnlyArea(m_panels, this);
+    qApp->installEventFilter(m_replayReadOnly);
+    // On the link's thread, as each record plays: a sent frame is decoded
+    // there, and the window hears of every record (its time) before the
+    // worker's report of the same frame.
+    connect(
+        replay, &ReplayLink::frameReplayed, replay,
+        [this](const FrameRecord& record) {
+            std::optional<rcm::Message> commanded;
+            if (record.direction == FrameDirection::Sent) {
+                rcm::DecodeResult r = rcm::decodeFrame(std::span(
+                    reinterpret_cast<const std::uint8_t*>(record.bytes.constData()), std::size_t(record.bytes.size())));
+                // A keyed log's frames read as noise without the key: shown only when read cleanly.
+                if (r.ok() && r.diagnostics.empty())
+                    commanded = std::move(r.message);
+            }
+            QMetaObject::invokeMethod(
+                this,
+                [this, utc = record.utcMicros, commanded] { replayedFrame(utc, commanded); },
+                Qt::QueuedConnection);
+        },
+        Qt::DirectConnection);
+}
+
+void MainWindow::replayedFrame(qint64 utcMicros, const std::optional<rcm::Message>& commanded)
+{
+    if (!m_ownCommand)
+        return;  // the replay ended meanwhile
+    m_replayMicros = utcMicros;
+    m_status->setReplayTime(utcMicros);
+    if (commanded)
+        m_command->replaceMessage(*commanded);
+}
+
+void MainWindow::endReplay()
+{
+    if (!m_ownCommand)
+        return;
+    delete m_replayReadOnly;  // removes itself from the application
+    m_replayReadOnly = nullptr;
+    m_replayNote->hide();
+    m_status->setReplay(false);
+    m_reported->clear();
+    m_command->replaceMessage(*m_ownCommand);
+    m_ownCommand.reset();
 }
 
 void MainWindow::actionFailed(const QString& reason)

@@ -8,13 +8,16 @@
 // change it.
 
 #include "codec/message/Airframe.h"
+#include "link/framelog/FrameLog.h"
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkSettings.h"
 #include "link/session/LinkStatistics.h"
+#include "ui/window/Theme.h"
 
 #include <QMainWindow>
 
 #include <memory>
+#include <optional>
 
 class CommandPreview;
 class CommandState;
@@ -29,6 +32,7 @@ class QMenu;
 class QPushButton;
 class QTabWidget;
 class ReplayControls;
+class ReplayLink;
 class ReportedState;
 class StatusBarWidget;
 class VoiceChannel;
@@ -53,6 +57,7 @@ public:
     ~MainWindow() override;
 
     CommandState* command() const { return m_command; }
+    ReportedState* reported() const { return m_reported; }
     FrameLogModel* frameLog() const { return m_logModel; }
     FlightPlanWidget* flightPlan() const { return m_flightPlan; }
     StatusBarWidget* linkStatus() const { return m_status; }
@@ -62,6 +67,10 @@ public:
     LinkStatistics statistics() const { return m_session->statistics(); }
     bool isLinkRunning() const { return m_session->isRunning(); }
     QString sessionLogPath() const { return m_session->sessionLogPath(); }
+
+    Theme::Kind theme() const;
+    // Applies `kind` to the whole application and ticks View > Night theme to match.
+    void setTheme(Theme::Kind kind);
 
     // False, with the reason, when the airframe file cannot be used.
     bool loadAirframe(const QString& path, QString* error = nullptr);
@@ -104,6 +113,11 @@ private:
     void linkStarted(const LinkController* controller);
     void linkStopped();
     void replayIndexed(const QString& path);
+    // A replay's panels show what its log commanded, read only; the
+    // console's own command comes back when it ends.
+    void beginReplay(const ReplayLink* replay);
+    void endReplay();
+    void replayedFrame(qint64 utcMicros, const std::optional<rcm::Message>& commanded);
     void actionFailed(const QString& reason);
     void commandChanged();
     void messageReceived(const ReceivedMessage& received);
@@ -144,6 +158,13 @@ private:
     QAction* m_disconnectAction = nullptr;
     QAction* m_rehearsalAction = nullptr;
     QAction* m_pauseAction = nullptr;
+    QAction* m_nightAction = nullptr;
 
     QString m_airframePath;
+    // While a replay plays: the console's own command, kept aside, and the
+    // log's time, which the reports' age is counted in.
+    std::optional<rcm::Message> m_ownCommand;
+    qint64 m_replayMicros = 0;
+    QObject* m_replayReadOnly = nullptr;  // an application event filter
+    QLabel* m_replayNote = nullptr;
 };
