@@ -8,12 +8,13 @@
 //   gcs ... --key FILE            the secure link with the aircraft's key file
 //                                 (with --rehearsal, uasim gets it too)
 //   gcs --screenshot FILE.png     lay the window out, save a picture of it, exit
-//
+//     [--screenshot-after S]      ... once the link given with it ran S seconds
 // Start-up, memory and GUI stall measurements: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
+#include "ui/window/Theme.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -76,7 +77,13 @@ int main(int argc, char* argv[])
                                  QStringLiteral("file"));
     const QCommandLineOption size(QStringLiteral("size"), QStringLiteral("Window size for --screenshot."),
                                   QStringLiteral("WxH"), QStringLiteral("1600x1000"));
-    parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size});
+    const QCommandLineOption after(QStringLiteral("screenshot-after"),
+                                   QStringLiteral("Seconds the link runs before the picture (default 0)."),
+                                   QStringLiteral("s"), QStringLiteral("0"));
+    const QCommandLineOption night(QStringLiteral("night"), QStringLiteral("The night theme."));
+    const QCommandLineOption page(QStringLiteral("page"), QStringLiteral("The tab shown, 1 to 9 (Alt+1 ..)."),
+                                  QStringLiteral("n"), QStringLiteral("1"));
+    parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, after, night, page});
     parser.process(app);
 
     const auto usage = [&](const QString& message) {
@@ -110,18 +117,18 @@ int main(int argc, char* argv[])
     if (parser.isSet(airframe) && !AirframeLoader::load(options.airframePath, &error))
         return usage(error);
     MainWindow window(options);
-
+    if (parser.isSet(night))
+        window.setTheme(Theme::Kind::Night);
+    window.showPanel(parser.value(page).toInt() - 1);
     if (parser.isSet(screenshot)) {
         window.resize(windowSize);
-        window.show();
-        // After the first pass of the event loop, so that docks and layouts have settled.
-        QTimer::singleShot(0, &window, [&] {
+        // After the first pass of the event loop (docks and layouts settled), or once the link ran that long.
+        QTimer::singleShot(parser.value(after).toInt() * 1000, &window, [&] {
             const bool saved = window.grab().save(parser.value(screenshot));
             if (!saved)
                 say(QStringLiteral("cannot save %1").arg(parser.value(screenshot)));
             QCoreApplication::exit(saved ? 0 : 1);
         });
-        return app.exec();
     }
     window.show();
     if (parser.isSet(key)) {

@@ -26,6 +26,13 @@
 #include "ui/window/MainWindow.h"
 #include "ui/plan/MissionPlan.h"
 #include "ui/window/StatusBarWidget.h"
+#include "ui/alerts/ConsoleAlerts.h"
+#include "ui/alerts/ErrorBanner.h"
+#include "ui/alerts/LinkAlarm.h"
+#include "ui/eventlog/EventLogModel.h"
+#include "ui/overview/OverviewPage.h"
+#include <QTextDocumentFragment>
+#include <QUdpSocket>
 
 #include <QAction>
 #include <QApplication>
@@ -104,6 +111,7 @@ private slots:
     void rehearsalAgainstUasim();
     void keyedUploadUses199ByteSections();
     void refusedKeyFileSaysWhy();
+    void failedOpenSaysWhy();
     void secureRehearsalWithMatchingKeys();
     void wrongKeyIsRejectedAsForged();
     void asksBeforeEndingALiveLink_data();
@@ -149,10 +157,11 @@ void TestMainWindow::buildsWithTheDefaultAirframe()
     MainWindow window(options());
     compareAirframes(window.command()->airframe(), rcm::Airframe::wellEquipped());
     QVERIFY(window.windowTitle().contains(QStringLiteral("Well-equipped UA")));
-    // The eight panels, each behind its Alt+digit.
-    auto* panels = window.findChild<QTabWidget*>();
+    // The overview and the eight panels, each behind its Alt+digit.
+    auto* panels = window.findChild<QTabWidget*>(QStringLiteral("panels"));
     QVERIFY(panels);
-    QCOMPARE(panels->count(), 8);
+    QCOMPARE(panels->count(), 9);
+    QCOMPARE(panels->widget(0), window.overview());
     window.showPanel(6);
     QCOMPARE(panels->currentIndex(), 6);
     // The docks the layout is saved by.
@@ -161,7 +170,7 @@ void TestMainWindow::buildsWithTheDefaultAirframe()
         docks.insert(d->objectName());
     QCOMPARE(docks, (std::set<QString>{QStringLiteral("linkDock"), QStringLiteral("previewDock"),
                                        QStringLiteral("frameLogDock"), QStringLiteral("flightPlanDock"),
-                                       QStringLiteral("voiceDock")}));
+                                       QStringLiteral("voiceDock"), QStringLiteral("eventsDock")}));
     window.resize(1400, 900);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
@@ -492,6 +501,16 @@ void TestMainWindow::replaysAFrameLog()
     QTRY_COMPARE_WITH_TIMEOUT(window.statistics().framesReceived, quint64(20), kLinkTimeoutMs);
     QCOMPARE(window.frameLog()->playedRows(), 20);
     QCOMPARE(window.statistics().framesSent, quint64(0));  // a replay sends nothing
+    // It says Replay with the log's own time, and its end raises no alarm.
+    const auto plain = [](const QString& html) { return QTextDocumentFragment::fromHtml(html).toPlainText(); };
+    QVERIFY2(plain(window.linkStatus()->stateText()).contains(QStringLiteral("Replay")),
+             qPrintable(window.linkStatus()->stateText()));
+    QCOMPARE(plain(window.linkStatus()->ageText()), QStringLiteral("Log time 2026-11-22 07:32:09 UTC"));
+    QCOMPARE(window.overview()->figure(QStringLiteral("state")), QStringLiteral("Replay"));
+    QCOMPARE(window.overview()->figure(QStringLiteral("age")), QStringLiteral("log 07:32:09 UTC"));
+    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().state, LinkState::Lost, kLinkTimeoutMs);
+    QVERIFY(!window.alerts()->alarm()->isActive());
+    QVERIFY(!window.linkStatus()->alarmActive());
     window.disconnectLink();
     QVERIFY(!window.isLinkRunning());
 }
@@ -547,7 +566,9 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
     QVERIFY(nose);
     auto* retract = nose->findChild<QAbstractButton*>(QStringLiteral("RETRACTED"));
     QVERIFY(retract);
-    window.showPanel(3);
+    for (int i = 0; i < window.panels()->count(); ++i)
+        if (window.panels()->tabText(i) == QStringLiteral("Landing gear"))
+            window.showPanel(i);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     const rcm::Message shown = command->message();
@@ -714,6 +735,11 @@ void TestMainWindow::refusedKeyFileSaysWhy()
     const QString message = window.statusBar()->currentMessage();
     QVERIFY2(message.contains(QStringLiteral("chmod 600")), qPrintable(message));
     QVERIFY2(message.contains(QStringLiteral("shared.key")), qPrintable(message));
+    // On the banner, and in the event log as the key's.
+    QCOMPARE(window.alerts()->errorBanner()->currentText(), message);
+    const EventLogModel* events = window.alerts()->model();
+    QCOMPARE(events->event(events->rowCount() - 1).text, message);
+    QCOMPARE(events->event(events->rowCount() - 1).source, EventSource::Key);
     // The rehearsal checks the key before it starts uasim.
     window.statusBar()->clearMessage();
     window.linkSettings()->setSettings(s);
@@ -721,6 +747,40 @@ void TestMainWindow::refusedKeyFileSaysWhy()
     QTRY_COMPARE_WITH_TIMEOUT(failed.count(), 2, kLinkTimeoutMs);
     QVERIFY(!window.isLinkRunning());
     QVERIFY(window.statusBar()->currentMessage().contains(QStringLiteral("chmod 600")));
+}
+
+// A serial port that does not exist and a UDP port already in use: the
+// reason, word for word, on the banner and in the event log, not only stderr.
+void TestMainWindow::failedOpenSaysWhy()
+{
+    QUdpSocket holder;
+    QVERIFY(holder.bind(QHostAddress::LocalHost, 0));
+    MainWindow window(options());
+    LinkSettings serial;
+    serial.transport = LinkSettings::Transport::Serial;
+    serial.serialPort = QStringLiteral("/dev/rcm-no-such-port");
+    LinkSettings udp;
+    udp.localAddress = QStringLiteral("127.0.0.1");
+    udp.localPort = holder.localPort();
+    udp.remoteAddress = QStringLiteral("127.0.0.1");
+    udp.remotePort = 9;
+    const QString reasons[] = {
+        QStringLiteral("/dev/rcm-no-such-port: cannot open: No such file or directory; retrying"),
+        QStringLiteral("udp: cannot bind 127.0.0.1:%1: The bound address is already in use").arg(holder.localPort()),
+    };
+    int i = 0;
+    for (const LinkSettings& s : {serial, udp}) {
+        window.connectWith(s);
+        QTRY_COMPARE_WITH_TIMEOUT(window.alerts()->errorBanner()->currentText(), reasons[i], kLinkTimeoutMs);
+        const EventLogModel* events = window.alerts()->model();
+        int found = 0;
+        for (int row = 0; row < events->rowCount(); ++row)
+            found += events->event(row).text == reasons[i] && events->event(row).source == EventSource::Link &&
+                     events->event(row).severity == EventSeverity::Error;
+        QCOMPARE(found, 1);
+        ++i;
+    }
+    window.disconnectLink();
 }
 
 void TestMainWindow::secureRehearsalWithMatchingKeys()

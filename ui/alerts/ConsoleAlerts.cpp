@@ -69,7 +69,7 @@ EventLogView* ConsoleAlerts::eventView()
     return m_view;
 }
 
-void ConsoleAlerts::follow(LinkController* controller)
+void ConsoleAlerts::follow(const LinkController* controller)
 {
     connect(controller, &LinkController::errorOccurred, this,
             [this](const QString& message) { error(EventSource::Link, message); });

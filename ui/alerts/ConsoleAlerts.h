@@ -45,7 +45,7 @@ public:
 
     // The link's errors and statistics reach the event log, the banner and
     // the alarm. The connections end with the controller.
-    void follow(LinkController* controller);
+    void follow(const LinkController* controller);
 
 public slots:
     void info(EventSource source, const QString& text);

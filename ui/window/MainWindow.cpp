@@ -3,6 +3,9 @@
 #include "codec/message/MessageDecoder.h"
 #include "link/framelog/FrameLogCsv.h"
 #include "link/framelog/ReplayLink.h"
+#include "ui/alerts/ConsoleAlerts.h"
+#include "ui/eventlog/EventLogView.h"
+#include "ui/overview/OverviewPage.h"
 #include "link/simulation/AirframeLoader.h"
 #include "ui/panels/CameraPanel.h"
 #include "ui/panels/CommandPreview.h"
@@ -138,9 +141,11 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
       m_logModel(new FrameLogModel(this)),
       m_session(new ConsoleSession(options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory()
                                                                        : options.frameLogDirectory,
-                                   this))
+                                   this)),
+      m_alerts(new ConsoleAlerts(nullptr, this))
 {
     LinkWorker::registerMetaTypes();
+    m_alerts->keepIn(m_session->frameLogDirectory());
     setWindowTitle(kTitle);
     setDockOptions(QMainWindow::AnimatedDocks | QMainWindow::AllowTabbedDocks);
     buildPanels();
@@ -167,8 +172,11 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_session, &ConsoleSession::linkStopped, this, &MainWindow::linkStopped);
     connect(m_session, &ConsoleSession::replayIndexed, this, &MainWindow::replayIndexed);
     connect(m_session, &ConsoleSession::failed, this, &MainWindow::actionFailed);
-    connect(m_session, &ConsoleSession::warning, this, &MainWindow::showError);
+    connect(m_session, &ConsoleSession::warning, this,
+            [this](const QString& message) { showError(message, EventSource::Link); });
     connect(m_session, &ConsoleSession::starting, m_linkNote, &QLabel::setText);
+    connect(m_session, &ConsoleSession::starting, this,
+            [this](const QString& what) { m_alerts->info(EventSource::Link, what); });
 
     restoreSession(options);
     commandChanged();
@@ -186,6 +194,7 @@ MainWindow::~MainWindow()
 void MainWindow::buildPanels()
 {
     m_panels = new QTabWidget;
+    m_panels->setObjectName(QStringLiteral("panels"));
     m_panels->setDocumentMode(true);
     m_panels->setUsesScrollButtons(true);
     // Alt+1 .. Alt+8 in the View menu bring each up; the tabs themselves
@@ -194,6 +203,7 @@ void MainWindow::buildPanels()
         QWidget* panel;
         QString title;
     } panels[] = {
+        {m_overview = new OverviewPage(m_command, m_reported), tr("Overview")},
         {new HeaderPanel(m_command, m_reported), tr("Header")},
         {new EnginePanel(m_command, m_reported), tr("Engines")},
         {new FlapsPanel(m_command, m_reported), tr("Flaps")},
@@ -204,14 +214,22 @@ void MainWindow::buildPanels()
         {new CameraPanel(m_command, m_reported), tr("Cameras")},
     };
     for (const auto& p : panels) {
-        const int index = m_panels->addTab(scrolled(p.panel), p.title);
+        // The overview fits itself to the width and scrolls its own cards.
+        const int index = m_panels->addTab(p.panel == m_overview ? p.panel : scrolled(p.panel), p.title);
         m_panels->setTabToolTip(index, tr("%1 (Alt+%2)").arg(p.title).arg(index + 1));
     }
     m_replayNote = new QLabel(tr("Replay: the log's commands, read only"));
     m_replayNote->setContentsMargins(8, 0, 8, 0);
     m_replayNote->hide();
     m_panels->setCornerWidget(m_replayNote, Qt::TopRightCorner);
-    setCentralWidget(m_panels);
+    // The link-loss alarm and the errors above the panels, where the operator is looking.
+    auto* centre = new QWidget;
+    auto* centreLayout = new QVBoxLayout(centre);
+    centreLayout->setContentsMargins(0, 0, 0, 0);
+    centreLayout->setSpacing(0);
+    centreLayout->addWidget(m_alerts->banners());
+    centreLayout->addWidget(m_panels, 1);
+    setCentralWidget(centre);
 }
 
 void MainWindow::buildDocks()
@@ -261,8 +279,10 @@ void MainWindow::buildDocks()
     m_preview = new CommandPreview;
     m_logView = new FrameLogView(m_logModel);
     m_flightPlan = new FlightPlanWidget(m_upload);
-    connect(m_flightPlan, &FlightPlanWidget::message, this,
-            [this](const QString& text) { statusBar()->showMessage(text, 8000); });
+    connect(m_flightPlan, &FlightPlanWidget::message, this, [this](const QString& text) {
+        statusBar()->showMessage(text, 8000);
+        m_alerts->info(EventSource::Plan, text);
+    });
 
     QDockWidget* link = dock(tr("Link"), QStringLiteral("linkDock"), linkBox, this);
     QDockWidget* preview = dock(tr("Next frame"), QStringLiteral("previewDock"), m_preview, this);
@@ -270,6 +290,7 @@ void MainWindow::buildDocks()
     QDockWidget* plan = dock(tr("Flight plan"), QStringLiteral("flightPlanDock"), m_flightPlan, this);
     m_voice = new VoiceChannel(this);
     QDockWidget* voice = dock(tr("Voice"), QStringLiteral("voiceDock"), new PushToTalkWidget(m_voice), this);
+    QDockWidget* events = dock(tr("Events"), QStringLiteral("eventsDock"), m_alerts->eventView(), this);
     // The panels take the full width they need; the link sits beside them,
     // the log and the next frame share the bottom.
     setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
@@ -279,7 +300,10 @@ void MainWindow::buildDocks()
     addDockWidget(Qt::BottomDockWidgetArea, log);
     splitDockWidget(log, preview, Qt::Horizontal);
     tabifyDockWidget(log, plan);
+    // The events in front beside the frame log; the next frame behind them.
+    tabifyDockWidget(preview, events);
     log->raise();
+    events->raise();
     resizeDocks({link, voice}, {230, 230}, Qt::Horizontal);
     resizeDocks({log, preview}, {900, 600}, Qt::Horizontal);
     resizeDocks({log}, {540}, Qt::Vertical);
@@ -531,6 +555,9 @@ void MainWindow::linkStarted(const LinkController* controller)
             m_logModel->setSessionLog(logPath);
     }
     connect(controller, &LinkController::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
+    connect(controller, &LinkController::statisticsChanged, m_overview, &OverviewPage::setStatistics);
+    // Its errors to the event log and the banner, its silences to the alarm.
+    m_alerts->follow(controller);
     // A live session's frames become rows as the link logs them; a replay's
     // rows are its log file, opened already.
     if (!replay)
@@ -538,16 +565,22 @@ void MainWindow::linkStarted(const LinkController* controller)
     connect(controller, &LinkController::stateChanged, m_status, &StatusBarWidget::setState);
     connect(controller, &LinkController::messageReceived, this, &MainWindow::messageReceived);
     connect(controller, &LinkController::frameSent, this, &MainWindow::frameSent);
-    connect(controller, &LinkController::errorOccurred, this, &MainWindow::showError);
-    connect(controller, &LinkController::commandRejected, this,
-            [this](const QString& reasons) { showError(tr("The link refused the command: %1").arg(reasons)); });
-    connect(controller, &LinkController::frameRejected, this,
-            [this](const QString& reason) { showError(tr("A frame was refused: %1").arg(reason)); });
+    connect(controller, &LinkController::commandRejected, this, [this](const QString& reasons) {
+        showError(tr("The link refused the command: %1").arg(reasons), EventSource::Link);
+    });
+    // A warning in the event log, not the banner: a forger could send one a
+    // second; the status bar counts them by reason.
+    connect(controller, &LinkController::frameRejected, this, [this](const QString& reason) {
+        statusBar()->showMessage(tr("A frame was refused: %1").arg(reason), 8000);
+        m_alerts->warning(EventSource::Link, tr("A frame was refused: %1").arg(reason));
+    });
     if (const ReplayLink* r = m_session->replay()) {
         beginReplay(r);
         connect(r, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
             m_logModel->setPlayedRows(next);
             m_replayControls->setPosition(utc);
+            m_status->setReplayTime(utc);
+            m_overview->setReplayTime(utc);
             if (m_logView->isFollowing() && next > 0)
                 m_logView->scrollToSourceRow(next - 1);
         });
@@ -568,6 +601,15 @@ void MainWindow::linkStarted(const LinkController* controller)
     m_status->setKeyFingerprint(m_session->keyFingerprint());
     m_status->setStatistics(LinkStatistics());
     m_flightPlan->setLinkReady(!replay);
+    // A replay says so, with the log's own time, and raises no link alarm.
+    m_alerts->setReplay(replay);
+    m_status->setReplay(replay);
+    m_overview->setReplay(replay);
+    m_alerts->info(EventSource::Link, logPath.isEmpty() ? tr("Started: %1").arg(description)
+                                                        : tr("Started: %1; frame log %2")
+                                                              .arg(description, QDir::toNativeSeparators(logPath)));
+    if (!m_session->keyFingerprint().isEmpty())
+        m_alerts->info(EventSource::Key, tr("Secure link, key fingerprint %1").arg(m_session->keyFingerprint()));
     m_linkNote->setText(logPath.isEmpty()
                             ? description
                             : tr("%1\nFrame log: %2").arg(description, QDir::toNativeSeparators(logPath)));
@@ -586,6 +628,12 @@ void MainWindow::linkStopped()
     m_status->setLinkDescription(QString());
     m_status->setKeyFingerprint(QString());
     m_status->setStatistics(LinkStatistics());
+    m_status->setReplay(false);
+    m_overview->setStatistics(LinkStatistics());
+    m_overview->setReplay(false);
+    m_alerts->setStatistics(LinkStatistics());  // closed: no alarm
+    m_alerts->setReplay(false);
+    m_alerts->info(EventSource::Link, tr("Stopped"));
     showNotConnected();
     updateTitle();
     updateLinkControls();
@@ -596,8 +644,6 @@ void MainWindow::beginReplay(const ReplayLink* replay)
     m_ownCommand = m_command->message();
     m_replayMicros = replay->startMicros();
     m_reported->clear();
-    m_status->setReplay(true);
-    m_status->setReplayTime(m_replayMicros);
     m_replayNote->show();
     m_replayReadOnly = new ReadOnlyArea(m_panels, this);
     qApp->installEventFilter(m_replayReadOnly);
@@ -628,7 +674,6 @@ void MainWindow::replayedFrame(qint64 utcMicros, const std::optional<rcm::Messag
     if (!m_ownCommand)
         return;  // the replay ended meanwhile
     m_replayMicros = utcMicros;
-    m_status->setReplayTime(utcMicros);
     if (commanded)
         m_command->replaceMessage(*commanded);
 }
@@ -640,7 +685,6 @@ void MainWindow::endReplay()
     delete m_replayReadOnly;  // removes itself from the application
     m_replayReadOnly = nullptr;
     m_replayNote->hide();
-    m_status->setReplay(false);
     m_reported->clear();
     m_command->replaceMessage(*m_ownCommand);
     m_ownCommand.reset();
@@ -649,7 +693,8 @@ void MainWindow::endReplay()
 void MainWindow::actionFailed(const QString& reason)
 {
     m_linkNote->setText(reason);
-    showError(reason);
+    // Key files are refused here too ("the key file is refused: ..."): said as the key's.
+    showError(reason, reason.contains(QStringLiteral("key file")) ? EventSource::Key : EventSource::Link);
     updateLinkControls();
 }
 
@@ -751,8 +796,8 @@ void MainWindow::chooseAirframe()
         loadAirframe(path);
 }
 
-void MainWindow::showError(const QString& message)
+void MainWindow::showError(const QString& message, EventSource source)
 {
     statusBar()->showMessage(message, 10000);
-    qWarning("%s", qPrintable(message));
+    m_alerts->error(source, message);
 }

@@ -8,6 +8,7 @@
 // change it.
 
 #include "codec/message/Airframe.h"
+#include "link/eventlog/ConsoleEvent.h"
 #include "link/framelog/FrameLog.h"
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkSettings.h"
@@ -20,6 +21,8 @@
 #include <optional>
 
 class CommandPreview;
+class ConsoleAlerts;
+class OverviewPage;
 class CommandState;
 class FlightPlanUpload;
 class FlightPlanWidget;
@@ -58,11 +61,15 @@ public:
 
     CommandState* command() const { return m_command; }
     ReportedState* reported() const { return m_reported; }
+    QTabWidget* panels() const { return m_panels; }
     FrameLogModel* frameLog() const { return m_logModel; }
     FlightPlanWidget* flightPlan() const { return m_flightPlan; }
     StatusBarWidget* linkStatus() const { return m_status; }
     LinkSettingsWidget* linkSettings() const { return m_linkSettings; }
     ConsoleSession* session() const { return m_session; }
+    // The event log, its dock, the error banner and the link-loss alarm.
+    ConsoleAlerts* alerts() const { return m_alerts; }
+    OverviewPage* overview() const { return m_overview; }
     // Statistics of the running link; the default ones when none runs.
     LinkStatistics statistics() const { return m_session->statistics(); }
     bool isLinkRunning() const { return m_session->isRunning(); }
@@ -132,16 +139,19 @@ private:
     void chooseFrameLog();
     void exportCsv();
     void chooseAirframe();
-    void showError(const QString& message);
+    // On the error banner and in the event log (and, briefly, the status bar).
+    void showError(const QString& message, EventSource source = EventSource::Console);
 
     CommandState* m_command;
     ReportedState* m_reported;
     FlightPlanUpload* m_upload;
     FrameLogModel* m_logModel;
     ConsoleSession* m_session;
+    ConsoleAlerts* m_alerts;
     VoiceChannel* m_voice = nullptr;  // voice beside the commands, when the operator turns it on
 
     QTabWidget* m_panels = nullptr;
+    OverviewPage* m_overview = nullptr;
     FrameLogView* m_logView = nullptr;
     CommandPreview* m_preview = nullptr;
     FlightPlanWidget* m_flightPlan = nullptr;
