@@ -46,12 +46,14 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
+#include <QScreen>
 #include <QScrollBar>
 #include <QTabBar>
 #include <QTabWidget>
 #include <QThread>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <memory>
 
 namespace {
@@ -178,6 +180,7 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_session, &ConsoleSession::starting, this,
             [this](const QString& what) { m_alerts->info(EventSource::Link, what); });
 
+    resize(defaultSize());
     restoreSession(options);
     commandChanged();
     showNotConnected();
@@ -291,12 +294,32 @@ void MainWindow::buildDocks()
     m_voice = new VoiceChannel(this);
     QDockWidget* voice = dock(tr("Voice"), QStringLiteral("voiceDock"), new PushToTalkWidget(m_voice), this);
     QDockWidget* events = dock(tr("Events"), QStringLiteral("eventsDock"), m_alerts->eventView(), this);
-    // The panels take the full width they need; the link sits beside them,
-    // the log and the next frame share the bottom.
-    setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
+    for (QDockWidget* d : {link, voice, log, plan, preview, events})
+        m_docks.push_back(d);
+    placeDocks();
+}
+
+void MainWindow::placeDocks()
+{
+    QDockWidget* const link = m_docks[0];
+    QDockWidget* const voice = m_docks[1];
+    QDockWidget* const log = m_docks[2];
+    QDockWidget* const plan = m_docks[3];
+    QDockWidget* const preview = m_docks[4];
+    QDockWidget* const events = m_docks[5];
+    for (QDockWidget* d : m_docks) {
+        d->setFloating(false);
+        d->show();
+    }
+    // The link and the voice down the left, full height, so that neither is
+    // squeezed; the panels take the rest of the width, so that their tabs
+    // all show at 1366 pixels; the frame log and the events share the bottom.
+    setCorner(Qt::TopLeftCorner, Qt::LeftDockWidgetArea);
+    setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
+    setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
     setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
     addDockWidget(Qt::LeftDockWidgetArea, link);
-    addDockWidget(Qt::RightDockWidgetArea, voice);
+    splitDockWidget(link, voice, Qt::Vertical);
     addDockWidget(Qt::BottomDockWidgetArea, log);
     splitDockWidget(log, preview, Qt::Horizontal);
     tabifyDockWidget(log, plan);
@@ -304,9 +327,38 @@ void MainWindow::buildDocks()
     tabifyDockWidget(preview, events);
     log->raise();
     events->raise();
-    resizeDocks({link, voice}, {230, 230}, Qt::Horizontal);
-    resizeDocks({log, preview}, {900, 600}, Qt::Horizontal);
-    resizeDocks({log}, {540}, Qt::Vertical);
+    // In proportion to the window: the panels keep the larger part of the
+    // height, the frame log enough for a dozen rows.
+    const QSize area = size();
+    resizeDocks({link}, {std::clamp(area.width() / 5, 250, 320)}, Qt::Horizontal);
+    resizeDocks({log, preview}, {area.width() * 3 / 5, area.width() * 2 / 5}, Qt::Horizontal);
+    resizeDocks({log}, {area.height() * 2 / 5}, Qt::Vertical);
+}
+
+QSize MainWindow::defaultSize() const
+{
+    // Most of the screen, up to what the console can use.
+    const QRect screen = this->screen() ? this->screen()->availableGeometry() : QRect(0, 0, 1366, 768);
+    return QSize(std::min(screen.width(), 1600), std::min(screen.height(), 1000));
+}
+
+void MainWindow::resetLayout()
+{
+    QSettings settings;
+    settings.remove(QStringLiteral("window/geometry"));
+    settings.remove(QStringLiteral("window/state"));
+    showNormal();
+    resize(defaultSize());
+    placeDocks();
+}
+
+void MainWindow::showEvent(QShowEvent* event)
+{
+    QMainWindow::showEvent(event);
+    // The first time at the window's real size, unless the last session's layout was restored.
+    if (!m_layoutPlaced && !m_layoutRestored)
+        placeDocks();
+    m_layoutPlaced = true;
 }
 
 void MainWindow::buildMenus()
@@ -365,6 +417,8 @@ void MainWindow::buildMenus()
     }
 
     m_viewMenu->addSeparator();
+    QAction* reset = m_viewMenu->addAction(tr("&Reset layout"), this, &MainWindow::resetLayout);
+    reset->setToolTip(tr("Every pane back in its first place, the window at its first size"));
     m_nightAction = m_viewMenu->addAction(tr("&Night theme"));
     m_nightAction->setCheckable(true);
     m_nightAction->setToolTip(tr("Light text on a dark window, for a dim room or a night operation"));
@@ -387,8 +441,8 @@ void MainWindow::restoreSession(const Options& options)
     Theme::Kind theme = Theme::Kind::Day;
     if (options.restoreSettings) {
         QSettings settings;
-        restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
-        restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+        m_layoutRestored = restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray()) &&
+                           restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
         m_linkSettings->setSettings(LinkSettings::load(settings));
         theme = Theme::fromName(settings.value(QStringLiteral("theme")).toString()).value_or(Theme::Kind::Day);
         if (airframe.isEmpty())

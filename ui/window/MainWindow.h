@@ -19,6 +19,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 class CommandPreview;
 class ConsoleAlerts;
@@ -30,6 +31,7 @@ class FrameLogModel;
 class FrameLogView;
 class LinkSettingsWidget;
 class QActionGroup;
+class QDockWidget;
 class QLabel;
 class QMenu;
 class QPushButton;
@@ -76,6 +78,8 @@ public:
     QString sessionLogPath() const { return m_session->sessionLogPath(); }
 
     Theme::Kind theme() const;
+    // The first start's size: the screen's available area, up to 1600x1000.
+    QSize defaultSize() const;
     // Applies `kind` to the whole application and ticks View > Night theme to match.
     void setTheme(Theme::Kind kind);
 
@@ -98,6 +102,9 @@ public slots:
     void startRehearsalWith(const QString& uasimProgram);
     void openFrameLog(const QString& path);
     void showPanel(int index);
+    // View > Reset layout: every dock in its first place, the window at
+    // defaultSize(), and the saved layout forgotten.
+    void resetLayout();
     void setReplayPaused(bool paused);
     // 0.25 to 10 times the logged pace.
     void setReplaySpeed(double speed);
@@ -108,10 +115,12 @@ signals:
 
 protected:
     void closeEvent(QCloseEvent* event) override;
+    void showEvent(QShowEvent* event) override;
 
 private:
     void buildPanels();
     void buildDocks();
+    void placeDocks();
     void buildMenus();
     void restoreSession(const Options& options);
     void saveSession() const;
@@ -171,6 +180,9 @@ private:
     QAction* m_nightAction = nullptr;
 
     QString m_airframePath;
+    std::vector<QDockWidget*> m_docks;  // in placeDocks()' order
+    bool m_layoutRestored = false;
+    bool m_layoutPlaced = false;
     // While a replay plays: the console's own command, kept aside, and the
     // log's time, which the reports' age is counted in.
     std::optional<rcm::Message> m_ownCommand;
