@@ -46,7 +46,12 @@
 #include <QSettings>
 #include <QSignalSpy>
 #include <QStatusBar>
+#include <QScrollArea>
+#include <QScrollBar>
+#include <QTabBar>
 #include <QTabWidget>
+#include <QWheelEvent>
+#include <QComboBox>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
@@ -118,6 +123,9 @@ private slots:
     void asksBeforeEndingALiveLink();
     void quitEndsTheLinkOnceConfirmed();
     void linkButtonsNeverHoldTheFocus();
+    void fitsASmallScreen();
+    void resetLayoutRestoresTheDefault();
+    void nightThemeIsKept();
 
 private:
     MainWindow::Options options() const;
@@ -1002,4 +1010,116 @@ void TestMainWindow::linkButtonsNeverHoldTheFocus()
 }
 
 QTEST_MAIN(TestMainWindow)
+void TestMainWindow::fitsASmallScreen()
+{
+    MainWindow window(options());
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QCOMPARE(window.size(), QSize(1366, 768));
+
+    // Every tab shows, no panel scrolls sideways, the link pane is not squeezed.
+    QTabWidget* panels = window.panels();
+    QVERIFY(panels->tabBar()->width() >= panels->tabBar()->sizeHint().width());
+    for (int i = 0; i < panels->count(); ++i) {
+        window.showPanel(i);
+        QCoreApplication::processEvents();
+        for (QScrollBar* bar : panels->currentWidget()->findChildren<QScrollBar*>())
+            if (bar->orientation() == Qt::Horizontal)
+                QVERIFY2(!bar->isVisible(), qPrintable(panels->tabText(i)));
+    }
+    QVERIFY(window.linkSettings()->width() >= window.linkSettings()->minimumSizeHint().width());
+
+    // A 2,000-character error (an airframe file deep down) wraps: the window keeps its width.
+    QString path = m_dir.path();
+    for (int i = 0; i < 9; ++i)
+        path += QLatin1Char('/') + QString(240, QLatin1Char('d'));
+    path += QStringLiteral("/airframe.json");
+    QVERIFY(path.size() > 2000);
+    QString error;
+    QVERIFY(!window.loadAirframe(path, &error));
+    QVERIFY(error.contains(path));
+    QVERIFY(!window.loadAirframe(path));  // shown: the banner and the event log
+    QCoreApplication::processEvents();
+    QCOMPARE(window.width(), 1366);
+    QVERIFY(window.sizeHint().width() <= 1366);
+
+    // A wheel turned over the link pane scrolls; it never switches the transport.
+    auto* transport = window.linkSettings()->findChild<QComboBox*>();
+    QVERIFY(transport);
+    const int before = transport->currentIndex();
+    QWheelEvent wheel(QPointF(5, 5), transport->mapToGlobal(QPointF(5, 5)), QPoint(), QPoint(0, -120), Qt::NoButton,
+                      Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(transport, &wheel);
+    QCOMPARE(transport->currentIndex(), before);
+}
+
+void TestMainWindow::resetLayoutRestoresTheDefault()
+{
+    MainWindow window(options());
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const auto layout = [&] {
+        QStringList places;
+        for (QDockWidget* d : window.findChildren<QDockWidget*>())
+            places << QStringLiteral("%1 area %2 floating %3 visible %4")
+                          .arg(d->objectName())
+                          .arg(window.dockWidgetArea(d))
+                          .arg(d->isFloating())
+                          .arg(d->isVisible());
+        return places;
+    };
+    const QStringList first = layout();
+    // The default size, or the window's least where the screen is smaller (offscreen: 800x800).
+    const QSize defaultSize = window.size();
+    QCOMPARE(defaultSize, window.defaultSize().expandedTo(defaultSize));
+
+    // Moved about, saved, as a broken layout would be.
+    auto* log = window.findChild<QDockWidget*>(QStringLiteral("frameLogDock"));
+    auto* link = window.findChild<QDockWidget*>(QStringLiteral("linkDock"));
+    log->setFloating(true);
+    window.addDockWidget(Qt::RightDockWidgetArea, link);
+    window.findChild<QDockWidget*>(QStringLiteral("voiceDock"))->hide();
+    window.resize(700, 500);
+    QVERIFY(layout() != first);
+    {
+        QSettings settings;
+        settings.setValue(QStringLiteral("window/state"), window.saveState());
+        settings.setValue(QStringLiteral("window/geometry"), window.saveGeometry());
+    }
+
+    window.resetLayout();
+    QCoreApplication::processEvents();
+    QCOMPARE(layout(), first);
+    QCOMPARE(window.size(), defaultSize);
+    QSettings settings;
+    QVERIFY(!settings.contains(QStringLiteral("window/state")));
+    QVERIFY(!settings.contains(QStringLiteral("window/geometry")));
+}
+
+void TestMainWindow::nightThemeIsKept()
+{
+    {
+        MainWindow window(options());
+        QCOMPARE(window.theme(), Theme::Kind::Day);
+        auto* night = window.findChild<QAction*>();
+        for (QAction* a : window.findChildren<QAction*>())
+            if (a->text() == QStringLiteral("&Night theme"))
+                night = a;
+        QVERIFY(night->isCheckable());
+        night->trigger();
+        QCOMPARE(window.theme(), Theme::Kind::Night);
+        QCOMPARE(qApp->palette().color(QPalette::Window), Theme::palette(Theme::Kind::Night).color(QPalette::Window));
+        window.close();  // saves the settings
+    }
+    MainWindow::Options restoring = options();
+    restoring.restoreSettings = true;
+    MainWindow again(restoring);
+    QCOMPARE(again.theme(), Theme::Kind::Night);
+    QCOMPARE(qApp->palette().color(QPalette::Window), Theme::palette(Theme::Kind::Night).color(QPalette::Window));
+    again.setTheme(Theme::Kind::Day);
+    QCOMPARE(qApp->palette().color(QPalette::Window), Theme::palette(Theme::Kind::Day).color(QPalette::Window));
+    QSettings().remove(QStringLiteral("theme"));
+}
+
 #include "tst_mainwindow.moc"
