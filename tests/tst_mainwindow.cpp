@@ -46,6 +46,8 @@
 #include <QSettings>
 #include <QSignalSpy>
 #include <QStatusBar>
+#include <QGridLayout>
+#include <QGroupBox>
 #include <QScrollArea>
 #include <QScrollBar>
 #include <QTabBar>
@@ -1029,6 +1031,34 @@ void TestMainWindow::fitsASmallScreen()
                 QVERIFY2(!bar->isVisible(), qPrintable(panels->tabText(i)));
     }
     QVERIFY(window.linkSettings()->width() >= window.linkSettings()->minimumSizeHint().width());
+
+    // Each reported value right beside its control, however wide the card:
+    // the control column no wider than its widest control wants.
+    int rows = 0;
+    for (int i = 0; i < panels->count(); ++i) {
+        window.showPanel(i);
+        QCoreApplication::processEvents();
+        for (auto* card : panels->currentWidget()->findChildren<QGroupBox*>()) {
+            auto* grid = qobject_cast<QGridLayout*>(card->layout());
+            int widest = 0;
+            std::vector<std::pair<QLayoutItem*, QLayoutItem*>> pairs;
+            for (int row = 0; grid && row < grid->rowCount(); ++row) {
+                QLayoutItem* control = grid->itemAtPosition(row, 1);
+                QLayoutItem* reported = grid->itemAtPosition(row, 2);
+                if (!control || !reported || control == reported || !reported->widget()->isVisible())
+                    continue;
+                widest = std::max(widest, control->widget()->sizeHint().width());
+                pairs.emplace_back(control, reported);
+            }
+            for (const auto& [control, reported] : pairs) {
+                ++rows;
+                const int column = reported->geometry().left() - control->geometry().left();
+                QVERIFY2(column < widest + 40,
+                         qPrintable(QStringLiteral("%1: %2 px for %3").arg(card->title()).arg(column).arg(widest)));
+            }
+        }
+    }
+    QVERIFY2(rows > 40, qPrintable(QString::number(rows)));
 
     // A 2,000-character error (an airframe file deep down) wraps: the window keeps its width.
     QString path = m_dir.path();
