@@ -1,14 +1,13 @@
 // gcs: the operator console.
-//
 //   gcs                           the console, as it was left last time
 //   gcs --rehearsal               start uasim on loopback and connect to it
 //   gcs --udp-remote HOST:PORT    connect over UDP at once
 //   gcs --serial DEV [--baud N]   connect over a serial port at once
-//   gcs --replay LOG.pcapng       replay a frame log
-//   gcs ... --key FILE            the secure link with the aircraft's key file
-//                                 (with --rehearsal, uasim gets it too)
+//   gcs --replay LOG.pcapng       replay a frame log (read only)
+//   gcs ... --key FILE            the secure link (with --rehearsal, uasim's too)
 //   gcs --screenshot FILE.png     lay the window out, save a picture of it, exit
 //     [--screenshot-after S]      ... once the link given with it ran S seconds
+//     [--size WxH --page N --night]   at that size, on that tab, in the night theme
 // Start-up, memory and GUI stall measurements: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
@@ -83,7 +82,8 @@ int main(int argc, char* argv[])
     const QCommandLineOption night(QStringLiteral("night"), QStringLiteral("The night theme."));
     const QCommandLineOption page(QStringLiteral("page"), QStringLiteral("The tab shown, 1 to 9 (Alt+1 ..)."),
                                   QStringLiteral("n"), QStringLiteral("1"));
-    parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, after, night, page});
+    parser.addOptions(
+        {rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, after, night, page});
     parser.process(app);
 
     const auto usage = [&](const QString& message) {

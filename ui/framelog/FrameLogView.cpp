@@ -89,8 +89,8 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
     using F = FrameLogFilterModel;
     m_status->addItem(tr("Any status"), F::kAllStatuses);
     m_status->addItem(tr("Problems (corrected, uncorrectable, refused)"), F::bit(FrameStatus::Corrected) |
-                                                                               F::bit(FrameStatus::Uncorrectable) |
-                                                                               F::bit(FrameStatus::Rejected));
+                                                                              F::bit(FrameStatus::Uncorrectable) |
+                                                                              F::bit(FrameStatus::Rejected));
     for (FrameStatus s : {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable,
                           FrameStatus::Rejected, FrameStatus::NotChecked})
         m_status->addItem(FrameLogModel::statusText(s), F::bit(s));

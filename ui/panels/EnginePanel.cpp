@@ -4,7 +4,6 @@
 #include "ui/panels/CardGrid.h"
 #include "ui/panels/UnitCard.h"
 
-
 EnginePanel::EnginePanel(CommandState* command, ReportedState* reported, QWidget* parent)
     : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QGridLayout(this))
 {

@@ -716,8 +716,7 @@ void MainWindow::beginReplay(const ReplayLink* replay)
                     commanded = std::move(r.message);
             }
             QMetaObject::invokeMethod(
-                this,
-                [this, utc = record.utcMicros, commanded] { replayedFrame(utc, commanded); },
+                this, [this, utc = record.utcMicros, commanded] { replayedFrame(utc, commanded); },
                 Qt::QueuedConnection);
         },
         Qt::DirectConnection);
