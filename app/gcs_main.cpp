@@ -1,5 +1,6 @@
 // gcs: the operator console. `gcs --help` lists its options (the console,
-// a connection at start, replay, a screenshot, a rehearsal scenario run).
+// a connection at start, replay, a screenshot at a size, tab and theme, a
+// rehearsal scenario run).
 //
 // Start-up, memory and GUI stall measurements: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
@@ -74,7 +75,10 @@ int main(int argc, char* argv[])
                                    QStringLiteral("Seconds the link runs before the picture (default 0)."),
                                    QStringLiteral("s"), QStringLiteral("0"));
     const QCommandLineOption night(QStringLiteral("night"), QStringLiteral("The night theme."));
-    parser.addOptions({rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, after, night});
+    const QCommandLineOption page(QStringLiteral("page"), QStringLiteral("The tab shown, 1 to 9 (Alt+1 ..)."),
+                                  QStringLiteral("n"), QStringLiteral("1"));
+    parser.addOptions(
+        {rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, after, night, page});
     const RehearsalCommandLine rehearse(parser);
     parser.process(app);
     if (rehearse.requested())
@@ -110,9 +114,10 @@ int main(int argc, char* argv[])
     options.airframePath = parser.value(airframe);
     if (parser.isSet(airframe) && !AirframeLoader::load(options.airframePath, &error))
         return usage(error);
-    if (parser.isSet(night))
-        Theme::apply(app, Theme::Kind::Night);
     MainWindow window(options);
+    if (parser.isSet(night))
+        window.setTheme(Theme::Kind::Night);
+    window.showPanel(parser.value(page).toInt() - 1);
     if (parser.isSet(screenshot)) {
         window.resize(windowSize);
         // After the first pass of the event loop (docks and layouts settled), or once the link ran that long.

@@ -205,12 +205,14 @@ void TestFrameLogModel::textIsMadeOnDemand()
     QCOMPARE(model.decodedRows(), 0);  // none of those needed the frame
     QCOMPARE(cell(kRow, FrameLogModel::MessageIdColumn), QStringLiteral("150005"));
     QCOMPARE(model.decodedRows(), 1);
-    QCOMPARE(cell(kRow, FrameLogModel::CorrectedColumn), QStringLiteral("0 + 0"));
+    QCOMPARE(cell(kRow, FrameLogModel::CorrectedColumn), QStringLiteral("none"));
     QCOMPARE(model.decodedRows(), 1);  // cached: one read per row
 
     // The log's own record of corrections; IDs through repairable damage;
     // none beyond it.
-    QCOMPARE(cell(11, FrameLogModel::CorrectedColumn), QStringLiteral("1 + 1"));
+    QCOMPARE(cell(11, FrameLogModel::CorrectedColumn), QStringLiteral("2"));
+    QCOMPARE(model.index(11, FrameLogModel::CorrectedColumn).data(Qt::ToolTipRole).toString(),
+             QStringLiteral("1 in the first codeword, 1 in the second"));
     QCOMPARE(model.messageId(11), std::optional<quint32>(11));
     QCOMPARE(cell(3, FrameLogModel::CorrectedColumn), QStringLiteral("beyond"));
     QCOMPARE(cell(3, FrameLogModel::MessageIdColumn), QStringLiteral("\u2014"));
@@ -409,7 +411,7 @@ void TestFrameLogModel::liveRowsMatchTheSessionLog()
     };
     const auto cell = [&](int row, int column) { return model.index(row, column).data().toString(); };
     QCOMPARE(cell(rowOf(FrameStatus::Decoded), FrameLogModel::MessageIdColumn), QStringLiteral("5"));
-    QCOMPARE(cell(rowOf(FrameStatus::Corrected), FrameLogModel::CorrectedColumn), QStringLiteral("1 + 1"));
+    QCOMPARE(cell(rowOf(FrameStatus::Corrected), FrameLogModel::CorrectedColumn), QStringLiteral("2"));
     QCOMPARE(cell(rowOf(FrameStatus::Uncorrectable), FrameLogModel::CorrectedColumn), QStringLiteral("beyond"));
     QCOMPARE(model.record(rowOf(FrameStatus::Uncorrectable)).bytes, frame(3, g_sessionStamp).bytes);
     QCOMPARE(model.record(rowOf(FrameStatus::Rejected)).bytes, QByteArray(100, '\x55'));

@@ -16,6 +16,8 @@
 #include "link/transport/UdpLink.h"
 #include "ui/panels/CommandPreview.h"
 #include "ui/panels/CommandState.h"
+#include "ui/panels/FieldButtonGroup.h"
+#include "ui/panels/ReportedState.h"
 #include "ui/plan/FlightPlanUpload.h"
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
@@ -44,7 +46,14 @@
 #include <QSettings>
 #include <QSignalSpy>
 #include <QStatusBar>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QScrollArea>
+#include <QScrollBar>
+#include <QTabBar>
 #include <QTabWidget>
+#include <QWheelEvent>
+#include <QComboBox>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
@@ -105,6 +114,7 @@ private slots:
     void linkLostAlarm();
     void linkSettingsAreKept();
     void replaysAFrameLog();
+    void replayShowsTheLogsCommandReadOnly();
     void rehearsalAgainstUasim();
     void keyedUploadUses199ByteSections();
     void refusedKeyFileSaysWhy();
@@ -116,6 +126,9 @@ private slots:
     void asksBeforeEndingALiveLink();
     void quitEndsTheLinkOnceConfirmed();
     void linkButtonsNeverHoldTheFocus();
+    void fitsASmallScreen();
+    void resetLayoutRestoresTheDefault();
+    void nightThemeIsKept();
 
 private:
     MainWindow::Options options() const;
@@ -285,6 +298,7 @@ void TestMainWindow::importsTheSamplePlan()
     const MissionPlan& plan = *widget->plan();
     QCOMPARE(plan.items.size(), 9);
     QCOMPARE(widget->table()->rowCount(), 9);
+    QCOMPARE(widget->summary(), QStringLiteral("9 mission items, 322 bytes, 2 BLOCK 2 sections"));
 
     const MissionItem& takeoff = plan.items[0];
     QCOMPARE(takeoff.seq, quint16(0));
@@ -513,6 +527,81 @@ void TestMainWindow::replaysAFrameLog()
     QVERIFY(!window.linkStatus()->alarmActive());
     window.disconnectLink();
     QVERIFY(!window.isLinkRunning());
+}
+
+void TestMainWindow::replayShowsTheLogsCommandReadOnly()
+{
+    // A log the link's FrameLog wrote: each second a command with the
+    // rudder at 7 degrees went out, and the aircraft reported doing that.
+    using rcm::ItemId;
+    const UnitRef flaps{rcm::UnitKind::Flaps, 0};
+    CommandState logged;
+    QVERIFY(logged.setNumber(flaps, ItemId::F_rudder_set, 7));
+    const QString path = m_dir.filePath(QStringLiteral("commanded.pcapng"));
+    {
+        FrameLog log;
+        QVERIFY(log.open(path));
+        for (int i = 0; i < 10; ++i) {
+            for (const FrameDirection direction : {FrameDirection::Sent, FrameDirection::Received}) {
+                rcm::Message message = logged.message();
+                message.header.set(ItemId::ID_msg, i);
+                rcm::Diagnostics errors;
+                const auto datagram = rcm::encodeDatagram(message, errors);
+                QVERIFY(datagram);
+                FrameRecord r;
+                r.bytes = QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size()));
+                r.utcMicros = 1795332720000000 + i * 1'000'000 + (direction == FrameDirection::Sent ? 0 : 100'000);
+                r.direction = direction;
+                r.transport = FrameTransport::Udp;
+                r.status = direction == FrameDirection::Sent ? FrameStatus::NotChecked : FrameStatus::Decoded;
+                QVERIFY(log.append(r));
+            }
+        }
+    }
+    MainWindow window(options());
+    CommandState* command = window.command();
+    const rcm::Message own = command->message();
+    QCOMPARE(command->value(flaps, ItemId::F_rudder_set)->number, 0);
+    QSignalSpy finished(&window, &MainWindow::replayFinished);
+    window.setReplaySpeed(10.0);
+    window.openFrameLog(path);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
+    QTRY_COMPARE_WITH_TIMEOUT(window.reported()->statusFrames(), 10, kLinkTimeoutMs);
+
+    // The panels show what the log commanded, and the reports agree with it.
+    QCOMPARE(command->value(flaps, ItemId::F_rudder_set)->number, 7);
+    QCOMPARE(window.reported()->value(flaps, ItemId::F_rudder_set)->number, 7);
+    QCOMPARE(window.reported()->mismatchFrames(flaps, ItemId::F_rudder_set), 0);
+    QVERIFY(window.linkStatus()->stateText().contains(QStringLiteral("<b>Replay</b>")));
+    QVERIFY(window.linkStatus()->ageText().contains(QStringLiteral("2026-11-22 07:32:09 UTC")));
+
+    // Read only: a click on a command button changes nothing.
+    auto* nose = window.findChild<FieldButtonGroup*>(QStringLiteral("land_wheels.NOSE"));
+    QVERIFY(nose);
+    auto* retract = nose->findChild<QAbstractButton*>(QStringLiteral("RETRACTED"));
+    QVERIFY(retract);
+    for (int i = 0; i < window.panels()->count(); ++i)
+        if (window.panels()->tabText(i) == QStringLiteral("Landing gear"))
+            window.showPanel(i);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const rcm::Message shown = command->message();
+    QTest::mouseClick(retract, Qt::LeftButton);
+    QCOMPARE(command->message(), shown);
+
+    // The log's silence after its end is the link's Lost, but no alarm, and
+    // the reports age in the log's time: not stale.
+    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().state, LinkState::Lost, kLinkTimeoutMs);
+    QVERIFY(!window.linkStatus()->alarmActive());
+    QVERIFY(window.linkStatus()->stateText().contains(QStringLiteral("<b>Replay</b>")));
+    window.reported()->checkAge();
+    QVERIFY(!window.reported()->stale());
+
+    // Afterwards the console's own command, and its panels take clicks again.
+    window.disconnectLink();
+    QCOMPARE(command->message(), own);
+    QTest::mouseClick(retract, Qt::LeftButton);
+    QVERIFY(command->message() != own);
 }
 
 void TestMainWindow::rehearsalAgainstUasim()
@@ -942,4 +1031,144 @@ void TestMainWindow::linkButtonsNeverHoldTheFocus()
 }
 
 QTEST_MAIN(TestMainWindow)
+void TestMainWindow::fitsASmallScreen()
+{
+    MainWindow window(options());
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QCOMPARE(window.size(), QSize(1366, 768));
+
+    // Every tab shows, no panel scrolls sideways, the link pane is not squeezed.
+    QTabWidget* panels = window.panels();
+    QVERIFY(panels->tabBar()->width() >= panels->tabBar()->sizeHint().width());
+    for (int i = 0; i < panels->count(); ++i) {
+        window.showPanel(i);
+        QCoreApplication::processEvents();
+        for (QScrollBar* bar : panels->currentWidget()->findChildren<QScrollBar*>())
+            if (bar->orientation() == Qt::Horizontal)
+                QVERIFY2(!bar->isVisible(), qPrintable(panels->tabText(i)));
+    }
+    QVERIFY(window.linkSettings()->width() >= window.linkSettings()->minimumSizeHint().width());
+
+    // Each reported value right beside its control, however wide the card:
+    // the control column no wider than its widest control wants.
+    int rows = 0;
+    for (int i = 0; i < panels->count(); ++i) {
+        window.showPanel(i);
+        QCoreApplication::processEvents();
+        for (auto* card : panels->currentWidget()->findChildren<QGroupBox*>()) {
+            auto* grid = qobject_cast<QGridLayout*>(card->layout());
+            int widest = 0;
+            std::vector<std::pair<QLayoutItem*, QLayoutItem*>> pairs;
+            for (int row = 0; grid && row < grid->rowCount(); ++row) {
+                QLayoutItem* control = grid->itemAtPosition(row, 1);
+                QLayoutItem* reported = grid->itemAtPosition(row, 2);
+                if (!control || !reported || control == reported || !reported->widget()->isVisible())
+                    continue;
+                widest = std::max(widest, control->widget()->sizeHint().width());
+                pairs.emplace_back(control, reported);
+            }
+            for (const auto& [control, reported] : pairs) {
+                ++rows;
+                const int column = reported->geometry().left() - control->geometry().left();
+                QVERIFY2(column < widest + 40,
+                         qPrintable(QStringLiteral("%1: %2 px for %3").arg(card->title()).arg(column).arg(widest)));
+            }
+        }
+    }
+    QVERIFY2(rows > 40, qPrintable(QString::number(rows)));
+
+    // A 2,000-character error (an airframe file deep down) wraps: the window keeps its width.
+    QString path = m_dir.path();
+    for (int i = 0; i < 9; ++i)
+        path += QLatin1Char('/') + QString(240, QLatin1Char('d'));
+    path += QStringLiteral("/airframe.json");
+    QVERIFY(path.size() > 2000);
+    QString error;
+    QVERIFY(!window.loadAirframe(path, &error));
+    QVERIFY(error.contains(path));
+    QVERIFY(!window.loadAirframe(path));  // shown: the banner and the event log
+    QCoreApplication::processEvents();
+    QCOMPARE(window.width(), 1366);
+    QVERIFY(window.sizeHint().width() <= 1366);
+
+    // A wheel turned over the link pane scrolls; it never switches the transport.
+    auto* transport = window.linkSettings()->findChild<QComboBox*>();
+    QVERIFY(transport);
+    const int before = transport->currentIndex();
+    QWheelEvent wheel(QPointF(5, 5), transport->mapToGlobal(QPointF(5, 5)), QPoint(), QPoint(0, -120), Qt::NoButton,
+                      Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(transport, &wheel);
+    QCOMPARE(transport->currentIndex(), before);
+}
+
+void TestMainWindow::resetLayoutRestoresTheDefault()
+{
+    MainWindow window(options());
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const auto layout = [&] {
+        QStringList places;
+        for (QDockWidget* d : window.findChildren<QDockWidget*>())
+            places << QStringLiteral("%1 area %2 floating %3 visible %4")
+                          .arg(d->objectName())
+                          .arg(window.dockWidgetArea(d))
+                          .arg(d->isFloating())
+                          .arg(d->isVisible());
+        return places;
+    };
+    const QStringList first = layout();
+    // The default size, or the window's least where the screen is smaller (offscreen: 800x800).
+    const QSize defaultSize = window.size();
+    QCOMPARE(defaultSize, window.defaultSize().expandedTo(defaultSize));
+
+    // Moved about, saved, as a broken layout would be.
+    auto* log = window.findChild<QDockWidget*>(QStringLiteral("frameLogDock"));
+    auto* link = window.findChild<QDockWidget*>(QStringLiteral("linkDock"));
+    log->setFloating(true);
+    window.addDockWidget(Qt::RightDockWidgetArea, link);
+    window.findChild<QDockWidget*>(QStringLiteral("voiceDock"))->hide();
+    window.resize(700, 500);
+    QVERIFY(layout() != first);
+    {
+        QSettings settings;
+        settings.setValue(QStringLiteral("window/state"), window.saveState());
+        settings.setValue(QStringLiteral("window/geometry"), window.saveGeometry());
+    }
+
+    window.resetLayout();
+    QCoreApplication::processEvents();
+    QCOMPARE(layout(), first);
+    QCOMPARE(window.size(), defaultSize);
+    QSettings settings;
+    QVERIFY(!settings.contains(QStringLiteral("window/state")));
+    QVERIFY(!settings.contains(QStringLiteral("window/geometry")));
+}
+
+void TestMainWindow::nightThemeIsKept()
+{
+    {
+        MainWindow window(options());
+        QCOMPARE(window.theme(), Theme::Kind::Day);
+        auto* night = window.findChild<QAction*>();
+        for (QAction* a : window.findChildren<QAction*>())
+            if (a->text() == QStringLiteral("&Night theme"))
+                night = a;
+        QVERIFY(night->isCheckable());
+        night->trigger();
+        QCOMPARE(window.theme(), Theme::Kind::Night);
+        QCOMPARE(qApp->palette().color(QPalette::Window), Theme::palette(Theme::Kind::Night).color(QPalette::Window));
+        window.close();  // saves the settings
+    }
+    MainWindow::Options restoring = options();
+    restoring.restoreSettings = true;
+    MainWindow again(restoring);
+    QCOMPARE(again.theme(), Theme::Kind::Night);
+    QCOMPARE(qApp->palette().color(QPalette::Window), Theme::palette(Theme::Kind::Night).color(QPalette::Window));
+    again.setTheme(Theme::Kind::Day);
+    QCOMPARE(qApp->palette().color(QPalette::Window), Theme::palette(Theme::Kind::Day).color(QPalette::Window));
+    QSettings().remove(QStringLiteral("theme"));
+}
+
 #include "tst_mainwindow.moc"

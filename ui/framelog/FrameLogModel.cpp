@@ -104,6 +104,8 @@ QVariant FrameLogModel::data(const QModelIndex& index, int role) const
                 return isoTime(r.utcMicros);
             if (index.column() == StatusColumn)
                 return tr("%1 bytes over %2").arg(r.length).arg(frameTransportName(r.transport));
+            if (index.column() == CorrectedColumn && r.corrected1 >= 0 && r.corrected2 >= 0)
+                return tr("%1 in the first codeword, %2 in the second").arg(r.corrected1).arg(r.corrected2);
             return {};
         case Qt::TextAlignmentRole:
             if (index.column() == NumberColumn || index.column() == MessageIdColumn ||
@@ -131,6 +133,23 @@ QVariant FrameLogModel::data(const QModelIndex& index, int role) const
     return {};
 }
 
+QString FrameLogModel::statusText(FrameStatus status)
+{
+    switch (status) {
+        case FrameStatus::Decoded:
+            return tr("decoded");
+        case FrameStatus::Corrected:
+            return tr("corrected");
+        case FrameStatus::Uncorrectable:
+            return tr("uncorrectable");
+        case FrameStatus::Rejected:
+            return tr("refused");
+        case FrameStatus::NotChecked:
+            return tr("not checked");
+    }
+    return {};
+}
+
 QString FrameLogModel::cellText(int row, const Row& r, int column) const
 {
     switch (column) {
@@ -149,9 +168,10 @@ QString FrameLogModel::cellText(int row, const Row& r, int column) const
                 return QStringLiteral("\u2014");
             if (r.corrected1 < 0 || r.corrected2 < 0)
                 return tr("beyond");
-            return QStringLiteral("%1 + %2").arg(r.corrected1).arg(r.corrected2);
+            // The total; the tool tip tells the two codewords apart.
+            return r.corrected1 + r.corrected2 == 0 ? tr("none") : QString::number(r.corrected1 + r.corrected2);
         case StatusColumn:
-            return frameStatusName(r.status);
+            return statusText(r.status);
     }
     return {};
 }

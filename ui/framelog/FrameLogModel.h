@@ -32,6 +32,9 @@ class FrameLogModel : public QAbstractTableModel {
 public:
     enum Column { NumberColumn, TimeColumn, DirectionColumn, MessageIdColumn, CorrectedColumn, StatusColumn };
     static constexpr int kColumnCount = 6;
+    // A frame's status in words for the operator; frameStatusName() is the
+    // file's and the CSV's word for it.
+    static QString statusText(FrameStatus status);
 
     explicit FrameLogModel(QObject* parent = nullptr);
     ~FrameLogModel() override;

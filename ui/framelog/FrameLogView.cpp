@@ -88,12 +88,12 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
     m_direction->setToolTip(tr("Show frames sent to the aircraft, received from it, or both"));
     using F = FrameLogFilterModel;
     m_status->addItem(tr("Any status"), F::kAllStatuses);
-    m_status->addItem(tr("Problems (corrected, uncorrectable, rejected)"), F::bit(FrameStatus::Corrected) |
-                                                                               F::bit(FrameStatus::Uncorrectable) |
-                                                                               F::bit(FrameStatus::Rejected));
+    m_status->addItem(tr("Problems (corrected, uncorrectable, refused)"), F::bit(FrameStatus::Corrected) |
+                                                                              F::bit(FrameStatus::Uncorrectable) |
+                                                                              F::bit(FrameStatus::Rejected));
     for (FrameStatus s : {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable,
                           FrameStatus::Rejected, FrameStatus::NotChecked})
-        m_status->addItem(frameStatusName(s), F::bit(s));
+        m_status->addItem(FrameLogModel::statusText(s), F::bit(s));
     m_status->setToolTip(tr("Show only frames with this decode status"));
     m_follow->setChecked(true);
     m_follow->setToolTip(tr("Scroll to each new frame as it arrives"));

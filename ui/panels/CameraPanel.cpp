@@ -2,9 +2,9 @@
 
 #include "ui/panels/CommandState.h"
 #include "ui/panels/ItemText.h"
+#include "ui/panels/CardGrid.h"
 #include "ui/panels/UnitCard.h"
 
-#include <QHBoxLayout>
 #include <QPushButton>
 
 namespace {
@@ -14,7 +14,7 @@ constexpr rcm::ItemId kPhoto = rcm::ItemId::take_one_photo;
 }  // namespace
 
 CameraPanel::CameraPanel(CommandState* command, ReportedState* reported, QWidget* parent)
-    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QHBoxLayout(this))
+    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QGridLayout(this))
 {
     setObjectName(QStringLiteral("CameraPanel"));
     rebuild();
@@ -31,7 +31,7 @@ void CameraPanel::rebuild()
                                    QString::fromUtf8(rcm::unitLabel(rcm::UnitKind::Sense).data()), this);
         for (rcm::ItemId id : rcm::kSenseAndAvoidZooms)
             sense->addSpinBox(id);
-        m_layout->addWidget(sense);
+        CardGrid::add(m_layout, sense);
     }
     const auto& cameras = m_command->airframe().cameras;
     for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
@@ -47,7 +47,7 @@ void CameraPanel::rebuild()
         addPhotoButton(card);
         card->addStation(cam_GCS_destination);
         card->addStation(cam_GCS_backup);
-        m_layout->addWidget(card);
+        CardGrid::add(m_layout, card);
     }
 }
 

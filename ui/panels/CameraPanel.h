@@ -11,7 +11,7 @@
 
 class CommandState;
 class ReportedState;
-class QHBoxLayout;
+class QGridLayout;
 class QPushButton;
 class UnitCard;
 
@@ -27,5 +27,5 @@ private:
 
     CommandState* m_command;
     ReportedState* m_reported;
-    QHBoxLayout* m_layout;
+    QGridLayout* m_layout;
 };

@@ -183,6 +183,14 @@ bool CommandState::oneShotPending() const
     return pending;
 }
 
+void CommandState::replaceMessage(const rcm::Message& message)
+{
+    if (message == m_message)
+        return;
+    m_message = message;
+    emit changed();
+}
+
 void CommandState::frameSent()
 {
     bool reset = false;

@@ -56,6 +56,11 @@ public:
     // Several items of one unit as one change.
     bool editUnit(UnitRef ref, const std::function<void(rcm::Unit&)>& edit);
 
+    // `message` whole as the command, unchecked: what a replayed log
+    // commanded, to show while it plays, and the console's own command
+    // again afterwards. changed() when it differs.
+    void replaceMessage(const rcm::Message& message);
+
     // One-shot commands (take_one_photo TAKE) waiting for a frame to carry them.
     bool oneShotPending() const;
 

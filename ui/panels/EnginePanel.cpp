@@ -1,12 +1,11 @@
 #include "ui/panels/EnginePanel.h"
 
 #include "ui/panels/CommandState.h"
+#include "ui/panels/CardGrid.h"
 #include "ui/panels/UnitCard.h"
 
-#include <QHBoxLayout>
-
 EnginePanel::EnginePanel(CommandState* command, ReportedState* reported, QWidget* parent)
-    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QHBoxLayout(this))
+    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QGridLayout(this))
 {
     setObjectName(QStringLiteral("EnginePanel"));
     rebuild();
@@ -28,6 +27,6 @@ void EnginePanel::rebuild()
         card->addComboBox(eng_status, 1);
         card->addSpinBox(eng_prop_pitch);
         card->addSpinBox(eng_carb_SET);
-        m_layout->addWidget(card);
+        CardGrid::add(m_layout, card);
     }
 }

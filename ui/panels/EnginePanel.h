@@ -7,7 +7,7 @@
 
 class CommandState;
 class ReportedState;
-class QHBoxLayout;
+class QGridLayout;
 
 class EnginePanel : public QWidget {
     Q_OBJECT
@@ -20,5 +20,5 @@ private:
 
     CommandState* m_command;
     ReportedState* m_reported;
-    QHBoxLayout* m_layout;
+    QGridLayout* m_layout;
 };

@@ -16,6 +16,8 @@ ItemSlider::ItemSlider(CommandState* command, UnitRef ref, rcm::ItemId id, QWidg
     setSingleStep(1);
     setPageStep(10);
     setTickPosition(QSlider::TicksBelow);
+    // Wide enough to set a surface to the degree by hand.
+    setMinimumWidth(360);
     setTickInterval(static_cast<int>(info.max - info.min) / 4);
     setToolTip(ItemText::toolTip(id));
     setAccessibleName(ItemText::label(id));

@@ -1,12 +1,11 @@
 #include "ui/panels/RadioPanel.h"
 
 #include "ui/panels/CommandState.h"
+#include "ui/panels/CardGrid.h"
 #include "ui/panels/UnitCard.h"
 
-#include <QHBoxLayout>
-
 RadioPanel::RadioPanel(CommandState* command, ReportedState* reported, QWidget* parent)
-    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QHBoxLayout(this))
+    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QGridLayout(this))
 {
     setObjectName(QStringLiteral("RadioPanel"));
     rebuild();
@@ -29,6 +28,6 @@ void RadioPanel::rebuild()
         card->addSpinBox(Rx_freq);
         card->addSpinBox(Tx_freq);
         card->addSpinBox(Tx_OP_power);
-        m_layout->addWidget(card);
+        CardGrid::add(m_layout, card);
     }
 }

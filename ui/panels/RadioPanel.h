@@ -8,7 +8,7 @@
 
 class CommandState;
 class ReportedState;
-class QHBoxLayout;
+class QGridLayout;
 
 class RadioPanel : public QWidget {
     Q_OBJECT
@@ -21,5 +21,5 @@ private:
 
     CommandState* m_command;
     ReportedState* m_reported;
-    QHBoxLayout* m_layout;
+    QGridLayout* m_layout;
 };

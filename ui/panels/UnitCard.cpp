@@ -13,7 +13,7 @@
 
 namespace {
 
-enum Column { LabelColumn, ControlColumn, ReportedColumn };
+enum Column { LabelColumn, ControlColumn, ReportedColumn, SpareColumn };
 
 }  // namespace
 
@@ -22,7 +22,9 @@ UnitCard::UnitCard(CommandState* command, ReportedState* reported, UnitRef ref, 
 {
     if (const rcm::Unit* unit = command->unit(ref))
         setObjectName(QString::fromStdString(rcm::describeUnit(*unit)));
-    m_grid->setColumnStretch(ControlColumn, 1);
+    // Controls at their own width and the reported value right beside each;
+    // the spare width goes after them, not between a control and its report.
+    m_grid->setColumnStretch(SpareColumn, 1);
 }
 
 ReportedLabel* UnitCard::addRow(QWidget* control, rcm::ItemId id, int field)

@@ -51,7 +51,7 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     m_open->setToolTip(tr("Load a QGroundControl mission (.plan); only simple items can be sent"));
     m_send->setToolTip(tr("Send the plan in BLOCK 2 sections, one per frame, until the aircraft acknowledges it"));
     m_file->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    m_summary->setStyleSheet(QStringLiteral("color: palette(mid);"));
+    m_summary->setWordWrap(true);
 
     m_table->setHorizontalHeaderLabels({tr("#"), tr("Command"), tr("Frame"), tr("Latitude (\u00b0)"),
                                         tr("Longitude (\u00b0)"), tr("Altitude (m)"), tr("Param 1"), tr("Param 2"),
@@ -162,10 +162,17 @@ void FlightPlanWidget::showPlan()
             set(Param1Column + p, param(item.params[std::size_t(p)]));
     }
     const qsizetype bytes = m_plan->toBytes().size();
-    m_summary->setText(tr("%n mission item(s), %1 bytes, %2 BLOCK 2 section(s)", nullptr, int(items.size()))
-                           .arg(bytes)
-                           .arg(sectionCount(bytes)));
+    // Whole words: with no translation loaded, tr()'s %n would show "item(s)".
+    const int sections = sectionCount(bytes);
+    m_summary->setText((items.size() == 1 ? tr("1 mission item") : tr("%1 mission items").arg(items.size())) +
+                       tr(", %1 bytes, ").arg(bytes) +
+                       (sections == 1 ? tr("1 BLOCK 2 section") : tr("%1 BLOCK 2 sections").arg(sections)));
     updateButtons();
+}
+
+QString FlightPlanWidget::summary() const
+{
+    return m_summary->text();
 }
 
 void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)

@@ -9,6 +9,8 @@
 #include <QHBoxLayout>
 #include <QKeyEvent>
 #include <QLabel>
+#include <QAudioDevice>
+#include <QMediaDevices>
 #include <QLineEdit>
 #include <QProgressBar>
 #include <QPushButton>
@@ -98,8 +100,13 @@ PushToTalkWidget::PushToTalkWidget(VoiceChannel* channel, QWidget* parent)
     });
     connect(m_talk, &QPushButton::pressed, m_channel, &VoiceChannel::startTalking);
     connect(m_talk, &QPushButton::released, m_channel, &VoiceChannel::stopTalking);
-    connect(m_channel, &VoiceChannel::talkingChanged, this,
-            [this](bool talking) { m_talk->setText(talking ? tr("Talking\u2026") : tr("Push to talk (F12)")); });
+    connect(m_channel, &VoiceChannel::talkingChanged, this, [this](bool talking) {
+        // Nothing to talk into: say so on the button held, not "Talking".
+        const bool mute = m_microphone->isChecked() && QMediaDevices::defaultAudioInput().isNull();
+        m_talk->setText(!talking ? tr("Push to talk (F12)")
+                        : mute   ? tr("No microphone: choose a WAV file")
+                                 : tr("Talking\u2026"));
+    });
     connect(m_microphone, &QRadioButton::toggled, this, &PushToTalkWidget::updateSource);
     connect(m_browse, &QToolButton::clicked, this, &PushToTalkWidget::chooseFile);
     connect(m_channel, &VoiceChannel::sentLevel, this, [this](float level) { showPeak(m_sent, level); });

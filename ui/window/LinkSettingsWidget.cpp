@@ -1,6 +1,7 @@
 #include "ui/window/LinkSettingsWidget.h"
 
 #include "link/transport/SerialLink.h"
+#include "ui/panels/DeliberateInput.h"
 
 #include <QComboBox>
 #include <QDir>
@@ -125,6 +126,10 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
         connect(box, &QSpinBox::valueChanged, this, &LinkSettingsWidget::changed);
     connect(m_port, &QComboBox::currentTextChanged, this, &LinkSettingsWidget::changed);
     connect(m_baud, &QComboBox::currentTextChanged, this, &LinkSettingsWidget::changed);
+    // A wheel turned over the pane to scroll it must not switch the
+    // transport or move a port: the link settings change only by hand.
+    for (QWidget* control : std::initializer_list<QWidget*>{m_transport, m_port, m_baud, m_localPort, m_remotePort})
+        DeliberateInput::protect(control);
 
     setSettings(LinkSettings());
 }

@@ -1,6 +1,8 @@
 #include "ui/window/MainWindow.h"
 
+#include "codec/message/MessageDecoder.h"
 #include "link/framelog/FrameLogCsv.h"
+#include "link/framelog/ReplayLink.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/eventlog/EventLogView.h"
 #include "ui/overview/OverviewPage.h"
@@ -45,10 +47,14 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
+#include <QScreen>
+#include <QScrollBar>
+#include <QTabBar>
 #include <QTabWidget>
 #include <QThread>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <memory>
 
 namespace {
@@ -89,12 +95,51 @@ QDockWidget* dock(const QString& title, const QString& name, QWidget* content, Q
 
 const QString kTitle = QStringLiteral("RCM ground control station");
 
+// Makes the widgets inside `area` read only while it is installed on the
+// application: clicks and keys never reach them, so that a replay's panels
+// show the log's command and cannot be edited. Tabs and scroll bars still
+// move, to look around.
+class ReadOnlyArea : public QObject {
+public:
+    ReadOnlyArea(QWidget* area, QObject* parent) : QObject(parent), m_area(area) {}
+
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override
+    {
+        switch (event->type()) {
+            case QEvent::MouseButtonPress:
+            case QEvent::MouseButtonRelease:
+            case QEvent::MouseButtonDblClick:
+            case QEvent::KeyPress:
+            case QEvent::KeyRelease:
+                break;
+            default:
+                return false;
+        }
+        auto* widget = qobject_cast<QWidget*>(watched);
+        if (!widget || !m_area->isAncestorOf(widget) || qobject_cast<QTabBar*>(widget) ||
+            qobject_cast<QScrollBar*>(widget))
+            return false;
+        return true;
+    }
+
+private:
+    QWidget* m_area;
+};
+
 }  // namespace
 
 MainWindow::MainWindow(const Options& options, QWidget* parent)
     : QMainWindow(parent),
       m_command(new CommandState(rcm::Airframe::wellEquipped(), this)),
-      m_reported(new ReportedState(m_command, this)),
+      // In a replay the reports age in the log's time: a pause or the log's
+      // end is not a silence of the aircraft.
+      m_reported(new ReportedState(m_command, this,
+                                   [this] {
+                                       return m_ownCommand ? std::chrono::steady_clock::time_point(
+                                                                 std::chrono::microseconds(m_replayMicros))
+                                                           : std::chrono::steady_clock::now();
+                                   })),
       m_upload(new FlightPlanUpload(this)),
       m_logModel(new FrameLogModel(this)),
       m_session(new ConsoleSession(options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory()
@@ -136,6 +181,7 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_session, &ConsoleSession::starting, this,
             [this](const QString& what) { m_alerts->info(EventSource::Link, what); });
 
+    resize(defaultSize());
     restoreSession(options);
     commandChanged();
     showNotConnected();
@@ -176,6 +222,10 @@ void MainWindow::buildPanels()
         const int index = m_panels->addTab(p.panel == m_overview ? p.panel : scrolled(p.panel), p.title);
         m_panels->setTabToolTip(index, tr("%1 (Alt+%2)").arg(p.title).arg(index + 1));
     }
+    m_replayNote = new QLabel(tr("Replay: the log's commands, read only"));
+    m_replayNote->setContentsMargins(8, 0, 8, 0);
+    m_replayNote->hide();
+    m_panels->setCornerWidget(m_replayNote, Qt::TopRightCorner);
     // The link-loss alarm and the errors above the panels, where the operator is looking.
     auto* centre = new QWidget;
     auto* centreLayout = new QVBoxLayout(centre);
@@ -216,7 +266,6 @@ void MainWindow::buildDocks()
     m_linkNote = new QLabel;
     m_linkNote->setWordWrap(true);
     m_linkNote->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    m_linkNote->setStyleSheet(QStringLiteral("color: palette(mid);"));
     linkLayout->addWidget(m_linkNote);
     m_replayControls = new ReplayControls;
     m_replayControls->hide();
@@ -246,12 +295,32 @@ void MainWindow::buildDocks()
     m_voice = new VoiceChannel(this);
     QDockWidget* voice = dock(tr("Voice"), QStringLiteral("voiceDock"), new PushToTalkWidget(m_voice), this);
     QDockWidget* events = dock(tr("Events"), QStringLiteral("eventsDock"), m_alerts->eventView(), this);
-    // The panels take the full width they need; the link sits beside them,
-    // the log and the next frame share the bottom.
-    setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
+    for (QDockWidget* d : {link, voice, log, plan, preview, events})
+        m_docks.push_back(d);
+    placeDocks();
+}
+
+void MainWindow::placeDocks()
+{
+    QDockWidget* const link = m_docks[0];
+    QDockWidget* const voice = m_docks[1];
+    QDockWidget* const log = m_docks[2];
+    QDockWidget* const plan = m_docks[3];
+    QDockWidget* const preview = m_docks[4];
+    QDockWidget* const events = m_docks[5];
+    for (QDockWidget* d : m_docks) {
+        d->setFloating(false);
+        d->show();
+    }
+    // The link and the voice down the left, full height, so that neither is
+    // squeezed; the panels take the rest of the width, so that their tabs
+    // all show at 1366 pixels; the frame log and the events share the bottom.
+    setCorner(Qt::TopLeftCorner, Qt::LeftDockWidgetArea);
+    setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
+    setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
     setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
     addDockWidget(Qt::LeftDockWidgetArea, link);
-    addDockWidget(Qt::RightDockWidgetArea, voice);
+    splitDockWidget(link, voice, Qt::Vertical);
     addDockWidget(Qt::BottomDockWidgetArea, log);
     splitDockWidget(log, preview, Qt::Horizontal);
     tabifyDockWidget(log, plan);
@@ -259,10 +328,38 @@ void MainWindow::buildDocks()
     tabifyDockWidget(preview, events);
     log->raise();
     events->raise();
-    resizeDocks({link, voice}, {230, 230}, Qt::Horizontal);
-    resizeDocks({log, preview}, {900, 600}, Qt::Horizontal);
-    // The panels and the overview keep most of the height, even at 1366x768.
-    resizeDocks({log}, {280}, Qt::Vertical);
+    // In proportion to the window: the panels keep the larger part of the
+    // height, the frame log enough for a dozen rows.
+    const QSize area = size();
+    resizeDocks({link}, {std::clamp(area.width() / 5, 250, 320)}, Qt::Horizontal);
+    resizeDocks({log, preview}, {area.width() * 3 / 5, area.width() * 2 / 5}, Qt::Horizontal);
+    resizeDocks({log}, {area.height() * 2 / 5}, Qt::Vertical);
+}
+
+QSize MainWindow::defaultSize() const
+{
+    // Most of the screen, up to what the console can use.
+    const QRect screen = this->screen() ? this->screen()->availableGeometry() : QRect(0, 0, 1366, 768);
+    return QSize(std::min(screen.width(), 1600), std::min(screen.height(), 1000));
+}
+
+void MainWindow::resetLayout()
+{
+    QSettings settings;
+    settings.remove(QStringLiteral("window/geometry"));
+    settings.remove(QStringLiteral("window/state"));
+    showNormal();
+    resize(defaultSize());
+    placeDocks();
+}
+
+void MainWindow::showEvent(QShowEvent* event)
+{
+    QMainWindow::showEvent(event);
+    // The first time at the window's real size, unless the last session's layout was restored.
+    if (!m_layoutPlaced && !m_layoutRestored)
+        placeDocks();
+    m_layoutPlaced = true;
 }
 
 void MainWindow::buildMenus()
@@ -321,6 +418,15 @@ void MainWindow::buildMenus()
         m_viewMenu->addAction(toggle);
     }
 
+    m_viewMenu->addSeparator();
+    QAction* reset = m_viewMenu->addAction(tr("&Reset layout"), this, &MainWindow::resetLayout);
+    reset->setToolTip(tr("Every pane back in its first place, the window at its first size"));
+    m_nightAction = m_viewMenu->addAction(tr("&Night theme"));
+    m_nightAction->setCheckable(true);
+    m_nightAction->setToolTip(tr("Light text on a dark window, for a dim room or a night operation"));
+    connect(m_nightAction, &QAction::toggled, this,
+            [](bool night) { Theme::apply(*qApp, night ? Theme::Kind::Night : Theme::Kind::Day); });
+
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(tr("&About"), this, [this] {
         QMessageBox::about(this, kTitle,
@@ -334,14 +440,17 @@ void MainWindow::buildMenus()
 void MainWindow::restoreSession(const Options& options)
 {
     QString airframe = options.airframePath;
+    Theme::Kind theme = Theme::Kind::Day;
     if (options.restoreSettings) {
         QSettings settings;
-        restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
-        restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+        m_layoutRestored = restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray()) &&
+                           restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
         m_linkSettings->setSettings(LinkSettings::load(settings));
+        theme = Theme::fromName(settings.value(QStringLiteral("theme")).toString()).value_or(Theme::Kind::Day);
         if (airframe.isEmpty())
             airframe = settings.value(QStringLiteral("airframe")).toString();
     }
+    setTheme(theme);
     if (airframe.isEmpty())
         airframe = AirframeLoader::kDefaultPath;
     QString error;
@@ -358,6 +467,19 @@ void MainWindow::saveSession() const
     settings.setValue(QStringLiteral("window/state"), saveState());
     m_linkSettings->settings().save(settings);
     settings.setValue(QStringLiteral("airframe"), m_airframePath);
+    settings.setValue(QStringLiteral("theme"), Theme::name(theme()));
+}
+
+Theme::Kind MainWindow::theme() const
+{
+    return m_nightAction->isChecked() ? Theme::Kind::Night : Theme::Kind::Day;
+}
+
+void MainWindow::setTheme(Theme::Kind kind)
+{
+    m_nightAction->setChecked(kind == Theme::Kind::Night);
+    // The action applies a change; the first call applies the day theme too.
+    Theme::apply(*qApp, kind);
 }
 
 void MainWindow::closeEvent(QCloseEvent* event)
@@ -509,6 +631,7 @@ void MainWindow::linkStarted(const LinkController* controller)
         m_alerts->warning(EventSource::Link, tr("A frame was refused: %1").arg(reason));
     });
     if (const ReplayLink* r = m_session->replay()) {
+        beginReplay(r);
         connect(r, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
             m_logModel->setPlayedRows(next);
             m_replayControls->setPosition(utc);
@@ -552,6 +675,7 @@ void MainWindow::linkStarted(const LinkController* controller)
 
 void MainWindow::linkStopped()
 {
+    endReplay();
     m_upload->cancel();
     m_replayControls->hide();
     m_pauseAction->setEnabled(false);
@@ -569,6 +693,56 @@ void MainWindow::linkStopped()
     showNotConnected();
     updateTitle();
     updateLinkControls();
+}
+
+void MainWindow::beginReplay(const ReplayLink* replay)
+{
+    m_ownCommand = m_command->message();
+    m_replayMicros = replay->startMicros();
+    m_reported->clear();
+    m_replayNote->show();
+    m_replayReadOnly = new ReadOnlyArea(m_panels, this);
+    qApp->installEventFilter(m_replayReadOnly);
+    // On the link's thread, as each record plays: a sent frame is decoded
+    // there, and the window hears of every record (its time) before the
+    // worker's report of the same frame.
+    connect(
+        replay, &ReplayLink::frameReplayed, replay,
+        [this](const FrameRecord& record) {
+            std::optional<rcm::Message> commanded;
+            if (record.direction == FrameDirection::Sent) {
+                rcm::DecodeResult r = rcm::decodeFrame(std::span(
+                    reinterpret_cast<const std::uint8_t*>(record.bytes.constData()), std::size_t(record.bytes.size())));
+                // A keyed log's frames read as noise without the key: shown only when read cleanly.
+                if (r.ok() && r.diagnostics.empty())
+                    commanded = std::move(r.message);
+            }
+            QMetaObject::invokeMethod(
+                this, [this, utc = record.utcMicros, commanded] { replayedFrame(utc, commanded); },
+                Qt::QueuedConnection);
+        },
+        Qt::DirectConnection);
+}
+
+void MainWindow::replayedFrame(qint64 utcMicros, const std::optional<rcm::Message>& commanded)
+{
+    if (!m_ownCommand)
+        return;  // the replay ended meanwhile
+    m_replayMicros = utcMicros;
+    if (commanded)
+        m_command->replaceMessage(*commanded);
+}
+
+void MainWindow::endReplay()
+{
+    if (!m_ownCommand)
+        return;
+    delete m_replayReadOnly;  // removes itself from the application
+    m_replayReadOnly = nullptr;
+    m_replayNote->hide();
+    m_reported->clear();
+    m_command->replaceMessage(*m_ownCommand);
+    m_ownCommand.reset();
 }
 
 void MainWindow::actionFailed(const QString& reason)

@@ -9,13 +9,17 @@
 
 #include "codec/message/Airframe.h"
 #include "link/eventlog/ConsoleEvent.h"
+#include "link/framelog/FrameLog.h"
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkSettings.h"
 #include "link/session/LinkStatistics.h"
+#include "ui/window/Theme.h"
 
 #include <QMainWindow>
 
 #include <memory>
+#include <optional>
+#include <vector>
 
 class CommandPreview;
 class ConsoleAlerts;
@@ -27,11 +31,13 @@ class FrameLogModel;
 class FrameLogView;
 class LinkSettingsWidget;
 class QActionGroup;
+class QDockWidget;
 class QLabel;
 class QMenu;
 class QPushButton;
 class QTabWidget;
 class ReplayControls;
+class ReplayLink;
 class ReportedState;
 class StatusBarWidget;
 class VoiceChannel;
@@ -56,6 +62,8 @@ public:
     ~MainWindow() override;
 
     CommandState* command() const { return m_command; }
+    ReportedState* reported() const { return m_reported; }
+    QTabWidget* panels() const { return m_panels; }
     FrameLogModel* frameLog() const { return m_logModel; }
     FlightPlanWidget* flightPlan() const { return m_flightPlan; }
     StatusBarWidget* linkStatus() const { return m_status; }
@@ -68,6 +76,12 @@ public:
     LinkStatistics statistics() const { return m_session->statistics(); }
     bool isLinkRunning() const { return m_session->isRunning(); }
     QString sessionLogPath() const { return m_session->sessionLogPath(); }
+
+    Theme::Kind theme() const;
+    // The first start's size: the screen's available area, up to 1600x1000.
+    QSize defaultSize() const;
+    // Applies `kind` to the whole application and ticks View > Night theme to match.
+    void setTheme(Theme::Kind kind);
 
     // False, with the reason, when the airframe file cannot be used.
     bool loadAirframe(const QString& path, QString* error = nullptr);
@@ -88,6 +102,9 @@ public slots:
     void startRehearsalWith(const QString& uasimProgram);
     void openFrameLog(const QString& path);
     void showPanel(int index);
+    // View > Reset layout: every dock in its first place, the window at
+    // defaultSize(), and the saved layout forgotten.
+    void resetLayout();
     void setReplayPaused(bool paused);
     // 0.25 to 10 times the logged pace.
     void setReplaySpeed(double speed);
@@ -98,10 +115,12 @@ signals:
 
 protected:
     void closeEvent(QCloseEvent* event) override;
+    void showEvent(QShowEvent* event) override;
 
 private:
     void buildPanels();
     void buildDocks();
+    void placeDocks();
     void buildMenus();
     void restoreSession(const Options& options);
     void saveSession() const;
@@ -110,6 +129,11 @@ private:
     void linkStarted(const LinkController* controller);
     void linkStopped();
     void replayIndexed(const QString& path);
+    // A replay's panels show what its log commanded, read only; the
+    // console's own command comes back when it ends.
+    void beginReplay(const ReplayLink* replay);
+    void endReplay();
+    void replayedFrame(qint64 utcMicros, const std::optional<rcm::Message>& commanded);
     void actionFailed(const QString& reason);
     void commandChanged();
     void messageReceived(const ReceivedMessage& received);
@@ -153,6 +177,16 @@ private:
     QAction* m_disconnectAction = nullptr;
     QAction* m_rehearsalAction = nullptr;
     QAction* m_pauseAction = nullptr;
+    QAction* m_nightAction = nullptr;
 
     QString m_airframePath;
+    std::vector<QDockWidget*> m_docks;  // in placeDocks()' order
+    bool m_layoutRestored = false;
+    bool m_layoutPlaced = false;
+    // While a replay plays: the console's own command, kept aside, and the
+    // log's time, which the reports' age is counted in.
+    std::optional<rcm::Message> m_ownCommand;
+    qint64 m_replayMicros = 0;
+    QObject* m_replayReadOnly = nullptr;  // an application event filter
+    QLabel* m_replayNote = nullptr;
 };
