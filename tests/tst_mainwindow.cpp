@@ -545,6 +545,10 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
             for (const FrameDirection direction : {FrameDirection::Sent, FrameDirection::Received}) {
                 rcm::Message message = logged.message();
                 message.header.set(ItemId::ID_msg, i);
+                // 2026-11-22T07:32:00Z + i s, as the record's time says: the
+                // replay's receive path refuses a frame without its time.
+                message.header.set(ItemId::time_UTC, std::int64_t(73200 + i));
+                message.header.set(ItemId::date_UTC, std::int64_t(261122));
                 rcm::Diagnostics errors;
                 const auto datagram = rcm::encodeDatagram(message, errors);
                 QVERIFY(datagram);

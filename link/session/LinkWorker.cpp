@@ -1,6 +1,7 @@
 // First: StreamSync, under it, names a member emit(), which Qt's headers
 // define as a macro.
 #include "codec/receive/FrameReceiver.h"
+#include "codec/receive/TrialDecoder.h"
 
 #include "link/session/LinkWorker.h"
 
@@ -51,7 +52,7 @@ std::span<const std::uint8_t> asBytes(const QByteArray& bytes)
 // Live, what arrives is judged against the worker's clock too; a replayed
 // log only for continuity between its own frames.
 rcm::FrameReceiver::Options receiverOptions(const LinkWorker::Options& options, const Link& link,
-                                            std::shared_ptr<Clock> clock)
+                                            std::shared_ptr<Clock> clock, rcm::TrialDecoder& trial)
 {
     static_assert(rcm::kDatagramSize == 510, "LinkWorker::Options::retry spells the datagram size");
     rcm::FrameReceiver::Options o;
@@ -62,7 +63,7 @@ rcm::FrameReceiver::Options receiverOptions(const LinkWorker::Options& options, 
         o.keys.codecs = {options.secure->receiver.get()};
         o.keys.guard = options.secure->guard.get();
     }
-    o.retry = options.retry;
+    o.retry = options.retry ? options.retry : rcm::TrialDecoder::retryFor(trial);
     return o;
 }
 
@@ -74,7 +75,8 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
       m_log(std::move(log)),
       m_options(std::move(options)),
       m_clock(m_options.clock ? m_options.clock : std::make_shared<SystemClock>()),
-      m_receiver(std::make_unique<rcm::FrameReceiver>(receiverOptions(m_options, *m_link, m_clock),
+      m_trial(std::make_unique<rcm::TrialDecoder>()),
+      m_receiver(std::make_unique<rcm::FrameReceiver>(receiverOptions(m_options, *m_link, m_clock, *m_trial),
                                                       [this](const rcm::ReceivedFrame& frame) { receiveFrame(frame); })),
       m_tickTimer(m_clock->createTimer(this, Qt::PreciseTimer)),
       m_silenceTimer(m_clock->createTimer(this)),
