@@ -34,6 +34,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <pty.h>
+#include <termios.h>
 #include <unistd.h>
 
 using namespace std::chrono_literals;
@@ -185,7 +186,14 @@ public:
         for (std::size_t i = 0; i < 2; ++i) {
             End& e = m_ends[i];
             char name[256] = {};
-            if (::openpty(&e.master, &e.slave, name, nullptr, nullptr) != 0)
+            // Raw from the start, as a cable is: a new pty echoes, and until
+            // the console opened its end, uasim would hear its own bytes come
+            // back, a stray byte of them enough to swap its demultiplexer's
+            // phases until the console's first preamble, up to a second of
+            // the phrase later.
+            termios raw{};
+            ::cfmakeraw(&raw);
+            if (::openpty(&e.master, &e.slave, name, &raw, nullptr) != 0)
                 return false;
             ::fcntl(e.master, F_SETFL, ::fcntl(e.master, F_GETFL) | O_NONBLOCK);
             e.path = QString::fromLocal8Bit(name);
