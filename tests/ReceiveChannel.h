@@ -1,6 +1,8 @@
 // A realistic command session and the damage a channel does to it, streamed
-// through FrameReceiver: what tests/tst_receive.cpp asserts on (10^4 frames
-// a row) and tests/bench/soak_receive.cpp measures (10^6 frames a row).
+// through FrameReceiver as the link worker runs it, with TrialDecoder's
+// predictions when plain decoding fails: what tests/tst_receive.cpp asserts
+// on (10^4 frames a row) and tests/bench/soak_receive.cpp measures (10^6
+// frames a row). Receive::Plain leaves the predictions out, for comparison.
 //
 // The session: one command frame a second from one console, ID_msg + 1 and
 // time_UTC + 1 s each, a command change every 20 s or so (engine carb,
@@ -13,6 +15,7 @@
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/receive/FrameReceiver.h"
+#include "codec/receive/TrialDecoder.h"
 
 #include <algorithm>
 #include <array>
@@ -217,9 +220,13 @@ private:
     mutable std::uint64_t m_followers = 0;
 };
 
+// How the receiver decodes: as the link worker does, or RS alone.
+enum class Receive { WithPredictions, Plain };
+
 struct RowResult {
     std::uint64_t sent = 0;
     std::uint64_t correct = 0;
+    std::uint64_t fromPrediction = 0;  // of the delivered, read with a prediction
     std::uint64_t wrong = 0;
     std::uint64_t lost = 0;  // sent and not delivered
     std::array<std::uint64_t, kRefusalCount> refused{};
@@ -229,13 +236,17 @@ struct RowResult {
 // Streams `frames` frames of `session` through `channel` into a live
 // FrameReceiver whose clock is the sender's (half a second after each frame
 // is sent), fed in pieces of one frame.
-inline RowResult runRow(const CommandSession& session, const Channel& channel, std::uint64_t frames, std::uint64_t seed)
+inline RowResult runRow(const CommandSession& session, const Channel& channel, std::uint64_t frames, std::uint64_t seed,
+                        Receive how = Receive::WithPredictions)
 {
     RowResult row;
     std::int64_t nowMicros = 0;
     std::uint64_t sent = 0;
+    TrialDecoder trials;
     FrameReceiver::Options options;
     options.clock = [&] { return nowMicros; };
+    if (how == Receive::WithPredictions)
+        options.retry = TrialDecoder::retryFor(trials);
     FrameReceiver receiver(options, [&](const ReceivedFrame& f) {
         if (!f.delivered())
             return;
@@ -261,15 +272,19 @@ inline RowResult runRow(const CommandSession& session, const Channel& channel, s
     row.sent = frames;
     row.lost = frames - row.correct;
     row.refused = receiver.stats().refused;
+    row.fromPrediction = receiver.stats().fromPrediction;
     return row;
 }
 
 // `megabytes` of random bytes: anything delivered is wrong.
-inline RowResult runRandomBytes(std::uint64_t megabytes, std::uint64_t seed)
+inline RowResult runRandomBytes(std::uint64_t megabytes, std::uint64_t seed, Receive how = Receive::WithPredictions)
 {
     RowResult row;
+    TrialDecoder trials;
     FrameReceiver::Options options;
     options.mode = FrameReceiver::Mode::Recording;
+    if (how == Receive::WithPredictions)
+        options.retry = TrialDecoder::retryFor(trials);
     FrameReceiver receiver(options, [&](const ReceivedFrame& f) {
         if (f.delivered() && ++row.wrong == 1)
             row.firstWrong = "at stream offset " + std::to_string(f.offset);

@@ -1,10 +1,12 @@
 // Soak of the receive path: a realistic command session through each kind
-// of channel damage, 10^6 frames a row, and 100 MB of random bytes. Prints,
-// per row, frames sent, delivered correct, delivered WRONG, lost (sent and
-// not delivered correct) and the refusals by reason. Delivered WRONG must be
-// 0 in every row; the exit status is 1 otherwise.
+// of channel damage, 10^6 frames a row, and 100 MB of random bytes, received
+// as the link worker receives (FrameReceiver with TrialDecoder's
+// predictions; --plain: RS alone). Prints, per row, frames sent, delivered
+// correct (and how many of them a prediction read), delivered WRONG, lost
+// (sent and not delivered correct) and the refusals by reason. Delivered
+// WRONG must be 0 in every row; the exit status is 1 otherwise.
 //
-//   soak_receive [FRAMES_PER_ROW [ROW_NAME_PREFIX]]
+//   soak_receive [--plain] [FRAMES_PER_ROW [ROW_NAME_PREFIX]]
 #include "tests/ReceiveChannel.h"
 
 #include <chrono>
@@ -35,6 +37,12 @@ std::string refusals(const RowResult& r)
 
 int main(int argc, char** argv)
 {
+    Receive how = Receive::WithPredictions;
+    if (argc > 1 && std::string_view(argv[1]) == "--plain") {
+        how = Receive::Plain;
+        --argc;
+        ++argv;
+    }
     const std::uint64_t frames = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1'000'000;
     const std::string_view only = argc > 2 ? argv[2] : "";
     using K = Channel::Kind;
@@ -54,14 +62,15 @@ int main(int argc, char** argv)
     };
     const CommandSession session;
     bool anyWrong = false;
-    std::printf("| channel (each frame) | sent | delivered correct | delivered WRONG | lost | refused by reason | s |\n");
-    std::printf("|---|---:|---:|---:|---:|---|---:|\n");
+    std::printf("| channel (each frame) | sent | delivered correct | of which predicted | delivered WRONG | lost | refused by reason | s |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---|---:|\n");
     std::fflush(stdout);
     std::uint64_t seed = 1;
     const auto print = [&](const std::string& name, const RowResult& r, double seconds) {
         anyWrong = anyWrong || r.wrong != 0;
-        std::printf("| %s | %llu | %llu | %llu | %llu | %s | %.0f |\n", name.c_str(),
+        std::printf("| %s | %llu | %llu | %llu | %llu | %llu | %s | %.0f |\n", name.c_str(),
                     static_cast<unsigned long long>(r.sent), static_cast<unsigned long long>(r.correct),
+                    static_cast<unsigned long long>(r.fromPrediction),
                     static_cast<unsigned long long>(r.wrong), static_cast<unsigned long long>(r.lost),
                     refusals(r).c_str(), seconds);
         if (r.wrong)
@@ -73,12 +82,12 @@ int main(int argc, char** argv)
         if (!only.empty() && c.name.rfind(only, 0) != 0)
             continue;
         const auto t0 = std::chrono::steady_clock::now();
-        const RowResult r = runRow(session, c, frames, seed);
+        const RowResult r = runRow(session, c, frames, seed, how);
         print(c.name, r, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     if (only.empty() || std::string_view("100 MB random bytes").rfind(only, 0) == 0) {
         const auto t0 = std::chrono::steady_clock::now();
-        print("100 MB random bytes", runRandomBytes(100, seed + 1),
+        print("100 MB random bytes", runRandomBytes(100, seed + 1, how),
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     return anyWrong ? 1 : 0;
