@@ -45,6 +45,8 @@
 #include <QProcess>
 #include <QSettings>
 #include <QSignalSpy>
+#include <QTabWidget>
+#include <QTextEdit>
 #include <QStatusBar>
 #include <QGridLayout>
 #include <QGroupBox>
@@ -111,6 +113,7 @@ private slots:
     void planBytes();
     void refusesPlansItCannotSend();
     void previewMarksChangedItems();
+    void previewFollowsOncePerPass();
     void linkLostAlarm();
     void linkSettingsAreKept();
     void replaysAFrameLog();
@@ -417,6 +420,27 @@ void TestMainWindow::previewMarksChangedItems()
 
     preview.setDatagram(false);
     QVERIFY(preview.hex().contains(QStringLiteral("Preamble (90 bytes)")));
+}
+
+// On screen the preview follows changes once per pass of the event loop,
+// and the hex dump only while its tab is the one shown.
+void TestMainWindow::previewFollowsOncePerPass()
+{
+    CommandState command;
+    CommandPreview preview;
+    preview.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&preview));
+    auto* items = preview.findChild<QTextEdit*>(QStringLiteral("previewItems"));
+    auto* hex = preview.findChild<QTextEdit*>(QStringLiteral("previewBytes"));
+    QVERIFY(items && hex);
+    const QString hexBefore = hex->toPlainText();
+    for (int id = 100; id < 110; ++id)
+        preview.frameSent(quint32(id));
+    QVERIFY(!items->toPlainText().contains(QStringLiteral("ID_msg 110")));  // not yet: within this pass
+    QTRY_VERIFY(items->toPlainText().contains(QStringLiteral("ID_msg 110")));
+    QCOMPARE(hex->toPlainText(), hexBefore);  // its tab is not shown
+    preview.findChild<QTabWidget*>()->setCurrentWidget(hex);
+    QVERIFY(hex->toPlainText() != hexBefore);
 }
 
 void TestMainWindow::linkLostAlarm()

@@ -10,6 +10,7 @@
 //                                  of N frames (default 86,400) is opened for replay,
 //                                  then while it replays at 10x for S seconds (default 60)
 #include "codec/message/Airframe.h"
+#include "codec/message/DigitPairs.h"
 #include "codec/message/MessageEncoder.h"
 #include "link/framelog/FrameLog.h"
 #include "ui/framelog/FrameLogModel.h"
@@ -18,6 +19,7 @@
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QMap>
 #include <QTemporaryDir>
 #include <QThread>
 #include <QTimer>
@@ -83,14 +85,20 @@ FrameRecord syntheticFrame(int i, qint64 t0)
 {
     static const rcm::Message resting = rcm::restingCommand(rcm::Airframe::wellEquipped());
     rcm::Message m = resting;
+    // Stamped as a link stamps them, so that the receive path accepts the
+    // replayed status frames and the console shows them, as in a real replay.
+    const qint64 utcMicros = t0 + qint64(i) * 500'000;
+    const std::chrono::sys_seconds second{std::chrono::seconds(utcMicros / 1'000'000)};
     m.header.set(rcm::ItemId::ID_msg, i / 2);
+    m.header.set(rcm::ItemId::time_UTC, rcm::DigitPairs::timeOf(second).packed());
+    m.header.set(rcm::ItemId::date_UTC, rcm::DigitPairs::dateOf(second).packed());
     m.flaps.set(rcm::ItemId::F_elev_set, (i / 2) % 41 - 20);
     m.settings.set(rcm::ItemId::land_wheels, (i / 20) % 2 ? 0xAA : 0x55);
     rcm::Diagnostics errors;
     const auto datagram = rcm::encodeDatagram(m, errors);
     FrameRecord r;
     r.bytes = QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size()));
-    r.utcMicros = t0 + qint64(i) * 500'000;
+    r.utcMicros = utcMicros;
     r.transport = FrameTransport::Udp;
     r.direction = i % 2 ? FrameDirection::Received : FrameDirection::Sent;
     r.status = i % 2 ? FrameStatus::Decoded : FrameStatus::NotChecked;
@@ -265,6 +273,11 @@ public:
             m_longest = spent;
             m_longestWhat = what;
         }
+        if (spent > kSlowEventNanos) {
+            auto& [count, longest] = m_slow[what];
+            ++count;
+            longest = std::max(longest, spent);
+        }
         return handled;
     }
     void restart()
@@ -272,12 +285,21 @@ public:
         m_on = true;
         m_longest = 0;
         m_longestWhat.clear();
+        m_slow.clear();
     }
     QString report() const
     {
-        return QStringLiteral("longest event handled %1 ms of GUI-thread CPU time (event type %2)")
+        QStringList slow;
+        for (auto it = m_slow.cbegin(); it != m_slow.cend(); ++it)
+            slow << QStringLiteral("%1 x %2 (longest %3 ms)")
+                        .arg(it->first)
+                        .arg(it.key())
+                        .arg(double(it->second) / 1e6, 0, 'f', 2);
+        return QStringLiteral("longest event handled %1 ms of GUI-thread CPU time (event type %2); over %3 ms: %4")
             .arg(double(m_longest) / 1e6, 0, 'f', 2)
-            .arg(m_longestWhat);
+            .arg(m_longestWhat)
+            .arg(double(kSlowEventNanos) / 1e6)
+            .arg(slow.isEmpty() ? QStringLiteral("none") : slow.join(QStringLiteral(", ")));
     }
 
 private:
@@ -287,10 +309,12 @@ private:
         clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
         return qint64(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
     }
+    static constexpr qint64 kSlowEventNanos = 4'000'000;
     int m_depth = 0;
     bool m_on = false;
     qint64 m_longest = 0;
     QString m_longestWhat;
+    QMap<QString, std::pair<int, qint64>> m_slow;  // events over kSlowEventNanos: how many, the longest
 };
 
 // Opening the log (indexing, the log view's rows) until the first record

@@ -6,9 +6,12 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QStyle>
 #include <QStringList>
 #include <QTableView>
 #include <QVBoxLayout>
+
+#include <algorithm>
 
 EventLogView::EventLogView(EventLogModel* model, QWidget* parent)
     : QWidget(parent), m_model(model), m_table(new QTableView), m_counts(new QLabel), m_file(new QLabel)
@@ -22,9 +25,23 @@ EventLogView::EventLogView(EventLogModel* model, QWidget* parent)
     m_table->verticalHeader()->hide();
     m_table->verticalHeader()->setDefaultSectionSize(fontMetrics().height() + 6);
     QHeaderView* header = m_table->horizontalHeader();
-    header->setSectionResizeMode(EventLogModel::TimeColumn, QHeaderView::ResizeToContents);
-    header->setSectionResizeMode(EventLogModel::SeverityColumn, QHeaderView::ResizeToContents);
-    header->setSectionResizeMode(EventLogModel::SourceColumn, QHeaderView::ResizeToContents);
+    // Widths fitted once to the widest text a column can hold, not
+    // ResizeToContents: that measures the rows again on every event added,
+    // which at a busy replay was milliseconds of the GUI thread per event.
+    const auto fit = [this, header](int column, const QStringList& texts) {
+        int width = header->fontMetrics().horizontalAdvance(
+                        m_model->headerData(column, Qt::Horizontal, Qt::DisplayRole).toString()) +
+                    header->style()->pixelMetric(QStyle::PM_HeaderMargin, nullptr, header) * 4;
+        for (const QString& t : texts)
+            width = std::max(width, m_table->fontMetrics().horizontalAdvance(t) + 12);
+        header->resizeSection(column, width);
+    };
+    fit(EventLogModel::TimeColumn, {QStringLiteral("00:00:00")});
+    fit(EventLogModel::SeverityColumn, {eventSeverityName(EventSeverity::Info), eventSeverityName(EventSeverity::Warning),
+                                        eventSeverityName(EventSeverity::Error)});
+    fit(EventLogModel::SourceColumn,
+        {eventSourceName(EventSource::Link), eventSourceName(EventSource::Key), eventSourceName(EventSource::Plan),
+         eventSourceName(EventSource::Alarm), eventSourceName(EventSource::Console)});
     header->setSectionResizeMode(EventLogModel::TextColumn, QHeaderView::Stretch);
     // Long texts are elided in the row and whole in its tool tip: the dock
     // never grows wider than the window gives it.

@@ -89,6 +89,8 @@ CommandPreview::CommandPreview(QWidget* parent)
     : QWidget(parent), m_summary(new QLabel), m_tabs(new QTabWidget), m_text(codeView()), m_hex(codeView())
 {
     m_summary->setWordWrap(true);
+    m_text->setObjectName(QStringLiteral("previewItems"));
+    m_hex->setObjectName(QStringLiteral("previewBytes"));
     m_tabs->addTab(m_text, tr("Items"));
     m_tabs->addTab(m_hex, tr("Bytes"));
     m_tabs->setDocumentMode(true);
@@ -96,6 +98,10 @@ CommandPreview::CommandPreview(QWidget* parent)
     layout->setContentsMargins(6, 6, 6, 6);
     layout->addWidget(m_summary);
     layout->addWidget(m_tabs, 1);
+    connect(m_tabs, &QTabWidget::currentChanged, this, [this] {
+        if (m_hexStale && m_tabs->currentWidget() == m_hex)
+            refreshHex();
+    });
     refresh();
 }
 
@@ -104,48 +110,87 @@ void CommandPreview::setDatagram(bool datagram)
     if (datagram == m_datagram)
         return;
     m_datagram = datagram;
-    refresh();
+    invalidate();
 }
 
 QString CommandPreview::text() const
 {
+    ensureFresh();
     return m_text->toPlainText();
 }
 
 QString CommandPreview::hex() const
 {
+    ensureFresh();
+    if (m_hexStale)
+        const_cast<CommandPreview*>(this)->refreshHex();
     return m_hex->toPlainText();
+}
+
+int CommandPreview::changedItems() const
+{
+    ensureFresh();
+    return m_changedItems;
+}
+
+void CommandPreview::ensureFresh() const
+{
+    if (m_stale)
+        const_cast<CommandPreview*>(this)->refresh();
+}
+
+void CommandPreview::invalidate()
+{
+    m_stale = true;
+    if (m_refreshQueued)
+        return;
+    m_refreshQueued = true;
+    QMetaObject::invokeMethod(
+        this,
+        [this] {
+            m_refreshQueued = false;
+            if (m_stale && isVisible())
+                refresh();
+        },
+        Qt::QueuedConnection);
+}
+
+void CommandPreview::showEvent(QShowEvent* event)
+{
+    QWidget::showEvent(event);
+    ensureFresh();
 }
 
 void CommandPreview::setCommand(const rcm::Message& command)
 {
     m_command = command;
-    refresh();
+    invalidate();
 }
 
 void CommandPreview::frameSent(quint32 messageId)
 {
     m_lastSent = m_command;
     m_nextId = (messageId + 1) % rcm::kMessageIdModulus;
-    refresh();
+    invalidate();
 }
 
 void CommandPreview::changeEvent(QEvent* event)
 {
     QWidget::changeEvent(event);
     if (event->type() == QEvent::PaletteChange)
-        refresh();
+        invalidate();
 }
 
 void CommandPreview::resetSent()
 {
     m_lastSent.reset();
     m_nextId = 0;
-    refresh();
+    invalidate();
 }
 
 void CommandPreview::refresh()
 {
+    m_stale = false;
     rcm::Message next = m_command;
     stampAsLink(next, m_nextId);
     std::optional<rcm::Message> before = m_lastSent;
@@ -184,27 +229,20 @@ void CommandPreview::refresh()
         const auto f = rcm::encodeFrame(m, e);
         return f ? QByteArray(reinterpret_cast<const char*>(f->data()), qsizetype(f->size())) : QByteArray();
     };
-    const QByteArray bytes = encode(next, errors);
-    if (bytes.isEmpty()) {
-        QString reasons;
-        for (const rcm::Diagnostic& d : errors)
-            reasons += QStringLiteral("<li>%1</li>").arg(QString::fromStdString(d.toString()).toHtmlEscaped());
-        m_hex->setHtml(
-            QStringLiteral("<p style=\"color:#b01c1c\"><b>%1</b></p><ul>%2</ul>")
-                .arg(tr("This command cannot be encoded; the link keeps sending the last good one."), reasons));
+    m_bytes = encode(next, errors);
+    m_encodeErrors.clear();
+    for (const rcm::Diagnostic& d : errors)
+        m_encodeErrors += QStringLiteral("<li>%1</li>").arg(QString::fromStdString(d.toString()).toHtmlEscaped());
+    rcm::Diagnostics ignored;
+    m_previousBytes = before && !m_bytes.isEmpty() ? encode(*before, ignored) : QByteArray();
+    m_hexStale = true;
+    if (m_tabs->currentWidget() == m_hex)
+        refreshHex();
+    if (m_bytes.isEmpty()) {
         m_summary->setText(QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(tr("Not encodable")));
         return;
     }
-    rcm::Diagnostics ignored;
-    const QByteArray previousBytes = before ? encode(*before, ignored) : QByteArray();
-    QList<bool> marked(bytes.size(), false);
-    if (previousBytes.size() == bytes.size())
-        for (const HexDumpPart& part : frameParts(bytes.size()))
-            if (part.title.endsWith(QLatin1String("data")))  // parity changes with any data byte
-                for (qsizetype i = part.offset; i < part.offset + part.length; ++i)
-                    marked[i] = bytes[i] != previousBytes[i];
-    m_hex->setHtml(
-        QStringLiteral("<pre style=\"margin:0\">%1</pre>").arg(hexDump(bytes, frameParts(bytes.size()), &marked)));
+    const QByteArray& bytes = m_bytes;
 
     const QString framing =
         m_datagram ? tr("%1-byte UDP datagram").arg(bytes.size()) : tr("%1-byte serial frame").arg(bytes.size());
@@ -219,4 +257,23 @@ void CommandPreview::refresh()
                 .arg(m_nextId)
                 .arg(framing, kMarkStyle,
                      m_changedItems == 1 ? tr("1 item changed") : tr("%1 items changed").arg(m_changedItems)));
+}
+
+void CommandPreview::refreshHex()
+{
+    m_hexStale = false;
+    if (m_bytes.isEmpty()) {
+        m_hex->setHtml(
+            QStringLiteral("<p style=\"color:#b01c1c\"><b>%1</b></p><ul>%2</ul>")
+                .arg(tr("This command cannot be encoded; the link keeps sending the last good one."), m_encodeErrors));
+        return;
+    }
+    QList<bool> marked(m_bytes.size(), false);
+    if (m_previousBytes.size() == m_bytes.size())
+        for (const HexDumpPart& part : frameParts(m_bytes.size()))
+            if (part.title.endsWith(QLatin1String("data")))  // parity changes with any data byte
+                for (qsizetype i = part.offset; i < part.offset + part.length; ++i)
+                    marked[i] = m_bytes[i] != m_previousBytes[i];
+    m_hex->setHtml(
+        QStringLiteral("<pre style=\"margin:0\">%1</pre>").arg(hexDump(m_bytes, frameParts(m_bytes.size()), &marked)));
 }

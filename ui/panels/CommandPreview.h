@@ -24,7 +24,7 @@ public:
     // Serial frames carry the 90-byte preamble; UDP datagrams do not.
     void setDatagram(bool datagram);
     // Items of the next frame that differ from the last frame sent; 0 before any.
-    int changedItems() const { return m_changedItems; }
+    int changedItems() const;
     QString text() const;  // plain, without marks
     QString hex() const;
     // Not a slot: rcm::Message's meta type is declared in link/session/MessageMetaType.h,
@@ -40,15 +40,30 @@ public slots:
 protected:
     // A new theme: the muted colour of the text view follows it.
     void changeEvent(QEvent* event) override;
+    void showEvent(QShowEvent* event) override;
 
 private:
+    // Changes are shown once per pass of the event loop, and only while the
+    // preview is visible (the hex dump only while its tab is): at 10x replay
+    // the command and the next ID change ten times a second, and each
+    // showing sets two rich-text views, milliseconds of the GUI thread.
+    void invalidate();
     void refresh();
+    void refreshHex();
+    // For the accessors: what they read is up to date whether shown or not.
+    void ensureFresh() const;
 
     rcm::Message m_command;
     std::optional<rcm::Message> m_lastSent;
     quint32 m_nextId = 0;
     bool m_datagram = true;
     int m_changedItems = 0;
+    bool m_stale = true;
+    bool m_refreshQueued = false;
+    bool m_hexStale = true;
+    QByteArray m_bytes;          // the next frame; empty when it cannot be encoded
+    QByteArray m_previousBytes;  // the last frame sent, stamped as the next
+    QString m_encodeErrors;      // why the next frame cannot be encoded, as HTML list items
     QLabel* m_summary;
     QTabWidget* m_tabs;
     QTextEdit* m_text;
