@@ -15,6 +15,7 @@
 #include "ui/alerts/ErrorBanner.h"
 #include "ui/alerts/LinkAlarm.h"
 #include "ui/alerts/LinkAlarmBanner.h"
+#include "ui/alerts/RefusalDigest.h"
 #include "ui/alerts/ToneAlarmSound.h"
 #include "ui/eventlog/EventLogModel.h"
 #include "ui/eventlog/EventLogView.h"
@@ -87,6 +88,49 @@ class TestAlerts : public QObject {
     Q_OBJECT
 
 private slots:
+    // A frame refused every second for two minutes, of two reasons: the
+    // first of each whole, then one line a minute per reason with how many
+    // more and the last of them; the rest when the link stops.
+    void refusalsDigestedByTheMinute()
+    {
+        AlarmBench b;
+        RefusalDigest digest(&b.log);
+        for (int s = 0; s < 130; ++s) {
+            b.now = kT0 + s * kSecond;
+            digest.refused(QStringLiteral("uncorrectable: codeword 1 beyond correction (ID_msg %1)").arg(s));
+            if (s % 10 == 0)
+                digest.refused(QStringLiteral("forged: authentication failed (offset %1)").arg(s));
+            digest.tick();
+        }
+        QCOMPARE(texts(b.model),
+                 (QStringList{
+                     QStringLiteral("warning link: A frame was refused: uncorrectable: codeword 1 beyond correction (ID_msg 0)"),
+                     QStringLiteral("warning link: A frame was refused: forged: authentication failed (offset 0)"),
+                     QStringLiteral("warning link: 59 more frames refused as uncorrectable in the last 60 s; the last: "
+                                    "uncorrectable: codeword 1 beyond correction (ID_msg 59)"),
+                     QStringLiteral("warning link: 5 more frames refused as forged in the last 60 s; the last: "
+                                    "forged: authentication failed (offset 50)"),
+                     QStringLiteral("warning link: 60 more frames refused as uncorrectable in the last 60 s; the last: "
+                                    "uncorrectable: codeword 1 beyond correction (ID_msg 119)"),
+                     QStringLiteral("warning link: 6 more frames refused as forged in the last 60 s; the last: "
+                                    "forged: authentication failed (offset 110)"),
+                 }));
+        b.now += kSecond;
+        digest.flush();
+        QCOMPARE(b.model.rowCount(), 8);
+        QCOMPARE(texts(b.model).at(6),
+                 QStringLiteral("warning link: 1 more frame refused as forged in the last 10 s; the last: "
+                                "forged: authentication failed (offset 120)"));
+        QCOMPARE(texts(b.model).at(7),
+                 QStringLiteral("warning link: 10 more frames refused as uncorrectable in the last 10 s; the last: "
+                                "uncorrectable: codeword 1 beyond correction (ID_msg 129)"));
+        // Quiet for a minute, then one: recorded whole again.
+        b.now += 61 * kSecond;
+        digest.refused(QStringLiteral("forged: authentication failed (offset 999)"));
+        QCOMPARE(texts(b.model).last(),
+                 QStringLiteral("warning link: A frame was refused: forged: authentication failed (offset 999)"));
+    }
+
     void bannerQueuesAndCounts()
     {
         QWidget window;

@@ -14,6 +14,7 @@
 #include "link/framelog/FrameLogReader.h"
 #include "link/simulation/AirframeLoader.h"
 #include "link/transport/UdpLink.h"
+#include "ui/alerts/RefusalDigest.h"
 #include "ui/panels/CommandPreview.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/FieldButtonGroup.h"
@@ -899,6 +900,18 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
     // Each refusal reaches the operator with its reason.
     const QString refused = window.statusBar()->currentMessage();
     QVERIFY2(refused.startsWith(QStringLiteral("A frame was refused: forged")), qPrintable(refused));
+    // The event log has the first whole; the two after it within the minute
+    // are counted, to be told when the minute is up (RefusalDigest).
+    const EventLogModel* events = window.alerts()->model();
+    QStringList forged;
+    for (int row = 0; row < events->rowCount(); ++row)
+        if (events->event(row).text.contains(QStringLiteral("forged")))
+            forged << events->event(row).text;
+    QCOMPARE(forged.size(), 1);
+    QVERIFY2(forged.first().startsWith(QStringLiteral("A frame was refused: forged")), qPrintable(forged.first()));
+    window.alerts()->refusals()->flush();
+    QVERIFY2(events->event(events->rowCount() - 1).text.startsWith(QStringLiteral("2 more frames refused as forged")),
+             qPrintable(events->event(events->rowCount() - 1).text));
 
     // The log view has them as rejected, with the ciphertext as it arrived.
     FrameLogModel* log = window.frameLog();

@@ -5,6 +5,7 @@
 #include "ui/alerts/ErrorBanner.h"
 #include "ui/alerts/LinkAlarm.h"
 #include "ui/alerts/LinkAlarmBanner.h"
+#include "ui/alerts/RefusalDigest.h"
 #include "ui/alerts/ToneAlarmSound.h"
 #include "ui/eventlog/EventLogModel.h"
 #include "ui/eventlog/EventLogView.h"
@@ -14,7 +15,11 @@
 #include <QVBoxLayout>
 
 ConsoleAlerts::ConsoleAlerts(AlarmSound* sound, QObject* parent)
-    : QObject(parent), m_events(new EventLog(this)), m_model(new EventLogModel(m_events, this)), m_sound(sound)
+    : QObject(parent),
+      m_events(new EventLog(this)),
+      m_model(new EventLogModel(m_events, this)),
+      m_sound(sound),
+      m_refusals(new RefusalDigest(m_events, this))
 {
     if (!m_sound) {
         auto* tone = new ToneAlarmSound(this);
@@ -74,6 +79,9 @@ void ConsoleAlerts::follow(const LinkController* controller)
     connect(controller, &LinkController::errorOccurred, this,
             [this](const QString& message) { error(EventSource::Link, message); });
     connect(controller, &LinkController::statisticsChanged, this, &ConsoleAlerts::setStatistics);
+    connect(controller, &LinkController::frameRejected, m_refusals, &RefusalDigest::refused);
+    // The counts of the last minute belong to this link's session.
+    connect(controller, &QObject::destroyed, m_refusals, &RefusalDigest::flush);
 }
 
 void ConsoleAlerts::info(EventSource source, const QString& text)

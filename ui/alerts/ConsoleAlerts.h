@@ -20,6 +20,7 @@ class EventLogView;
 class LinkAlarm;
 class LinkAlarmBanner;
 class LinkController;
+class RefusalDigest;
 class QWidget;
 
 class ConsoleAlerts : public QObject {
@@ -44,8 +45,10 @@ public:
     LinkAlarmBanner* alarmBanner() const { return m_alarmBanner; }
 
     // The link's errors and statistics reach the event log, the banner and
-    // the alarm. The connections end with the controller.
+    // the alarm, its refused frames the event log (RefusalDigest). The
+    // connections end with the controller.
     void follow(const LinkController* controller);
+    RefusalDigest* refusals() const { return m_refusals; }
 
 public slots:
     void info(EventSource source, const QString& text);
@@ -66,4 +69,5 @@ private:
     ErrorBanner* m_errorBanner = nullptr;
     LinkAlarmBanner* m_alarmBanner = nullptr;
     EventLogView* m_view = nullptr;
+    RefusalDigest* m_refusals;
 };

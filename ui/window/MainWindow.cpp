@@ -624,11 +624,11 @@ void MainWindow::linkStarted(const LinkController* controller)
     connect(controller, &LinkController::commandRejected, this, [this](const QString& reasons) {
         showError(tr("The link refused the command: %1").arg(reasons), EventSource::Link);
     });
-    // A warning in the event log, not the banner: a forger could send one a
-    // second; the status bar counts them by reason.
+    // Not the banner: a forger could send one a second. The status bar
+    // counts them by reason; the event log has them through m_alerts
+    // (RefusalDigest).
     connect(controller, &LinkController::frameRejected, this, [this](const QString& reason) {
         statusBar()->showMessage(tr("A frame was refused: %1").arg(reason), 8000);
-        m_alerts->warning(EventSource::Link, tr("A frame was refused: %1").arg(reason));
     });
     if (const ReplayLink* r = m_session->replay()) {
         beginReplay(r);
