@@ -111,6 +111,7 @@ private slots:
     void noWrongFrameDelivered_data();
     void noWrongFrameDelivered();
     void sixteenByteErrorsDelivered();
+    void randomBytesDeliverNothing();
     void errorAtEitherEndOfCodeword1_data();
     void errorAtEitherEndOfCodeword1();
     void preambleThenConstant_data();
@@ -136,9 +137,11 @@ void TestReceive::noWrongFrameDelivered_data()
     QTest::newRow("overwrite burst") << int(K::OverwriteBurst) << 0.0 << 3000;
     QTest::newRow("insertion burst") << int(K::InsertBurst) << 0.0 << 0;
     QTest::newRow("BER 1e-3") << int(K::BitErrors) << 1e-3 << 9990;
+    QTest::newRow("BER 3e-3") << int(K::BitErrors) << 3e-3 << 9990;
     // Plain RS reads about 5 % of these frames and none at 3e-2: the rest
     // are read with the receiver's predictions.
     QTest::newRow("BER 1e-2") << int(K::BitErrors) << 1e-2 << 9700;
+    QTest::newRow("BER 2e-2") << int(K::BitErrors) << 2e-2 << 9000;
     QTest::newRow("BER 3e-2") << int(K::BitErrors) << 3e-2 << 8000;
     // Every sent frame is there whole: none may be lost to the fakes.
     QTest::newRow("preamble + constant") << int(K::ConstantFollower) << 0.0 << 10000;
@@ -163,6 +166,14 @@ void TestReceive::sixteenByteErrorsDelivered()
     const RowResult r = runRow(CommandSession{}, Channel(Channel::Kind::ByteErrors16, 0, ""), 1000, 16);
     QCOMPARE(r.wrong, std::uint64_t{0});
     QCOMPARE(r.correct, std::uint64_t{1000});
+}
+
+// A megabyte of random bytes, read as a recording with the predictions on:
+// nothing in it is a frame anybody sent.
+void TestReceive::randomBytesDeliverNothing()
+{
+    const RowResult r = runRandomBytes(1, 99);
+    QVERIFY2(r.wrong == 0, r.firstWrong.c_str());
 }
 
 void TestReceive::errorAtEitherEndOfCodeword1_data()
