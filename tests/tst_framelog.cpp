@@ -238,15 +238,22 @@ void TestFrameLog::statusComment_data()
     QTest::addColumn<int>("status");
     QTest::addColumn<QList<int>>("symbols");
     QTest::addColumn<QByteArray>("text");
-    QTest::newRow("decoded") << int(FrameStatus::Decoded) << QList<int>{0, 0} << QByteArray("rcm decoded symbols=0/0");
+    QTest::addColumn<bool>("enciphered");
+    QTest::newRow("decoded") << int(FrameStatus::Decoded) << QList<int>{0, 0} << QByteArray("rcm decoded symbols=0/0")
+                             << false;
+    QTest::newRow("keyed") << int(FrameStatus::Corrected) << QList<int>{2, 0}
+                           << QByteArray("rcm corrected symbols=2/0 enciphered") << true;
+    QTest::newRow("keyed, sent") << int(FrameStatus::NotChecked) << QList<int>{}
+                                 << QByteArray("rcm not-checked enciphered") << true;
     QTest::newRow("corrected") << int(FrameStatus::Corrected) << QList<int>{3, 0}
-                               << QByteArray("rcm corrected symbols=3/0");
+                               << QByteArray("rcm corrected symbols=3/0") << false;
     QTest::newRow("uncorrectable") << int(FrameStatus::Uncorrectable) << QList<int>{16, -1}
-                                   << QByteArray("rcm uncorrectable symbols=16/-1");
-    QTest::newRow("rejected") << int(FrameStatus::Rejected) << QList<int>{} << QByteArray("rcm rejected");
-    QTest::newRow("not-checked") << int(FrameStatus::NotChecked) << QList<int>{} << QByteArray("rcm not-checked");
+                                   << QByteArray("rcm uncorrectable symbols=16/-1") << false;
+    QTest::newRow("rejected") << int(FrameStatus::Rejected) << QList<int>{} << QByteArray("rcm rejected") << false;
+    QTest::newRow("not-checked") << int(FrameStatus::NotChecked) << QList<int>{} << QByteArray("rcm not-checked")
+                                 << false;
     QTest::newRow("one codeword") << int(FrameStatus::Corrected) << QList<int>{7}
-                                  << QByteArray("rcm corrected symbols=7");
+                                  << QByteArray("rcm corrected symbols=7") << false;
 }
 
 void TestFrameLog::statusComment()
@@ -254,15 +261,19 @@ void TestFrameLog::statusComment()
     QFETCH(int, status);
     QFETCH(QList<int>, symbols);
     QFETCH(QByteArray, text);
-    QCOMPARE(frameStatusComment(FrameStatus(status), symbols), text);
+    QFETCH(bool, enciphered);
+    QCOMPARE(frameStatusComment(FrameStatus(status), symbols, enciphered), text);
     FrameStatus parsed = FrameStatus::Decoded;
     QList<int> parsedSymbols{99};
-    QVERIFY(parseFrameStatusComment(text, &parsed, &parsedSymbols));
+    bool parsedEnciphered = !enciphered;
+    QVERIFY(parseFrameStatusComment(text, &parsed, &parsedSymbols, &parsedEnciphered));
     QCOMPARE(int(parsed), status);
     QCOMPARE(parsedSymbols, symbols);
+    QCOMPARE(parsedEnciphered, enciphered);
 
-    for (const char* bad : {"decoded", "rcm", "rcm fine", "rcm decoded extra",
-                            "rcm decoded symbols=", "rcm decoded symbols=1/", "rcm decoded symbols=x"}) {
+    for (const char* bad :
+         {"decoded", "rcm", "rcm fine", "rcm decoded extra", "rcm decoded symbols=", "rcm decoded symbols=1/",
+          "rcm decoded symbols=x", "rcm decoded enciphered extra", "rcm decoded symbols=1/2 ciphered"}) {
         QVERIFY2(!parseFrameStatusComment(QByteArrayView(bad), nullptr, nullptr), bad);
     }
 }

@@ -7,6 +7,7 @@
 // real sockets and process are on conditions (QTRY), never on a time.
 
 // First: it names a member emit(), which Qt's headers define as a macro.
+#include "codec/receive/LoggedFrameReading.h"
 #include "codec/frame/StreamSync.h"
 
 #include "codec/message/Airframe.h"
@@ -229,6 +230,16 @@ void TestLinkSecure::matchingKeysFlyASession()
         const SecureCodec& codec = r.direction == FrameDirection::Sent ? up : down;
         QVERIFY(codec.decryptBlocks(blocksOf(r.bytes)).authentic);
         QVERIFY(!decodeFrame(bytesOf(r.bytes)).diagnostics.empty());  // not readable without the key
+        // The log says so, and a reader of it shows no items without the key
+        // and the real ones, authenticated, with it.
+        QVERIFY(r.enciphered);
+        const LoggedFrameReading without = readLoggedFrame(bytesOf(r.bytes), r.enciphered, {});
+        QCOMPARE(int(without.outcome), int(LoggedFrameReading::Outcome::Enciphered));
+        QVERIFY(without.decoded.message.header.items().empty());
+        const LoggedFrameReading with = readLoggedFrame(bytesOf(r.bytes), r.enciphered, {&up, &down});
+        QVERIFY2(with.read(), with.detail.c_str());
+        QCOMPARE(*with.direction, r.direction == FrameDirection::Sent ? Direction::GcsToUa : Direction::UaToGcs);
+        QVERIFY(with.decoded.message.header.has(ItemId::ID_msg));
         (r.direction == FrameDirection::Sent ? sent : received)++;
     }
     QCOMPARE(sent, 5);

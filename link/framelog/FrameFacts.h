@@ -26,6 +26,9 @@ struct FrameFacts {
     FrameDirection direction = FrameDirection::Received;
     FrameTransport transport = FrameTransport::Serial;
     FrameStatus status = FrameStatus::NotChecked;
+    // Sent or received over a keyed link: the bytes are ciphertext, and
+    // without the key a reader says so rather than decode them as plain.
+    bool enciphered = false;
 
     friend bool operator==(const FrameFacts&, const FrameFacts&) = default;
 };

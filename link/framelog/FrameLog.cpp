@@ -24,6 +24,7 @@ constexpr const char* kTransportDescriptions[] = {
 constexpr const char* kStatusNames[] = {"decoded", "corrected", "uncorrectable", "rejected", "not-checked"};
 constexpr QByteArrayView kCommentPrefix = "rcm ";
 constexpr QByteArrayView kSymbolsKey = "symbols=";
+constexpr QByteArrayView kEncipheredWord = "enciphered";
 
 // Always little-endian, whatever the host, so files are byte-identical
 // everywhere and the tests can compare exact bytes.
@@ -124,7 +125,7 @@ void appendPacket(QByteArray& b, int interfaceId, const FrameRecord& r)
     char flags[4];
     qToLittleEndian(r.direction == FrameDirection::Sent ? pcapng::kEpbOutbound : pcapng::kEpbInbound, flags);
     putOption(b, pcapng::kOptEpbFlags, QByteArrayView(flags, 4));
-    putOption(b, pcapng::kOptComment, frameStatusComment(r.status, r.correctedSymbols));
+    putOption(b, pcapng::kOptComment, frameStatusComment(r.status, r.correctedSymbols, r.enciphered));
     putEndOfOptions(b);
     endBlock(b, start);
 }
@@ -141,7 +142,7 @@ QString frameStatusName(FrameStatus s)
     return QString::fromLatin1(kStatusNames[int(s)]);
 }
 
-QByteArray frameStatusComment(FrameStatus status, const QList<int>& correctedSymbols)
+QByteArray frameStatusComment(FrameStatus status, const QList<int>& correctedSymbols, bool enciphered)
 {
     QByteArray c = kCommentPrefix.toByteArray() + kStatusNames[int(status)];
     if (!correctedSymbols.isEmpty()) {
@@ -153,15 +154,20 @@ QByteArray frameStatusComment(FrameStatus status, const QList<int>& correctedSym
             c += QByteArray::number(correctedSymbols[i]);
         }
     }
+    if (enciphered) {
+        c += ' ';
+        c += kEncipheredWord.toByteArray();
+    }
     return c;
 }
 
-bool parseFrameStatusComment(QByteArrayView comment, FrameStatus* status, QList<int>* correctedSymbols)
+bool parseFrameStatusComment(QByteArrayView comment, FrameStatus* status, QList<int>* correctedSymbols,
+                             bool* enciphered)
 {
     if (!comment.startsWith(kCommentPrefix))
         return false;
     comment = comment.sliced(kCommentPrefix.size());
-    const qsizetype space = comment.indexOf(' ');
+    qsizetype space = comment.indexOf(' ');
     const QByteArrayView name = space < 0 ? comment : comment.first(space);
     int found = -1;
     for (int i = 0; i < int(std::size(kStatusNames)); ++i) {
@@ -172,15 +178,16 @@ bool parseFrameStatusComment(QByteArrayView comment, FrameStatus* status, QList<
         return false;
 
     QList<int> symbols;
-    if (space >= 0) {
-        QByteArrayView rest = comment.sliced(space + 1);
-        if (!rest.startsWith(kSymbolsKey))
-            return false;
+    QByteArrayView rest = space < 0 ? QByteArrayView() : comment.sliced(space + 1);
+    if (rest.startsWith(kSymbolsKey)) {
         rest = rest.sliced(kSymbolsKey.size());
+        space = rest.indexOf(' ');
+        QByteArrayView numbers = space < 0 ? rest : rest.first(space);
+        rest = space < 0 ? QByteArrayView() : rest.sliced(space + 1);
         for (;;) {
-            const qsizetype slash = rest.indexOf('/');
+            const qsizetype slash = numbers.indexOf('/');
             bool ok = false;
-            const int n = (slash < 0 ? rest : rest.first(slash)).toInt(&ok);
+            const int n = (slash < 0 ? numbers : numbers.first(slash)).toInt(&ok);
             if (!ok)
                 return false;
             // The reader's index pass only wants the status: no allocation there.
@@ -188,13 +195,18 @@ bool parseFrameStatusComment(QByteArrayView comment, FrameStatus* status, QList<
                 symbols.append(n);
             if (slash < 0)
                 break;
-            rest = rest.sliced(slash + 1);
+            numbers = numbers.sliced(slash + 1);
         }
     }
+    const bool keyed = rest == kEncipheredWord;
+    if (!rest.isEmpty() && !keyed)
+        return false;
     if (status)
         *status = FrameStatus(found);
     if (correctedSymbols)
         *correctedSymbols = std::move(symbols);
+    if (enciphered)
+        *enciphered = keyed;
     return true;
 }
 

@@ -8,7 +8,8 @@
 // first frame, so the interface id says the transport), then one Enhanced
 // Packet Block per frame. Link type 147 (LINKTYPE_USER0), microsecond
 // timestamps (if_tsresol = 6), direction in epb_flags, decode status in an
-// opt_comment such as "rcm corrected symbols=3/0".
+// opt_comment such as "rcm corrected symbols=3/0", ending in " enciphered"
+// for a keyed link's frame.
 
 #include "link/framelog/FrameFacts.h"
 
@@ -52,8 +53,9 @@ QString frameTransportName(FrameTransport t);  // "serial", "udp", ...
 QString frameStatusName(FrameStatus s);        // "decoded", "not-checked", ...
 
 // The opt_comment carrying status and corrections, and its exact inverse.
-QByteArray frameStatusComment(FrameStatus status, const QList<int>& correctedSymbols);
-bool parseFrameStatusComment(QByteArrayView comment, FrameStatus* status, QList<int>* correctedSymbols);
+QByteArray frameStatusComment(FrameStatus status, const QList<int>& correctedSymbols, bool enciphered = false);
+bool parseFrameStatusComment(QByteArrayView comment, FrameStatus* status, QList<int>* correctedSymbols,
+                             bool* enciphered = nullptr);
 
 class FrameLog {
 public:

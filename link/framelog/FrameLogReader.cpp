@@ -326,7 +326,7 @@ bool FrameLogReader::parsePacket(qint64 at, quint32 length, bool be, const QVect
                 e.direction = (flags & 3) == pcapng::kEpbOutbound ? FrameDirection::Sent : FrameDirection::Received;
             } else if (code == pcapng::kOptComment && !statusFound) {
                 // Someone may have added their own comments in Wireshark.
-                statusFound = parseFrameStatusComment(value, &e.status, nullptr);
+                statusFound = parseFrameStatusComment(value, &e.status, nullptr, &e.enciphered);
             }
         });
     if (!optionsOk)
@@ -363,7 +363,7 @@ void FrameLogReader::readPacket(const uchar* block, quint32 length, bool be, qui
     bool found = false;
     forEachOption(block + 28 + padded4(captured), block + length - 4, be, [&](quint16 code, QByteArrayView value) {
         if (code == pcapng::kOptComment && !found) {
-            found = parseFrameStatusComment(value, nullptr, &r.correctedSymbols);
+            found = parseFrameStatusComment(value, nullptr, &r.correctedSymbols, &r.enciphered);
         }
     });
 }

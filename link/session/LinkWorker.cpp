@@ -426,6 +426,7 @@ void LinkWorker::log(FrameDirection direction, QByteArray bytes, FrameStatus sta
     record.direction = direction;
     record.transport = m_link->transport();
     record.status = status;
+    record.enciphered = m_options.secure != nullptr;
     record.correctedSymbols = std::move(corrected);
 
     LoggedFrame logged;

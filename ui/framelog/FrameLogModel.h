@@ -113,8 +113,8 @@ private:
         Source from = Source::None;
         mutable qint8 corrected1 = 0;  // kNotKnown until decoded
         mutable qint8 corrected2 = 0;
-        mutable bool decoded = false;  // messageId and corrected* are known
-        mutable bool hasMessageId = false;
+        mutable bool decoded : 1 = false;  // messageId and corrected* are known
+        mutable bool hasMessageId : 1 = false;
         quint32 length = 0;
         mutable quint32 messageId = 0;
         qint64 source = 0;  // see Source

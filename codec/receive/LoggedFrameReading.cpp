@@ -1,0 +1,56 @@
+#include "codec/receive/LoggedFrameReading.h"
+
+#include "codec/message/MessageDecoder.h"
+
+namespace rcm {
+
+namespace {
+
+LoggedFrameReading judged(std::span<const std::uint8_t> bytes, const std::vector<const secure::SecureCodec*>& codecs)
+{
+    LoggedFrameReading reading;
+    FrameReceiver::Options options;
+    options.mode = FrameReceiver::Mode::Recording;
+    options.keys.codecs = codecs;
+    FrameReceiver receiver(options, [&](const ReceivedFrame& f) {
+        reading.outcome = f.delivered() ? LoggedFrameReading::Outcome::Read : LoggedFrameReading::Outcome::Refused;
+        reading.blocks = f.blocks;
+        reading.decoded = f.decoded;
+        reading.decoded.corrected1 = f.blocks.corrected1;
+        reading.decoded.corrected2 = f.blocks.corrected2;
+        reading.refusal = f.refusal;
+        reading.detail = f.detail;
+        reading.direction = f.direction;
+    });
+    receiver.receive(bytes);
+    return reading;
+}
+
+}  // namespace
+
+LoggedFrameReading readLoggedFrame(std::span<const std::uint8_t> bytes, bool enciphered,
+                                   const std::vector<const secure::SecureCodec*>& codecs)
+{
+    if (bytes.size() != kFrameSize && bytes.size() != kDatagramSize)
+        return {};
+    if (enciphered && codecs.empty()) {
+        LoggedFrameReading reading;
+        reading.outcome = LoggedFrameReading::Outcome::Enciphered;
+        reading.blocks = decodeCodewords(bytes.last<kDatagramSize>());
+        reading.decoded.corrected1 = reading.blocks.corrected1;
+        reading.decoded.corrected2 = reading.blocks.corrected2;
+        return reading;
+    }
+    if (enciphered)
+        return judged(bytes, codecs);
+    // Marked plain. A log written before frames were marked may still hold
+    // a keyed session's: with a key, what plain reading refuses is tried
+    // deciphered as well.
+    LoggedFrameReading plain = judged(bytes, {});
+    if (plain.read() || codecs.empty())
+        return plain;
+    LoggedFrameReading keyed = judged(bytes, codecs);
+    return keyed.read() ? keyed : plain;
+}
+
+}  // namespace rcm

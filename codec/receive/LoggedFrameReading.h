@@ -1,0 +1,48 @@
+// One frame of a log, read on its own: for the frame log's rows and detail
+// pane, CSV export and `rcm decode` of a frame log. The receive path's own
+// steps (RS, decipher and authenticate with the keys given, decode, the
+// exactness rules: FrameReceiver in recording mode) without the continuity
+// it checks between a sender's frames: a row is read the same whatever rows
+// are shown or exported beside it, and a log's rows are any subset, in any
+// order.
+//
+// A frame of a keyed session is ciphertext. Without a key it is not decoded
+// at all, and says so: read as plain it would show items nobody sent.
+//
+// Plain C++20, no Qt.
+#pragma once
+
+#include "codec/receive/FrameReceiver.h"
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rcm {
+
+struct LoggedFrameReading {
+    enum class Outcome {
+        Read,        // exact (and authentic, keyed): decoded.message is what was sent
+        Refused,     // refusal and detail say why
+        Enciphered,  // a keyed session's frame and no key: not decoded
+        NotAFrame,   // neither 600 nor 510 bytes
+    };
+    Outcome outcome = Outcome::NotAFrame;
+    DecodedBlocks blocks;  // after RS: the corrections (still enciphered on a keyed link)
+    // Read: the message. Refused on the plain link: what could be read, for
+    // forensic display only. Otherwise empty.
+    DecodeResult decoded;
+    std::optional<Refusal> refusal;
+    std::string detail;
+    std::optional<secure::Direction> direction;  // keyed and read: the direction it authenticated in
+
+    bool read() const { return outcome == Outcome::Read; }
+};
+
+// `enciphered`: the log says the frame went over a keyed link. `codecs`: one
+// per direction the frame may have been sent in (both, for a log); not owned.
+LoggedFrameReading readLoggedFrame(std::span<const std::uint8_t> bytes, bool enciphered,
+                                   const std::vector<const secure::SecureCodec*>& codecs);
+
+}  // namespace rcm
