@@ -197,11 +197,11 @@ void TestFrameLogCsv::samples()
     QVERIFY(raw.endsWith("\r\n"));
     QCOMPARE(raw.count('\n'), raw.count("\r\n"));
 
-    QCOMPARE(t.header.mid(0, 7), (QStringList{"utc", "direction", "transport", "status", "corrected_block1",
-                                              "corrected_block2", "HEADER.ID_msg"}));
+    QCOMPARE(t.header.mid(0, 8), (QStringList{"utc", "direction", "transport", "status", "corrected_block1",
+                                              "corrected_block2", "reading", "HEADER.ID_msg"}));
     // header 7, engines 3 x 4, flaps 7, fuel dump 1, settings 2, radios 3 x 5,
     // sense 3, cameras NIK 1 (5), SNY 1 and SNY 2 (7 each), flight plan 3
-    QCOMPARE(t.header.size(), 6 + 7 + 12 + 7 + 1 + 2 + 15 + 3 + 19 + 3);
+    QCOMPARE(t.header.size(), 7 + 7 + 12 + 7 + 1 + 2 + 15 + 3 + 19 + 3);
     const QStringList order = {"HEADER.ID_GCS_backup",        "engine 1.eng_ID",
                                "engine 1.eng_status",         "engine 3.eng_carb_SET",
                                "flaps.FLAP_status",           "FCU_general.ENABLE_fuel_dump",
@@ -253,14 +253,22 @@ void TestFrameLogCsv::samples()
 
     // 16 errors in each codeword: corrected to the very values of the clean frame
     QCOMPARE(t.rows[3].mid(3, 3), (QStringList{"corrected", "16", "16"}));
-    QCOMPARE(t.rows[3].mid(6), t.rows[1].mid(6));
+    QCOMPARE(t.rows[3].mid(7), t.rows[1].mid(7));
+
+    // What the receive path makes of each on its own.
+    QCOMPARE(t.cell(0, "reading"), QStringLiteral("read"));
+    QCOMPARE(t.cell(1, "reading"), QStringLiteral("read"));
+    QCOMPARE(t.cell(2, "reading"), QStringLiteral("read"));
+    QCOMPARE(t.cell(3, "reading"), QStringLiteral("read"));
+    QCOMPARE(t.cell(4, "reading"), QStringLiteral("refused as uncorrectable"));
+    QCOMPARE(t.cell(5, "reading"), QStringLiteral("not a frame"));
 
     // beyond correction, and not a frame at all: no values
     QCOMPARE(t.rows[4].mid(3, 3), (QStringList{"uncorrectable", "-1", "-1"}));
-    QCOMPARE(t.rows[4].mid(6), QStringList(t.header.size() - 6, QString()));
+    QCOMPARE(t.rows[4].mid(7), QStringList(t.header.size() - 7, QString()));
     QCOMPARE(t.rows[5].mid(0, 6),
              (QStringList{"2026-11-22T07:32:05.000001Z", "received", "simulated", "rejected", "", ""}));
-    QCOMPARE(t.rows[5].mid(6), QStringList(t.header.size() - 6, QString()));
+    QCOMPARE(t.rows[5].mid(7), QStringList(t.header.size() - 7, QString()));
 }
 
 // Every item cell is the value half of the item's line in formatMessage.
@@ -276,7 +284,7 @@ void TestFrameLogCsv::valuesAreTheTextFormats()
     for (const QString& line : lines)
         if (!line.startsWith(QLatin1String("BEGIN ")) && line != QLatin1String("END") && !line.isEmpty())
             values.append(line.section(QLatin1Char(' '), 1));
-    QCOMPARE(t.rows.first().mid(6), values);
+    QCOMPARE(t.rows.first().mid(7), values);
 }
 
 void TestFrameLogCsv::quoting()
@@ -319,7 +327,7 @@ void TestFrameLogCsv::columnOrderIsCanonical()
         exportRecords({record(frameOf(a), kT0), record(frameOf(b), kT0 + 1), record(frameOf(c), kT0 + 2)}, &forward));
     QVERIFY(
         exportRecords({record(frameOf(c), kT0), record(frameOf(b), kT0 + 1), record(frameOf(a), kT0 + 2)}, &backward));
-    QCOMPARE(forward.header.mid(6), expected);
+    QCOMPARE(forward.header.mid(7), expected);
     QCOMPARE(backward.header, forward.header);
     QCOMPARE(forward.cell(0, "engine 2.eng_prop_pitch"), QStringLiteral("9"));
     QCOMPARE(backward.cell(2, "engine 2.eng_prop_pitch"), QStringLiteral("9"));
@@ -340,9 +348,9 @@ void TestFrameLogCsv::repeatedKeyInOneFrame()
     const rcm::FrameBytes f = rcm::makeFrame(b1, b2);
     Table t;
     QVERIFY(exportRecords({record(QByteArray(reinterpret_cast<const char*>(f.data()), qsizetype(f.size())), kT0)}, &t));
-    QCOMPARE(t.header.mid(6), (QStringList{"engine 1.eng_ID", "engine 1.eng_prop_pitch", "engine 1#2.eng_ID",
+    QCOMPARE(t.header.mid(7), (QStringList{"engine 1.eng_ID", "engine 1.eng_prop_pitch", "engine 1#2.eng_ID",
                                            "engine 1#2.eng_prop_pitch"}));
-    QCOMPARE(t.rows.first().mid(6), (QStringList{"1", "5", "1", "6"}));
+    QCOMPARE(t.rows.first().mid(7), (QStringList{"1", "5", "1", "6"}));
 }
 
 void TestFrameLogCsv::failures()
@@ -368,7 +376,7 @@ void TestFrameLogCsv::failures()
     QBuffer csv;
     csv.open(QIODevice::WriteOnly);
     QVERIFY(exportFrameLogCsv(empty, csv, &error));
-    QCOMPARE(csv.data(), QByteArray("utc,direction,transport,status,corrected_block1,corrected_block2\r\n"));
+    QCOMPARE(csv.data(), QByteArray("utc,direction,transport,status,corrected_block1,corrected_block2,reading\r\n"));
 }
 
 void TestFrameLogCsv::corruptLogExportsRecordsBeforeTheFault()
@@ -398,7 +406,7 @@ void TestFrameLogCsv::corruptLogExportsRecordsBeforeTheFault()
     QList<QStringList> rows;
     QVERIFY(parseCsv(out.data(), &rows));
     QCOMPARE(rows.size(), 2);
-    QCOMPARE(rows[1].value(6), QStringLiteral("133"));
+    QCOMPARE(rows[1].value(7), QStringLiteral("133"));
 }
 
 QTEST_GUILESS_MAIN(TestFrameLogCsv)

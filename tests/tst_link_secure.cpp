@@ -15,6 +15,7 @@
 #include "codec/message/MessageEncoder.h"
 #include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLog.h"
+#include "link/framelog/FrameLogCsv.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/LinkWorker.h"
 #include "link/transport/UdpLink.h"
@@ -22,6 +23,7 @@
 #include "AircraftFixture.h"
 #include "UasimProcess.h"
 
+#include <QBuffer>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QTest>
@@ -244,6 +246,37 @@ void TestLinkSecure::matchingKeysFlyASession()
     }
     QCOMPARE(sent, 5);
     QCOMPARE(received, 5);
+
+    // CSV export: without the key every row says enciphered and no item has
+    // a value; with it every row is read, its ID_msg there.
+    const auto csvRows = [&](const LogKey* logKey) {
+        QBuffer out;
+        out.open(QIODevice::WriteOnly);
+        QString error;
+        if (!exportFrameLogCsv(logPath, out, &error, logKey))
+            qWarning() << error;
+        return QString::fromLatin1(out.data()).split(QStringLiteral("\r\n"), Qt::SkipEmptyParts);
+    };
+    const QStringList plainRows = csvRows(nullptr);
+    QCOMPARE(plainRows.size(), 11);
+    QCOMPARE(plainRows.first(),
+             QStringLiteral("utc,direction,transport,status,corrected_block1,corrected_block2,reading"));
+    for (const QString& row : plainRows.mid(1))
+        QVERIFY2(row.endsWith(QStringLiteral(",enciphered")), qPrintable(row));
+    std::string keyError;
+    const std::unique_ptr<LogKey> logKey = LogKey::open(key.toStdString(), keyError);
+    QVERIFY2(logKey, keyError.c_str());
+    const QStringList keyedRows = csvRows(logKey.get());
+    QCOMPARE(keyedRows.size(), 11);
+    const QStringList header = keyedRows.first().split(QLatin1Char(','));
+    const qsizetype reading = header.indexOf(QStringLiteral("reading"));
+    const qsizetype id = header.indexOf(QStringLiteral("HEADER.ID_msg"));
+    QVERIFY(reading > 0 && id > 0);
+    for (const QString& row : keyedRows.mid(1)) {
+        const QStringList cells = row.split(QLatin1Char(','));
+        QCOMPARE(cells.value(reading), QStringLiteral("read"));
+        QVERIFY2(!cells.value(id).isEmpty(), qPrintable(row));
+    }
 }
 
 void TestLinkSecure::differentKeysRejectEveryFrame()

@@ -4,6 +4,22 @@
 
 namespace rcm {
 
+LogKey::LogKey(const secure::SecretKey& psk)
+    : m_up(psk, secure::Direction::GcsToUa),
+      m_down(psk, secure::Direction::UaToGcs),
+      m_codecs{&m_up, &m_down},
+      m_fingerprint(secure::fingerprint(psk))
+{
+}
+
+std::unique_ptr<LogKey> LogKey::open(const std::string& keyPath, std::string& error)
+{
+    const std::optional<secure::SecretKey> psk = secure::readKeyFile(keyPath, error);
+    if (!psk)
+        return nullptr;
+    return std::make_unique<LogKey>(*psk);
+}
+
 namespace {
 
 LoggedFrameReading judged(std::span<const std::uint8_t> bytes, const std::vector<const secure::SecureCodec*>& codecs)

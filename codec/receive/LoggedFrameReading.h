@@ -14,6 +14,9 @@
 
 #include "codec/receive/FrameReceiver.h"
 
+#include "codec/secure/SecureCodec.h"
+
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -38,6 +41,27 @@ struct LoggedFrameReading {
     std::optional<secure::Direction> direction;  // keyed and read: the direction it authenticated in
 
     bool read() const { return outcome == Outcome::Read; }
+};
+
+// One key's codecs for both directions, to read a log with: a log holds the
+// frames of both. Codecs of its own, not a link's, whose are busy in the
+// link's thread; one LogKey is used by one thread at a time.
+class LogKey {
+public:
+    explicit LogKey(const secure::SecretKey& psk);
+    LogKey(const LogKey&) = delete;  // its codecs() point into it
+    LogKey& operator=(const LogKey&) = delete;
+    // Nothing, with the reason in `error`, when the key file is refused.
+    static std::unique_ptr<LogKey> open(const std::string& keyPath, std::string& error);
+
+    const std::vector<const secure::SecureCodec*>& codecs() const { return m_codecs; }
+    const std::string& fingerprint() const { return m_fingerprint; }
+
+private:
+    secure::SecureCodec m_up;
+    secure::SecureCodec m_down;
+    std::vector<const secure::SecureCodec*> m_codecs;
+    std::string m_fingerprint;
 };
 
 // `enciphered`: the log says the frame went over a keyed link. `codecs`: one

@@ -1,6 +1,7 @@
 #include "link/framelog/FrameLogCsv.h"
 
 #include "codec/message/MessageDecoder.h"
+#include "codec/receive/LoggedFrameReading.h"
 #include "codec/message/TextFormat.h"
 #include "link/framelog/FrameLogReader.h"
 
@@ -111,21 +112,40 @@ std::vector<Cell> cellsOf(const rcm::Message& message)
     return cells;
 }
 
-struct Decoded {
-    bool hasMessage = false;
-    rcm::DecodeResult result;
-};
-
-Decoded decode(const FrameRecord& record)
+rcm::LoggedFrameReading decode(const FrameRecord& record, const rcm::LogKey* key)
 {
-    Decoded d;
-    const auto size = static_cast<std::size_t>(record.bytes.size());
-    if (size != rcm::kFrameSize && size != rcm::kDatagramSize)
-        return d;
-    d.result = rcm::decodeFrame(
-        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record.bytes.constData()), size));
-    d.hasMessage = true;
-    return d;
+    static const std::vector<const rcm::secure::SecureCodec*> none;
+    return rcm::readLoggedFrame(
+        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record.bytes.constData()),
+                                      std::size_t(record.bytes.size())),
+        record.enciphered, key ? key->codecs() : none);
+}
+
+// A refused plain frame's items are what could be read, with its reading
+// beside them saying it was refused; a keyed link's refused frame has none.
+bool shown(const rcm::LoggedFrameReading& r)
+{
+    return r.outcome == rcm::LoggedFrameReading::Outcome::Read ||
+           r.outcome == rcm::LoggedFrameReading::Outcome::Refused;
+}
+
+QByteArray readingText(const rcm::LoggedFrameReading& r)
+{
+    using O = rcm::LoggedFrameReading::Outcome;
+    switch (r.outcome) {
+    case O::Read:
+        return "read";
+    case O::Refused:
+    {
+        const std::string_view name = rcm::refusalName(*r.refusal);
+        return "refused as " + QByteArray(name.data(), qsizetype(name.size()));
+    }
+    case O::Enciphered:
+        return "enciphered";
+    case O::NotAFrame:
+        break;
+    }
+    return "not a frame";
 }
 
 QByteArray isoMicros(qint64 utcMicros)
@@ -168,18 +188,18 @@ void endRow(QByteArray& row)
     row += "\r\n";
 }
 
-QByteArray correctedText(const FrameRecord& record, const Decoded& decoded, int block)
+QByteArray correctedText(const FrameRecord& record, const rcm::LoggedFrameReading& reading, int block)
 {
     if (record.correctedSymbols.size() > block)
         return QByteArray::number(record.correctedSymbols[block]);
-    if (decoded.hasMessage)
-        return QByteArray::number(block == 0 ? decoded.result.corrected1 : decoded.result.corrected2);
+    if (reading.outcome != rcm::LoggedFrameReading::Outcome::NotAFrame)
+        return QByteArray::number(block == 0 ? reading.blocks.corrected1 : reading.blocks.corrected2);
     return {};
 }
 
 }  // namespace
 
-bool exportFrameLogCsv(const QString& pcapngPath, QIODevice& out, QString* error)
+bool exportFrameLogCsv(const QString& pcapngPath, QIODevice& out, QString* error, const rcm::LogKey* key)
 {
     auto fail = [error](const QString& why) {
         if (error)
@@ -196,14 +216,15 @@ bool exportFrameLogCsv(const QString& pcapngPath, QIODevice& out, QString* error
 
     std::map<ColumnKey, std::string> columns;
     for (int i = 0; i < reader.count(); ++i) {
-        const Decoded d = decode(reader.recordAt(i));
-        if (d.hasMessage)
-            for (Cell& c : cellsOf(d.result.message))
+        const rcm::LoggedFrameReading d = decode(reader.recordAt(i), key);
+        if (shown(d))
+            for (Cell& c : cellsOf(d.decoded.message))
                 columns.emplace(c.key, std::move(c.column));
     }
     std::unordered_map<std::string, int> columnIndex;
     QByteArray header;
-    for (const char* fixed : {"utc", "direction", "transport", "status", "corrected_block1", "corrected_block2"})
+    for (const char* fixed :
+         {"utc", "direction", "transport", "status", "corrected_block1", "corrected_block2", "reading"})
         appendField(header, fixed);
     for (const auto& [key, name] : columns)
         if (columnIndex.emplace(name, int(columnIndex.size())).second)
@@ -216,11 +237,11 @@ bool exportFrameLogCsv(const QString& pcapngPath, QIODevice& out, QString* error
     std::vector<std::string> values(columnIndex.size());
     for (int i = 0; i < reader.count(); ++i) {
         const FrameRecord record = reader.recordAt(i);
-        const Decoded d = decode(record);
+        const rcm::LoggedFrameReading d = decode(record, key);
         for (std::string& v : values)
             v.clear();
-        if (d.hasMessage)
-            for (const Cell& c : cellsOf(d.result.message))
+        if (shown(d))
+            for (const Cell& c : cellsOf(d.decoded.message))
                 values[std::size_t(columnIndex.at(c.column))] = c.value;
 
         QByteArray row;
@@ -230,6 +251,7 @@ bool exportFrameLogCsv(const QString& pcapngPath, QIODevice& out, QString* error
         appendField(row, frameStatusName(record.status).toLatin1());
         appendField(row, correctedText(record, d, 0));
         appendField(row, correctedText(record, d, 1));
+        appendField(row, readingText(d));
         for (const std::string& v : values)
             appendField(row, QByteArrayView(v.data(), qsizetype(v.size())));
         endRow(row);

@@ -12,6 +12,10 @@
 //   corrected_block2     beyond correction; the log's own record of it, or,
 //                        when the log has none (our own sends), a decode of
 //                        the logged bytes
+//   reading            what the receive path makes of the frame on its own
+//                      (codec/receive/LoggedFrameReading.h): "read"; "refused
+//                      as <reason>"; "enciphered" (a keyed link's frame and
+//                      no key given); "not a frame" (neither 600 nor 510 bytes)
 //   <unit>.<item>      one column per item of each unit present anywhere in
 //                      the log, named by describeUnit: "HEADER.ID_msg",
 //                      "engine 1.eng_prop_pitch", "radio VHF1.Rx_freq",
@@ -28,13 +32,20 @@
 //
 // Values are exactly what the text format (formatMessage) prints for the
 // item; a cell is empty when the frame did not carry the item or could not be
-// decoded (uncorrectable codeword, a length that is neither 600 nor 510).
+// read at all (enciphered, not a frame). A refused frame of the plain link
+// shows what could be read, its reading column saying it was refused.
 
 #include <QIODevice>
 #include <QString>
+
+namespace rcm {
+class LogKey;
+}
 
 // Reads the log twice (once for the columns, once for the rows), holding one
 // frame at a time, so a day-long log exports in constant memory. On a log
 // whose structure is corrupt part-way, the records before the fault are
 // exported and the function still returns false with the reader's reason.
-bool exportFrameLogCsv(const QString& pcapngPath, QIODevice& out, QString* error = nullptr);
+// `key`, when given, reads a keyed link's frames.
+bool exportFrameLogCsv(const QString& pcapngPath, QIODevice& out, QString* error = nullptr,
+                       const rcm::LogKey* key = nullptr);
