@@ -66,8 +66,8 @@ int main(int argc, char* argv[])
                                         QStringLiteral("file.png"));
     const QCommandLineOption key(QStringLiteral("key"),
                                  QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex "
-                                                "digits, mode 0600. With --rehearsal, uasim uses it too. Kept in the "
-                                                "link settings (the path, never the key)."),
+                                                "digits, mode 0600. With --rehearsal, uasim uses it too; with --replay, "
+                                                "it reads a keyed session's log. Kept in the link settings."),
                                  QStringLiteral("file"));
     const QCommandLineOption size(QStringLiteral("size"), QStringLiteral("Window size for --screenshot."),
                                   QStringLiteral("WxH"), QStringLiteral("1600x1000"));
@@ -99,8 +99,9 @@ int main(int argc, char* argv[])
     const QSize windowSize(wh.value(0).toInt(), wh.value(1).toInt());
     if (wh.size() != 2 || windowSize.width() < 320 || windowSize.height() < 240)
         return usage(QStringLiteral("--size wants WIDTHxHEIGHT, e.g. 1600x1000"));
-    if (parser.isSet(key) && !parser.isSet(rehearsal) && !parser.isSet(udpRemote) && !parser.isSet(serial))
-        return usage(QStringLiteral("--key goes with --rehearsal, --udp-remote or --serial"));
+    if (parser.isSet(key) && !parser.isSet(rehearsal) && !parser.isSet(udpRemote) && !parser.isSet(serial) &&
+        !parser.isSet(replay))
+        return usage(QStringLiteral("--key goes with --rehearsal, --udp-remote, --serial or --replay"));
     std::optional<LinkSettings> link;
     QString error;
     if (parser.isSet(udpRemote) && !(link = LinkSettings::udpRemote(parser.value(udpRemote), &error)))
@@ -142,6 +143,6 @@ int main(int argc, char* argv[])
     else if (link)
         window.connectWith(*link);
     else if (parser.isSet(replay))
-        window.openFrameLog(parser.value(replay));
+        window.openFrameLog(parser.value(replay), parser.value(key));
     return app.exec();
 }

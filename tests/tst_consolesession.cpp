@@ -7,6 +7,7 @@
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/receive/LoggedFrameReading.h"
 #include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLog.h"
 #include "link/framelog/FrameLogReader.h"
@@ -14,6 +15,7 @@
 #include "link/session/LinkController.h"
 #include "link/transport/UdpLink.h"
 
+#include <QDir>
 #include <QFile>
 #include <QFileInfo>
 #include <QRegularExpression>
@@ -79,6 +81,7 @@ private slots:
     void incompleteSettingsSayWhy();
     void replaysALogIndexedOffTheGuiThread();
     void replayOfAFileThatIsNotALogSaysWhy();
+    void keyedLogReplaysWithItsKey();
     void aLaterActionReplacesOneBeingPrepared();
     void rehearsalAgainstUasim();
     void rehearsalWithoutUasimSaysWhy();
@@ -87,7 +90,9 @@ private slots:
 private:
     QString logDirectory(const QString& name) const { return m_dir.filePath(name); }
     // Twenty received status frames half a second apart.
-    QString writeLog(const QString& name) const;
+    // 20 status frames, 2 a second; with `key`, enciphered as the aircraft
+    // sends them and marked so in the log.
+    QString writeLog(const QString& name, const rcm::secure::SecureCodec* key = nullptr) const;
     QTemporaryDir m_dir;
 };
 
@@ -96,7 +101,7 @@ void TestConsoleSession::initTestCase()
     QVERIFY(m_dir.isValid());
 }
 
-QString TestConsoleSession::writeLog(const QString& name) const
+QString TestConsoleSession::writeLog(const QString& name, const rcm::secure::SecureCodec* key) const
 {
     const QString path = m_dir.filePath(name);
     FrameLog log;
@@ -109,8 +114,16 @@ QString TestConsoleSession::writeLog(const QString& name) const
         status.header.set(rcm::ItemId::time_UTC, std::int64_t(73200 + i / 2));
         status.header.set(rcm::ItemId::date_UTC, std::int64_t(261122));
         rcm::Diagnostics errors;
-        const auto datagram = rcm::encodeDatagram(status, errors);
+        std::optional<rcm::DatagramBytes> datagram;
+        if (!key) {
+            datagram = rcm::encodeDatagram(status, errors);
+        } else if (const auto blocks = key->encode(status, errors)) {
+            datagram = rcm::makeDatagram(blocks->block1, blocks->block2);
+        }
+        if (!datagram)
+            return {};
         FrameRecord r;
+        r.enciphered = key != nullptr;
         r.bytes = QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size()));
         r.utcMicros = 1795332720000000 + i * 500'000;
         r.direction = FrameDirection::Received;
@@ -255,6 +268,40 @@ void TestConsoleSession::replaysALogIndexedOffTheGuiThread()
     QTRY_COMPARE_WITH_TIMEOUT(session.statistics().framesReceived, quint64(20), kTimeoutMs);
     QCOMPARE(session.statistics().framesSent, quint64(0));
     QVERIFY(!QFileInfo::exists(logDirectory(QStringLiteral("replay"))));
+}
+
+// A keyed session's log: with its key the replay reads every status frame
+// and the log key reads the rows; without it nothing is delivered.
+void TestConsoleSession::keyedLogReplaysWithItsKey()
+{
+    const QString keyPath = m_dir.filePath(QStringLiteral("replay.key"));
+    std::string error;
+    const rcm::secure::SecretKey psk = rcm::secure::generateKey();
+    QVERIFY(rcm::secure::writeKeyFile(keyPath.toStdString(), psk, error));
+    const rcm::secure::SecureCodec aircraft(psk, rcm::secure::Direction::UaToGcs);
+    const QString path = writeLog(QStringLiteral("keyed.pcapng"), &aircraft);
+    QVERIFY(!path.isEmpty());
+    const QStringList stateFiles = QDir(m_dir.path()).entryList(QDir::Files);
+
+    for (const bool withKey : {true, false}) {
+        ConsoleSession session(logDirectory(QStringLiteral("keyed")));
+        QSignalSpy started(&session, &ConsoleSession::linkStarted);
+        session.setReplaySpeed(10.0);
+        session.openReplay(path, withKey ? keyPath : QString());
+        QTRY_COMPARE_WITH_TIMEOUT(started.count(), 1, kTimeoutMs);
+        QCOMPARE(bool(session.logKey()), withKey);
+        QSignalSpy ended(session.replay(), &ReplayLink::endOfLog);
+        QTRY_COMPARE_WITH_TIMEOUT(ended.count(), 1, kTimeoutMs);
+        if (withKey) {
+            QTRY_COMPARE_WITH_TIMEOUT(session.statistics().framesReceived, quint64(20), kTimeoutMs);
+            QCOMPARE(session.logKey()->fingerprint(), rcm::secure::fingerprint(psk));
+        } else {
+            QTRY_COMPARE_WITH_TIMEOUT(session.statistics().refusedTotal(), quint64(20), kTimeoutMs);
+            QCOMPARE(session.statistics().framesReceived, quint64(0));
+        }
+    }
+    // Replaying touched no replay state beside the key.
+    QCOMPARE(QDir(m_dir.path()).entryList(QDir::Files), stateFiles);
 }
 
 void TestConsoleSession::replayOfAFileThatIsNotALogSaysWhy()

@@ -6,7 +6,10 @@
 // for record, with no frame's bytes held in memory while the file has them.
 
 #include "codec/message/Airframe.h"
+#include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/receive/LoggedFrameReading.h"
+#include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLog.h"
 #include "link/session/LinkController.h"
 #include "link/transport/UdpLink.h"
@@ -147,6 +150,7 @@ private slots:
     void filterCountsByDirectionAndStatus();
     void filterFollowsAppends();
     void viewDecodesOnlyWhatItShows();
+    void keyedRowsNeedTheKey();
     void liveRowsMatchTheSessionLog();
     void liveRowsWithoutALogKeepTheirBytes();
 
@@ -363,6 +367,52 @@ void TestFrameLogModel::viewDecodesOnlyWhatItShows()
     QVERIFY(view.hexText().contains(QStringLiteral("BLOCK 2 parity (32 bytes)")));
     view.showSourceRow(3);
     QVERIFY(view.detailText().contains(QStringLiteral("beyond correction")));
+}
+
+// A keyed link's frames: without the key a row has no ID and its detail says
+// "Enciphered", not items read from ciphertext; with it, the real items,
+// authenticated, in the rows and the detail pane alike.
+void TestFrameLogModel::keyedRowsNeedTheKey()
+{
+    const rcm::secure::SecretKey psk = rcm::secure::generateKey();
+    const rcm::secure::SecureCodec console(psk, rcm::secure::Direction::GcsToUa);
+    const QString path = m_dir.filePath(QStringLiteral("keyed.pcapng"));
+    {
+        FrameLog log;
+        QVERIFY(log.open(path));
+        for (int i = 0; i < 6; i += 2) {  // our own sends: clean
+            const FrameRecord plain = frame(i);
+            const rcm::DecodeResult decoded = rcm::decodeFrame(
+                std::span(reinterpret_cast<const std::uint8_t*>(plain.bytes.constData()), std::size_t(plain.bytes.size())));
+            rcm::Diagnostics errors;
+            const auto blocks = console.encode(decoded.message, errors);
+            QVERIFY(blocks);
+            const rcm::DatagramBytes datagram = rcm::makeDatagram(blocks->block1, blocks->block2);
+            FrameRecord r;
+            r.bytes = QByteArray(reinterpret_cast<const char*>(datagram.data()), qsizetype(datagram.size()));
+            r.utcMicros = plain.utcMicros;
+            r.direction = FrameDirection::Sent;
+            r.transport = FrameTransport::Udp;
+            r.enciphered = true;
+            QVERIFY(log.append(r));
+        }
+    }
+    FrameLogModel model;
+    QVERIFY(model.openLog(path));
+    FrameLogView view(&model);
+    QCOMPARE(model.rowCount(), 3);
+    QCOMPARE(model.messageId(1), std::nullopt);
+    view.showSourceRow(1);
+    QVERIFY2(view.detailText().contains(QStringLiteral("# Enciphered: sent over a keyed link.")),
+             qPrintable(view.detailText()));
+    QVERIFY(!view.detailText().contains(QStringLiteral("BEGIN HEADER")));
+
+    model.setLogKey(std::make_shared<rcm::LogKey>(psk));
+    QCOMPARE(model.messageId(1), std::optional<quint32>(2));
+    view.showSourceRow(1);
+    QVERIFY2(view.detailText().contains(QStringLiteral("# Deciphered and authenticated (GCS->UA)")),
+             qPrintable(view.detailText()));
+    QVERIFY(view.detailText().contains(QStringLiteral("ID_msg 2\n")));
 }
 
 void TestFrameLogModel::liveRowsMatchTheSessionLog()

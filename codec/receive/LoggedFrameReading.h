@@ -44,8 +44,8 @@ struct LoggedFrameReading {
 };
 
 // One key's codecs for both directions, to read a log with: a log holds the
-// frames of both. Codecs of its own, not a link's, whose are busy in the
-// link's thread; one LogKey is used by one thread at a time.
+// frames of both, and a link's endpoint has one direction's receiver only.
+// HCTR2 is safe from several threads, so one LogKey may be shared.
 class LogKey {
 public:
     explicit LogKey(const secure::SecretKey& psk);

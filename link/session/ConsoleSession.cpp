@@ -1,5 +1,6 @@
 #include "link/session/ConsoleSession.h"
 
+#include "codec/receive/LoggedFrameReading.h"
 #include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLog.h"
 
@@ -12,6 +13,7 @@
 // take once it is done: the thread pool writes it, then this thread reads it.
 struct ConsoleSession::Opened {
     std::shared_ptr<rcm::secure::SecureEndpoint> key;
+    std::shared_ptr<const rcm::LogKey> logKey;  // the same key's codecs for the GUI thread
     QString keyError;
     std::unique_ptr<FrameLog> log;
     QString logPath;
@@ -21,11 +23,15 @@ struct ConsoleSession::Opened {
 namespace {
 
 // The console's end of the secure link; null with `error` set when refused.
-std::shared_ptr<rcm::secure::SecureEndpoint> openKey(const QString& keyPath, QString* error)
+// `persistState` false for a replay: its frames were checked for replays
+// when they were live, and replaying them must not touch that state.
+std::shared_ptr<rcm::secure::SecureEndpoint> openKey(const QString& keyPath, QString* error, bool persistState = true)
 {
     std::string reason;
+    rcm::secure::SecureEndpoint::Options options;
+    options.persistState = persistState;
     std::shared_ptr<rcm::secure::SecureEndpoint> endpoint = rcm::secure::SecureEndpoint::open(
-        QDir::fromNativeSeparators(keyPath).toStdString(), rcm::secure::Direction::GcsToUa, reason);
+        QDir::fromNativeSeparators(keyPath).toStdString(), rcm::secure::Direction::GcsToUa, reason, options);
     // The reason names the file and the fix ("run: chmod 600 ..."); it never holds key bytes.
     if (!endpoint)
         *error = QString::fromStdString(reason);
@@ -134,7 +140,7 @@ void ConsoleSession::rehearsalFailed(const QString& reason)
     emit failed(tr("Rehearsal: %1").arg(reason));
 }
 
-void ConsoleSession::openReplay(const QString& path)
+void ConsoleSession::openReplay(const QString& path, const QString& keyPath)
 {
     stop();
     m_preparing = Kind::Replay;
@@ -142,29 +148,46 @@ void ConsoleSession::openReplay(const QString& path)
     // read here afterwards.
     auto reader = std::make_shared<std::unique_ptr<FrameLogReader>>(std::make_unique<FrameLogReader>());
     auto complete = std::make_shared<bool>(false);
-    offThread([path, reader, complete] { *complete = (*reader)->open(path); },
-              [this, path, reader, complete] {
-                  std::unique_ptr<FrameLogReader> index = std::move(*reader);
-                  if (!*complete && index->count() == 0) {
-                      m_preparing = Kind::None;
-                      emit failed(tr("Cannot open the frame log: %1").arg(index->errorString()));
-                      return;
-                  }
-                  const QString damage = *complete ? QString() : index->errorString();
-                  m_replayIndex = std::move(index);
-                  emit replayIndexed(path);
-                  if (!damage.isEmpty())
-                      emit warning(
-                          tr("The frame log is damaged part-way; replaying what comes before: %1").arg(damage));
-                  // In a pass of the event loop of its own, so that showing a
-                  // day's index and starting the link are two short stalls,
-                  // not one long one.
-                  QMetaObject::invokeMethod(
-                      this, [this, path, request = m_request] { startReplay(path, request); }, Qt::QueuedConnection);
-              });
+    auto opened = std::make_shared<Opened>();
+    offThread(
+        [path, keyPath, reader, complete, opened] {
+            if (!keyPath.isEmpty()) {
+                opened->key = openKey(keyPath, &opened->keyError, false);
+                if (!opened->key)
+                    return;
+                std::string error;
+                opened->logKey = rcm::LogKey::open(QDir::fromNativeSeparators(keyPath).toStdString(), error);
+            }
+            *complete = (*reader)->open(path);
+        },
+        [this, path, reader, complete, opened] {
+            if (!opened->keyError.isEmpty()) {
+                m_preparing = Kind::None;
+                emit failed(keyRefused(opened->keyError));
+                return;
+            }
+            std::unique_ptr<FrameLogReader> index = std::move(*reader);
+            if (!*complete && index->count() == 0) {
+                m_preparing = Kind::None;
+                emit failed(tr("Cannot open the frame log: %1").arg(index->errorString()));
+                return;
+            }
+            const QString damage = *complete ? QString() : index->errorString();
+            m_replayIndex = std::move(index);
+            m_logKey = opened->logKey;
+            emit replayIndexed(path);
+            if (!damage.isEmpty())
+                emit warning(tr("The frame log is damaged part-way; replaying what comes before: %1").arg(damage));
+            // In a pass of the event loop of its own, so that showing a
+            // day's index and starting the link are two short stalls,
+            // not one long one.
+            QMetaObject::invokeMethod(
+                this, [this, path, request = m_request, opened] { startReplay(path, request, opened); },
+                Qt::QueuedConnection);
+        });
 }
 
-void ConsoleSession::startReplay(const QString& path, quint64 request)
+void ConsoleSession::startReplay(const QString& path, quint64 request, std::shared_ptr<Opened> opened)
 {
     if (request != m_request)
         return;
@@ -175,8 +198,8 @@ void ConsoleSession::startReplay(const QString& path, quint64 request)
     m_replay = replay.get();
     connect(replay.get(), &ReplayLink::stateChanged, this,
             [this](ReplayLink::State state) { m_replayPaused = state == ReplayLink::State::Paused; });
-    Opened nothing;
-    startController(std::move(replay), Kind::Replay, tr("replay of %1").arg(QFileInfo(path).fileName()), nothing);
+    opened->log.reset();  // a replay writes no log of its own
+    startController(std::move(replay), Kind::Replay, tr("replay of %1").arg(QFileInfo(path).fileName()), *opened);
 }
 
 void ConsoleSession::prepare(std::unique_ptr<Link> link, Kind kind, const QString& description,
@@ -194,6 +217,8 @@ void ConsoleSession::prepare(std::unique_ptr<Link> link, Kind kind, const QStrin
                 opened->key = openKey(keyPath, &opened->keyError);
                 if (!opened->key)
                     return;
+                std::string error;
+                opened->logKey = rcm::LogKey::open(QDir::fromNativeSeparators(keyPath).toStdString(), error);
             }
             // Never over another session's log: the next free name of that second.
             constexpr int kMaxSessionsASecond = 100;
@@ -231,6 +256,7 @@ void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, cons
     if (!opened.logError.isEmpty())
         emit warning(tr("No frame log for this session: %1").arg(opened.logError));
     m_keyFingerprint = opened.key ? QString::fromStdString(opened.key->fingerprint) : QString();
+    m_logKey = opened.logKey;
 
     LinkWorker::Options options;
     options.secure = std::move(opened.key);

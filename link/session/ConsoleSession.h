@@ -30,6 +30,9 @@
 #include <memory>
 #include <optional>
 
+namespace rcm {
+class LogKey;
+}
 namespace rcm::secure {
 struct SecureEndpoint;
 }
@@ -94,6 +97,10 @@ public:
     // The index of the log opened for replay, for a log view, after
     // replayIndexed(): handed over once, null after that.
     std::unique_ptr<FrameLogReader> takeReplayIndex() { return std::move(m_replayIndex); }
+    // The running link's key (or the replayed log's), to read a keyed link's
+    // frames in the log with; null for none. Codecs of its own: the GUI
+    // thread's, not the link thread's.
+    std::shared_ptr<const rcm::LogKey> logKey() const { return m_logKey; }
 
 public slots:
     // Opens the key file (if the settings name one) off the GUI thread, then
@@ -104,8 +111,10 @@ public slots:
     // uasim for `airframe` on a free loopback port and connects to it.
     void startRehearsal(const rcm::Airframe& airframe, const QString& keyPath = QString(),
                         const QString& uasimProgram = RehearsalLauncher::defaultProgram());
-    // Stops the running link, indexes the log off the GUI thread, then plays it.
-    void openReplay(const QString& path);
+    // Stops the running link, indexes the log off the GUI thread, then plays
+    // it; with `keyPath`, a keyed session's log, deciphered with that key
+    // (opened off the GUI thread too, its replay state left alone).
+    void openReplay(const QString& path, const QString& keyPath = QString());
     // Stops whatever runs or is being started; uasim too.
     void stop();
 
@@ -146,7 +155,7 @@ private:
     void startController(std::unique_ptr<Link> link, Kind kind, const QString& description, Opened& opened);
     void stopController();
     // Plays the log indexed for `request`, unless another action came in since.
-    void startReplay(const QString& path, quint64 request);
+    void startReplay(const QString& path, quint64 request, std::shared_ptr<Opened> opened);
     void rehearsalReady(quint16 port);
     void rehearsalFailed(const QString& reason);
 
@@ -158,6 +167,7 @@ private:
     std::unique_ptr<Link> m_preparedLink;  // the transport waiting for its key and log
     QPointer<ReplayLink> m_replay;  // lives in the link thread; only queued calls
     std::unique_ptr<FrameLogReader> m_replayIndex;
+    std::shared_ptr<const rcm::LogKey> m_logKey;
     std::shared_ptr<rcm::secure::SecureEndpoint> m_rehearsalKey;  // the console's end, while uasim starts
     std::optional<rcm::Message> m_command;
     Kind m_kind = Kind::None;

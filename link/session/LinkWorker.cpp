@@ -61,7 +61,10 @@ rcm::FrameReceiver::Options receiverOptions(const LinkWorker::Options& options, 
     o.clock = [clock = std::move(clock)] { return clock->utcMicros(); };
     if (options.secure) {
         o.keys.codecs = {options.secure->receiver.get()};
-        o.keys.guard = options.secure->guard.get();
+        // A replayed log's stamps are old, and were checked for replays
+        // when they were live.
+        if (o.mode == rcm::FrameReceiver::Mode::Live)
+            o.keys.guard = options.secure->guard.get();
     }
     o.retry = options.retry ? options.retry : rcm::TrialDecoder::retryFor(trial);
     return o;

@@ -2,6 +2,7 @@
 
 #include "codec/frame/Frame.h"
 #include "codec/message/MessageDecoder.h"
+#include "codec/receive/LoggedFrameReading.h"
 
 #include <QBrush>
 #include <QColor>
@@ -215,17 +216,22 @@ void FrameLogModel::decodeRow(const Row& row) const
     }
     if (row.hasMessageId || bytes.isEmpty())
         return;
-    const qsizetype n = bytes.size();
-    if (n != qsizetype(rcm::kFrameSize) && n != qsizetype(rcm::kDatagramSize))
+    static const std::vector<const rcm::secure::SecureCodec*> noKey;
+    const rcm::LoggedFrameReading reading = rcm::readLoggedFrame(
+        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.constData()),
+                                      std::size_t(bytes.size())),
+        row.enciphered, m_logKey ? m_logKey->codecs() : noKey);
+    if (reading.outcome == rcm::LoggedFrameReading::Outcome::NotAFrame)
         return;
-    const rcm::DecodeResult result = rcm::decodeFrame(
-        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(n)));
     if (row.direction == FrameDirection::Received && row.corrected1 == kNotKnown) {
-        row.corrected1 = clampCorrected(result.corrected1);
-        row.corrected2 = clampCorrected(result.corrected2);
+        row.corrected1 = clampCorrected(reading.blocks.corrected1);
+        row.corrected2 = clampCorrected(reading.blocks.corrected2);
     }
-    if (result.corrected1 >= 0 && result.message.header.has(rcm::ItemId::ID_msg)) {
-        row.messageId = quint32(result.message.header.number(rcm::ItemId::ID_msg));
+    // The ID of a frame read, or of a plain one refused for what it says:
+    // never one read from ciphertext as if it were plain.
+    const rcm::Message& m = reading.decoded.message;
+    if (reading.blocks.corrected1 >= 0 && m.header.has(rcm::ItemId::ID_msg)) {
+        row.messageId = quint32(m.header.number(rcm::ItemId::ID_msg));
         row.hasMessageId = true;
     }
 }
@@ -301,6 +307,19 @@ FrameRecord FrameLogModel::record(int row) const
     if (r.corrected1 != kNotKnown && r.corrected2 != kNotKnown)
         record.correctedSymbols = {r.corrected1, r.corrected2};
     return record;
+}
+
+void FrameLogModel::setLogKey(std::shared_ptr<const rcm::LogKey> key)
+{
+    if (key == m_logKey)
+        return;
+    m_logKey = std::move(key);
+    for (const Row& row : m_rows)
+        if (row.enciphered && !row.hasMessageId)
+            row.decoded = false;
+    if (!m_rows.empty())
+        emit dataChanged(index(0, 0), index(rowCount() - 1, columnCount() - 1));
+    emit logKeyChanged();
 }
 
 void FrameLogModel::setSessionLog(const QString& path)

@@ -26,6 +26,10 @@
 #include <optional>
 #include <vector>
 
+namespace rcm {
+class LogKey;
+}
+
 class FrameLogModel : public QAbstractTableModel {
     Q_OBJECT
 
@@ -54,6 +58,13 @@ public:
     // Removes every row (and closes the log file, if one was open).
     void clear();
     QString logPath() const { return m_logPath; }
+
+    // The key to read a keyed link's frames with (the session's, or one given
+    // for a log opened later); null: such frames show no ID and say
+    // "enciphered" rather than be decoded as plain. Rows decoded already are
+    // read again with it.
+    void setLogKey(std::shared_ptr<const rcm::LogKey> key);
+    const rcm::LogKey* logKey() const { return m_logKey.get(); }
 
     // The log file a live link is writing: the file the offsets of frames
     // appended with appendLogged() point into. Cleared by clear() and openLog().
@@ -99,6 +110,10 @@ public slots:
     // Inserts what appendRecord() collected now rather than in the next pass.
     void flushPending();
 
+signals:
+    // setLogKey() gave another key: what shows a frame reads it again.
+    void logKeyChanged();
+
 private:
     // Where a row's bytes are.
     enum class Source : quint8 {
@@ -132,6 +147,7 @@ private:
     std::vector<Row> m_pending;
     std::vector<QByteArray> m_liveBytes;  // appended frames' bytes, by Row::source
     std::unique_ptr<FrameLogReader> m_reader;
+    std::shared_ptr<const rcm::LogKey> m_logKey;
     QString m_logPath;
     QString m_sessionLogPath;
     mutable std::unique_ptr<FrameLogReader> m_sessionLog;  // opened live on first use, never indexed

@@ -3,6 +3,7 @@
 #include "codec/frame/Frame.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/TextFormat.h"
+#include "codec/receive/LoggedFrameReading.h"
 #include "ui/framelog/FrameLogFilterModel.h"
 #include "ui/framelog/FrameLogModel.h"
 #include "ui/framelog/HexDump.h"
@@ -35,35 +36,63 @@ QPlainTextEdit* makeDetailPane(const QString& placeholder)
     return pane;
 }
 
-// The selected frame for people: what it was, then its items.
-QString describeFrame(int number, const FrameRecord& record, std::optional<quint32> messageId)
+// The selected frame for people: what it was, then what the receive path
+// makes of it on its own (LoggedFrameReading), then its items.
+QString describeFrame(int number, const FrameRecord& record, std::optional<quint32> messageId, const rcm::LogKey* key)
 {
     const QDateTime time = QDateTime::fromMSecsSinceEpoch(record.utcMicros / 1000, QTimeZone::utc());
     QString text =
-        QStringLiteral("# Frame %1: %2 %3 UTC, %4, %5 bytes, %6\n")
+        QStringLiteral("# Frame %1: %2 %3 UTC, %4, %5 bytes, %6%7\n")
             .arg(number)
             .arg(record.direction == FrameDirection::Sent ? QStringLiteral("sent") : QStringLiteral("received"))
             .arg(time.toString(QStringLiteral("yyyy-MM-dd hh:mm:ss.zzz")))
             .arg(frameTransportName(record.transport))
             .arg(record.bytes.size())
-            .arg(frameStatusName(record.status));
+            .arg(frameStatusName(record.status), record.enciphered ? QStringLiteral(", keyed link") : QString());
     if (record.bytes.isEmpty()) {
         text += QStringLiteral("# No bytes for this frame: this session keeps no frame log, or the log lacks it.\n");
         if (messageId)
             text += QStringLiteral("# ID_msg %1\n").arg(*messageId);
         return text;
     }
-    const qsizetype n = record.bytes.size();
-    if (n != qsizetype(rcm::kFrameSize) && n != qsizetype(rcm::kDatagramSize))
+    static const std::vector<const rcm::secure::SecureCodec*> noKey;
+    const rcm::LoggedFrameReading reading = rcm::readLoggedFrame(
+        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record.bytes.constData()),
+                                      std::size_t(record.bytes.size())),
+        record.enciphered, key ? key->codecs() : noKey);
+    using O = rcm::LoggedFrameReading::Outcome;
+    if (reading.outcome == O::NotAFrame)
         return text + QStringLiteral("# Neither a 600-byte frame nor a 510-byte datagram: not decoded.\n");
-    const rcm::DecodeResult result = rcm::decodeFrame(
-        std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record.bytes.constData()), std::size_t(n)));
     const auto corrected = [](int c) { return c < 0 ? QStringLiteral("beyond correction") : QString::number(c); };
     text += QStringLiteral("# Reed-Solomon: BLOCK 1 %1, BLOCK 2 %2 bytes corrected\n")
-                .arg(corrected(result.corrected1), corrected(result.corrected2));
-    for (const rcm::Diagnostic& d : result.diagnostics)
+                .arg(corrected(reading.blocks.corrected1), corrected(reading.blocks.corrected2));
+    switch (reading.outcome) {
+    case O::Enciphered:
+        return text + QStringLiteral("# Enciphered: sent over a keyed link. Without its key the bytes say nothing; "
+                                     "open the log with the key to read the items.\n");
+    case O::Refused:
+        text += QStringLiteral("# Refused as %1: %2\n")
+                    .arg(QString::fromLatin1(rcm::refusalName(*reading.refusal).data(),
+                                             qsizetype(rcm::refusalName(*reading.refusal).size())),
+                         QString::fromStdString(reading.detail));
+        if (reading.decoded.message.header.items().empty())
+            return text;
+        text += QStringLiteral("# Not delivered. What could be read, for inspection only:\n");
+        break;
+    case O::Read:
+        if (reading.direction)
+        {
+            const std::string_view way = rcm::secure::directionName(*reading.direction);
+            text += QStringLiteral("# Deciphered and authenticated (%1)\n")
+                        .arg(QString::fromLatin1(way.data(), qsizetype(way.size())));
+        }
+        break;
+    case O::NotAFrame:
+        break;
+    }
+    for (const rcm::Diagnostic& d : reading.decoded.diagnostics)
         text += QStringLiteral("# ! %1\n").arg(QString::fromStdString(d.toString()));
-    return text + QString::fromStdString(rcm::formatMessage(result.message));
+    return text + QString::fromStdString(rcm::formatMessage(reading.decoded.message));
 }
 
 }  // namespace
@@ -156,6 +185,7 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
             m_table->scrollToBottom();
     });
     connect(m_model, &QAbstractItemModel::rowsInserted, this, &FrameLogView::updateCount);
+    connect(m_model, &FrameLogModel::logKeyChanged, this, &FrameLogView::showSelected);
     connect(m_filter, &QAbstractItemModel::modelReset, this, [this] {
         updateCount();
         showSelected();
@@ -215,7 +245,7 @@ void FrameLogView::showSelected()
     }
     const int row = m_filter->sourceRow(current.row());
     const FrameRecord record = m_model->record(row);
-    m_detail->setPlainText(describeFrame(row + 1, record, m_model->messageId(row)));
+    m_detail->setPlainText(describeFrame(row + 1, record, m_model->messageId(row), m_model->logKey()));
     m_hex->setPlainText(hexDump(record.bytes, frameParts(record.bytes.size())));
 }
 

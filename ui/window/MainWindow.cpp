@@ -563,14 +563,15 @@ void MainWindow::startRehearsalWith(const QString& uasimProgram)
     updateLinkControls();
 }
 
-void MainWindow::openFrameLog(const QString& path)
+void MainWindow::openFrameLog(const QString& path, const QString& keyPath)
 {
-    m_session->openReplay(path);
+    m_session->openReplay(path, keyPath);
     updateLinkControls();
 }
 
 void MainWindow::replayIndexed(const QString& path)
 {
+    m_logModel->setLogKey(m_session->logKey());
     m_logModel->showLog(m_session->takeReplayIndex(), path);
     const int rows = m_logModel->rowCount();
     m_logModel->setPlayedRows(0);
@@ -607,6 +608,7 @@ void MainWindow::linkStarted(const LinkController* controller)
     const QString logPath = m_session->sessionLogPath();
     if (!replay) {
         m_logModel->clear();
+        m_logModel->setLogKey(m_session->logKey());
         if (!logPath.isEmpty())
             m_logModel->setSessionLog(logPath);
     }
@@ -826,9 +828,12 @@ void MainWindow::exportCsv()
         QString error;
     };
     auto result = std::make_shared<Result>();
-    auto* thread = QThread::create([source, target, result] {
+    // The log's key (HCTR2 is safe from several threads): a keyed session's
+    // frames export as their items, not as "enciphered".
+    auto* thread = QThread::create([source, target, result, key = m_session->logKey()] {
         QSaveFile out(target);
-        result->ok = out.open(QIODevice::WriteOnly) && exportFrameLogCsv(source, out, &result->error) && out.commit();
+        result->ok = out.open(QIODevice::WriteOnly) && exportFrameLogCsv(source, out, &result->error, key.get()) &&
+                     out.commit();
         if (!result->ok && result->error.isEmpty())
             result->error = out.errorString();
     });

@@ -100,7 +100,8 @@ public slots:
     // file of the link settings, both ends use it.
     void startRehearsal();
     void startRehearsalWith(const QString& uasimProgram);
-    void openFrameLog(const QString& path);
+    // `keyPath`: the key of a keyed session's log, to decipher it with.
+    void openFrameLog(const QString& path, const QString& keyPath = QString());
     void showPanel(int index);
     // View > Reset layout: every dock in its first place, the window at
     // defaultSize(), and the saved layout forgotten.
