@@ -1,6 +1,7 @@
 // rcm with --key, run as a user runs it: keygen, encode and decode on the
 // secure link, rejections on standard error, the replay state, misuse.
 #include "codec/secure/SecureCodec.h"
+#include "link/framelog/FrameLog.h"
 
 #include "RunProgram.h"
 
@@ -46,6 +47,7 @@ private slots:
     void wrongKeyIsForged();
     void plaintextFrameIsRefused();
     void encipheredFrameWithoutKey();
+    void keyedFrameLog();
     void keyFileReadableByOthers();
     void replayStateRefusesReplayAndStaleTime();
     void encodeRefusesWhatTheSecureLinkCannotCarry();
@@ -171,6 +173,52 @@ void TestRcmSecure::encipheredFrameWithoutKey()
     const Run s = runRcm({"decode", "--summary"}, e.out + e.out);
     QVERIFY2(s.out.contains("frames 2\ndelivered 0\nrefused 2\n"), s.out.constData());
     QVERIFY(s.out.contains("\nrefused enciphered 2\n"));
+}
+
+// A keyed session's frame log, as the console writes it (pcapng, each frame
+// marked enciphered): without the key every frame is said to be enciphered
+// and none decoded; with it, both directions' frames, authenticated.
+void TestRcmSecure::keyedFrameLog()
+{
+    const Run up = runRcm({"encode", "--key", m_key, "--direction", "gcs-to-ua"}, nowHeader(1) + kCommand);
+    const Run down = runRcm({"encode", "--key", m_key, "--direction", "ua-to-gcs"}, nowHeader(2) + kCommand);
+    QCOMPARE(up.exitCode, 0);
+    QCOMPARE(down.exitCode, 0);
+    QCOMPARE(up.out.size(), 600);
+    const QString logPath = m_dir.filePath(QStringLiteral("keyed.pcapng"));
+    {
+        FrameLog log;
+        QVERIFY(log.open(logPath));
+        for (const Run* r : {&up, &down}) {
+            FrameRecord f;
+            f.bytes = r->out;
+            f.utcMicros = QDateTime::currentMSecsSinceEpoch() * 1000;
+            f.direction = r == &up ? FrameDirection::Sent : FrameDirection::Received;
+            f.status = r == &up ? FrameStatus::NotChecked : FrameStatus::Decoded;
+            f.enciphered = true;
+            QVERIFY(log.append(f));
+        }
+    }
+    const Run without = runRcm({"decode", logPath});
+    QCOMPARE(without.exitCode, 1);
+    QCOMPARE(without.out, QByteArray());
+    const QList<QByteArray> lines = without.err.split('\n');
+    QCOMPARE(lines.size(), 3);
+    QVERIFY2(lines[0].startsWith("rcm: frame 1 (sent) at byte offset ") &&
+                 lines[0].endsWith(" of the log: enciphered (a keyed link's frame): give --key to read it"),
+             lines[0].constData());
+    QVERIFY2(lines[1].startsWith("rcm: frame 2 (received) at byte offset "), lines[1].constData());
+
+    const Run with = runRcm({"decode", "--key", m_key, logPath});
+    QCOMPARE(with.err, QByteArray());
+    QCOMPARE(with.exitCode, 0);
+    QVERIFY2(with.out.contains("# secure GCS->UA, authenticated\n"), with.out.constData());
+    QVERIFY(with.out.contains("# secure UA->GCS, authenticated\n"));
+    QCOMPARE(with.out.count("SA_zoom_FWD_cam 105\n"), 2);
+    QVERIFY(!with.out.contains(keyText(m_key)));
+
+    const Run summary = runRcm({"decode", "--summary", logPath});
+    QVERIFY2(summary.out.startsWith("frames 2\nread 0\nrefused 0\nenciphered 2\n"), summary.out.constData());
 }
 
 void TestRcmSecure::keyFileReadableByOthers()

@@ -1,8 +1,10 @@
 #include "codec/cli/Decode.h"
 
 #include "codec/cli/InputFile.h"
+#include "codec/cli/PcapngFrames.h"
 #include "codec/message/TextFormat.h"
 #include "codec/receive/FrameReceiver.h"
+#include "codec/receive/LoggedFrameReading.h"
 #include "codec/secure/SecureCodec.h"
 
 #include <cerrno>
@@ -195,6 +197,105 @@ bool feed(const Options& o, rcm::FrameReceiver& receiver)
     return !failed;
 }
 
+const char* directionWord(LoggedPacket::Direction d)
+{
+    switch (d) {
+    case LoggedPacket::Direction::Sent:
+        return "sent";
+    case LoggedPacket::Direction::Received:
+        return "received";
+    case LoggedPacket::Direction::Unknown:
+        break;
+    }
+    return "direction not logged";
+}
+
+// A frame log (pcapng): each frame read on its own (LoggedFrameReading), in
+// both directions, with --key's codecs for both. A log interleaves the two
+// ends' frames, so no continuity is checked between them.
+int decodeLog(const Options& o, std::span<const std::uint8_t> file, const Keys& keys)
+{
+    std::vector<LoggedPacket> packets;
+    std::string error;
+    const bool whole = readPcapng(file, packets, error);
+    std::vector<const rcm::secure::SecureCodec*> codecs;
+    for (const auto& c : keys.codecs)
+        codecs.push_back(c.get());
+    Output out;
+    std::uint64_t read = 0, refused = 0, enciphered = 0, corrected1 = 0, corrected2 = 0;
+    for (std::size_t i = 0; i < packets.size(); ++i) {
+        const LoggedPacket& p = packets[i];
+        const std::string where = "frame " + std::to_string(i + 1) + " (" + directionWord(p.direction) +
+                                  ") at byte offset " + std::to_string(p.blockOffset) + " of the log";
+        const rcm::LoggedFrameReading r = rcm::readLoggedFrame(p.bytes, p.enciphered, codecs);
+        using O = rcm::LoggedFrameReading::Outcome;
+        switch (r.outcome) {
+        case O::Read:
+            ++read;
+            corrected1 += static_cast<std::uint64_t>(r.blocks.corrected1);
+            corrected2 += static_cast<std::uint64_t>(r.blocks.corrected2);
+            if (!o.summary) {
+                std::string& s = out.buffer();
+                s += "# " + where + "\n";
+                s += "# block1 corrected " + std::to_string(r.blocks.corrected1) + "\n";
+                s += "# block2 corrected " + std::to_string(r.blocks.corrected2) + "\n";
+                if (r.direction)
+                    s += "# secure " + std::string(rcm::secure::directionName(*r.direction)) + ", authenticated\n";
+                s += rcm::formatMessage(r.decoded.message) + "\n";
+                out.maybeFlush();
+            }
+            break;
+        case O::Refused:
+            ++refused;
+            std::fprintf(stderr, "rcm: %s: refused as %s: %s\n", where.c_str(),
+                         std::string(rcm::refusalName(*r.refusal)).c_str(), r.detail.c_str());
+            break;
+        case O::Enciphered:
+            ++enciphered;
+            std::fprintf(stderr, "rcm: %s: enciphered (a keyed link's frame): give --key to read it\n", where.c_str());
+            break;
+        case O::NotAFrame:
+            ++refused;
+            std::fprintf(stderr, "rcm: %s: %zu bytes, neither a 600-byte frame nor a 510-byte datagram\n",
+                         where.c_str(), p.bytes.size());
+            break;
+        }
+    }
+    if (o.summary) {
+        std::string& s = out.buffer();
+        s += "frames " + std::to_string(packets.size()) + "\n";
+        s += "read " + std::to_string(read) + "\n";
+        s += "refused " + std::to_string(refused) + "\n";
+        s += "enciphered " + std::to_string(enciphered) + "\n";
+        s += "corrected block1 " + std::to_string(corrected1) + "\n";
+        s += "corrected block2 " + std::to_string(corrected2) + "\n";
+    }
+    out.flush();
+    if (!whole)
+        std::fprintf(stderr, "rcm: %s: %s; the frames before it were decoded\n", inputName(o.file).c_str(),
+                     error.c_str());
+    if (packets.empty()) {
+        std::fprintf(stderr, "rcm: no frame found\n");
+        return kExitFailed;
+    }
+    return whole && refused + enciphered == 0 ? kExitOk : kExitFailed;
+}
+
+// A named file that begins as a pcapng frame log does, read whole.
+bool readLogFile(const Options& o, std::vector<std::uint8_t>& file)
+{
+    if (o.datagram || o.file.empty() || o.file == "-")
+        return false;
+    std::FILE* f = std::fopen(o.file.c_str(), "rb");
+    if (!f)
+        return false;
+    std::uint8_t head[12];
+    const bool log = std::fread(head, 1, sizeof head, f) == sizeof head && isPcapng(head);
+    std::fclose(f);
+    std::string error;
+    return log && readAll(o.file, file, error);
+}
+
 }  // namespace
 
 int decode(const Options& o)
@@ -202,6 +303,8 @@ int decode(const Options& o)
     Keys keys;
     if (!o.key.empty() && !loadKeys(o, keys))
         return kExitFailed;
+    if (std::vector<std::uint8_t> log; readLogFile(o, log))
+        return decodeLog(o, log, keys);
     Output out;
     Report report(o, out);
     rcm::FrameReceiver receiver(receiverOptions(o, keys), [&](const rcm::ReceivedFrame& f) { report(f); });

@@ -42,6 +42,10 @@ decode  reads bytes from FILE (standard input when absent or -): any number of
         replayed, implausible: ..., and the reasons under --key below).
         --datagram reads exactly one 510-byte datagram instead.
         --summary prints only the counts, refusals counted by reason.
+        A FILE that is a frame log (pcapng, as gcs and uasim write them) is
+        read frame by frame, both directions, each on its own:
+          # frame N (sent|received) at byte offset X of the log
+        and a keyed link's frame without --key is said to be enciphered.
 
 --key KEYFILE  the secure link (docs/security.md): AES-256-HCTR2 over BLOCK 1
         and BLOCK 2 before Reed-Solomon, authenticated by the message's own
