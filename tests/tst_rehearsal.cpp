@@ -56,6 +56,7 @@ private slots:
     void wrongScenariosSayWhere();
     void outageRunsToExactTimes();
     void pacedRunGivesTheSameReport();
+    void speedOneRunsTheRealPrograms();
     void frameLogHoldsBothDirections();
     void keyEnciphersTheRun();
     void samplesHold_data();
@@ -225,6 +226,45 @@ void TestRehearsal::pacedRunGivesTheSameReport()
     QVERIFY(fast.report().frames.lost > 0);  // the bursts cost frames: the run did inject them
 }
 
+// At speed 1 over UDP: uasim as a process, real sockets, the faults in a
+// proxy between them, the system clock. Every expectation is judged as the
+// in-process run judges it, and holds in both.
+void TestRehearsal::speedOneRunsTheRealPrograms()
+{
+    ScenarioRunner inProcess(load(QStringLiteral("real-time.json")), QString());
+    inProcess.runToEnd();
+    QVERIFY(!inProcess.realPrograms());
+
+    QTemporaryDir dir;
+    const QString logPath = dir.filePath(QStringLiteral("session.pcapng"));
+    ScenarioRunner real(load(QStringLiteral("real-time.json")), logPath);
+    QSignalSpy finished(&real, &ScenarioRunner::finished);
+    real.start(0, QStringLiteral(RCM_BIN_DIR "/uasim"));
+    QVERIFY(real.realPrograms());
+    QVERIFY(finished.wait(90'000));
+    const RehearsalReport& r = real.report();
+    QCOMPARE(r.transport, QStringLiteral("udp (uasim as a process, real sockets)"));
+    const auto verdicts = [](const RehearsalReport& report) {
+        QStringList v;
+        for (const auto& e : report.expectations)
+            v << QStringLiteral("%1 %2").arg(e.step).arg(e.held ? QStringLiteral("held") : e.detail);
+        return v;
+    };
+    QCOMPARE(verdicts(r), verdicts(inProcess.report()));
+    QCOMPARE(verdicts(r), (QStringList{QStringLiteral("3 held"), QStringLiteral("6 held"), QStringLiteral("7 held"),
+                                       QStringLiteral("9 held")}));
+    QVERIFY(r.passed());
+    QCOMPARE(r.frames.wrong, 0);
+    // uasim said which commands it took: they are counted, and were sent.
+    QVERIFY2(r.frames.receivedUp > 10, qPrintable(QString::number(r.frames.receivedUp)));
+    QVERIFY(r.frames.receivedDown > 10);
+    QVERIFY(r.frames.inOutage > 0);
+    // The frame log holds the console's side of the real sockets.
+    FrameLogReader reader;
+    QVERIFY(reader.open(logPath));
+    QVERIFY(reader.count() >= int(r.frames.sentUp));
+}
+
 void TestRehearsal::frameLogHoldsBothDirections()
 {
     QTemporaryDir dir;
@@ -291,7 +331,7 @@ void TestRehearsal::samplesHold_data()
 {
     QTest::addColumn<QString>("scenario");
     for (const char* name : {"ber.json", "outage.json", "slip.json", "burst.json", "gear-outage-plan.json",
-                             "secure.json", "slip-serial.json"})
+                             "secure.json", "slip-serial.json", "real-time.json"})
         QTest::newRow(name) << QString::fromLatin1(name);
 }
 

@@ -4,11 +4,17 @@
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/secure/SecureCodec.h"
+#include "link/framelog/FrameLog.h"
+#include "link/rehearsal/RehearsalProxy.h"
 #include "link/session/LinkWorker.h"
 #include "link/session/VirtualClock.h"
 #include "link/simulation/AircraftResponder.h"
+#include "link/simulation/RehearsalLauncher.h"
 #include "link/simulation/SimulatedAircraft.h"
+#include "link/transport/UdpLink.h"
 
+#include <QRegularExpression>
+#include <QTemporaryDir>
 #include <QTimer>
 
 #include <algorithm>
@@ -56,83 +62,26 @@ ScenarioRunner::ScenarioRunner(Scenario scenario, const QString& frameLogPath, Q
     : QObject(parent),
       m_scenario(std::move(scenario)),
       m_clock(std::make_shared<VirtualClock>(kStartUtcMicros)),
+      m_time(m_clock),
       m_startUtcMicros(kStartUtcMicros),
       m_channel(m_scenario.transport == Scenario::Transport::Serial, kSeed)
 {
     m_report.scenarioName = m_scenario.name;
     m_report.scenarioPath = m_scenario.path;
     m_report.duration = m_scenario.duration;
-    m_report.transport =
-        QStringLiteral("%1 (in process)%2")
-            .arg(m_scenario.transport == Scenario::Transport::Serial ? QStringLiteral("serial") : QStringLiteral("udp"),
-                 m_scenario.key ? QStringLiteral(", secure link") : QString());
-    std::unique_ptr<FrameLog> log;
     if (!frameLogPath.isEmpty()) {
-        log = std::make_unique<FrameLog>();
-        if (!log->open(frameLogPath, &m_frameLogError))
-            log.reset();
+        m_log = std::make_unique<FrameLog>();
+        if (!m_log->open(frameLogPath, &m_frameLogError))
+            m_log.reset();
     }
-
-    m_aircraft = std::make_unique<SimulatedAircraft>(m_scenario.airframe);
-    LinkWorker::Options aircraftOptions;
-    aircraftOptions.clock = m_clock;
-    LinkWorker::Options consoleOptions;
-    consoleOptions.clock = m_clock;
     if (m_scenario.key) {
-        // A fresh key for each run, as the issue asks; its state kept in memory only.
-        const rcm::secure::SecretKey psk = rcm::secure::generateKey();
-        rcm::secure::SecureEndpoint::Options options;
-        options.persistState = false;
-        options.clock = [clock = m_clock] { return clock->utcMicros() / 1'000'000; };
-        std::string error;
-        consoleOptions.secure =
-            rcm::secure::SecureEndpoint::fromKey(psk, rcm::secure::Direction::GcsToUa, {}, error, options);
-        aircraftOptions.secure =
-            rcm::secure::SecureEndpoint::fromKey(psk, rcm::secure::Direction::UaToGcs, {}, error, options);
+        // A fresh key for each run, as the issue asks.
+        m_psk = rcm::secure::generateKey();
         m_ciphers[RehearsalChannel::Console] =
-            std::make_unique<rcm::secure::SecureCodec>(psk, rcm::secure::Direction::GcsToUa);
+            std::make_unique<rcm::secure::SecureCodec>(*m_psk, rcm::secure::Direction::GcsToUa);
         m_ciphers[RehearsalChannel::Aircraft] =
-            std::make_unique<rcm::secure::SecureCodec>(psk, rcm::secure::Direction::UaToGcs);
+            std::make_unique<rcm::secure::SecureCodec>(*m_psk, rcm::secure::Direction::UaToGcs);
     }
-    m_aircraftWorker = std::make_unique<LinkWorker>(m_channel.takeEnd(RehearsalChannel::Aircraft), nullptr,
-                                                    std::move(aircraftOptions));
-    m_responder = std::make_unique<AircraftResponder>(*m_aircraft, *m_aircraftWorker);
-
-    consoleOptions.block2Source = [this]() -> std::optional<rcm::FlightPlanSection> {
-        return m_upload ? m_upload->next() : std::nullopt;
-    };
-    consoleOptions.block2Reply = [this](const rcm::FlightPlanSection& reply) {
-        if (!m_upload || m_upload->state() != rcm::FlightPlanUploader::State::Sending || !m_upload->handleReply(reply))
-            return;
-        note(QStringLiteral("event"),
-             QStringLiteral("flight plan 0x%1 acknowledged").arg(m_upload->planId(), 8, 16, QLatin1Char('0')));
-        for (Pending& p : m_pending)
-            if (!p.decided && p.step->kind == ScenarioStep::Kind::ExpectPlan && now() >= *p.step->at &&
-                now() <= p.deadline())
-                p.decided = p.held = true, p.measured = now() - *p.step->at;
-    };
-    m_console = std::make_unique<LinkWorker>(m_channel.takeEnd(RehearsalChannel::Console), std::move(log),
-                                             std::move(consoleOptions));
-
-    connect(m_console.get(), &LinkWorker::messageReceived, this, [this](const ReceivedMessage& r) {
-        received(RehearsalChannel::Aircraft, r.message);
-        statusReceived(r.message);
-    });
-    connect(m_aircraftWorker.get(), &LinkWorker::messageReceived, this,
-            [this](const ReceivedMessage& r) { received(RehearsalChannel::Console, r.message); });
-    connect(m_console.get(), &LinkWorker::linkLost, this, [this] { alarm(QStringLiteral("link-lost")); });
-    connect(m_console.get(), &LinkWorker::linkRegained, this, [this] { alarm(QStringLiteral("link-regained")); });
-    connect(m_console.get(), &LinkWorker::errorOccurred, this,
-            [this](const QString& message) { note(QStringLiteral("event"), message); });
-    connect(m_console.get(), &LinkWorker::commandRejected, this, [this](const QString& reasons) {
-        note(QStringLiteral("event"), QStringLiteral("command refused: ") + reasons);
-    });
-    connect(m_responder.get(), &AircraftResponder::commandApplied, this,
-            [this](const ReceivedMessage&, const SimulatedAircraft::ApplyReport& report) {
-                for (const std::string& event : report.events)
-                    note(QStringLiteral("event"), QStringLiteral("aircraft: ") + QString::fromStdString(event));
-            });
-
     for (std::size_t i = 0; i < m_scenario.steps.size(); ++i) {
         const ScenarioStep& step = m_scenario.steps[i];
         if (step.at)
@@ -149,17 +98,89 @@ ScenarioRunner::ScenarioRunner(Scenario scenario, const QString& frameLogPath, Q
     m_command = rcm::restingCommand(m_scenario.airframe);
 }
 
+// The console's worker on `link`, keyed as the scenario says, on m_time.
+void ScenarioRunner::makeConsole(std::unique_ptr<Link> link)
+{
+    LinkWorker::Options consoleOptions;
+    consoleOptions.clock = m_time;
+    if (m_psk) {
+        rcm::secure::SecureEndpoint::Options options;
+        options.persistState = false;  // its state in memory only
+        options.clock = [clock = m_time] { return clock->utcMicros() / 1'000'000; };
+        std::string error;
+        consoleOptions.secure =
+            rcm::secure::SecureEndpoint::fromKey(*m_psk, rcm::secure::Direction::GcsToUa, {}, error, options);
+    }
+    consoleOptions.block2Source = [this]() -> std::optional<rcm::FlightPlanSection> {
+        return m_upload ? m_upload->next() : std::nullopt;
+    };
+    consoleOptions.block2Reply = [this](const rcm::FlightPlanSection& reply) {
+        if (!m_upload || m_upload->state() != rcm::FlightPlanUploader::State::Sending || !m_upload->handleReply(reply))
+            return;
+        note(QStringLiteral("event"),
+             QStringLiteral("flight plan 0x%1 acknowledged").arg(m_upload->planId(), 8, 16, QLatin1Char('0')));
+        for (Pending& p : m_pending)
+            if (!p.decided && p.step->kind == ScenarioStep::Kind::ExpectPlan && now() >= *p.step->at &&
+                now() <= p.deadline())
+                p.decided = p.held = true, p.measured = now() - *p.step->at;
+    };
+    m_console = std::make_unique<LinkWorker>(std::move(link), std::move(m_log), std::move(consoleOptions));
+    connect(m_console.get(), &LinkWorker::messageReceived, this, [this](const ReceivedMessage& r) {
+        received(RehearsalChannel::Aircraft, r.message);
+        statusReceived(r.message);
+    });
+    connect(m_console.get(), &LinkWorker::linkLost, this, [this] { alarm(QStringLiteral("link-lost")); });
+    connect(m_console.get(), &LinkWorker::linkRegained, this, [this] { alarm(QStringLiteral("link-regained")); });
+    connect(m_console.get(), &LinkWorker::errorOccurred, this,
+            [this](const QString& message) { note(QStringLiteral("event"), message); });
+    connect(m_console.get(), &LinkWorker::commandRejected, this, [this](const QString& reasons) {
+        note(QStringLiteral("event"), QStringLiteral("command refused: ") + reasons);
+    });
+}
+
+void ScenarioRunner::buildInProcess()
+{
+    m_built = true;
+    m_report.transport =
+        QStringLiteral("%1 (in process)%2")
+            .arg(m_scenario.transport == Scenario::Transport::Serial ? QStringLiteral("serial") : QStringLiteral("udp"),
+                 m_scenario.key ? QStringLiteral(", secure link") : QString());
+    m_aircraft = std::make_unique<SimulatedAircraft>(m_scenario.airframe);
+    LinkWorker::Options aircraftOptions;
+    aircraftOptions.clock = m_clock;
+    if (m_psk) {
+        rcm::secure::SecureEndpoint::Options options;
+        options.persistState = false;
+        options.clock = [clock = m_clock] { return clock->utcMicros() / 1'000'000; };
+        std::string error;
+        aircraftOptions.secure =
+            rcm::secure::SecureEndpoint::fromKey(*m_psk, rcm::secure::Direction::UaToGcs, {}, error, options);
+    }
+    m_aircraftWorker = std::make_unique<LinkWorker>(m_channel.takeEnd(RehearsalChannel::Aircraft), nullptr,
+                                                    std::move(aircraftOptions));
+    m_responder = std::make_unique<AircraftResponder>(*m_aircraft, *m_aircraftWorker);
+    makeConsole(m_channel.takeEnd(RehearsalChannel::Console));
+    connect(m_aircraftWorker.get(), &LinkWorker::messageReceived, this,
+            [this](const ReceivedMessage& r) { received(RehearsalChannel::Console, r.message); });
+    connect(m_responder.get(), &AircraftResponder::commandApplied, this,
+            [this](const ReceivedMessage&, const SimulatedAircraft::ApplyReport& report) {
+                for (const std::string& event : report.events)
+                    note(QStringLiteral("event"), QStringLiteral("aircraft: ") + QString::fromStdString(event));
+            });
+}
+
 ScenarioRunner::~ScenarioRunner()
 {
     // The responder and workers refer to each other and to the channel: end them first.
     m_responder.reset();
     m_console.reset();
     m_aircraftWorker.reset();
+    m_proxy.reset();
 }
 
 double ScenarioRunner::now() const
 {
-    return double(m_clock->utcMicros() - m_startUtcMicros) / 1e6;
+    return double(m_time->utcMicros() - m_startUtcMicros) / 1e6;
 }
 
 void ScenarioRunner::note(const QString& kind, const QString& text)
@@ -258,11 +279,14 @@ void ScenarioRunner::sampleQuality()
 
 void ScenarioRunner::advanceTo(double seconds)
 {
+    if (!m_built)
+        buildInProcess();
     if (!m_started) {
         m_started = true;
         note(QStringLiteral("event"), QStringLiteral("run starts: %1").arg(m_scenario.name));
         m_console->setCommand(m_command);
-        m_aircraftWorker->start();
+        if (m_aircraftWorker)
+            m_aircraftWorker->start();
         m_console->start();
         sampleQuality();
     }
@@ -271,7 +295,8 @@ void ScenarioRunner::advanceTo(double seconds)
         while (m_nextStep < m_order.size() && *m_scenario.steps[m_order[m_nextStep]].at <= m_done + 1e-9)
             applyStep(m_scenario.steps[m_order[m_nextStep++]]);
         const double next = std::min(target, std::floor(m_done / kStepSeconds + 1 + 1e-9) * kStepSeconds);
-        m_clock->advance(std::chrono::microseconds(std::llround((next - m_done) * 1e6)));
+        if (!m_real)
+            m_clock->advance(std::chrono::microseconds(std::llround((next - m_done) * 1e6)));
         m_done = next;
         m_channel.setTime(m_done);
         judgeDeadlines();
@@ -288,8 +313,12 @@ void ScenarioRunner::finish()
     m_finished = true;
     if (m_paceTimer)
         m_paceTimer->stop();
-    m_console->stop();
-    m_aircraftWorker->stop();
+    if (m_console)
+        m_console->stop();
+    if (m_aircraftWorker)
+        m_aircraftWorker->stop();
+    if (m_launcher)
+        m_launcher->stop();
 
     auto& frames = m_report.frames;
     const auto& up = m_channel.counters(RehearsalChannel::Console);
@@ -344,9 +373,18 @@ void ScenarioRunner::runToEnd()
     advanceTo(m_scenario.duration);
 }
 
-void ScenarioRunner::start(double speed)
+void ScenarioRunner::start(double speed, const QString& uasimProgram)
 {
     m_speed = speed > 0 ? speed : m_scenario.speed;
+    if (m_speed == 1 && m_scenario.transport == Scenario::Transport::Udp && !m_built) {
+        startReal(uasimProgram.isEmpty() ? RehearsalLauncher::defaultProgram() : uasimProgram);
+        return;
+    }
+    beginPacing();
+}
+
+void ScenarioRunner::beginPacing()
+{
     m_paceTimer = new QTimer(this);
     m_paceTimer->setInterval(20);
     connect(m_paceTimer, &QTimer::timeout, this, &ScenarioRunner::paceTick);
@@ -355,7 +393,81 @@ void ScenarioRunner::start(double speed)
     advanceTo(0);
 }
 
+// uasim on a loopback port, the proxy between it and the console's socket;
+// the run starts once uasim says it listens (uasimSaid()).
+void ScenarioRunner::startReal(const QString& uasimProgram)
+{
+    m_real = m_built = true;
+    m_time = std::make_shared<SystemClock>();
+    m_report.transport = QStringLiteral("udp (uasim as a process, real sockets)%1")
+                             .arg(m_scenario.key ? QStringLiteral(", secure link") : QString());
+    const auto cannot = [this](const QString& why) {
+        m_startUtcMicros = m_time->utcMicros();
+        note(QStringLiteral("event"), QStringLiteral("the run cannot start: ") + why);
+        finish();
+    };
+    m_proxy = std::make_unique<RehearsalProxy>(m_channel);
+    QString error;
+    if (!m_proxy->open(&error))
+        return cannot(error);
+    QString keyPath;
+    if (m_psk) {
+        m_keyDir = std::make_unique<QTemporaryDir>();
+        keyPath = m_keyDir->filePath(QStringLiteral("rehearsal.key"));
+        std::string why;
+        if (!m_keyDir->isValid() || !rcm::secure::writeKeyFile(keyPath.toStdString(), *m_psk, why))
+            return cannot(QStringLiteral("cannot write uasim's key: %1").arg(QString::fromStdString(why)));
+    }
+    m_launcher = new RehearsalLauncher(this);
+    m_launcher->setVerbose(true);
+    connect(m_launcher, &RehearsalLauncher::output, this, &ScenarioRunner::uasimSaid);
+    connect(m_launcher, &RehearsalLauncher::failed, this, [this, cannot](const QString& why) {
+        if (!m_started)
+            cannot(why);
+        else if (!m_finished)
+            note(QStringLiteral("event"), QStringLiteral("uasim: ") + why);
+    });
+    m_launcher->start(m_scenario.airframe, uasimProgram, keyPath);
+}
+
+// uasim's --verbose lines: that it listens, and each command it took.
+void ScenarioRunner::uasimSaid(const QString& line)
+{
+    if (!m_started && !m_console && line.contains(QLatin1String(" on udp"))) {
+        m_launcher->confirm();
+        QString error;
+        if (!m_proxy->connectAircraft(m_launcher->port(), &error)) {
+            m_startUtcMicros = m_time->utcMicros();
+            note(QStringLiteral("event"), QStringLiteral("the run cannot start: ") + error);
+            finish();
+            return;
+        }
+        m_startUtcMicros = m_time->utcMicros();
+        makeConsole(std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0,
+                                              QHostAddress(QHostAddress::LocalHost), m_proxy->consolePort()));
+        beginPacing();
+        return;
+    }
+    // "uasim: command 12 (RS 0+0); gear ...": a command uasim acted on. It was sent
+    // if a frame the console sent lately carried that ID_msg.
+    static const QRegularExpression command(QStringLiteral("^uasim: command (\\d+) \\(RS "));
+    const QRegularExpressionMatch m = command.match(line);
+    if (!m.hasMatch() || m_finished)
+        return;
+    ++m_goodReceived[RehearsalChannel::Console];
+    const std::int64_t id = m.captured(1).toLongLong();
+    const auto& recent = m_channel.recentFrames(RehearsalChannel::Console);
+    const bool sent = std::any_of(recent.rbegin(), recent.rend(), [&](const QByteArray& f) {
+        const rcm::Message sentMessage = decoded(f, m_ciphers[RehearsalChannel::Console].get());
+        return sentMessage.header.has(rcm::ItemId::ID_msg) && sentMessage.header.number(rcm::ItemId::ID_msg) == id;
+    });
+    if (!sent) {
+        ++m_report.frames.wrong;
+        note(QStringLiteral("event"), QStringLiteral("wrong frame delivered to the aircraft"));
+    }
+}
+
 void ScenarioRunner::paceTick()
 {
-    advanceTo(double(m_wall.nsecsElapsed()) / 1e9 * m_speed);
+    advanceTo(m_real ? now() : double(m_wall.nsecsElapsed()) / 1e9 * m_speed);
 }

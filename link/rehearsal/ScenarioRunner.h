@@ -1,15 +1,20 @@
 #pragma once
 
-// Runs a scenario in process: the console's LinkWorker, commanding what the
-// steps set, and the simulated aircraft behind its own LinkWorker (as uasim
-// flies it), joined by a RehearsalChannel that applies the faults, all on one
-// VirtualClock. Scenario time is paced at the scenario's speed against the
-// wall clock (start()), or runs as fast as the machine goes (runToEnd()),
-// with the same result: nothing in a run depends on the wall clock.
+// Runs a scenario: the console's LinkWorker, commanding what the steps set,
+// and the simulated aircraft, joined by a RehearsalChannel that applies the
+// faults.
+//
+// Faster than real time (and runToEnd()) it all runs in process: the
+// aircraft behind its own LinkWorker (as uasim flies it), on one
+// VirtualClock, so that nothing in a run depends on the wall clock. At speed
+// 1 over UDP it runs the real programs: uasim as a process on a loopback
+// port, the console's link on a real socket, and a RehearsalProxy between
+// them with the channel's faults, on the system clock.
 //
 // Every expectation is judged as the run goes, and what it found is the
 // RehearsalReport; the console's frames both ways go to a frame log.
 
+#include "codec/secure/SecureCodec.h"
 #include "link/rehearsal/RehearsalChannel.h"
 #include "link/rehearsal/RehearsalReport.h"
 #include "link/rehearsal/Scenario.h"
@@ -18,9 +23,16 @@
 #include <QObject>
 
 #include <memory>
+#include <optional>
 
 class AircraftResponder;
+class Clock;
+class FrameLog;
+class Link;
 class LinkWorker;
+class QTemporaryDir;
+class RehearsalLauncher;
+class RehearsalProxy;
 class QTimer;
 class SimulatedAircraft;
 class VirtualClock;
@@ -40,8 +52,12 @@ public:
     ~ScenarioRunner() override;
 
     // Paced: `speed` scenario seconds per wall-clock second (the scenario's
-    // own when 0 or less); returns at once, progress() as it goes, finished() at the end.
-    void start(double speed = 0);
+    // own when 0 or less); returns at once, progress() as it goes, finished()
+    // at the end. At speed 1 over UDP, against `uasimProgram` (beside this
+    // program when empty) as a process.
+    void start(double speed = 0, const QString& uasimProgram = QString());
+    // Whether this run is against the real programs (known once started).
+    bool realPrograms() const { return m_real; }
     // As fast as it goes, without an event loop; finished() before it returns.
     void runToEnd();
     bool isFinished() const { return m_finished; }
@@ -70,10 +86,23 @@ private:
     void sampleQuality();
     void finish();
     void paceTick();
+    void buildInProcess();
+    void startReal(const QString& uasimProgram);
+    void uasimSaid(const QString& line);
+    void makeConsole(std::unique_ptr<Link> link);
+    void beginPacing();
 
     Scenario m_scenario;
     QString m_frameLogError;
-    std::shared_ptr<VirtualClock> m_clock;
+    std::unique_ptr<FrameLog> m_log;  // until the console's worker takes it
+    std::optional<rcm::secure::SecretKey> m_psk;
+    bool m_real = false;
+    bool m_built = false;
+    std::shared_ptr<VirtualClock> m_clock;  // in process
+    std::shared_ptr<Clock> m_time;          // what the run's time is read from: m_clock, or the system's
+    std::unique_ptr<QTemporaryDir> m_keyDir;  // real programs, keyed: uasim's key file
+    RehearsalLauncher* m_launcher = nullptr;
+    std::unique_ptr<RehearsalProxy> m_proxy;
     std::int64_t m_startUtcMicros;
     RehearsalChannel m_channel;
     std::unique_ptr<SimulatedAircraft> m_aircraft;

@@ -68,6 +68,8 @@ void RehearsalLauncher::launch()
                           m_airframeFile->fileName()};
     if (!m_keyPath.isEmpty())
         arguments << QStringLiteral("--key") << m_keyPath;
+    if (m_verbose)
+        arguments << QStringLiteral("--verbose");
     m_process->start(m_program, arguments);
     emit ready(m_port);
 }

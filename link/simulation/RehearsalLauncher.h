@@ -36,6 +36,8 @@ public:
     void stop();
     // Frames came back: a later exit is a failure, not a port clash to retry.
     void confirm() { m_confirmed = true; }
+    // uasim --verbose: a line on output() for each command it takes.
+    void setVerbose(bool verbose) { m_verbose = verbose; }
 
     bool isRunning() const { return m_process && m_process->state() != QProcess::NotRunning; }
     quint16 port() const { return m_port; }
@@ -59,5 +61,6 @@ private:
     quint16 m_port = 0;
     int m_attempt = 0;
     bool m_confirmed = false;
+    bool m_verbose = false;
     QByteArray m_stderr;
 };

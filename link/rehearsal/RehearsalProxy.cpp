@@ -1,0 +1,55 @@
+#include "link/rehearsal/RehearsalProxy.h"
+
+#include "link/transport/UdpLink.h"
+
+RehearsalProxy::RehearsalProxy(RehearsalChannel& channel, QObject* parent)
+    : QObject(parent),
+      m_consoleEnd(channel.takeEnd(RehearsalChannel::Console)),
+      m_aircraftEnd(channel.takeEnd(RehearsalChannel::Aircraft))
+{
+    // What one real side receives goes into the channel as its sender's;
+    // what the channel delivers to an end goes out of the other real side.
+    m_consoleEnd->open();
+    m_aircraftEnd->open();
+    connect(m_consoleEnd.get(), &Link::datagramReceived, this, [this](const QByteArray& bytes) {
+        if (m_consoleSide)
+            m_consoleSide->write(bytes);
+    });
+    connect(m_aircraftEnd.get(), &Link::datagramReceived, this, [this](const QByteArray& bytes) {
+        if (m_aircraftSide)
+            m_aircraftSide->write(bytes);
+    });
+}
+
+RehearsalProxy::~RehearsalProxy() = default;
+
+bool RehearsalProxy::open(QString* error)
+{
+    m_consoleSide = std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0);
+    m_consoleSide->setReplyToSender(true);  // back to the console's link, wherever it is bound
+    connect(m_consoleSide.get(), &Link::datagramReceived, this,
+            [this](const QByteArray& bytes) { m_consoleEnd->write(bytes); });
+    connect(m_consoleSide.get(), &Link::errorOccurred, this, [this](const QString& e) { m_lastError = e; });
+    m_consoleSide->open();
+    if (!m_consoleSide->isOpen() && error)
+        *error = m_lastError;
+    return m_consoleSide->isOpen();
+}
+
+quint16 RehearsalProxy::consolePort() const
+{
+    return m_consoleSide ? m_consoleSide->boundPort() : 0;
+}
+
+bool RehearsalProxy::connectAircraft(quint16 port, QString* error)
+{
+    m_aircraftSide = std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0,
+                                               QHostAddress(QHostAddress::LocalHost), port);
+    connect(m_aircraftSide.get(), &Link::datagramReceived, this,
+            [this](const QByteArray& bytes) { m_aircraftEnd->write(bytes); });
+    connect(m_aircraftSide.get(), &Link::errorOccurred, this, [this](const QString& e) { m_lastError = e; });
+    m_aircraftSide->open();
+    if (!m_aircraftSide->isOpen() && error)
+        *error = m_lastError;
+    return m_aircraftSide->isOpen();
+}
