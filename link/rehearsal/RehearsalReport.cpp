@@ -78,9 +78,14 @@ QString latencyPlot(const std::vector<RehearsalReport::Latency>& latencies)
     for (std::size_t i = 0; i < latencies.size(); ++i) {
         const auto& l = latencies[i];
         const int top = int(i) * row + 2;
-        svg += QStringLiteral("<text x=\"0\" y=\"%1\" font-size=\"12\">%2</text>")
+        // A long line ("land_wheels LHS=... TAIL=...") would run under its
+        // bar: cut to what the label column holds, whole in its tool tip.
+        constexpr qsizetype kLabelChars = 46;
+        const QString label =
+            l.control.size() > kLabelChars ? l.control.left(kLabelChars - 1) + QChar(0x2026) : l.control;
+        svg += QStringLiteral("<text x=\"0\" y=\"%1\" font-size=\"12\"><title>%2</title>%3</text>")
                    .arg(top + 15)
-                   .arg(l.control.toHtmlEscaped());
+                   .arg(l.control.toHtmlEscaped(), label.toHtmlEscaped());
         if (l.seconds)
             svg += QStringLiteral(
                        "<rect x=\"%1\" y=\"%2\" width=\"%3\" height=\"16\" fill=\"#1f77b4\"/>"
