@@ -247,8 +247,8 @@ void TestCodec::vectorsDecode()
     QCOMPARE(raw.size(), 600);
     const DecodeResult r = decodeFrame(bytesOf(raw));
     QVERIFY2(r.diagnostics.empty(), dump(r.diagnostics));
-    QCOMPARE(r.corrected1, corrected);
-    QCOMPARE(r.corrected2, corrected);
+    QCOMPARE(r.corrected.block1, corrected);
+    QCOMPARE(r.corrected.block2, corrected);
     const Message& m = r.message;
     if (file == "seed-example.bin") {
         QCOMPARE(m.header.number(ItemId::ID_msg), 133);
@@ -326,8 +326,8 @@ void TestCodec::datagramRoundTrip()
     QCOMPARE(datagram->size(), std::size_t{510});
     corrupt(rng, datagram->data(), 5);
     const DecodeResult r = decodeFrame(*datagram);
-    QCOMPARE(r.corrected1, 5);
-    QCOMPARE(r.corrected2, 0);
+    QCOMPARE(r.corrected.block1, 5);
+    QCOMPARE(r.corrected.block2, 0);
     QVERIFY(r.message == m);
 }
 
@@ -617,8 +617,8 @@ void TestCodec::rsCorrectsUpTo16()
         corrupt(rng, d.data(), errors);
         corrupt(rng, d.data() + 255, errors);
         const DecodedBlocks out = decodeCodewords(d);
-        QCOMPARE(out.corrected1, errors);
-        QCOMPARE(out.corrected2, errors);
+        QCOMPARE(out.corrected.block1, errors);
+        QCOMPARE(out.corrected.block2, errors);
         QVERIFY(out.block1 == b1 && out.block2 == b2);
         QVERIFY(!rs::isCodeword(d.data()));
         QVERIFY(rs::isCodeword(clean.data()) && rs::isCodeword(clean.data() + 255));
@@ -644,11 +644,11 @@ void TestCodec::rsRefuses17AndMore()
         corrupt(rng, d.data(), errors);
         const DatagramBytes received = d;
         const DecodedBlocks out = decodeCodewords(d);
-        QCOMPARE(out.corrected2, 0);
+        QCOMPARE(out.corrected.block2, 0);
         // Beyond 16 errors a decoder can only fail or miscorrect into another
         // codeword 17+ bytes away; it must never hand back the original.
         QVERIFY(out.block1 != b1);
-        if (out.corrected1 < 0) {
+        if (out.corrected.block1 < 0) {
             ++refused;
             QVERIFY(std::equal(out.block1.begin(), out.block1.end(), received.begin()));
         }
@@ -682,8 +682,8 @@ void TestCodec::uncorrectableBlockIsReportedAndOtherKept()
     QVERIFY(d);
     corrupt(rng, d->data() + 255, 30);
     const DecodeResult r = decodeFrame(*d);
-    QCOMPARE(r.corrected1, 0);
-    QCOMPARE(r.corrected2, -1);
+    QCOMPARE(r.corrected.block1, 0);
+    QCOMPARE(r.corrected.block2, -1);
     QVERIFY(!r.ok());
     QCOMPARE(r.diagnostics.size(), std::size_t{1});
     QCOMPARE(QString::fromStdString(r.diagnostics[0].toString()),

@@ -332,8 +332,8 @@ void TestLink::udpFramesArriveDecodeAndCountUp()
             QCOMPARE(bytes.size(), 510);
             const rcm::DecodeResult r = decode(bytes);
             QVERIFY(r.ok());
-            QCOMPARE(r.corrected1, 0);
-            QCOMPARE(r.corrected2, 0);
+            QCOMPARE(r.corrected.block1, 0);
+            QCOMPARE(r.corrected.block2, 0);
             QVERIFY(r.diagnostics.empty());
             QCOMPARE(messageId(r.message), i);
             verifyStamped(r.message);
@@ -352,13 +352,13 @@ void TestLink::udpFramesArriveDecodeAndCountUp()
         QTRY_COMPARE_WITH_TIMEOUT(received.count(), 2, kPatience);
         fromAircraft = {receivedAt(received, 0), receivedAt(received, 1)};
         QCOMPARE(fromAircraft[0].message, aircraftMessage(100));
-        QCOMPARE(fromAircraft[0].corrected1, 0);
-        QCOMPARE(fromAircraft[0].corrected2, 0);
+        QCOMPARE(fromAircraft[0].corrected.block1, 0);
+        QCOMPARE(fromAircraft[0].corrected.block2, 0);
         QCOMPARE(fromAircraft[0].transport, FrameTransport::Udp);
         QVERIFY(fromAircraft[0].utcMicros > 0);
         QCOMPARE(fromAircraft[1].message, aircraftMessage(101));
-        QCOMPARE(fromAircraft[1].corrected1, 3);
-        QCOMPARE(fromAircraft[1].corrected2, 2);
+        QCOMPARE(fromAircraft[1].corrected.block1, 3);
+        QCOMPARE(fromAircraft[1].corrected.block2, 2);
 
         QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().framesReceived == 2, kPatience);
         QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().framesSent >= quint64(far.datagrams.count()), kPatience);
@@ -812,8 +812,8 @@ void TestLink::serialFramesSynchronisedAcrossChunks()
             const ReceivedMessage r = receivedAt(received, i);
             QCOMPARE(r.message, aircraftMessage(std::uint32_t(i)));
             QCOMPARE(r.transport, FrameTransport::Serial);
-            QCOMPARE(r.corrected1, i == 2 ? 3 : 0);
-            QCOMPARE(r.corrected2, i == 2 ? 1 : 0);
+            QCOMPARE(r.corrected.block1, i == 2 ? 3 : 0);
+            QCOMPARE(r.corrected.block2, i == 2 ? 1 : 0);
         }
         QTRY_VERIFY_WITH_TIMEOUT(controller.statistics().framesReceived >= 5, kPatience);
         const LinkStatistics s = controller.statistics();

@@ -204,8 +204,8 @@ void TestReceive::errorAtEitherEndOfCodeword1()
         const ReceivedFrame& f = c.frames[i];
         QVERIFY2(f.delivered(), qPrintable(QStringLiteral("frame %1: %2").arg(i).arg(QString::fromStdString(f.detail))));
         QCOMPARE(f.offset, std::int64_t(i * kFrameSize));
-        QCOMPARE(f.blocks.corrected1, 16);
-        QCOMPARE(f.blocks.corrected2, 16);
+        QCOMPARE(f.blocks.corrected.block1, 16);
+        QCOMPARE(f.blocks.corrected.block2, 16);
         QVERIFY(f.decoded.message == session.messageAt(i));
     }
 }
@@ -235,8 +235,8 @@ void TestReceive::preambleThenConstant()
     c.receiver.flush();
     QCOMPARE(c.frames.size(), std::size_t{1});
     const ReceivedFrame& f = c.frames[0];
-    QCOMPARE(f.blocks.corrected1, 0);
-    QCOMPARE(f.blocks.corrected2, 0);
+    QCOMPARE(f.blocks.corrected.block1, 0);
+    QCOMPARE(f.blocks.corrected.block2, 0);
     QCOMPARE(f.refusal, std::optional<Refusal>(refusal));
     QVERIFY2(QString::fromStdString(f.detail).startsWith(detail), f.detail.c_str());
     QCOMPARE(c.receiver.stats().refused[std::size_t(refusal)], std::uint64_t{1});

@@ -286,19 +286,19 @@ void TestSecure::throughReedSolomon()
         }
         const DecodedBlocks d =
             decodeCodewords(std::span<const std::uint8_t, kDatagramSize>(frame.data() + kPreambleSize, kDatagramSize));
-        QCOMPARE(d.corrected1, 16);
-        QCOMPARE(d.corrected2, 16);
+        QCOMPARE(d.corrected.block1, 16);
+        QCOMPARE(d.corrected.block2, 16);
         const Opened o = openFrame(codec, &guard, d);
         QVERIFY2(o.accepted, o.detail.c_str());
         QCOMPARE(o.decoded.message, m);
-        QCOMPARE(o.decoded.corrected1, 16);
+        QCOMPARE(o.decoded.corrected.block1, 16);
 
         // And a change to the ciphertext that the attacker RS-encodes anew.
         EncodedBlocks t = c;
         t.block1[100] ^= 0x01;
         const DatagramBytes forged = makeDatagram(t.block1, t.block2);
         const DecodedBlocks fd = decodeCodewords(forged);
-        QCOMPARE(fd.corrected1, 0);
+        QCOMPARE(fd.corrected.block1, 0);
         const Opened f = openFrame(codec, &guard, fd);
         QVERIFY(!f.accepted);
         QCOMPARE(f.rejection, std::optional<Rejection>(Rejection::Forged));
@@ -640,7 +640,7 @@ void TestSecure::uncorrectableCodewords()
 
     // BLOCK 2 lost: BLOCK 1 authenticates on its own and is accepted, without the section.
     DecodedBlocks d = asReceived(sealed(codec, m));
-    d.corrected2 = -1;
+    d.corrected.block2 = -1;
     const Opened o = openFrame(codec, &guard, d);
     QVERIFY2(o.accepted, o.detail.c_str());
     QVERIFY(o.decoded.message.flightPlan.empty());
@@ -649,7 +649,7 @@ void TestSecure::uncorrectableCodewords()
 
     // BLOCK 1 lost: nothing to check, neither accepted nor counted as a rejection.
     DecodedBlocks e = asReceived(sealed(codec, secureMessage(rng, 4)));
-    e.corrected1 = -1;
+    e.corrected.block1 = -1;
     const Opened u = openFrame(codec, &guard, e);
     QVERIFY(!u.accepted);
     QVERIFY(!u.rejection);

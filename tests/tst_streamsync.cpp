@@ -26,8 +26,8 @@ struct Got {
     bool operator==(const Got& o) const
     {
         return offset == o.offset && raw == o.raw && blocks.block1 == o.blocks.block1 &&
-               blocks.block2 == o.blocks.block2 && blocks.corrected1 == o.blocks.corrected1 &&
-               blocks.corrected2 == o.blocks.corrected2 && preambleBitErrors == o.preambleBitErrors;
+               blocks.block2 == o.blocks.block2 && blocks.corrected.block1 == o.blocks.corrected.block1 &&
+               blocks.corrected.block2 == o.blocks.corrected.block2 && preambleBitErrors == o.preambleBitErrors;
     }
 };
 
@@ -150,7 +150,7 @@ void verifySlipped(const Got& g, const Sent& sent, int outcome)
     QVERIFY(g.offset >= sent.offset - 1 && g.offset <= sent.offset + 1);
     QVERIFY(!(g.blocks.ok() && sameBlocks(g, sent)));
     if (outcome == 2 && g.offset == sent.offset)
-        QVERIFY(g.blocks.corrected1 >= 0 && g.blocks.block1 == sent.b1);
+        QVERIFY(g.blocks.corrected.block1 >= 0 && g.blocks.block1 == sent.b1);
 }
 
 }  // namespace
@@ -204,8 +204,8 @@ void TestStreamSync::sampleStream()
             const Got& g = col.frames[i];
             QCOMPARE(g.offset, offsets[i]);
             QVERIFY(g.raw == expected[i]);
-            QCOMPARE(g.blocks.corrected1, 0);
-            QCOMPARE(g.blocks.corrected2, 0);
+            QCOMPARE(g.blocks.corrected.block1, 0);
+            QCOMPARE(g.blocks.corrected.block2, 0);
             QCOMPARE(g.preambleBitErrors, 0);
             QVERIFY(decodeFrame(g.raw).ok());
         }
@@ -235,12 +235,12 @@ void TestStreamSync::sampleFrameWithErrors()
     QCOMPARE(col.frames.size(), std::size_t{1});
     const Got& g = col.frames[0];
     QCOMPARE(g.offset, std::int64_t{333});
-    QCOMPARE(g.blocks.corrected1, 16);
-    QCOMPARE(g.blocks.corrected2, 16);
+    QCOMPARE(g.blocks.corrected.block1, 16);
+    QCOMPARE(g.blocks.corrected.block2, 16);
     const DecodedBlocks ref = decodeCodewords(std::span<const std::uint8_t, kDatagramSize>(clean.data() + kCw, kDatagramSize));
     QVERIFY(g.blocks.block1 == ref.block1 && g.blocks.block2 == ref.block2);
-    QCOMPARE(col.sync.stats().corrected1, std::uint64_t{16});
-    QCOMPARE(col.sync.stats().corrected2, std::uint64_t{16});
+    QCOMPARE(col.sync.stats().correctedBytes1, std::uint64_t{16});
+    QCOMPARE(col.sync.stats().correctedBytes2, std::uint64_t{16});
     QCOMPARE(col.sync.stats().bytesSkipped, std::uint64_t{333 + 444});
 }
 
@@ -291,8 +291,8 @@ void TestStreamSync::splitsGiveSameFrames()
         QCOMPARE(a.bytesSkipped, b.bytesSkipped);
         QCOMPARE(a.framesDecoded, b.framesDecoded);
         QCOMPARE(a.framesUncorrectable, b.framesUncorrectable);
-        QCOMPARE(a.corrected1, b.corrected1);
-        QCOMPARE(a.corrected2, b.corrected2);
+        QCOMPARE(a.correctedBytes1, b.correctedBytes1);
+        QCOMPARE(a.correctedBytes2, b.correctedBytes2);
     }
 }
 
@@ -315,8 +315,8 @@ void TestStreamSync::garbageBetweenFrames()
     QCOMPARE(st.bytesSkipped, s.garbage);
     QCOMPARE(st.framesDecoded, std::uint64_t{200});
     QCOMPARE(st.framesUncorrectable, std::uint64_t{0});
-    QCOMPARE(st.corrected1, std::uint64_t{0});
-    QCOMPARE(st.corrected2, std::uint64_t{0});
+    QCOMPARE(st.correctedBytes1, std::uint64_t{0});
+    QCOMPARE(st.correctedBytes2, std::uint64_t{0});
 }
 
 void TestStreamSync::streamStartsMidFrame()
@@ -526,8 +526,8 @@ void TestStreamSync::earlyByOneTrap()
         verifyAllFound(col.frames, s);
         for (const Got& g : col.frames) {
             QCOMPARE(g.preambleBitErrors, flips);
-            QCOMPARE(g.blocks.corrected1, 0);
-            QCOMPARE(g.blocks.corrected2, 0);
+            QCOMPARE(g.blocks.corrected.block1, 0);
+            QCOMPARE(g.blocks.corrected.block2, 0);
         }
         QCOMPARE(col.sync.stats().bytesSkipped, s.garbage);
     }
@@ -641,7 +641,7 @@ void TestStreamSync::bitErrorRate()
         const Got& g = col.frames[i];
         QCOMPARE(g.offset, s.frames[i].offset);
         const int errors[2] = {errors1[i], errors2[i]};
-        const int corrected[2] = {g.blocks.corrected1, g.blocks.corrected2};
+        const int corrected[2] = {g.blocks.corrected.block1, g.blocks.corrected.block2};
         const Block* sent[2] = {&s.frames[i].b1, &s.frames[i].b2};
         const Block* blocks[2] = {&g.blocks.block1, &g.blocks.block2};
         const bool frameOk = std::max(errors[0], errors[1]) <= rs::kMaxCorrectable;
@@ -662,8 +662,8 @@ void TestStreamSync::bitErrorRate()
     const auto& st = col.sync.stats();
     QCOMPARE(st.framesUncorrectable, bad);
     QCOMPARE(st.framesDecoded, s.frames.size() - bad);
-    QCOMPARE(st.corrected1, got1);
-    QCOMPARE(st.corrected2, got2);
+    QCOMPARE(st.correctedBytes1, got1);
+    QCOMPARE(st.correctedBytes2, got2);
     QVERIFY(got1 <= want1 && got1 + 16 * bad >= want1);
     QVERIFY(got2 <= want2 && got2 + 16 * bad >= want2);
     QCOMPARE(st.bytesSkipped, s.garbage);

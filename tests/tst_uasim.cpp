@@ -379,7 +379,7 @@ private slots:
         QCOMPARE(f.statuses.count(), 6);
         for (int i = 0; i < 6; ++i) {
             const ReceivedMessage r = f.statuses.at(i).at(0).value<ReceivedMessage>();
-            QCOMPARE(r.corrected1 + r.corrected2, 0);
+            QCOMPARE(r.corrected.block1 + r.corrected.block2, 0);
             QVERIFY(r.diagnostics.empty());
             const Message& s = r.message;
             QCOMPARE(s.header.number(ItemId::ID_msg), i);
@@ -476,7 +476,7 @@ private slots:
         QTRY_VERIFY_WITH_TIMEOUT(!run.statuses.empty(), kPatienceMs);
         for (const DecodeResult& r : run.statuses) {
             QVERIFY(r.ok());
-            QVERIFY(r.corrected1 + r.corrected2 > 0);
+            QVERIFY(r.corrected.block1 + r.corrected.block2 > 0);
         }
     }
 

@@ -73,7 +73,7 @@ struct Found {
     bool operator==(const Found& o) const
     {
         return offset == o.offset && blocks.block1 == o.blocks.block1 && blocks.block2 == o.blocks.block2 &&
-               blocks.corrected1 == o.blocks.corrected1 && blocks.corrected2 == o.blocks.corrected2 &&
+               blocks.corrected.block1 == o.blocks.corrected.block1 && blocks.corrected.block2 == o.blocks.corrected.block2 &&
                preambleBitErrors == o.preambleBitErrors;
     }
 };

@@ -101,8 +101,8 @@ void printMessage(Output& out, std::uint64_t frameNumber, const rcm::ReceivedFra
 {
     std::string& s = out.buffer();
     s += "# " + frameAt(frameNumber, f.offset) + "\n";
-    s += "# block1 corrected " + std::to_string(f.decoded.corrected1) + "\n";
-    s += "# block2 corrected " + std::to_string(f.decoded.corrected2) + "\n";
+    s += "# block1 corrected " + std::to_string(f.decoded.corrected.block1) + "\n";
+    s += "# block2 corrected " + std::to_string(f.decoded.corrected.block2) + "\n";
     if (f.direction)
         s += "# secure " + std::string(rcm::secure::directionName(*f.direction)) + ", authenticated\n";
     s += rcm::formatMessage(f.decoded.message);
@@ -128,8 +128,8 @@ public:
                          std::string(rcm::refusalName(*f.refusal)).c_str(), f.detail.c_str());
             return;
         }
-        m_corrected1 += static_cast<std::uint64_t>(f.decoded.corrected1);
-        m_corrected2 += static_cast<std::uint64_t>(f.decoded.corrected2);
+        m_corrected1 += static_cast<std::uint64_t>(f.decoded.corrected.block1);
+        m_corrected2 += static_cast<std::uint64_t>(f.decoded.corrected.block2);
         if (!m_options.summary)
             printMessage(m_out, m_frames, f);
     }
@@ -232,13 +232,13 @@ int decodeLog(const Options& o, std::span<const std::uint8_t> file, const Keys& 
         switch (r.outcome) {
         case O::Read:
             ++read;
-            corrected1 += static_cast<std::uint64_t>(r.blocks.corrected1);
-            corrected2 += static_cast<std::uint64_t>(r.blocks.corrected2);
+            corrected1 += static_cast<std::uint64_t>(r.blocks.corrected.block1);
+            corrected2 += static_cast<std::uint64_t>(r.blocks.corrected.block2);
             if (!o.summary) {
                 std::string& s = out.buffer();
                 s += "# " + where + "\n";
-                s += "# block1 corrected " + std::to_string(r.blocks.corrected1) + "\n";
-                s += "# block2 corrected " + std::to_string(r.blocks.corrected2) + "\n";
+                s += "# block1 corrected " + std::to_string(r.blocks.corrected.block1) + "\n";
+                s += "# block2 corrected " + std::to_string(r.blocks.corrected.block2) + "\n";
                 if (r.direction)
                     s += "# secure " + std::string(rcm::secure::directionName(*r.direction)) + ", authenticated\n";
                 s += rcm::formatMessage(r.decoded.message) + "\n";

@@ -53,7 +53,7 @@ DecodedBlocks decodeCodewords(std::span<const std::uint8_t, kDatagramSize> codew
     for (int b = 0; b < 2; ++b) {
         const std::uint8_t* cw = b == 0 ? cw1 : cw2;
         Block& block = b == 0 ? out.block1 : out.block2;
-        int& corrected = b == 0 ? out.corrected1 : out.corrected2;
+        int& corrected = b == 0 ? out.corrected.block1 : out.corrected.block2;
         if (clean[b]) {
             std::memcpy(block.data(), cw, kBlockSize);
             corrected = 0;

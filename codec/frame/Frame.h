@@ -30,15 +30,23 @@ void encodeCodewords(const Block& block1, const Block& block2, std::span<std::ui
 DatagramBytes makeDatagram(const Block& block1, const Block& block2);
 FrameBytes makeFrame(const Block& block1, const Block& block2);
 
-// Both blocks after RS decoding. corrected1/2: bytes corrected in each
-// codeword, -1 when that codeword was beyond correction (its block then holds
-// the received data bytes as they were).
+// Bytes Reed-Solomon corrected in each codeword of a frame, -1 where a
+// codeword was beyond correction: the one type for these counts, from the
+// decoder through the receive path to what the link says of each frame.
+struct Corrections {
+    int block1 = 0;
+    int block2 = 0;
+    bool ok() const { return block1 >= 0 && block2 >= 0; }
+    friend bool operator==(const Corrections&, const Corrections&) = default;
+};
+
+// Both blocks after RS decoding. A block whose codeword was beyond correction
+// holds the received data bytes as they were.
 struct DecodedBlocks {
     Block block1{};
     Block block2{};
-    int corrected1 = 0;
-    int corrected2 = 0;
-    bool ok() const { return corrected1 >= 0 && corrected2 >= 0; }
+    Corrections corrected;
+    bool ok() const { return corrected.ok(); }
 };
 
 // Decodes the two codewords (510 bytes: a datagram, or a frame after its preamble).

@@ -42,12 +42,12 @@ std::uint64_t preambleStart(std::uint64_t c)
 
 int decodedCount(const DecodedBlocks& b)
 {
-    return (b.corrected1 >= 0 ? 1 : 0) + (b.corrected2 >= 0 ? 1 : 0);
+    return (b.corrected.block1 >= 0 ? 1 : 0) + (b.corrected.block2 >= 0 ? 1 : 0);
 }
 
 int corrections(const DecodedBlocks& b)
 {
-    return std::max(b.corrected1, 0) + std::max(b.corrected2, 0);
+    return std::max(b.corrected.block1, 0) + std::max(b.corrected.block2, 0);
 }
 
 struct Candidate {
@@ -119,8 +119,8 @@ void score(const std::uint8_t* codewords, const Decoded& rs, Trial& t)
     }
     std::memcpy(t.blocks.block1.data(), rs.corrected[0] >= 0 ? rs.cw[0] : codewords, kBlockSize);
     std::memcpy(t.blocks.block2.data(), rs.corrected[1] >= 0 ? rs.cw[1] : codewords + kCodewordSize, kBlockSize);
-    t.blocks.corrected1 = rs.corrected[0];
-    t.blocks.corrected2 = rs.corrected[1];
+    t.blocks.corrected.block1 = rs.corrected[0];
+    t.blocks.corrected.block2 = rs.corrected[1];
 }
 
 // One codeword alone confirms a start only under a preamble window close to
@@ -363,11 +363,11 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
             // start is not trusted either.
             firstBlocks = t.blocks;
             const std::uint8_t* cw = at(t.c);
-            if (firstBlocks.corrected1 >= 0)
+            if (firstBlocks.corrected.block1 >= 0)
                 std::memcpy(firstBlocks.block1.data(), cw, kBlockSize);
-            if (firstBlocks.corrected2 >= 0)
+            if (firstBlocks.corrected.block2 >= 0)
                 std::memcpy(firstBlocks.block2.data(), cw + kCodewordSize, kBlockSize);
-            firstBlocks.corrected1 = firstBlocks.corrected2 = -1;
+            firstBlocks.corrected.block1 = firstBlocks.corrected.block2 = -1;
         }
         if (!confirms(t, t.c < failEnd_))
             continue;
@@ -422,7 +422,7 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
     }
     emitFrame(c, distance, blocks);
     due_ = c + kFrameSize;
-    if (blocks.corrected2 >= 0 || blocks.corrected1 < 0) {
+    if (blocks.corrected.block2 >= 0 || blocks.corrected.block1 < 0) {
         scan_ = c + kDatagramSize;
         expect_ = c + kFrameSize;
     } else {
@@ -450,8 +450,8 @@ void StreamSync::emitFrame(std::uint64_t c, int distance, const DecodedBlocks& b
         ++stats_.framesDecoded;
     else
         ++stats_.framesUncorrectable;
-    stats_.corrected1 += static_cast<std::uint64_t>(std::max(blocks.corrected1, 0));
-    stats_.corrected2 += static_cast<std::uint64_t>(std::max(blocks.corrected2, 0));
+    stats_.correctedBytes1 += static_cast<std::uint64_t>(std::max(blocks.corrected.block1, 0));
+    stats_.correctedBytes2 += static_cast<std::uint64_t>(std::max(blocks.corrected.block2, 0));
 
     if (!handler_)
         return;

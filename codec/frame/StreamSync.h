@@ -60,7 +60,7 @@ struct SyncedFrame {
     // starts at stream offset 0). The last 510 bytes are always the two
     // codewords. Valid only during the callback.
     std::span<const std::uint8_t> raw;
-    DecodedBlocks blocks;       // corrected1/2 = -1 where a codeword is beyond correction
+    DecodedBlocks blocks;       // corrected: -1 where a codeword is beyond correction
     int preambleBitErrors = 0;  // bits the 16 bytes before codeword 1 differ from 55 x14, 0F, 0F
     bool ok() const { return blocks.ok(); }
 };
@@ -89,8 +89,8 @@ public:
         std::uint64_t bytesSkipped = 0;  // in no emitted frame (good or uncorrectable)
         std::uint64_t framesDecoded = 0;        // both codewords decoded
         std::uint64_t framesUncorrectable = 0;  // emitted with at least one codeword beyond correction
-        std::uint64_t corrected1 = 0;           // bytes RS corrected in codeword 1, summed over frames
-        std::uint64_t corrected2 = 0;
+        std::uint64_t correctedBytes1 = 0;      // bytes RS corrected in codeword 1, summed over frames
+        std::uint64_t correctedBytes2 = 0;
     };
 
     explicit StreamSync(Handler onFrame, Acceptor exact = {});

@@ -141,14 +141,14 @@ void decodeBlock2(const Block& block, FlightPlanSection& section, Diagnostics& d
 DecodeResult decodeBlocks(const DecodedBlocks& blocks)
 {
     DecodeResult r;
-    r.corrected1 = blocks.corrected1;
-    r.corrected2 = blocks.corrected2;
-    if (blocks.corrected1 >= 0)
+    r.corrected.block1 = blocks.corrected.block1;
+    r.corrected.block2 = blocks.corrected.block2;
+    if (blocks.corrected.block1 >= 0)
         decodeBlock1(blocks.block1, r.message, r.diagnostics);
     else
         r.diagnostics.push_back({Diagnostic::Kind::Uncorrectable, 1, -1, "",
                                  "more than 16 byte errors in the codeword; block not read"});
-    if (blocks.corrected2 >= 0)
+    if (blocks.corrected.block2 >= 0)
         decodeBlock2(blocks.block2, r.message.flightPlan, r.diagnostics);
     else
         r.diagnostics.push_back({Diagnostic::Kind::Uncorrectable, 2, -1, "",

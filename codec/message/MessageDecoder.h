@@ -14,9 +14,8 @@ namespace rcm {
 struct DecodeResult {
     Message message;
     Diagnostics diagnostics;  // problems inside the blocks (corrupt fields, unknown IDs ...)
-    int corrected1 = 0;       // bytes RS corrected in each codeword, -1 when uncorrectable
-    int corrected2 = 0;
-    bool ok() const { return corrected1 >= 0 && corrected2 >= 0; }
+    Corrections corrected;    // in each codeword, -1 when uncorrectable
+    bool ok() const { return corrected.ok(); }
 };
 
 // `looseBytes`, when given, receives the count of bytes after the first item

@@ -57,8 +57,8 @@ std::uint32_t senderKey(const Message& m)
 
 std::string codewordsDetail(const DecodedBlocks& b)
 {
-    return std::string("block 1 ") + (b.corrected1 < 0 ? "beyond correction" : "good") + ", block 2 " +
-           (b.corrected2 < 0 ? "beyond correction" : "good");
+    return std::string("block 1 ") + (b.corrected.block1 < 0 ? "beyond correction" : "good") + ", block 2 " +
+           (b.corrected.block2 < 0 ? "beyond correction" : "good");
 }
 
 // Ciphertext looks random: about one byte in 256 is 55, where a plain
@@ -308,8 +308,8 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
         // A keyed link's blocks are ciphertext: nothing in them can be read.
         if (!keyed)
             frame.decoded = decodeBlocks(blocks);
-        frame.decoded.corrected1 = blocks.corrected1;
-        frame.decoded.corrected2 = blocks.corrected2;
+        frame.decoded.corrected.block1 = blocks.corrected.block1;
+        frame.decoded.corrected.block2 = blocks.corrected.block2;
         return no(refuse(Refusal::Uncorrectable, codewordsDetail(blocks)));
     }
 
@@ -333,16 +333,16 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
         }
         if (!frame.direction) {
             r = DecodeResult{};
-            r.corrected1 = blocks.corrected1;
-            r.corrected2 = blocks.corrected2;
+            r.corrected.block1 = blocks.corrected.block1;
+            r.corrected.block2 = blocks.corrected.block2;
             return no(plaintext ? refuse(Refusal::Plaintext, "an unencrypted message on a keyed link")
                                 : refuse(Refusal::Forged, why));
         }
     } else if (Verdict v = exactPlain(blocks, r); v.refusal) {
         return no(std::move(v));
     }
-    r.corrected1 = blocks.corrected1;
-    r.corrected2 = blocks.corrected2;
+    r.corrected.block1 = blocks.corrected.block1;
+    r.corrected.block2 = blocks.corrected.block2;
 
     // Plausible.
     const std::optional<std::int64_t> seconds = stampOf(r.message);

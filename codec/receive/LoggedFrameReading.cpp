@@ -32,8 +32,8 @@ LoggedFrameReading judged(std::span<const std::uint8_t> bytes, const std::vector
         reading.outcome = f.delivered() ? LoggedFrameReading::Outcome::Read : LoggedFrameReading::Outcome::Refused;
         reading.blocks = f.blocks;
         reading.decoded = f.decoded;
-        reading.decoded.corrected1 = f.blocks.corrected1;
-        reading.decoded.corrected2 = f.blocks.corrected2;
+        reading.decoded.corrected.block1 = f.blocks.corrected.block1;
+        reading.decoded.corrected.block2 = f.blocks.corrected.block2;
         reading.refusal = f.refusal;
         reading.detail = f.detail;
         reading.direction = f.direction;
@@ -53,8 +53,8 @@ LoggedFrameReading readLoggedFrame(std::span<const std::uint8_t> bytes, bool enc
         LoggedFrameReading reading;
         reading.outcome = LoggedFrameReading::Outcome::Enciphered;
         reading.blocks = decodeCodewords(bytes.last<kDatagramSize>());
-        reading.decoded.corrected1 = reading.blocks.corrected1;
-        reading.decoded.corrected2 = reading.blocks.corrected2;
+        reading.decoded.corrected.block1 = reading.blocks.corrected.block1;
+        reading.decoded.corrected.block2 = reading.blocks.corrected.block2;
         return reading;
     }
     if (enciphered)

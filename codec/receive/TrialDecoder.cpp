@@ -88,7 +88,7 @@ std::optional<SenderHistory> block1History(const DecodedBlocks& d, const secure:
     Diagnostics diagnostics;
     if (codec) {
         DecodedBlocks only = d;
-        only.corrected2 = -1;
+        only.corrected.block2 = -1;
         secure::Authenticated a = codec->decryptBlocks(only);
         if (!a.authentic)
             return std::nullopt;
@@ -119,7 +119,7 @@ std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t
     // BLOCK 2 from `d`'s BLOCK 1 (plaintext `m1` when known) and sender `h`.
     auto block2 = [&](DecodedBlocks& d, const Message& like, const secure::SecureCodec* codec,
                       const secure::HeaderStamp& stamp) {
-        if (d.corrected2 >= 0)
+        if (d.corrected.block2 >= 0)
             return true;
         FlightPlanSection sections[2] = {FlightPlanSection{}, like.flightPlan};
         for (const FlightPlanSection& s : sections) {
@@ -135,7 +135,7 @@ std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t
             const int c = rs::decodeWithPrediction(r2, p.data(), out.data(), margin);
             if (c >= 0) {
                 std::memcpy(d.block2.data(), out.data(), kBlockSize);
-                d.corrected2 = c;
+                d.corrected.block2 = c;
                 ++m_stats.block2FromPrediction;
                 return true;
             }
@@ -164,7 +164,7 @@ std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t
         if (m_recent.size() < 3)
             return out;
         DecodedBlocks d = plain;
-        if (d.corrected1 < 0) {
+        if (d.corrected.block1 < 0) {
             std::vector<const std::uint8_t*> votes;
             for (const auto& cw : m_recent)
                 votes.push_back(cw.data());
@@ -174,8 +174,8 @@ std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t
             std::memcpy(data.data(), vote.data(), kBlockSize);
             const Codeword p = codewordOf(data);
             Codeword decoded;
-            d.corrected1 = rs::decodeWithPrediction(r1, p.data(), decoded.data(), margin);
-            if (d.corrected1 < 0)
+            d.corrected.block1 = rs::decodeWithPrediction(r1, p.data(), decoded.data(), margin);
+            if (d.corrected.block1 < 0)
                 return out;
             std::memcpy(d.block1.data(), decoded.data(), kBlockSize);
             ++m_stats.block1FromMajority;
@@ -205,13 +205,13 @@ std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t
         for (const secure::SecureCodec* codec : tryCodecs) {
             DecodedBlocks d = plain;
             secure::HeaderStamp stamp;
-            if (d.corrected1 >= 0 && codec) {
+            if (d.corrected.block1 >= 0 && codec) {
                 const secure::Authenticated a = codec->decryptBlocks(d);
                 if (!a.authentic)
                     continue;
                 stamp = a.stamp;
             }
-            if (d.corrected1 < 0) {
+            if (d.corrected.block1 < 0) {
                 Best best;
                 for (std::uint32_t n = 1; n <= m_options.maxGapSeconds && best.corrected < 0; ++n) {
                     if (!codec) {
@@ -260,7 +260,7 @@ std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t
                 if (best.corrected < 0)
                     continue;
                 d.block1 = best.block;
-                d.corrected1 = best.corrected;
+                d.corrected.block1 = best.corrected;
                 stamp = best.stamp;
             }
             if (block2(d, h->message, codec, stamp)) {

@@ -398,14 +398,14 @@ bool checkBlock2Structure(const Block& plain, std::string& why)
 
 bool looksLikePlaintext(const DecodedBlocks& blocks)
 {
-    if (blocks.corrected1 < 0)
+    if (blocks.corrected.block1 < 0)
         return false;
     Message m;
     Diagnostics d;
     decodeBlock1(blocks.block1, m, d);
     if (!d.empty())
         return false;
-    if (blocks.corrected2 >= 0)
+    if (blocks.corrected.block2 >= 0)
         decodeBlock2(blocks.block2, m.flightPlan, d);
     return d.empty();
 }
@@ -473,9 +473,9 @@ Authenticated SecureCodec::decryptBlocks(const DecodedBlocks& in) const
     // Every return is `return a`, so the result is built in place.
     Authenticated a;
     DecodeResult& r = a.decoded;
-    r.corrected1 = in.corrected1;
-    r.corrected2 = in.corrected2;
-    if (in.corrected1 < 0) {
+    r.corrected.block1 = in.corrected.block1;
+    r.corrected.block2 = in.corrected.block2;
+    if (in.corrected.block1 < 0) {
         // BLOCK 2's tweak comes from BLOCK 1, so nothing can be checked.
         r.diagnostics.push_back({Diagnostic::Kind::Uncorrectable, 1, -1, "",
                                  "more than 16 byte errors in the codeword; frame not read"});
@@ -502,7 +502,7 @@ Authenticated SecureCodec::decryptBlocks(const DecodedBlocks& in) const
         refuse(std::move(why));
         return a;
     }
-    if (in.corrected2 >= 0) {
+    if (in.corrected.block2 >= 0) {
         Block p2;
         m_cipher->decrypt(block2Tweak(m_direction, stamp), in.block2, p2);
         if (!checkBlock2Structure(p2, r.message.flightPlan, r.diagnostics, why)) {

@@ -200,7 +200,7 @@ struct Authenticated {
     // authentic: Forged or Plaintext. Neither set: BLOCK 1's codeword was
     // beyond correction, nothing could be checked.
     std::optional<Rejection> rejection;
-    DecodeResult decoded;  // authentic: the message; otherwise only corrected1/2
+    DecodeResult decoded;  // authentic: the message; otherwise only its corrections
     HeaderStamp stamp;     // authentic: BLOCK 1's ID_msg, time_UTC, date_UTC
     std::string detail;    // one line for logs; never key or plaintext bytes of a refused frame
 };

@@ -193,7 +193,7 @@ QByteArray correctedText(const FrameRecord& record, const rcm::LoggedFrameReadin
     if (record.correctedSymbols.size() > block)
         return QByteArray::number(record.correctedSymbols[block]);
     if (reading.outcome != rcm::LoggedFrameReading::Outcome::NotAFrame)
-        return QByteArray::number(block == 0 ? reading.blocks.corrected1 : reading.blocks.corrected2);
+        return QByteArray::number(block == 0 ? reading.blocks.corrected.block1 : reading.blocks.corrected.block2);
     return {};
 }
 

@@ -337,7 +337,7 @@ void LinkWorker::receiveFrame(const rcm::ReceivedFrame& frame)
     // A wrong-size datagram was not read at all: no codewords to tell of.
     const QList<int> corrected = frame.refusal == rcm::Refusal::WrongSize
                                      ? QList<int>{}
-                                     : QList<int>{blocks.corrected1, blocks.corrected2};
+                                     : QList<int>{blocks.corrected.block1, blocks.corrected.block2};
     if (frame.refusal) {
         // Not delivered: it neither counts as received nor keeps the link
         // connected. Logged with the bytes as they arrived (a keyed link's
@@ -355,7 +355,7 @@ void LinkWorker::receiveFrame(const rcm::ReceivedFrame& frame)
     // For a datagram, still inside the link's datagramReceived(): its sender.
     if (m_udp)
         m_udp->acceptSender();
-    const bool clean = blocks.corrected1 == 0 && blocks.corrected2 == 0;
+    const bool clean = blocks.corrected.block1 == 0 && blocks.corrected.block2 == 0;
     const rcm::Unit& header = frame.decoded.message.header;
     log(FrameDirection::Received, toByteArray(frame.raw), clean ? FrameStatus::Decoded : FrameStatus::Corrected,
         corrected, quint32(header.number(rcm::ItemId::ID_msg)));
@@ -363,8 +363,8 @@ void LinkWorker::receiveFrame(const rcm::ReceivedFrame& frame)
     const std::int64_t now = m_clock->utcMicros();
     ++m_statistics.framesReceived;
     m_statistics.framesFromPrediction += frame.fromPrediction;
-    m_statistics.correctedBytesBlock1 += std::uint64_t(blocks.corrected1);
-    m_statistics.correctedBytesBlock2 += std::uint64_t(blocks.corrected2);
+    m_statistics.correctedBytesBlock1 += std::uint64_t(blocks.corrected.block1);
+    m_statistics.correctedBytesBlock2 += std::uint64_t(blocks.corrected.block2);
     m_statistics.lastGoodFrameUtcMicros = now;
     statisticsDirty();
 
@@ -380,8 +380,8 @@ void LinkWorker::receiveFrame(const rcm::ReceivedFrame& frame)
 
     ReceivedMessage received;
     received.message = frame.decoded.message;
-    received.corrected1 = blocks.corrected1;
-    received.corrected2 = blocks.corrected2;
+    received.corrected.block1 = blocks.corrected.block1;
+    received.corrected.block2 = blocks.corrected.block2;
     received.utcMicros = now;
     received.transport = m_link->transport();
     emit messageReceived(received);

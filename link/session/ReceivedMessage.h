@@ -3,6 +3,7 @@
 // A good frame from the aircraft, as the link thread hands it on: the decoded
 // message with what it cost to get it.
 
+#include "codec/frame/Frame.h"
 #include "codec/message/Diagnostic.h"
 #include "codec/message/Message.h"
 #include "link/framelog/FrameLog.h"
@@ -11,8 +12,7 @@
 
 struct ReceivedMessage {
     rcm::Message message;
-    int corrected1 = 0;  // bytes Reed-Solomon corrected in each codeword
-    int corrected2 = 0;
+    rcm::Corrections corrected;  // by Reed-Solomon, in each codeword
     // Problems inside the blocks; the message keeps every item read correctly.
     rcm::Diagnostics diagnostics;
     qint64 utcMicros = 0;  // when the frame was complete

@@ -41,8 +41,8 @@ QString commandSummary(const ReceivedMessage& received, const SimulatedAircraft&
     parts << QStringLiteral("command %1 (RS %2+%3)")
                  .arg(m.header.has(ItemId::ID_msg) ? QString::number(m.header.number(ItemId::ID_msg))
                                                    : QStringLiteral("?"))
-                 .arg(received.corrected1)
-                 .arg(received.corrected2);
+                 .arg(received.corrected.block1)
+                 .arg(received.corrected.block2);
     parts << QStringLiteral("gear %1").arg(fieldsText(m.settings, ItemId::land_wheels));
     parts << QStringLiteral("lights %1").arg(fieldsText(m.settings, ItemId::lights));
     QStringList engines;

@@ -214,7 +214,7 @@ int main(int argc, char** argv)
             corrected = 0;
             for (const auto& f : bad) {
                 const DecodeResult d = decodeFrame(f);
-                corrected += d.corrected1 + d.corrected2;
+                corrected += d.corrected.block1 + d.corrected.block2;
             }
         });
         const double us = 1e6 * s / n;

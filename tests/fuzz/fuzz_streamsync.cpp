@@ -189,8 +189,8 @@ Run runOnce(const Bytes& bytes, std::mt19937_64* cut)
         run.digest.add(f.raw.data(), f.raw.size());
         run.digest.add(f.blocks.block1);
         run.digest.add(f.blocks.block2);
-        run.digest.add(f.blocks.corrected1);
-        run.digest.add(f.blocks.corrected2);
+        run.digest.add(f.blocks.corrected.block1);
+        run.digest.add(f.blocks.corrected.block2);
         run.digest.add(f.preambleBitErrors);
 
         // What a consumer does next must not trip either.
@@ -235,8 +235,8 @@ int main(int argc, char** argv)
         check(st.bytesIn == s.bytes.size(), "bytesIn");
         check(st.framesDecoded + st.framesUncorrectable == whole.offsets.size(), "frame counts");
         check(st.bytesSkipped + whole.covered == st.bytesIn, "skipped + covered != received");
-        check(split.stats.bytesSkipped == st.bytesSkipped && split.stats.corrected1 == st.corrected1 &&
-                  split.stats.corrected2 == st.corrected2,
+        check(split.stats.bytesSkipped == st.bytesSkipped && split.stats.correctedBytes1 == st.correctedBytes1 &&
+                  split.stats.correctedBytes2 == st.correctedBytes2,
               "statistics depend on the cut");
         if (!s.mutated) {
             check(whole.offsets == s.cleanFrames, "a clean frame was missed or misplaced");

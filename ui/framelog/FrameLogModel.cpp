@@ -224,13 +224,13 @@ void FrameLogModel::decodeRow(const Row& row) const
     if (reading.outcome == rcm::LoggedFrameReading::Outcome::NotAFrame)
         return;
     if (row.direction == FrameDirection::Received && row.corrected1 == kNotKnown) {
-        row.corrected1 = clampCorrected(reading.blocks.corrected1);
-        row.corrected2 = clampCorrected(reading.blocks.corrected2);
+        row.corrected1 = clampCorrected(reading.blocks.corrected.block1);
+        row.corrected2 = clampCorrected(reading.blocks.corrected.block2);
     }
     // The ID of a frame read, or of a plain one refused for what it says:
     // never one read from ciphertext as if it were plain.
     const rcm::Message& m = reading.decoded.message;
-    if (reading.blocks.corrected1 >= 0 && m.header.has(rcm::ItemId::ID_msg)) {
+    if (reading.blocks.corrected.block1 >= 0 && m.header.has(rcm::ItemId::ID_msg)) {
         row.messageId = quint32(m.header.number(rcm::ItemId::ID_msg));
         row.hasMessageId = true;
     }

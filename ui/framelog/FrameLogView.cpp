@@ -65,7 +65,7 @@ QString describeFrame(int number, const FrameRecord& record, std::optional<quint
         return text + QStringLiteral("# Neither a 600-byte frame nor a 510-byte datagram: not decoded.\n");
     const auto corrected = [](int c) { return c < 0 ? QStringLiteral("beyond correction") : QString::number(c); };
     text += QStringLiteral("# Reed-Solomon: BLOCK 1 %1, BLOCK 2 %2 bytes corrected\n")
-                .arg(corrected(reading.blocks.corrected1), corrected(reading.blocks.corrected2));
+                .arg(corrected(reading.blocks.corrected.block1), corrected(reading.blocks.corrected.block2));
     switch (reading.outcome) {
     case O::Enciphered:
         return text + QStringLiteral("# Enciphered: sent over a keyed link. Without its key the bytes say nothing; "
