@@ -27,13 +27,7 @@ bool RehearsalProxy::open(QString* error)
 {
     m_consoleSide = std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0);
     m_consoleSide->setReplyToSender(true);  // back to the console's link, wherever it is bound
-    connect(m_consoleSide.get(), &Link::datagramReceived, this,
-            [this](const QByteArray& bytes) { m_consoleEnd->write(bytes); });
-    connect(m_consoleSide.get(), &Link::errorOccurred, this, [this](const QString& e) { m_lastError = e; });
-    m_consoleSide->open();
-    if (!m_consoleSide->isOpen() && error)
-        *error = m_lastError;
-    return m_consoleSide->isOpen();
+    return openSide(*m_consoleSide, *m_consoleEnd, error);
 }
 
 quint16 RehearsalProxy::consolePort() const
@@ -45,11 +39,15 @@ bool RehearsalProxy::connectAircraft(quint16 port, QString* error)
 {
     m_aircraftSide = std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0,
                                                QHostAddress(QHostAddress::LocalHost), port);
-    connect(m_aircraftSide.get(), &Link::datagramReceived, this,
-            [this](const QByteArray& bytes) { m_aircraftEnd->write(bytes); });
-    connect(m_aircraftSide.get(), &Link::errorOccurred, this, [this](const QString& e) { m_lastError = e; });
-    m_aircraftSide->open();
-    if (!m_aircraftSide->isOpen() && error)
+    return openSide(*m_aircraftSide, *m_aircraftEnd, error);
+}
+
+bool RehearsalProxy::openSide(UdpLink& side, Link& channelEnd, QString* error)
+{
+    connect(&side, &Link::datagramReceived, this, [&channelEnd](const QByteArray& bytes) { channelEnd.write(bytes); });
+    connect(&side, &Link::errorOccurred, this, [this](const QString& e) { m_lastError = e; });
+    side.open();
+    if (!side.isOpen() && error)
         *error = m_lastError;
-    return m_aircraftSide->isOpen();
+    return side.isOpen();
 }

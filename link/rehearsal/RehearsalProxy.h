@@ -30,6 +30,9 @@ public:
     bool connectAircraft(quint16 port, QString* error);
 
 private:
+    // What `side` receives goes into the channel at `channelEnd`.
+    bool openSide(UdpLink& side, Link& channelEnd, QString* error);
+
     std::unique_ptr<UdpLink> m_consoleSide;   // faces the console's link
     std::unique_ptr<UdpLink> m_aircraftSide;  // faces uasim
     std::unique_ptr<Link> m_consoleEnd;       // the channel's ends
