@@ -56,6 +56,7 @@ private slots:
     void wrongScenariosSayWhere();
     void outageRunsToExactTimes();
     void pacedRunGivesTheSameReport();
+    void speedOneRunsTheRealPrograms_data();
     void speedOneRunsTheRealPrograms();
     void frameLogHoldsBothDirections();
     void keyEnciphersTheRun();
@@ -229,21 +230,37 @@ void TestRehearsal::pacedRunGivesTheSameReport()
 // At speed 1 over UDP: uasim as a process, real sockets, the faults in a
 // proxy between them, the system clock. Every expectation is judged as the
 // in-process run judges it, and holds in both.
+void TestRehearsal::speedOneRunsTheRealPrograms_data()
+{
+    QTest::addColumn<bool>("serial");
+    QTest::addColumn<QString>("transport");
+    QTest::newRow("udp") << false << QStringLiteral("udp (uasim as a process, real sockets)");
+    QTest::newRow("serial") << true << QStringLiteral("serial (uasim as a process, pseudo-terminal pairs)");
+}
+
 void TestRehearsal::speedOneRunsTheRealPrograms()
 {
-    ScenarioRunner inProcess(load(QStringLiteral("real-time.json")), QString());
+    QFETCH(bool, serial);
+    QFETCH(QString, transport);
+    const auto scenario = [serial] {
+        Scenario s = load(QStringLiteral("real-time.json"));
+        if (serial)
+            s.transport = Scenario::Transport::Serial;
+        return s;
+    };
+    ScenarioRunner inProcess(scenario(), QString());
     inProcess.runToEnd();
     QVERIFY(!inProcess.realPrograms());
 
     QTemporaryDir dir;
     const QString logPath = dir.filePath(QStringLiteral("session.pcapng"));
-    ScenarioRunner real(load(QStringLiteral("real-time.json")), logPath);
+    ScenarioRunner real(scenario(), logPath);
     QSignalSpy finished(&real, &ScenarioRunner::finished);
     real.start(0, QStringLiteral(RCM_BIN_DIR "/uasim"));
     QVERIFY(real.realPrograms());
     QVERIFY(finished.wait(90'000));
     const RehearsalReport& r = real.report();
-    QCOMPARE(r.transport, QStringLiteral("udp (uasim as a process, real sockets)"));
+    QCOMPARE(r.transport, transport);
     const auto verdicts = [](const RehearsalReport& report) {
         QStringList v;
         for (const auto& e : report.expectations)

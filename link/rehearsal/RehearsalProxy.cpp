@@ -1,6 +1,14 @@
 #include "link/rehearsal/RehearsalProxy.h"
 
+#include "codec/frame/Frame.h"
 #include "link/transport/UdpLink.h"
+
+#include <cerrno>
+#include <fcntl.h>
+#include <poll.h>
+#include <pty.h>
+#include <termios.h>
+#include <unistd.h>
 
 RehearsalProxy::RehearsalProxy(RehearsalChannel& channel, QObject* parent)
     : QObject(parent),
@@ -19,9 +27,77 @@ RehearsalProxy::RehearsalProxy(RehearsalChannel& channel, QObject* parent)
         if (m_aircraftSide)
             m_aircraftSide->write(bytes);
     });
+    connect(m_consoleEnd.get(), &Link::bytesReceived, this, [this](const QByteArray& bytes) {
+        if (m_ptys[0].master >= 0)
+            writeAll(m_ptys[0].master, bytes);
+    });
+    connect(m_aircraftEnd.get(), &Link::bytesReceived, this, [this](const QByteArray& bytes) {
+        if (m_ptys[1].master >= 0)
+            writeAll(m_ptys[1].master, bytes);
+    });
 }
 
-RehearsalProxy::~RehearsalProxy() = default;
+RehearsalProxy::~RehearsalProxy()
+{
+    for (Pty& p : m_ptys) {
+        p.notifier.reset();
+        if (p.master >= 0)
+            ::close(p.master);
+        if (p.slave >= 0)
+            ::close(p.slave);
+    }
+}
+
+bool RehearsalProxy::openSerial(QString* error)
+{
+    for (int side = 0; side < 2; ++side) {
+        Pty& p = m_ptys[std::size_t(side)];
+        char name[256] = {};
+        // Raw from the start: a new pty echoes, and would send a program's
+        // bytes back to it until the other program set its end raw.
+        termios raw{};
+        ::cfmakeraw(&raw);
+        if (::openpty(&p.master, &p.slave, name, &raw, nullptr) != 0) {
+            if (error)
+                *error = QStringLiteral("cannot open a pseudo-terminal: %1").arg(QString::fromLocal8Bit(strerror(errno)));
+            return false;
+        }
+        ::fcntl(p.master, F_SETFL, ::fcntl(p.master, F_GETFL) | O_NONBLOCK);
+        p.device = QString::fromLocal8Bit(name);
+        p.notifier = std::make_unique<QSocketNotifier>(p.master, QSocketNotifier::Read);
+        connect(p.notifier.get(), &QSocketNotifier::activated, this, [this, side] { readPty(side); });
+    }
+    return true;
+}
+
+void RehearsalProxy::readPty(int side)
+{
+    Pty& p = m_ptys[std::size_t(side)];
+    char buffer[4096];
+    for (ssize_t n; (n = ::read(p.master, buffer, sizeof buffer)) > 0;)
+        p.pending.append(buffer, qsizetype(n));
+    Link& end = side == 0 ? *m_consoleEnd : *m_aircraftEnd;
+    while (p.pending.size() >= qsizetype(rcm::kFrameSize)) {
+        end.write(p.pending.first(qsizetype(rcm::kFrameSize)));
+        p.pending.remove(0, qsizetype(rcm::kFrameSize));
+    }
+}
+
+// 600 bytes a second into a pty's buffer: it has room; a full one is waited on.
+void RehearsalProxy::writeAll(int fd, const QByteArray& bytes)
+{
+    for (qsizetype done = 0; done < bytes.size();) {
+        const ssize_t w = ::write(fd, bytes.constData() + done, std::size_t(bytes.size() - done));
+        if (w > 0) {
+            done += w;
+        } else if (errno == EAGAIN) {
+            pollfd out{fd, POLLOUT, 0};
+            ::poll(&out, 1, 100);
+        } else if (errno != EINTR) {
+            return;
+        }
+    }
+}
 
 bool RehearsalProxy::open(QString* error)
 {

@@ -1,16 +1,22 @@
 #pragma once
 
 // The radio path of a rehearsal at speed 1 with the real programs: two UDP
-// sockets on the loopback interface, one the console's link sends to, one
-// that sends to uasim, and between them a RehearsalChannel with the
-// scenario's faults. What the console sends reaches uasim damaged as the
-// channel damages it, and uasim's answers come back the same way.
+// sockets on the loopback interface (one the console's link sends to, one
+// that sends to uasim), or two pseudo-terminal pairs (the console opens one
+// pair's device, uasim the other's), and between them a RehearsalChannel
+// with the scenario's faults. What the console sends reaches uasim damaged
+// as the channel damages it, and uasim's answers come back the same way.
+// On the serial line the bytes are cut into 600-byte frames before the
+// channel sees them, as the senders write them back to back, so that a
+// fault's "per frame" means a frame.
 
 #include "link/rehearsal/RehearsalChannel.h"
 
 #include <QObject>
+#include <QSocketNotifier>
 #include <QString>
 
+#include <array>
 #include <memory>
 
 class UdpLink;
@@ -29,7 +35,22 @@ public:
     // uasim listens on 127.0.0.1:port: the aircraft's side sends there.
     bool connectAircraft(quint16 port, QString* error);
 
+    // The serial line instead: two pseudo-terminal pairs, raw from the start.
+    bool openSerial(QString* error);
+    QString consoleDevice() const { return m_ptys[0].device; }
+    QString aircraftDevice() const { return m_ptys[1].device; }
+
 private:
+    struct Pty {
+        int master = -1;
+        int slave = -1;  // held, so the master never reads "no one there" before a program opens it
+        QString device;
+        QByteArray pending;  // bytes read, short of a whole frame
+        std::unique_ptr<QSocketNotifier> notifier;
+    };
+    void readPty(int side);
+    static void writeAll(int fd, const QByteArray& bytes);
+
     // What `side` receives goes into the channel at `channelEnd`.
     bool openSide(UdpLink& side, Link& channelEnd, QString* error);
 
@@ -38,4 +59,5 @@ private:
     std::unique_ptr<Link> m_consoleEnd;       // the channel's ends
     std::unique_ptr<Link> m_aircraftEnd;
     QString m_lastError;  // of either socket
+    std::array<Pty, 2> m_ptys;  // 0: the console's, 1: uasim's
 };

@@ -11,6 +11,7 @@
 #include "link/simulation/AircraftResponder.h"
 #include "link/simulation/RehearsalLauncher.h"
 #include "link/simulation/SimulatedAircraft.h"
+#include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
 
 #include <QRegularExpression>
@@ -376,7 +377,7 @@ void ScenarioRunner::runToEnd()
 void ScenarioRunner::start(double speed, const QString& uasimProgram)
 {
     m_speed = speed > 0 ? speed : m_scenario.speed;
-    if (m_speed == 1 && m_scenario.transport == Scenario::Transport::Udp && !m_built) {
+    if (m_speed == 1 && !m_built) {
         startReal(uasimProgram.isEmpty() ? RehearsalLauncher::defaultProgram() : uasimProgram);
         return;
     }
@@ -393,14 +394,17 @@ void ScenarioRunner::beginPacing()
     advanceTo(0);
 }
 
-// uasim on a loopback port, the proxy between it and the console's socket;
-// the run starts once uasim says it listens (uasimSaid()).
+// uasim on a loopback port (or a pseudo-terminal), the proxy between it and
+// the console's link; the run starts once uasim says it listens (uasimSaid()).
 void ScenarioRunner::startReal(const QString& uasimProgram)
 {
     m_real = m_built = true;
     m_time = std::make_shared<SystemClock>();
-    m_report.transport = QStringLiteral("udp (uasim as a process, real sockets)%1")
-                             .arg(m_scenario.key ? QStringLiteral(", secure link") : QString());
+    const bool serial = m_scenario.transport == Scenario::Transport::Serial;
+    m_report.transport = QStringLiteral("%1%2")
+                             .arg(serial ? QStringLiteral("serial (uasim as a process, pseudo-terminal pairs)")
+                                         : QStringLiteral("udp (uasim as a process, real sockets)"),
+                                  m_scenario.key ? QStringLiteral(", secure link") : QString());
     const auto cannot = [this](const QString& why) {
         m_startUtcMicros = m_time->utcMicros();
         note(QStringLiteral("event"), QStringLiteral("the run cannot start: ") + why);
@@ -408,7 +412,7 @@ void ScenarioRunner::startReal(const QString& uasimProgram)
     };
     m_proxy = std::make_unique<RehearsalProxy>(m_channel);
     QString error;
-    if (!m_proxy->open(&error))
+    if (!(serial ? m_proxy->openSerial(&error) : m_proxy->open(&error)))
         return cannot(error);
     QString keyPath;
     if (m_psk) {
@@ -420,6 +424,8 @@ void ScenarioRunner::startReal(const QString& uasimProgram)
     }
     m_launcher = new RehearsalLauncher(this);
     m_launcher->setVerbose(true);
+    if (serial)
+        m_launcher->setSerialDevice(m_proxy->aircraftDevice());
     connect(m_launcher, &RehearsalLauncher::output, this, &ScenarioRunner::uasimSaid);
     connect(m_launcher, &RehearsalLauncher::failed, this, [this, cannot](const QString& why) {
         if (!m_started)
@@ -433,18 +439,24 @@ void ScenarioRunner::startReal(const QString& uasimProgram)
 // uasim's --verbose lines: that it listens, and each command it took.
 void ScenarioRunner::uasimSaid(const QString& line)
 {
-    if (!m_started && !m_console && line.contains(QLatin1String(" on udp"))) {
+    // "uasim: Well-equipped UA on udp 127.0.0.1:50123 ...": it listens.
+    static const QRegularExpression listening(QStringLiteral("^uasim: .+ on (udp|/dev/)"));
+    if (!m_started && !m_console && listening.match(line).hasMatch()) {
         m_launcher->confirm();
         QString error;
-        if (!m_proxy->connectAircraft(m_launcher->port(), &error)) {
+        const bool serial = m_scenario.transport == Scenario::Transport::Serial;
+        if (!serial && !m_proxy->connectAircraft(m_launcher->port(), &error)) {
             m_startUtcMicros = m_time->utcMicros();
             note(QStringLiteral("event"), QStringLiteral("the run cannot start: ") + error);
             finish();
             return;
         }
         m_startUtcMicros = m_time->utcMicros();
-        makeConsole(std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0,
-                                              QHostAddress(QHostAddress::LocalHost), m_proxy->consolePort()));
+        if (serial)
+            makeConsole(std::make_unique<SerialLink>(m_proxy->consoleDevice()));
+        else
+            makeConsole(std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0,
+                                                  QHostAddress(QHostAddress::LocalHost), m_proxy->consolePort()));
         beginPacing();
         return;
     }

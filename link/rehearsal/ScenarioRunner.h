@@ -7,9 +7,10 @@
 // Faster than real time (and runToEnd()) it all runs in process: the
 // aircraft behind its own LinkWorker (as uasim flies it), on one
 // VirtualClock, so that nothing in a run depends on the wall clock. At speed
-// 1 over UDP it runs the real programs: uasim as a process on a loopback
-// port, the console's link on a real socket, and a RehearsalProxy between
-// them with the channel's faults, on the system clock.
+// 1 it runs the real programs: uasim as a process on a loopback port or a
+// pseudo-terminal, the console's link on a real socket or serial device, and
+// a RehearsalProxy between them with the channel's faults, on the system
+// clock.
 //
 // Every expectation is judged as the run goes, and what it found is the
 // RehearsalReport; the console's frames both ways go to a frame log.
@@ -53,8 +54,8 @@ public:
 
     // Paced: `speed` scenario seconds per wall-clock second (the scenario's
     // own when 0 or less); returns at once, progress() as it goes, finished()
-    // at the end. At speed 1 over UDP, against `uasimProgram` (beside this
-    // program when empty) as a process.
+    // at the end. At speed 1, against `uasimProgram` (beside this program
+    // when empty) as a process.
     void start(double speed = 0, const QString& uasimProgram = QString());
     // Whether this run is against the real programs (known once started).
     bool realPrograms() const { return m_real; }

@@ -64,8 +64,11 @@ void RehearsalLauncher::launch()
         if (error == QProcess::FailedToStart)
             emit failed(tr("Cannot start %1: %2").arg(m_program, process->errorString()));
     });
-    QStringList arguments{QStringLiteral("--udp"), QString::number(m_port), QStringLiteral("--airframe"),
-                          m_airframeFile->fileName()};
+    QStringList arguments{QStringLiteral("--airframe"), m_airframeFile->fileName()};
+    if (m_serialDevice.isEmpty())
+        arguments << QStringLiteral("--udp") << QString::number(m_port);
+    else
+        arguments << QStringLiteral("--serial") << m_serialDevice;
     if (!m_keyPath.isEmpty())
         arguments << QStringLiteral("--key") << m_keyPath;
     if (m_verbose)

@@ -38,6 +38,8 @@ public:
     void confirm() { m_confirmed = true; }
     // uasim --verbose: a line on output() for each command it takes.
     void setVerbose(bool verbose) { m_verbose = verbose; }
+    // uasim on this serial device (a pseudo-terminal) instead of a UDP port.
+    void setSerialDevice(const QString& device) { m_serialDevice = device; }
 
     bool isRunning() const { return m_process && m_process->state() != QProcess::NotRunning; }
     quint16 port() const { return m_port; }
@@ -62,5 +64,6 @@ private:
     int m_attempt = 0;
     bool m_confirmed = false;
     bool m_verbose = false;
+    QString m_serialDevice;
     QByteArray m_stderr;
 };
