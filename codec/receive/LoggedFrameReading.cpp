@@ -69,4 +69,10 @@ LoggedFrameReading readLoggedFrame(std::span<const std::uint8_t> bytes, bool enc
     return keyed.read() ? keyed : plain;
 }
 
+LoggedFrameReading readLoggedFrame(std::span<const std::uint8_t> bytes, bool enciphered, const LogKey* key)
+{
+    static const std::vector<const secure::SecureCodec*> none;
+    return readLoggedFrame(bytes, enciphered, key ? key->codecs() : none);
+}
+
 }  // namespace rcm

@@ -68,5 +68,7 @@ private:
 // per direction the frame may have been sent in (both, for a log); not owned.
 LoggedFrameReading readLoggedFrame(std::span<const std::uint8_t> bytes, bool enciphered,
                                    const std::vector<const secure::SecureCodec*>& codecs);
+// The same with a log's key, or none.
+LoggedFrameReading readLoggedFrame(std::span<const std::uint8_t> bytes, bool enciphered, const LogKey* key);
 
 }  // namespace rcm

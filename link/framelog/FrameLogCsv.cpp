@@ -114,11 +114,10 @@ std::vector<Cell> cellsOf(const rcm::Message& message)
 
 rcm::LoggedFrameReading decode(const FrameRecord& record, const rcm::LogKey* key)
 {
-    static const std::vector<const rcm::secure::SecureCodec*> none;
     return rcm::readLoggedFrame(
         std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record.bytes.constData()),
                                       std::size_t(record.bytes.size())),
-        record.enciphered, key ? key->codecs() : none);
+        record.enciphered, key);
 }
 
 // A refused plain frame's items are what could be read, with its reading

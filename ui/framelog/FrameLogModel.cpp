@@ -216,11 +216,10 @@ void FrameLogModel::decodeRow(const Row& row) const
     }
     if (row.hasMessageId || bytes.isEmpty())
         return;
-    static const std::vector<const rcm::secure::SecureCodec*> noKey;
     const rcm::LoggedFrameReading reading = rcm::readLoggedFrame(
         std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.constData()),
                                       std::size_t(bytes.size())),
-        row.enciphered, m_logKey ? m_logKey->codecs() : noKey);
+        row.enciphered, m_logKey.get());
     if (reading.outcome == rcm::LoggedFrameReading::Outcome::NotAFrame)
         return;
     if (row.direction == FrameDirection::Received && row.corrected1 == kNotKnown) {

@@ -55,11 +55,10 @@ QString describeFrame(int number, const FrameRecord& record, std::optional<quint
             text += QStringLiteral("# ID_msg %1\n").arg(*messageId);
         return text;
     }
-    static const std::vector<const rcm::secure::SecureCodec*> noKey;
     const rcm::LoggedFrameReading reading = rcm::readLoggedFrame(
         std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(record.bytes.constData()),
                                       std::size_t(record.bytes.size())),
-        record.enciphered, key ? key->codecs() : noKey);
+        record.enciphered, key);
     using O = rcm::LoggedFrameReading::Outcome;
     if (reading.outcome == O::NotAFrame)
         return text + QStringLiteral("# Neither a 600-byte frame nor a 510-byte datagram: not decoded.\n");
