@@ -13,7 +13,6 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QPixmap>
-#include <QTimer>
 
 #include <cstdio>
 
@@ -42,7 +41,8 @@ int main(int argc, char* argv[])
                        "Examples:\n"
                        "  gcs --rehearsal                  rehearse against the simulated aircraft (uasim)\n"
                        "  gcs --udp-remote 10.0.0.2:5600   connect over UDP\n"
-                       "  gcs --serial /dev/ttyUSB0        connect through the radio modem"));
+                       "  gcs --serial /dev/ttyUSB0        connect through the radio modem\n"
+                       "  gcs --serial /dev/ttyUSB0 --dial 881612345678   dial the aircraft's satellite phone"));
     parser.addHelpOption();
     const QCommandLineOption rehearsal(QStringLiteral("rehearsal"),
                                        QStringLiteral("Start the simulated aircraft (uasim, beside gcs) on a free "
@@ -54,6 +54,10 @@ int main(int argc, char* argv[])
                                     QStringLiteral("device"));
     const QCommandLineOption baud(QStringLiteral("baud"), QStringLiteral("Serial bit rate (default 9600)."),
                                   QStringLiteral("n"), QStringLiteral("9600"));
+    const QCommandLineOption dial(QStringLiteral("dial"),
+                                  QStringLiteral("The serial port is a satellite phone's modem: dial this number, "
+                                                 "redial a dropped call, hang up on quit (docs/modem.md)."),
+                                  QStringLiteral("number"));
     const QCommandLineOption replay(QStringLiteral("replay"), QStringLiteral("Replay a frame log."),
                                     QStringLiteral("log.pcapng"));
     const QCommandLineOption airframe(QStringLiteral("airframe"),
@@ -78,7 +82,7 @@ int main(int argc, char* argv[])
     const QCommandLineOption page(QStringLiteral("page"), QStringLiteral("The tab shown, 1 to 9 (Alt+1 ..)."),
                                   QStringLiteral("n"), QStringLiteral("1"));
     parser.addOptions(
-        {rehearsal, udpRemote, serial, baud, replay, airframe, key, screenshot, size, after, night, page});
+        {rehearsal, udpRemote, serial, baud, dial, replay, airframe, key, screenshot, size, after, night, page});
     const RehearsalCommandLine rehearse(parser);
     parser.process(app);
     if (rehearse.requested())
@@ -108,6 +112,10 @@ int main(int argc, char* argv[])
         return usage(error);
     if (parser.isSet(serial) && !(link = LinkSettings::serial(parser.value(serial), parser.value(baud), &error)))
         return usage(QStringLiteral("--baud: %1").arg(error));
+    if (parser.isSet(dial) && !(link && link->transport == LinkSettings::Transport::Serial))
+        return usage(QStringLiteral("--dial goes with --serial DEVICE: the phone's modem is on a serial port"));
+    if (link && parser.isSet(dial))
+        link->dialNumber = parser.value(dial);
 
     MainWindow::Options options;
     // Pictures use the defaults, not the last session's layout.
@@ -119,16 +127,8 @@ int main(int argc, char* argv[])
     if (parser.isSet(night))
         window.setTheme(Theme::Kind::Night);
     window.showPanel(parser.value(page).toInt() - 1);
-    if (parser.isSet(screenshot)) {
-        window.resize(windowSize);
-        // After the first pass of the event loop (docks and layouts settled), or once the link ran that long.
-        QTimer::singleShot(parser.value(after).toInt() * 1000, &window, [&] {
-            const bool saved = window.grab().save(parser.value(screenshot));
-            if (!saved)
-                say(QStringLiteral("cannot save %1").arg(parser.value(screenshot)));
-            QCoreApplication::exit(saved ? 0 : 1);
-        });
-    }
+    if (parser.isSet(screenshot))
+        window.screenshotAndQuit(parser.value(screenshot), windowSize, parser.value(after).toInt());
     window.show();
     if (parser.isSet(key)) {
         // Into the link settings, where the rehearsal takes it from and which keep its path.

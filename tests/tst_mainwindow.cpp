@@ -130,6 +130,7 @@ private slots:
     void asksBeforeEndingALiveLink();
     void quitEndsTheLinkOnceConfirmed();
     void linkButtonsNeverHoldTheFocus();
+    void aModemIsDialledAndHungUp();
     void fitsASmallScreen();
     void resetLayoutRestoresTheDefault();
     void nightThemeIsKept();
@@ -990,6 +991,7 @@ void TestMainWindow::asksBeforeEndingALiveLink_data()
     QTest::newRow("Open log for replay") << QStringLiteral("&Open frame log for replay\u2026")
                                          << QStringLiteral("Open log for replay ends the live link: UDP");
     QTest::newRow("Quit") << QStringLiteral("&Quit") << QStringLiteral("Quit ends the live link: UDP");
+    QTest::newRow("Disconnect") << QStringLiteral("&Disconnect") << QStringLiteral("Disconnect ends the live link: UDP");
 }
 
 void TestMainWindow::asksBeforeEndingALiveLink()
@@ -1069,6 +1071,32 @@ void TestMainWindow::linkButtonsNeverHoldTheFocus()
         QTest::keyClick(focus ? focus : &window, Qt::Key_Tab);
     }
     window.disconnectLink();
+}
+
+void TestMainWindow::aModemIsDialledAndHungUp()
+{
+    MainWindow window(options());
+    const auto buttonTexts = [&] {
+        QStringList texts;
+        for (QPushButton* b : window.findChildren<QPushButton*>())
+            texts << b->text();
+        return texts;
+    };
+    QVERIFY(buttonTexts().contains(QStringLiteral("Connect")));
+    LinkSettings modem = *LinkSettings::serial(QStringLiteral("/dev/ttyUSB7"), QStringLiteral("19200"));
+    modem.dialNumber = QStringLiteral("881612345678");
+    window.linkSettings()->setSettings(modem);
+    QVERIFY2(buttonTexts().contains(QStringLiteral("Dial")), qPrintable(buttonTexts().join(',')));
+    QVERIFY(!buttonTexts().contains(QStringLiteral("Connect")));
+    // Kept with the link settings, as the operator set them.
+    QCOMPARE(window.linkSettings()->settings().dialNumber, QStringLiteral("881612345678"));
+    QCOMPARE(window.linkSettings()->settings().rtsCts, true);
+    QCOMPARE(window.linkSettings()->settings().satelliteDelayMs, 1500);
+    QCOMPARE(window.linkSettings()->settings().oneWayDelay(), std::chrono::milliseconds(1500));
+    modem.dialNumber.clear();
+    window.linkSettings()->setSettings(modem);
+    QVERIFY(buttonTexts().contains(QStringLiteral("Connect")));
+    QCOMPARE(window.linkSettings()->settings().oneWayDelay(), std::chrono::milliseconds(0));
 }
 
 QTEST_MAIN(TestMainWindow)

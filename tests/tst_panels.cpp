@@ -752,6 +752,35 @@ private slots:
         QCOMPARE(rudder->text(), QStringLiteral("9\u00b0"));  // still the last value reported
     }
 
+    void satelliteDelayIsNotAMismatch()
+    {
+        // A satellite's 1.5 s each way: status frames for three seconds after
+        // a change still answer the command before it.
+        auto now = std::chrono::steady_clock::time_point{};
+        ReportedState reported(&m_command, nullptr, [&now] { return now; });
+        reported.setLinkDelay(std::chrono::milliseconds(1500));
+        const UnitRef flaps{UnitKind::Flaps, 0};
+        reported.onStatus(m_command.message());
+        const Message before = m_command.message();
+        m_command.setNumber(flaps, F_rudder_set, 7);
+        for (int frame = 0; frame < 3; ++frame) {  // at 0, 1 and 2 s after the change
+            reported.onStatus(before);
+            QCOMPARE(reported.mismatchFrames(flaps, F_rudder_set), 0);
+            now += std::chrono::seconds(1);
+        }
+        // From 3 s on the aircraft has had the change: disagreeing frames count again.
+        for (int frame = 1; frame <= 3; ++frame) {
+            reported.onStatus(before);
+            QCOMPARE(reported.mismatchFrames(flaps, F_rudder_set), frame);
+            now += std::chrono::seconds(1);
+        }
+        QVERIFY(reported.mismatchPersistent(flaps, F_rudder_set));
+        // Without the delay the same frames count from the first.
+        ReportedState direct(&m_command, nullptr, [&now] { return now; });
+        direct.onStatus(before);
+        QCOMPARE(direct.mismatchFrames(flaps, F_rudder_set), 1);
+    }
+
     void gearInTransitIsHighlightedPerWheel()
     {
         auto panel = shown<GearPanel>();

@@ -279,8 +279,9 @@ void ConsoleSession::stopController()
     if (!m_controller)
         return;
     m_replay.clear();
-    // Ends the link thread; the worker closes the link in it.
-    m_controller.reset();
+    // The worker closes the link in its thread, and the thread ends, without
+    // the GUI waiting: a modem's hang-up takes seconds.
+    LinkController::retire(std::move(m_controller), this);
     m_kind = Kind::None;
     m_description.clear();
     m_sessionLogPath.clear();

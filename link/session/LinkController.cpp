@@ -48,6 +48,29 @@ LinkController::~LinkController()
              static_cast<long long>(kJoinTimeout.count()));
 }
 
+void LinkController::retire(std::unique_ptr<LinkController> controller, QObject* keeper)
+{
+    LinkController* retired = controller.release();
+    retired->setParent(keeper);
+    const QMetaObject& events = LinkEvents::staticMetaObject;
+    const QMetaMethod errors = QMetaMethod::fromSignal(&LinkEvents::errorOccurred);
+    const QMetaMethod status = QMetaMethod::fromSignal(&LinkEvents::transportStatusChanged);
+    for (int i = events.methodOffset(); i < events.methodCount(); ++i) {
+        const QMetaMethod signal = events.method(i);
+        if (signal.methodType() == QMetaMethod::Signal && signal != errors && signal != status)
+            QObject::disconnect(retired, signal, nullptr, QMetaMethod());
+    }
+    connect(retired->m_thread, &QThread::finished, retired, &QObject::deleteLater);
+    // One queued call, so that the quit cannot overtake the stop.
+    QMetaObject::invokeMethod(
+        retired->m_worker,
+        [worker = retired->m_worker] {
+            worker->stop();
+            worker->thread()->quit();
+        },
+        Qt::QueuedConnection);
+}
+
 void LinkController::start()
 {
     QMetaObject::invokeMethod(m_worker, &LinkWorker::start, Qt::QueuedConnection);

@@ -23,8 +23,9 @@ class LinkController : public LinkEvents {
 
 public:
     // How long the destructor waits for the link thread to end before it
-    // gives up on it (and says so): closing a port or a socket takes far less.
-    static constexpr std::chrono::milliseconds kJoinTimeout{3000};
+    // gives up on it (and says so): closing a port or a socket takes far
+    // less; a modem's hang-up (ModemLink::hangUpBound()) about 2 s.
+    static constexpr std::chrono::milliseconds kJoinTimeout{5000};
 
     // The link and the log move to the worker's thread with the worker; the
     // caller keeps no access to them (Link::description() and friends are
@@ -33,6 +34,14 @@ public:
                             LinkWorker::Options options = {}, QObject* parent = nullptr);
     // Stops the link and waits, at most kJoinTimeout, for the thread to finish.
     ~LinkController() override;
+
+    // Ends the link without waiting for it: the worker stops and closes the
+    // link in its thread (a modem hangs up there, which takes seconds), the
+    // thread ends, and the controller deletes itself. Until then it says
+    // only errorOccurred() and transportStatusChanged() (the hang-up's own
+    // words); `keeper` owns it meanwhile, so that it is joined, bounded, when
+    // the keeper goes first.
+    static void retire(std::unique_ptr<LinkController> controller, QObject* keeper);
 
     LinkController(const LinkController&) = delete;
     LinkController& operator=(const LinkController&) = delete;

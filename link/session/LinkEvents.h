@@ -34,6 +34,9 @@ signals:
     void linkRegained();
     // Transport and frame log failures, once each; see Link::errorOccurred.
     void errorOccurred(const QString& message);
+    // What the transport itself is doing, for the status bar and the event
+    // log: a modem dialling, connected, redialling; see Link::statusChanged.
+    void transportStatusChanged(const QString& status);
     void commandRejected(const QString& reasons);
     // Secure link: a frame that decoded was refused; "forged: ..." and so on.
     void frameRejected(const QString& reason);

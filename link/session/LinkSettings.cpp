@@ -1,5 +1,6 @@
 #include "link/session/LinkSettings.h"
 
+#include "link/transport/ModemLink.h"
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
 
@@ -18,7 +19,17 @@ std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
             return fail(QObject::tr("Choose a serial port"));
         if (baudRate <= 0)
             return fail(QObject::tr("The bit rate must be positive"));
-        return std::make_unique<SerialLink>(serialPort.trimmed(), baudRate);
+        if (!dialsModem())
+            return std::make_unique<SerialLink>(serialPort.trimmed(), baudRate);
+        if (!modemInit.trimmed().toUpper().startsWith(QLatin1String("AT")))
+            return fail(QObject::tr("The modem's init string must start with AT: \"%1\"").arg(modemInit));
+        auto port = std::make_unique<SerialLink>(serialPort.trimmed(), baudRate,
+                                                 rtsCts ? SerialLink::FlowControl::RtsCts : SerialLink::FlowControl::None);
+        ModemLink::Options modem;
+        modem.number = dialNumber.trimmed();
+        modem.initString = modemInit.trimmed().toLatin1();
+        modem.costPerMinute = callCostPerMinute;
+        return std::make_unique<ModemLink>(std::move(port), modem);
     }
     const QHostAddress local(localAddress.trimmed());
     const QHostAddress remote(remoteAddress.trimmed());
@@ -33,9 +44,10 @@ std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
 
 QString LinkSettings::summary() const
 {
-    const QString where = transport == Transport::Serial
-                              ? QObject::tr("serial %1 at %2 bit/s").arg(serialPort).arg(baudRate)
-                              : QObject::tr("UDP %1:%2").arg(remoteAddress).arg(remotePort);
+    QString where = transport == Transport::Serial ? QObject::tr("serial %1 at %2 bit/s").arg(serialPort).arg(baudRate)
+                                                   : QObject::tr("UDP %1:%2").arg(remoteAddress).arg(remotePort);
+    if (dialsModem())
+        where = QObject::tr("%1, dialling %2").arg(where, dialNumber.trimmed());
     return keyPath.isEmpty() ? where : QObject::tr("%1, encrypted").arg(where);
 }
 
@@ -83,6 +95,11 @@ void LinkSettings::save(QSettings& settings) const
     settings.setValue(QStringLiteral("remoteAddress"), remoteAddress);
     settings.setValue(QStringLiteral("remotePort"), remotePort);
     settings.setValue(QStringLiteral("keyPath"), keyPath);  // where the key is; the key stays in its file
+    settings.setValue(QStringLiteral("dialNumber"), dialNumber);
+    settings.setValue(QStringLiteral("modemInit"), modemInit);
+    settings.setValue(QStringLiteral("rtsCts"), rtsCts);
+    settings.setValue(QStringLiteral("callCostPerMinute"), callCostPerMinute);
+    settings.setValue(QStringLiteral("satelliteDelayMs"), satelliteDelayMs);
     settings.endGroup();
 }
 
@@ -102,5 +119,10 @@ LinkSettings LinkSettings::load(const QSettings& settings)
     s.remoteAddress = value("remoteAddress", defaults.remoteAddress).toString();
     s.remotePort = quint16(value("remotePort", defaults.remotePort).toUInt());
     s.keyPath = value("keyPath", defaults.keyPath).toString();
+    s.dialNumber = value("dialNumber", defaults.dialNumber).toString();
+    s.modemInit = value("modemInit", defaults.modemInit).toString();
+    s.rtsCts = value("rtsCts", defaults.rtsCts).toBool();
+    s.callCostPerMinute = value("callCostPerMinute", defaults.callCostPerMinute).toDouble();
+    s.satelliteDelayMs = value("satelliteDelayMs", defaults.satelliteDelayMs).toInt();
     return s;
 }

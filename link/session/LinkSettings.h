@@ -9,6 +9,7 @@
 
 #include <QString>
 
+#include <chrono>
 #include <memory>
 #include <optional>
 
@@ -28,6 +29,18 @@ struct LinkSettings {
     quint16 remotePort = kDefaultRemotePort;
     // The aircraft's key file (docs/security.md); empty: the plain link.
     QString keyPath;
+    // A satellite phone's modem on the serial port (ModemLink, docs/modem.md):
+    // the number to dial; empty: the line is connected already (a cable, a
+    // radio modem). The init string goes first; RTS/CTS flow control is on
+    // for a modem unless the operator turns it off.
+    QString dialNumber;
+    QString modemInit = QStringLiteral("ATE0V1&C1&D2");
+    bool rtsCts = true;
+    // The call's price per started minute, shown when the call ends; 0: not shown.
+    double callCostPerMinute = 0;
+    // The satellite's one-way delay: the console waits twice this before it
+    // calls a reported value that disagrees with the command a mismatch.
+    int satelliteDelayMs = 1500;
 
     // The transport, not yet open (it opens in the link thread). Nothing,
     // with the reason, when the settings are incomplete.
@@ -37,6 +50,13 @@ struct LinkSettings {
 
     // "HOST:PORT", as --udp-remote takes it.
     static std::optional<LinkSettings> udpRemote(const QString& hostAndPort, QString* error = nullptr);
+    // A modem to dial: a serial port with a number.
+    bool dialsModem() const { return transport == Transport::Serial && !dialNumber.trimmed().isEmpty(); }
+    // The delay the link adds one way: the satellite's for a dialled modem, else none worth counting.
+    std::chrono::milliseconds oneWayDelay() const
+    {
+        return std::chrono::milliseconds(dialsModem() ? satelliteDelayMs : 0);
+    }
     // A serial port at a bit rate, as --serial and --baud take them.
     static std::optional<LinkSettings> serial(const QString& port, const QString& baudRate, QString* error = nullptr);
 

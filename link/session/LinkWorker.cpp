@@ -112,7 +112,13 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
     connect(m_link.get(), &Link::bytesReceived, this, &LinkWorker::receiveBytes);
     connect(m_link.get(), &Link::datagramReceived, this, &LinkWorker::receiveDatagram);
     connect(m_link.get(), &Link::closed, this, &LinkWorker::transportClosed);
+    // Silence counts from when the line is up (a modem's CONNECT), not from start().
+    connect(m_link.get(), &Link::opened, this, [this] {
+        if (m_running && m_statistics.state != LinkState::Lost)
+            m_silenceTimer->start(m_options.silenceTimeout);
+    });
     connect(m_link.get(), &Link::errorOccurred, this, &LinkWorker::errorOccurred);
+    connect(m_link.get(), &Link::statusChanged, this, &LinkEvents::transportStatusChanged);
 
     if (m_log)
         m_log->setErrorHandler([this](const QString& error) { reportError(QStringLiteral("frame log: ") + error); });
@@ -405,6 +411,11 @@ void LinkWorker::silenceElapsed()
 {
     if (!m_running)
         return;
+    if (m_link->isConnecting()) {
+        // A call being set up takes tens of seconds; silence counts from CONNECT.
+        m_silenceTimer->start(m_options.silenceTimeout);
+        return;
+    }
     if (m_statistics.state == LinkState::Waiting || m_statistics.state == LinkState::Connected) {
         setState(LinkState::Lost);
         emit linkLost();

@@ -16,6 +16,10 @@ SimulatorOptions::SimulatorOptions()
                QStringLiteral("device")),
       m_baud(QStringLiteral("baud"), QStringLiteral("Serial bit rate (default %1).").arg(SerialLink::kDefaultBaudRate),
              QStringLiteral("n"), QString::number(SerialLink::kDefaultBaudRate)),
+      m_modem(QStringLiteral("modem"),
+              QStringLiteral("The serial device is a satellite phone's modem (docs/modem.md): initialise it, answer "
+                             "each call (RING -> ATA, or the modem's own auto-answer) and take a dropped call as "
+                             "link loss, then wait for the next call.")),
       m_log(QStringLiteral("log"),
             QStringLiteral("Keep a pcapng log of every frame sent and received; the file must not exist."),
             QStringLiteral("file")),
@@ -48,7 +52,7 @@ SimulatorOptions::SimulatorOptions()
 
 void SimulatorOptions::addTo(QCommandLineParser& parser) const
 {
-    parser.addOptions({m_udp, m_serial, m_baud, m_log, m_airframe, m_uaId});
+    parser.addOptions({m_udp, m_serial, m_baud, m_modem, m_log, m_airframe, m_uaId});
     m_faults.addTo(parser);
     parser.addOptions({m_verbose, m_key, m_voiceOut, m_voiceIn});
 }
@@ -61,6 +65,8 @@ std::optional<SimulatorSession::Settings> SimulatorOptions::read(const QCommandL
     };
     if (parser.isSet(m_udp) == parser.isSet(m_serial))
         return wrong(QStringLiteral("give either --udp PORT or --serial DEVICE"));
+    if (parser.isSet(m_modem) && !parser.isSet(m_serial))
+        return wrong(QStringLiteral("--modem needs --serial DEVICE: the modem is on a serial port"));
     if (!parser.positionalArguments().isEmpty())
         return wrong(QStringLiteral("unexpected argument %1").arg(parser.positionalArguments().first()));
 
@@ -95,6 +101,7 @@ std::optional<SimulatorSession::Settings> SimulatorOptions::read(const QCommandL
         settings.udpPort = static_cast<quint16>(port);
     } else {
         settings.serialDevice = parser.value(m_serial);
+        settings.modem = parser.isSet(m_modem);
         settings.baudRate = parser.value(m_baud).toInt(&ok);
         if (!ok || settings.baudRate <= 0)
             return wrong(QStringLiteral("--baud wants a bit rate, not %1").arg(parser.value(m_baud)));

@@ -26,6 +26,7 @@ private:
     QCommandLineOption m_udp;
     QCommandLineOption m_serial;
     QCommandLineOption m_baud;
+    QCommandLineOption m_modem;
     QCommandLineOption m_log;
     QCommandLineOption m_airframe;
     QCommandLineOption m_uaId;

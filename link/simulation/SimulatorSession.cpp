@@ -7,6 +7,7 @@
 #include "link/simulation/FaultOptions.h"
 #include "link/simulation/FaultyLink.h"
 #include "link/simulation/SimulatedAircraft.h"
+#include "link/transport/ModemLink.h"
 #include "link/transport/UdpLink.h"
 #include "link/voice/VoiceDecoderSink.h"
 #include "link/voice/VoiceEncoderSource.h"
@@ -89,6 +90,12 @@ std::unique_ptr<Link> SimulatorSession::openLink()
         auto udpLink = std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), *m_settings.udpPort);
         udpLink->setReplyToSender(true);
         link = std::move(udpLink);
+    } else if (m_settings.modem) {
+        ModemLink::Options modem;
+        modem.initString = m_settings.modemInit;
+        link = std::make_unique<ModemLink>(std::make_unique<SerialLink>(m_settings.serialDevice, m_settings.baudRate,
+                                                                        SerialLink::FlowControl::RtsCts),
+                                           modem);
     } else {
         link = std::make_unique<SerialLink>(m_settings.serialDevice, m_settings.baudRate);
     }
@@ -155,6 +162,19 @@ bool SimulatorSession::start()
         offerStatus();
     });
     connect(worker, &LinkWorker::errorOccurred, this, [this](const QString& message) { m_say(message); });
+    // An error is said once; the status that repeats it is not said again.
+    connect(worker, &LinkWorker::errorOccurred, this, [this](const QString& message) { m_lastError = message; });
+    if (m_settings.verbose)
+        connect(worker, &LinkWorker::transportStatusChanged, this, [this](const QString& status) {
+            if (status != m_lastError)
+                m_say(status);
+        });
+    if (m_settings.verbose || m_settings.modem) {
+        // A dropped call, the port gone or silence: the aircraft flies on its
+        // last commands, and whoever runs it should know.
+        connect(worker, &LinkWorker::linkLost, this, [this] { m_say(QStringLiteral("link lost")); });
+        connect(worker, &LinkWorker::linkRegained, this, [this] { m_say(QStringLiteral("link regained")); });
+    }
     // Every rejection when verbose; otherwise the first of each kind, then
     // only the counts when the session stops: a forger must not flood the
     // terminal.

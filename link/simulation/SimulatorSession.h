@@ -38,6 +38,10 @@ public:
         std::optional<quint16> udpPort;  // 127.0.0.1:port, replying to the last sender; else serialDevice
         QString serialDevice;
         qint32 baudRate = SerialLink::kDefaultBaudRate;
+        // The serial device is a satellite phone's modem that answers calls
+        // (ModemLink without a number): the link is up while a call is.
+        bool modem = false;
+        QByteArray modemInit = "ATE0V1&C1&D2";
         QString logFile;  // a pcapng log to create; empty: none
         rcm::Airframe airframe = rcm::Airframe::wellEquipped();
         std::optional<rcm::StationId> identity;  // none: the first command's ID_UA_source
@@ -73,4 +77,5 @@ private:
     FaultyLink* m_faultyLink = nullptr;  // the worker's link, when it has faults
     QElapsedTimer m_simulationClock;
     QSet<QString> m_rejectionKinds;
+    QString m_lastError;  // the link's last error, not said again by the status that repeats it
 };

@@ -25,6 +25,12 @@ public:
     virtual bool isOpen() const = 0;
     // For people: "/dev/ttyUSB0 9600 8N1", "udp 0.0.0.0:5000 -> 10.0.0.2:5001".
     virtual QString description() const = 0;
+    // Bytes write() took that the device has not taken yet: what a modem's
+    // flow control (CTS) holds back. 0 for a transport that never queues.
+    virtual qint64 bytesToWrite() const { return 0; }
+    // The transport is bringing its line up (a modem dialling, redialling or
+    // waiting for a call): silence now is not the far end's.
+    virtual bool isConnecting() const { return false; }
 
 public slots:
     // Both are idempotent. open() reports failure through errorOccurred().
@@ -43,4 +49,7 @@ signals:
     void datagramReceived(const QByteArray& datagram);
     // Once per failure, not once per retry or per frame.
     void errorOccurred(const QString& message);
+    // For people: what the transport itself is doing, when it has more to
+    // say than opened and closed (a modem dialling, connected, redialling).
+    void statusChanged(const QString& status);
 };

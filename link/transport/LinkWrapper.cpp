@@ -6,13 +6,16 @@ LinkWrapper::LinkWrapper(std::unique_ptr<Link> inner, QObject* parent) : Link(pa
     m_inner->setParent(this);
     connect(m_inner, &Link::opened, this, [this] {
         innerOpened();
-        emit opened();
+        if (relaysOpenAndClose())
+            emit opened();
     });
     connect(m_inner, &Link::closed, this, [this] {
         innerClosed();
-        emit closed();
+        if (relaysOpenAndClose())
+            emit closed();
     });
     connect(m_inner, &Link::errorOccurred, this, &Link::errorOccurred);
+    connect(m_inner, &Link::statusChanged, this, &Link::statusChanged);
     connect(m_inner, &Link::bytesReceived, this, [this](const QByteArray& bytes) { innerBytesReceived(bytes); });
     connect(m_inner, &Link::datagramReceived, this,
             [this](const QByteArray& datagram) { innerDatagramReceived(datagram); });

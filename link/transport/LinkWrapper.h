@@ -19,6 +19,8 @@ public:
     bool isStream() const override { return m_inner->isStream(); }
     bool isOpen() const override { return m_inner->isOpen(); }
     QString description() const override { return m_inner->description(); }
+    qint64 bytesToWrite() const override { return m_inner->bytesToWrite(); }
+    bool isConnecting() const override { return m_inner->isConnecting(); }
 
     Link* inner() const { return m_inner; }
 
@@ -34,6 +36,10 @@ protected:
     // innerOpened() and innerClosed() run before opened() and closed().
     virtual void innerOpened() {}
     virtual void innerClosed() {}
+    // False for a wrapper that decides itself when it is open (a modem: the
+    // port is open long before the call is up); it then says opened() and
+    // closed() itself.
+    virtual bool relaysOpenAndClose() const { return true; }
     virtual void innerBytesReceived(const QByteArray& bytes) { emit bytesReceived(bytes); }
     virtual void innerDatagramReceived(const QByteArray& datagram) { emit datagramReceived(datagram); }
 

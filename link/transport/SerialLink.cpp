@@ -9,6 +9,12 @@ SerialLink::SerialLink(const QString& portName, qint32 baudRate, QObject* parent
     connect(&m_port, &QSerialPort::errorOccurred, this, &SerialLink::handleError);
 }
 
+SerialLink::SerialLink(const QString& portName, qint32 baudRate, FlowControl flowControl, QObject* parent)
+    : SerialLink(portName, baudRate, parent)
+{
+    m_flowControl = flowControl;
+}
+
 SerialLink::~SerialLink()
 {
     // Quietly: nobody should hear from a link being destroyed.
@@ -34,7 +40,10 @@ std::chrono::milliseconds SerialLink::reopenInterval() const
 
 QString SerialLink::description() const
 {
-    return QStringLiteral("%1 %2 8N1").arg(m_portName).arg(m_baudRate);
+    return QStringLiteral("%1 %2 8N1%3")
+        .arg(m_portName)
+        .arg(m_baudRate)
+        .arg(m_flowControl == FlowControl::RtsCts ? QStringLiteral(" RTS/CTS") : QString());
 }
 
 void SerialLink::open()
@@ -78,7 +87,8 @@ bool SerialLink::tryOpen()
     m_port.setDataBits(QSerialPort::Data8);
     m_port.setParity(QSerialPort::NoParity);
     m_port.setStopBits(QSerialPort::OneStop);
-    m_port.setFlowControl(QSerialPort::NoFlowControl);
+    m_port.setFlowControl(m_flowControl == FlowControl::RtsCts ? QSerialPort::HardwareControl
+                                                               : QSerialPort::NoFlowControl);
     if (!m_port.open(QIODevice::ReadWrite))
         return false;
     m_port.clearError();
@@ -87,6 +97,47 @@ bool SerialLink::tryOpen()
     m_reopenTimer.stop();
     emit opened();
     return true;
+}
+
+std::optional<bool> SerialLink::carrierDetect()
+{
+    if (!m_port.isOpen())
+        return std::nullopt;
+    m_askingPins = true;
+    const QSerialPort::PinoutSignals pins = m_port.pinoutSignals();
+    m_askingPins = false;
+    if (m_port.error() != QSerialPort::NoError) {
+        // A pseudo-terminal has no pins: the ioctl fails, which is no fault of the port.
+        m_port.clearError();
+        return std::nullopt;
+    }
+    return pins.testFlag(QSerialPort::DataCarrierDetectSignal);
+}
+
+void SerialLink::setDataTerminalReady(bool ready)
+{
+    if (!m_port.isOpen())
+        return;
+    m_askingPins = true;
+    if (!m_port.setDataTerminalReady(ready))
+        m_port.clearError();  // no such pin (a pseudo-terminal)
+    m_askingPins = false;
+}
+
+void SerialLink::discardOutput()
+{
+    if (m_port.isOpen())
+        m_port.clear(QSerialPort::Output);
+}
+
+bool SerialLink::waitForBytesWritten(std::chrono::milliseconds timeout)
+{
+    return m_port.isOpen() && (m_port.bytesToWrite() == 0 || m_port.waitForBytesWritten(int(timeout.count())));
+}
+
+bool SerialLink::waitForBytesReceived(std::chrono::milliseconds timeout)
+{
+    return m_port.isOpen() && m_port.waitForReadyRead(int(timeout.count()));
 }
 
 void SerialLink::retryOpen()
@@ -102,7 +153,8 @@ void SerialLink::retryOpen()
 void SerialLink::handleError(QSerialPort::SerialPortError error)
 {
     // Errors while closed belong to an open attempt, which reports them itself.
-    if (error == QSerialPort::NoError || error == QSerialPort::TimeoutError || !m_port.isOpen() || m_losing)
+    if (error == QSerialPort::NoError || error == QSerialPort::TimeoutError || !m_port.isOpen() || m_losing ||
+        m_askingPins)
         return;
     switch (error) {
         case QSerialPort::ResourceError:  // the device went away

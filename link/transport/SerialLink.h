@@ -1,7 +1,9 @@
 #pragma once
 
 // The radio modem's serial port: 600-byte frames at 9,600 bit/s 8N1 by
-// default. A port that fails or disappears (USB modem unplugged, pty master
+// default, with RTS/CTS flow control when the modem asks for it (a modem
+// whose buffer fills drops CTS; the bytes then wait here, in bytesToWrite(),
+// instead of being lost in the modem). A port that fails or disappears (USB modem unplugged, pty master
 // closed) is closed at once, reported once, and reopened by a timer until it
 // is back, so a modem that comes back needs no action from the operator.
 
@@ -14,6 +16,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <optional>
 
 class SerialLink : public Link {
     Q_OBJECT
@@ -24,7 +27,10 @@ public:
 
     // portName: as QSerialPortInfo lists it ("ttyUSB0") or a path, which may
     // be a pseudo-terminal ("/dev/pts/3") or a symlink to the device.
+    enum class FlowControl { None, RtsCts };
+
     explicit SerialLink(const QString& portName, qint32 baudRate = kDefaultBaudRate, QObject* parent = nullptr);
+    SerialLink(const QString& portName, qint32 baudRate, FlowControl flowControl, QObject* parent = nullptr);
     ~SerialLink() override;
 
     // The ports the system knows, for the operator to choose from.
@@ -32,6 +38,7 @@ public:
 
     QString portName() const { return m_portName; }
     qint32 baudRate() const { return m_baudRate; }
+    FlowControl flowControl() const { return m_flowControl; }
     // Set before open().
     void setReopenInterval(std::chrono::milliseconds interval);
     std::chrono::milliseconds reopenInterval() const;
@@ -42,6 +49,20 @@ public:
     bool isStream() const override { return true; }
     bool isOpen() const override { return m_port.isOpen(); }
     QString description() const override;
+    qint64 bytesToWrite() const override { return m_port.bytesToWrite(); }
+
+    // For a modem's control (ModemLink), in the link's thread. The data
+    // carrier detect pin; nothing when the port cannot tell (a pseudo-terminal).
+    std::optional<bool> carrierDetect();
+    void setDataTerminalReady(bool ready);
+    // Drops what write() queued and the device has not taken.
+    void discardOutput();
+    // Block the link's thread, at most `timeout`, until the device took
+    // what is queued, or until bytes arrived (bytesReceived() is said
+    // before it returns). For a modem's hang-up, which must run to its end
+    // even while the thread is ending; nothing else waits.
+    bool waitForBytesWritten(std::chrono::milliseconds timeout);
+    bool waitForBytesReceived(std::chrono::milliseconds timeout);
 
 public slots:
     // Failing to open is reported once and retried like a lost port: the
@@ -59,9 +80,11 @@ private:
 
     QString m_portName;
     qint32 m_baudRate;
+    FlowControl m_flowControl = FlowControl::None;
     QSerialPort m_port;
     QTimer m_reopenTimer;
     bool m_wanted = false;           // open() asked for, close() not since
+    bool m_askingPins = false;       // a pin asked for or set: a port without pins is no error
     bool m_losing = false;           // the port failed; lose() is queued to close it
     bool m_failureReported = false;  // this outage was reported; cleared when the port opens
     QString m_lastError;             // an error the open port reported, so a flood of them shows once

@@ -104,6 +104,7 @@ void VoiceSerialLink::innerOpened()
     m_openedMicros = m_clock->steadyMicros();
     m_written = 0;
     m_skipped = 0;
+    m_flowControlHolds = 0;
     m_holdUntil = 0;
     m_timer->start(m_options.tick);
     pace();
@@ -129,6 +130,14 @@ void VoiceSerialLink::pace()
     }
     if (due <= m_written)
         return;
+    if (inner()->bytesToWrite() > m_options.lead) {
+        // The modem's flow control holds the line (CTS down): what is due
+        // now would only queue behind it. The line stalls, as when the event
+        // loop does, and goes on where it stopped once the modem takes bytes.
+        m_skipped += due - m_written;
+        ++m_flowControlHolds;
+        return;
+    }
     const std::size_t pairs = static_cast<std::size_t>(due - m_written) / 2;
     std::vector<std::uint8_t> voice(pairs);
     m_source->readVoice(voice);

@@ -20,6 +20,11 @@
 // preamble: its bytes go on as bytesReceived() for the worker's
 // synchroniser, the other phase to the VoiceSink.
 //
+// Flow control: a modem whose buffer is full drops CTS and the port stops
+// taking bytes (SerialLink's bytesToWrite() grows). The pacing then writes
+// nothing while the port holds more than `lead` bytes: the line stalls
+// instead of queueing seconds of voice and commands behind the modem.
+//
 // The port's bit rate is not the line's: at 8N1 a byte takes 10 bits, so a
 // modem whose data rate is 9,600 bps wants its serial port at 19,200 baud or
 // more, with the modem buffering. The pacing here is what holds the line to
@@ -65,6 +70,9 @@ public:
     const rcm::VoiceDemultiplexer& demultiplexer() const { return *m_demux; }
     // Line bytes written since the port last opened. The link's thread.
     std::uint64_t lineBytesWritten() const { return m_written; }
+    // Ticks whose bytes were held back because the port had not taken the
+    // last ones (the modem's CTS was down). The link's thread.
+    std::uint64_t flowControlHolds() const { return m_flowControlHolds; }
 
 public slots:
     void close() override;
@@ -88,6 +96,7 @@ private:
     ClockTimer* m_timer;              // a child
     std::int64_t m_openedMicros = 0;  // m_clock's steady time when the port opened
     std::uint64_t m_written = 0;   // line bytes written since then
-    std::uint64_t m_skipped = 0;   // line bytes never written: the event loop stalled
+    std::uint64_t m_skipped = 0;   // line bytes never written: the event loop stalled, or flow control held them
+    std::uint64_t m_flowControlHolds = 0;
     std::int64_t m_holdUntil = 0;  // ns since the port opened: the first frame after fill waits until then
 };

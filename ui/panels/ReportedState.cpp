@@ -175,15 +175,18 @@ void ReportedState::compare(const rcm::Unit& commanded, const rcm::Unit* reporte
         const bool fields = rcm::itemInfo(item.id).kind == rcm::ValueKind::Fields;
         const auto commandedByte = static_cast<std::uint8_t>(item.value.number);
         const auto countedByte = static_cast<std::uint8_t>(c.commanded.number);
-        if (item.value != c.commanded)
+        if (item.value != c.commanded) {
             c.frames = 0;
+            c.since = m_clock();
+        }
         for (int f = 0; f < 4; ++f)
             if (!fields || rcm::fieldCode(commandedByte, f) != rcm::fieldCode(countedByte, f))
                 c.fieldFrames[static_cast<std::size_t>(f)] = 0;
         c.commanded = item.value;
 
         const rcm::Value* now = reported ? reported->find(item.id) : nullptr;
-        if (!now) {
+        // Within the link's round trip the aircraft cannot have heard the change yet.
+        if (!now || m_clock() - c.since < m_answerTime) {
             c.frames = 0;
             c.fieldFrames.fill(0);
             continue;

@@ -76,6 +76,12 @@ public:
     int statusFrames() const { return m_statusFrames; }
     void clear();
 
+    // The link's one-way delay (a satellite's 1.5 s): for twice that after a
+    // commanded value changed, status frames still answer the command before
+    // it, and do not count as disagreeing. 0 (the default) for a link whose
+    // delay is within a frame.
+    void setLinkDelay(std::chrono::milliseconds oneWay) { m_answerTime = 2 * oneWay; }
+
 public slots:
     void onStatus(const rcm::Message& status);
     // LinkController::messageReceived, for a direct connection.
@@ -90,6 +96,7 @@ signals:
 private:
     struct Comparison {
         rcm::Value commanded;  // what the counts below were counted against
+        std::chrono::steady_clock::time_point since;  // when it was first compared
         int frames = 0;
         std::array<int, 4> fieldFrames{};
     };
@@ -105,6 +112,7 @@ private:
     const CommandState* m_command;
     Clock m_clock;
     std::chrono::milliseconds m_staleAfter;
+    std::chrono::milliseconds m_answerTime{0};
     std::vector<ReportedUnit> m_units;
     int m_statusFrames = 0;
     std::optional<std::chrono::steady_clock::time_point> m_lastStatus;

@@ -3,13 +3,17 @@
 #include "link/transport/SerialLink.h"
 #include "ui/panels/DeliberateInput.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
+#include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QIntValidator>
+#include <QRegularExpression>
+#include <QRegularExpressionValidator>
 #include <QLineEdit>
 #include <QSpinBox>
 #include <QStackedWidget>
@@ -45,6 +49,11 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
       m_port(new QComboBox),
       m_refresh(new QToolButton),
       m_baud(new QComboBox),
+      m_dialNumber(new QLineEdit),
+      m_modemInit(new QLineEdit),
+      m_rtsCts(new QCheckBox(tr("RTS/CTS flow control"))),
+      m_callCost(new QDoubleSpinBox),
+      m_satelliteDelay(new QSpinBox),
       m_localAddress(new QLineEdit),
       m_localPort(portBox(0, tr("any"))),
       m_remoteAddress(new QLineEdit),
@@ -89,6 +98,30 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     port->addWidget(m_refresh);
     serial->addRow(tr("Port"), port);
     serial->addRow(tr("Bit rate"), m_baud);
+    m_dialNumber->setPlaceholderText(tr("none: the line is connected"));
+    m_dialNumber->setClearButtonEnabled(true);
+    m_dialNumber->setValidator(new QRegularExpressionValidator(QRegularExpression(QStringLiteral("[0-9+*#,PTpt ]*")),
+                                                                m_dialNumber));
+    m_dialNumber->setToolTip(tr("A satellite phone's modem: the aircraft's number, dialled with ATD; a dropped call "
+                                "is redialled, and Disconnect or Quit hangs up (docs/modem.md)"));
+    m_modemInit->setToolTip(tr("Sent to the modem before dialling; it must start with AT and keep verbose "
+                               "result codes (V1). Check the phone's manual for its own settings."));
+    m_rtsCts->setToolTip(tr("Hardware flow control: the modem stops the console (CTS) when its buffer is full, "
+                            "instead of losing bytes. On for a modem; off only for a cable without the lines."));
+    m_callCost->setRange(0, 1000);
+    m_callCost->setDecimals(2);
+    m_callCost->setSpecialValueText(tr("not shown"));
+    m_callCost->setToolTip(tr("The call's price per started minute, in your currency, shown when a call ends"));
+    serial->addRow(tr("Dial"), m_dialNumber);
+    serial->addRow(tr("Modem init"), m_modemInit);
+    serial->addRow(QString(), m_rtsCts);
+    serial->addRow(tr("Cost a minute"), m_callCost);
+    m_satelliteDelay->setRange(0, 10000);
+    m_satelliteDelay->setSingleStep(100);
+    m_satelliteDelay->setSuffix(tr(" ms"));
+    m_satelliteDelay->setToolTip(tr("The satellite's delay one way: a reported value is called a mismatch only "
+                                    "once twice this has passed since the command changed"));
+    serial->addRow(tr("Delay, one way"), m_satelliteDelay);
 
     m_pages->addWidget(udpPage);
     m_pages->addWidget(serialPage);
@@ -120,15 +153,17 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     });
     connect(m_refresh, &QToolButton::clicked, this, &LinkSettingsWidget::refreshPorts);
     connect(m_chooseKey, &QToolButton::clicked, this, &LinkSettingsWidget::chooseKeyFile);
-    for (QLineEdit* edit : {m_localAddress, m_remoteAddress, m_keyPath})
+    for (QLineEdit* edit : {m_localAddress, m_remoteAddress, m_keyPath, m_dialNumber, m_modemInit})
         connect(edit, &QLineEdit::textChanged, this, &LinkSettingsWidget::changed);
-    for (QSpinBox* box : {m_localPort, m_remotePort})
+    for (QSpinBox* box : {m_localPort, m_remotePort, m_satelliteDelay})
         connect(box, &QSpinBox::valueChanged, this, &LinkSettingsWidget::changed);
     connect(m_port, &QComboBox::currentTextChanged, this, &LinkSettingsWidget::changed);
     connect(m_baud, &QComboBox::currentTextChanged, this, &LinkSettingsWidget::changed);
+    connect(m_rtsCts, &QCheckBox::toggled, this, &LinkSettingsWidget::changed);
+    connect(m_callCost, &QDoubleSpinBox::valueChanged, this, &LinkSettingsWidget::changed);
     // A wheel turned over the pane to scroll it must not switch the
     // transport or move a port: the link settings change only by hand.
-    for (QWidget* control : std::initializer_list<QWidget*>{m_transport, m_port, m_baud, m_localPort, m_remotePort})
+    for (QWidget* control : std::initializer_list<QWidget*>{m_transport, m_port, m_baud, m_localPort, m_remotePort, m_callCost, m_satelliteDelay})
         DeliberateInput::protect(control);
 
     setSettings(LinkSettings());
@@ -148,6 +183,11 @@ LinkSettings LinkSettingsWidget::settings() const
     s.remoteAddress = m_remoteAddress->text().trimmed();
     s.remotePort = quint16(m_remotePort->value());
     s.keyPath = m_keyPath->text().trimmed();
+    s.dialNumber = m_dialNumber->text().trimmed();
+    s.modemInit = m_modemInit->text().trimmed();
+    s.rtsCts = m_rtsCts->isChecked();
+    s.callCostPerMinute = m_callCost->value();
+    s.satelliteDelayMs = m_satelliteDelay->value();
     return s;
 }
 
@@ -166,6 +206,11 @@ void LinkSettingsWidget::setSettings(const LinkSettings& s)
     m_remoteAddress->setText(s.remoteAddress);
     m_remotePort->setValue(s.remotePort);
     m_keyPath->setText(s.keyPath);
+    m_dialNumber->setText(s.dialNumber);
+    m_modemInit->setText(s.modemInit);
+    m_rtsCts->setChecked(s.rtsCts);
+    m_callCost->setValue(s.callCostPerMinute);
+    m_satelliteDelay->setValue(s.satelliteDelayMs);
 }
 
 void LinkSettingsWidget::chooseKeyFile()

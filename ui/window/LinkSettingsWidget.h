@@ -2,14 +2,18 @@
 
 // Edits LinkSettings: the transport, then either the serial port (from the
 // system's list, refreshed on demand through SerialLink's helper, or typed,
-// e.g. a pseudo-terminal) and bit rate, or the UDP endpoints; and, for either,
+// e.g. a pseudo-terminal), bit rate and, for a satellite phone's modem, the
+// number to dial, the init string, RTS/CTS and the call's price a minute,
+// or the UDP endpoints; and, for either,
 // the aircraft's key file (typed, or chosen in a file dialog) for a secure link.
 
 #include "link/session/LinkSettings.h"
 
 #include <QWidget>
 
+class QCheckBox;
 class QComboBox;
+class QDoubleSpinBox;
 class QLineEdit;
 class QSpinBox;
 class QStackedWidget;
@@ -41,6 +45,11 @@ private:
     QComboBox* m_port;
     QToolButton* m_refresh;
     QComboBox* m_baud;
+    QLineEdit* m_dialNumber;
+    QLineEdit* m_modemInit;
+    QCheckBox* m_rtsCts;
+    QDoubleSpinBox* m_callCost;
+    QSpinBox* m_satelliteDelay;
     QLineEdit* m_localAddress;
     QSpinBox* m_localPort;
     QLineEdit* m_remoteAddress;

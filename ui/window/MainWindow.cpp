@@ -55,6 +55,7 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 
 namespace {
@@ -272,7 +273,8 @@ void MainWindow::buildDocks()
     linkLayout->addWidget(m_replayControls);
     linkLayout->addStretch(1);
     connect(m_connectButton, &QPushButton::clicked, this, &MainWindow::connectLink);
-    connect(m_disconnectButton, &QPushButton::clicked, this, &MainWindow::disconnectLink);
+    connect(m_disconnectButton, &QPushButton::clicked, this, &MainWindow::requestDisconnect);
+    connect(m_linkSettings, &LinkSettingsWidget::changed, this, &MainWindow::updateLinkControls);
     connect(m_rehearsalButton, &QPushButton::clicked, this, &MainWindow::startRehearsal);
 
     connect(m_replayControls, &ReplayControls::pauseRequested, this, &MainWindow::setReplayPaused);
@@ -392,7 +394,7 @@ void MainWindow::buildMenus()
     QMenu* linkMenu = menuBar()->addMenu(tr("&Link"));
     m_connectAction = linkMenu->addAction(tr("&Connect"), this, &MainWindow::connectLink);
     m_connectAction->setShortcut(QKeySequence(tr("Ctrl+K")));
-    m_disconnectAction = linkMenu->addAction(tr("&Disconnect"), this, &MainWindow::disconnectLink);
+    m_disconnectAction = linkMenu->addAction(tr("&Disconnect"), this, &MainWindow::requestDisconnect);
     m_disconnectAction->setShortcut(QKeySequence(tr("Ctrl+Shift+K")));
     m_rehearsalAction = linkMenu->addAction(tr("Start &rehearsal with uasim"), this, &MainWindow::startRehearsal);
     m_rehearsalAction->setShortcut(QKeySequence(tr("Ctrl+R")));
@@ -533,7 +535,7 @@ bool MainWindow::confirmEndingLink(const QString& action)
 
 void MainWindow::connectLink()
 {
-    if (confirmEndingLink(tr("Connect")))
+    if (confirmEndingLink(m_connectButton->text()))
         connectWith(m_linkSettings->settings());
 }
 
@@ -542,6 +544,13 @@ void MainWindow::connectWith(const LinkSettings& settings)
     m_linkSettings->setSettings(settings);
     m_session->connectWith(settings);
     updateLinkControls();
+}
+
+void MainWindow::requestDisconnect()
+{
+    // One click must not drop a live link (nor hang up a call that took a minute to set up).
+    if (confirmEndingLink(m_disconnectButton->text()))
+        disconnectLink();
 }
 
 void MainWindow::disconnectLink()
@@ -602,6 +611,17 @@ void MainWindow::showPanel(int index)
         page->setFocus(Qt::ShortcutFocusReason);
 }
 
+void MainWindow::screenshotAndQuit(const QString& path, QSize size, int afterSeconds)
+{
+    resize(size);
+    QTimer::singleShot(afterSeconds * 1000, this, [this, path] {
+        const bool saved = grab().save(path);
+        if (!saved)
+            std::fprintf(stderr, "gcs: cannot save %s\n", qPrintable(path));
+        QCoreApplication::exit(saved ? 0 : 1);
+    });
+}
+
 void MainWindow::linkStarted(const LinkController* controller)
 {
     const bool replay = m_session->kind() == ConsoleSession::Kind::Replay;
@@ -616,6 +636,17 @@ void MainWindow::linkStarted(const LinkController* controller)
     connect(controller, &LinkController::statisticsChanged, m_overview, &OverviewPage::setStatistics);
     // Its errors to the event log and the banner, its silences to the alarm.
     m_alerts->follow(controller);
+    // A modem's call: dialling, connected, redialling, hung up. Its failures
+    // come as errors too (once an outage), and are logged once, as errors.
+    m_status->setTransportStatus(QString());
+    m_reported->setLinkDelay(m_session->kind() == ConsoleSession::Kind::Live ? m_linkSettings->settings().oneWayDelay()
+                                                                              : std::chrono::milliseconds(0));
+    connect(controller, &LinkController::errorOccurred, this, [this](const QString& error) { m_lastLinkError = error; });
+    connect(controller, &LinkController::transportStatusChanged, this, [this](const QString& status) {
+        m_status->setTransportStatus(status);
+        if (status != m_lastLinkError)
+            m_alerts->info(EventSource::Link, status);
+    });
     // A live session's frames become rows as the link logs them; a replay's
     // rows are its log file, opened already.
     if (!replay)
@@ -781,6 +812,11 @@ void MainWindow::updateLinkControls()
     m_connectAction->setEnabled(!running);
     m_disconnectButton->setEnabled(active);
     m_disconnectAction->setEnabled(active);
+    // A satellite phone's modem: Connect dials and Disconnect hangs up, and says so.
+    const bool dials = m_linkSettings->settings().dialsModem();
+    m_connectButton->setText(dials ? tr("Dial") : tr("Connect"));
+    const bool inCall = dials && m_session->kind() == ConsoleSession::Kind::Live;
+    m_disconnectButton->setText(inCall ? tr("Hang up") : tr("Disconnect"));
 }
 
 void MainWindow::showNotConnected()

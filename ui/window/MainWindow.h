@@ -96,6 +96,8 @@ public slots:
     void connectLink();                              // with the settings shown
     void connectWith(const LinkSettings& settings);  // shows them, then connects
     void disconnectLink();
+    // The Disconnect (Hang up) button and menu item: asks first when the link is live.
+    void requestDisconnect();
     // uasim on the loopback interface, and a UDP link to it; with the key
     // file of the link settings, both ends use it.
     void startRehearsal();
@@ -103,6 +105,10 @@ public slots:
     // `keyPath`: the key of a keyed session's log, to decipher it with.
     void openFrameLog(const QString& path, const QString& keyPath = QString());
     void showPanel(int index);
+    // gcs --screenshot: at `size`, after the first pass of the event loop
+    // (docks and layouts settled) or once the link ran `afterSeconds`, saves
+    // a picture of the window to `path` and quits, 0 when it was saved.
+    void screenshotAndQuit(const QString& path, QSize size, int afterSeconds);
     // View > Reset layout: every dock in its first place, the window at
     // defaultSize(), and the saved layout forgotten.
     void resetLayout();
@@ -190,4 +196,5 @@ private:
     qint64 m_replayMicros = 0;
     QObject* m_replayReadOnly = nullptr;  // an application event filter
     QLabel* m_replayNote = nullptr;
+    QString m_lastLinkError;  // the link's last error, not logged again when its status repeats it
 };

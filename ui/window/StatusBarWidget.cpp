@@ -8,6 +8,8 @@
 #include <QLocale>
 #include <QStringList>
 
+#include <algorithm>
+
 namespace {
 
 QLabel* counter(const QString& toolTip)
@@ -52,7 +54,9 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
                             "replayed: authentic, but not newer than the last frame accepted\n"
                             "stale time: authentic and new, but its time is over 30 s from this computer's clock\n"
                             "plaintext: an unencrypted frame on a keyed link"))),
-      m_lost(new QLabel(tr("LINK LOST")))
+      m_lost(new QLabel(tr("LINK LOST"))),
+      m_transportSeparator(separator()),
+      m_transport(counter(tr("The satellite phone's call: what the modem does, and for how long")))
 {
     m_state->setTextFormat(Qt::RichText);
     m_state->setMinimumWidth(
@@ -72,11 +76,16 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     }
     layout->addWidget(m_rejectedSeparator);
     layout->addWidget(m_rejected);
+    layout->addWidget(m_transportSeparator);
+    layout->addWidget(m_transport);
+    m_transportSeparator->hide();
+    m_transport->hide();
     layout->addStretch(1);
     layout->addWidget(m_lost);
 
     m_ageTimer.setInterval(250);
     connect(&m_ageTimer, &QTimer::timeout, this, &StatusBarWidget::updateAge);
+    connect(&m_ageTimer, &QTimer::timeout, this, &StatusBarWidget::updateTransport);
     m_blinkTimer.setInterval(500);
     connect(&m_blinkTimer, &QTimer::timeout, this, &StatusBarWidget::blink);
     setStatistics(LinkStatistics());
@@ -113,6 +122,38 @@ QString StatusBarWidget::rejectedText() const
         add(m_statistics.refused[std::size_t(r)], QString::fromLatin1(name.data(), qsizetype(name.size())));
     }
     return parts.join(QStringLiteral(", "));
+}
+
+QString StatusBarWidget::transportText() const
+{
+    if (m_transportStatus.isEmpty())
+        return QString();
+    const qint64 s = std::max<qint64>(0, (QDateTime::currentMSecsSinceEpoch() - m_transportSince) / 1000);
+    const QString since = s < 3600 ? QStringLiteral("%1:%2").arg(s / 60).arg(s % 60, 2, 10, QLatin1Char('0'))
+                                   : QStringLiteral("%1:%2:%3")
+                                         .arg(s / 3600)
+                                         .arg(s % 3600 / 60, 2, 10, QLatin1Char('0'))
+                                         .arg(s % 60, 2, 10, QLatin1Char('0'));
+    return QStringLiteral("%1, %2").arg(m_transportStatus, since);
+}
+
+void StatusBarWidget::setTransportStatus(const QString& status)
+{
+    m_transportStatus = status;
+    m_transportSince = QDateTime::currentMSecsSinceEpoch();
+    m_transportSeparator->setVisible(!status.isEmpty());
+    m_transport->setVisible(!status.isEmpty());
+    m_transport->setToolTip(status.isEmpty() ? QString()
+                                             : tr("The satellite phone's call: what the modem does, and for how long"));
+    if (!status.isEmpty())
+        m_ageTimer.start();
+    updateTransport();
+}
+
+void StatusBarWidget::updateTransport()
+{
+    if (!m_transportStatus.isEmpty())
+        m_transport->setText(field(tr("Call"), transportText().toHtmlEscaped()));
 }
 
 void StatusBarWidget::setKeyFingerprint(const QString& fingerprint)

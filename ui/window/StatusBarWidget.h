@@ -32,6 +32,9 @@ public:
     QString securityText() const;
     // "forged 3, replayed 1", the reasons with a count; empty when there are none.
     QString rejectedText() const;
+    // The transport's own state and how long it has been so: "dialling
+    // 881612345678, 0:14"; empty when the transport has none (UDP).
+    QString transportText() const;
 
 public slots:
     void setStatistics(const LinkStatistics& statistics);
@@ -44,6 +47,8 @@ public slots:
     // time, and a silence in the log raises no alarm.
     void setReplay(bool replay);
     void setReplayTime(qint64 utcMicros);
+    // What the transport says it does (a modem's call); empty: nothing to show.
+    void setTransportStatus(const QString& status);
 
 signals:
     // True when the link is lost, false when it is back or was closed.
@@ -51,6 +56,7 @@ signals:
 
 private:
     void updateAge();
+    void updateTransport();
     void updateSecurity();
     void setAlarm(bool on);
     void blink();
@@ -58,6 +64,8 @@ private:
     LinkStatistics m_statistics;
     QString m_description;
     QString m_fingerprint;
+    QString m_transportStatus;
+    qint64 m_transportSince = 0;  // ms since the epoch
     bool m_alarm = false;
     bool m_replay = false;
     qint64 m_replayTime = 0;
@@ -74,4 +82,6 @@ private:
     QWidget* m_rejectedSeparator;
     QLabel* m_rejected;
     QLabel* m_lost;
+    QWidget* m_transportSeparator;
+    QLabel* m_transport;
 };

@@ -1,0 +1,168 @@
+#pragma once
+
+// The pair of satellite phone modems between the console and the aircraft,
+// for rehearsals and tests: each side is a pseudo-terminal that behaves like a
+// Hayes/V.250 modem (AT commands, RING, CONNECT, "+++" escape, NO CARRIER),
+// and a call between them carries bytes at the satellite's rate with its
+// delay. Side 0 is the ground station's phone, side 1 the aircraft's; either
+// may dial the other. The dialect, the timing and the choices made where real
+// modems differ are in docs/modem.md.
+//
+// It runs in real time on the thread that owns it: programs on the ptys see
+// a modem that answers as fast, and carries bytes as slowly, as the options say.
+
+#include "link/transport/ModemResultCode.h"
+
+#include <QByteArray>
+#include <QElapsedTimer>
+#include <QObject>
+#include <QString>
+#include <QTimer>
+
+#include <array>
+#include <chrono>
+#include <memory>
+#include <random>
+
+class QSocketNotifier;
+
+class SatelliteModem : public QObject {
+    Q_OBJECT
+
+public:
+    enum Side : int { Ground = 0, Aircraft = 1 };
+
+    // Dropped is said on its way to Idle, when the network ended the call.
+    enum class CallState { Idle, Dialling, Ringing, Connected, Dropped };
+    Q_ENUM(CallState)
+
+    struct Options {
+        std::chrono::milliseconds callSetupTime{8000};  // ATD to the far side's first RING
+        std::chrono::milliseconds oneWayDelay{1500};    // a byte on the air to the far side
+        int airRate = 1200;                             // bytes a second each way
+        int connectRate = 9600;                         // as CONNECT reports it
+        // Bytes a sender may have waiting for the air before its CTS drops
+        // (the model stops reading its pty); it rises below half of this.
+        int bufferLimit = 1200;
+        std::chrono::milliseconds meanTimeBetweenDrops{0};  // 0: calls never drop by themselves
+        quint32 seed = 1;                                   // of the random drops
+        bool busy = false;       // the far side is busy: BUSY after the set-up time
+        bool noService = false;  // no network: NO DIALTONE at once
+        int ringLimit = 6;       // rings unanswered before the caller gets NO ANSWER
+        std::chrono::milliseconds ringInterval{3000};
+    };
+
+    struct Counters {
+        int dials = 0;  // ATD commands that started a call or were refused by the network
+        int calls = 0;  // calls connected
+        int drops = 0;  // calls the network ended (random drops, dropCall())
+        std::array<qint64, 2> bytesCarried{};     // [side]: bytes the air delivered from that side
+        std::array<int, 2> flowControlStops{};    // [side]: times that side's CTS dropped
+    };
+
+    explicit SatelliteModem(Options options, QObject* parent = nullptr);
+    ~SatelliteModem() override;
+
+    // Opens both pseudo-terminals, raw; false, with the reason, when it cannot.
+    bool open(QString* error);
+    // "/dev/pts/N", what a program opens to use that side's modem.
+    QString device(int side) const;
+
+    const Options& options() const { return m_options; }
+    const Counters& counters() const { return m_counters; }
+    CallState callState() const { return m_call.state; }
+    // The number `side` last dialled, as typed after ATD (T or P left off).
+    QByteArray dialledNumber(int side) const;
+
+public slots:
+    // The network loses the call (a rehearsal's call-drop fault): NO CARRIER
+    // to every side in it. Nothing happens when there is no call.
+    void dropCall();
+
+signals:
+    void callStateChanged(SatelliteModem::CallState state);
+    // A command line as `side` typed it, "ATE0S0=1", before it runs.
+    void commandReceived(int side, const QByteArray& command);
+    void resultSent(int side, modem::Result result);
+    // The call ended because `side` hung up, `how`: "ATH", "ATZ", "slave
+    // closed" (the program on its pty went away: DTR dropped), "aborted" (a
+    // key pressed while dialling); side -1 and "dropped" when the network
+    // ended it.
+    void hungUp(int side, const QString& how);
+    // `side`'s CTS dropped (stopped) or rose again.
+    void flowControlChanged(int side, bool stopped);
+
+private:
+    struct Port;
+    struct Call {
+        CallState state = CallState::Idle;
+        int caller = -1;
+        int rings = 0;
+    };
+    enum class Outcome { Ok, Error, Answered };  // of a command line; Answered: its result is sent
+
+    Port& port(int side) { return *m_ports[std::size_t(side)]; }
+    Port& farPort(const Port& p) { return port(1 - sideOf(p)); }
+    int sideOf(const Port& p) const;
+    qint64 now() const { return m_clock.elapsed(); }
+
+    // The ptys and who has them open.
+    bool openPort(int side, QString* error);
+    void readUserOpensAndCloses();
+    void forgetUser(Port& p);
+    void onUserGone(int side);
+    void readPty(Port& p);
+    void takeInput(Port& p, QByteArrayView bytes);
+    void send(Port& p, const QByteArray& bytes);
+    void sendResult(Port& p, modem::ResultCode code);
+    void flushToUser(Port& p);
+
+    // Command mode.
+    void takeCommandByte(Port& p, char c);
+    void runCommandLine(Port& p, const QByteArray& line, bool tooLong);
+    Outcome runCommands(Port& p, QByteArrayView commands);
+    Outcome runAmpersand(Port& p, QByteArrayView commands, qsizetype& at);
+    Outcome runRegister(Port& p, QByteArrayView commands, qsizetype& at);
+    void resetSettings(Port& p);
+    Outcome dial(Port& p, QByteArrayView dialString);
+    Outcome answer(Port& p);
+    Outcome goOnline(Port& p);
+    Outcome hangUp(Port& p, const QString& how);
+    void abortDial(Port& p);
+
+    // Data mode and the "+++" escape.
+    void takeData(Port& p, QByteArrayView bytes);
+    void releaseHeldPluses(Port& p);
+    void onGuardTimeAfterEscape(Port& p);
+    int guardTimeMs(const Port& p) const;
+
+    // The call.
+    void onSetupTimeOver();
+    void ring();
+    void connectCall();
+    void endCall();
+    bool inCall(const Port& p) const;
+    void setCallState(CallState state);
+    void scheduleRandomDrop();
+
+    // The air.
+    void pace();
+    void launch(Port& from, qint64 elapsedMs, qint64 at);
+    void deliver(Port& from, qint64 at);
+    void updateFlowControl(Port& p);
+    qsizetype bufferLimit() const;
+
+    Options m_options;
+    Counters m_counters;
+    Call m_call;
+    std::array<std::unique_ptr<Port>, 2> m_ports;
+    int m_inotify = -1;  // opens and closes of the slaves by their users
+    std::unique_ptr<QSocketNotifier> m_inotifyNotifier;
+    QElapsedTimer m_clock;
+    qint64 m_lastPace = 0;
+    QTimer m_setupTimer;
+    QTimer m_ringTimer;
+    QTimer m_dropTimer;
+    QTimer m_paceTimer;
+    std::mt19937 m_random;
+};

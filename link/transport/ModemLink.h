@@ -1,0 +1,122 @@
+#pragma once
+
+// A satellite phone's modem on a serial port (Hayes/V.250 AT commands):
+// the call is the link. open() initialises the modem and dials (or, on the
+// aircraft's side, waits for RING and answers); opened() is said when
+// CONNECT comes, closed() when the call ends. A call that drops, seen from
+// "NO CARRIER" or from the DCD pin, whichever comes first, is redialled with
+// a doubling delay up to a limit. close(), and destroying the link, hang up
+// with the escape sequence and ATH, so that no call is left open (and
+// billed); the hang-up blocks the link's thread for at most hangUpBound().
+//
+// Every change of the call is said in statusChanged() for the status bar and
+// the event log ("dialling 881612345678", "connected at 9600 bit/s after
+// 14 s", "call ended after 12 min 3 s, 13 min billed, 15.60"); a call that
+// drops and a dial that cannot get through are errors (errorOccurred), once
+// per outage.
+
+#include "link/transport/LinkWrapper.h"
+#include "link/transport/ModemResultCode.h"
+
+#include <QByteArray>
+#include <QElapsedTimer>
+#include <QTimer>
+
+#include <chrono>
+#include <memory>
+
+class SerialLink;
+
+class ModemLink : public LinkWrapper {
+    Q_OBJECT
+
+public:
+    using Milliseconds = std::chrono::milliseconds;
+
+    struct Options {
+        // Sent once the port opens, before dialling or waiting for a call. The
+        // profile needs verbose result codes (V1); the rest is the phone's.
+        QByteArray initString = "ATE0V1&C1&D2";
+        // ATD<number>. Empty: this side answers (RING -> ATA); a modem set
+        // to answer by itself (ATS0=1 in the init string) is followed too.
+        QString number;
+        Milliseconds commandTimeout{5000};  // OK to the init string, to ATA
+        Milliseconds dialTimeout{90000};    // ATD to CONNECT or a refusal: a satellite call takes tens of seconds
+        Milliseconds guardTime{1000};       // silence around "+++": the modem's S12 (50 = 1 s)
+        Milliseconds hangUpTimeout{2000};   // the modem's OK after "+++" (beyond the guard time) and after ATH
+        Milliseconds redialDelay{10000};    // before the first redial; doubled for each next one
+        Milliseconds redialDelayLimit{160000};
+        int redialAttempts = 5;  // in a row, before giving up; 0: never redial
+        // Poll the DCD pin while connected (a real port with &C1). A
+        // pseudo-terminal has no pins: the poll then stops by itself.
+        bool watchCarrierDetect = true;
+        Milliseconds carrierPollInterval{250};
+        // The call's price per started minute, for the operator; 0: not shown.
+        double costPerMinute = 0;
+    };
+
+    enum class CallState {
+        Closed, Initialising, Dialling, AwaitingCall, Answering, Connected, HangingUp, WaitingToRedial, GaveUp
+    };
+    Q_ENUM(CallState)
+
+    ModemLink(std::unique_ptr<SerialLink> serial, Options options, QObject* parent = nullptr);
+    ~ModemLink() override;
+
+    bool isOpen() const override;
+    bool isConnecting() const override;
+    QString description() const override;
+
+    CallState callState() const { return m_state; }
+    // The rate CONNECT gave (0 when none), and calls dialled and answered since open().
+    int connectRate() const { return m_rate; }
+    int calls() const { return m_calls; }
+    // The longest close() or the destructor blocks the link's thread.
+    Milliseconds hangUpBound() const;
+
+public slots:
+    void open() override;
+    void close() override;
+    bool write(const QByteArray& bytes) override;
+
+private:
+    SerialLink& port() const;
+    bool relaysOpenAndClose() const override { return false; }
+    void innerOpened() override;
+    void innerClosed() override;
+    void innerBytesReceived(const QByteArray& bytes) override;
+
+    void setState(CallState state, const QString& status);
+    void sendCommand(const QByteArray& command, CallState state, Milliseconds timeout, const QString& status);
+    void dial();
+    void initialise();
+    void takeLines(const QByteArray& bytes);
+    void result(const modem::Result& result);
+    void connected(int rate);
+    void timedOut();
+    // The call did not come up (BUSY, NO ANSWER, a time limit) or went down.
+    void failed(const QString& what);
+    void fail(const QString& message);  // the outage's first failure is an error, later ones statuses
+    void callEnded(const QString& why);
+    void scheduleRedial(const QString& what);
+    void pollCarrier();
+    void hangUp();
+    void waitFor(Milliseconds duration, bool untilOk);
+    QString callSummary() const;
+
+    Options m_options;
+    CallState m_state = CallState::Closed;
+    bool m_wanted = false;        // open() asked for, close() not since
+    bool m_failureShown = false;  // this outage's error was said; the next ones are statuses
+    bool m_okSeen = false;        // for hangUp(): the modem said OK
+    QByteArray m_line;            // a result line, until its CR LF
+    QByteArray m_dataTail;        // the end of the data so far: NO CARRIER may be split across reads
+    int m_rate = 0;
+    int m_calls = 0;
+    int m_attempt = 0;            // redials in a row since the last call came up
+    QString m_lastFailure;
+    QTimer m_timeout;             // a command's or a dial's time limit
+    QTimer m_redial;
+    QTimer m_carrierPoll;
+    QElapsedTimer m_since;        // this dial's or this call's start
+};

@@ -1,0 +1,450 @@
+// The satellite modem model through its pseudo-terminals, as the console and
+// the aircraft use it: a serial port opened on each side's device, commands
+// written to it, and waits on what it hears. Times are shortened so that the
+// suite takes seconds; nothing here asserts how long anything took.
+#include "link/simulation/SatelliteModem.h"
+
+#include <QSerialPort>
+#include <QSignalSpy>
+#include <QtTest>
+
+#include <memory>
+
+using namespace std::chrono_literals;
+
+namespace {
+
+// Long enough for a loaded machine; a wait ends as soon as what it waits for comes.
+constexpr int kWaitMs = 10000;
+// Longer than the guard time the tests set (ATS12=5: a tenth of a second).
+constexpr int kSilenceMs = 300;
+
+const QByteArray kOk = "\r\nOK\r\n";
+const QByteArray kError = "\r\nERROR\r\n";
+const QByteArray kRing = "\r\nRING\r\n";
+const QByteArray kConnect = "\r\nCONNECT 9600\r\n";
+const QByteArray kNoCarrier = "\r\nNO CARRIER\r\n";
+
+SatelliteModem::Options quickOptions()
+{
+    SatelliteModem::Options o;
+    o.callSetupTime = 150ms;
+    o.oneWayDelay = 100ms;
+    o.airRate = 6000;
+    o.ringInterval = 100ms;
+    o.ringLimit = 50;  // a test answering a ring must not race the last one
+    return o;
+}
+
+// Bytes that show their order: every value, none of them twice in a row.
+QByteArray pattern(int size, int start)
+{
+    QByteArray bytes(size, Qt::Uninitialized);
+    for (int i = 0; i < size; ++i)
+        bytes[i] = char((start + i * 7) % 251);
+    return bytes;
+}
+
+// A program on one side's pty: what it writes, and everything it has heard.
+class Terminal {
+public:
+    explicit Terminal(const QString& device)
+    {
+        m_port.setPortName(device);
+        QObject::connect(&m_port, &QSerialPort::readyRead, [this] {
+            const QByteArray bytes = m_port.readAll();
+            all += bytes;
+            m_unread += bytes;
+        });
+    }
+    bool open() { return m_port.open(QIODevice::ReadWrite); }
+    void close() { m_port.close(); }
+    void send(const QByteArray& bytes) { m_port.write(bytes); }
+
+    // True once `text` has come since what was put aside.
+    bool hears(const QByteArray& text) const { return m_unread.contains(text); }
+    // What came up to the end of `text`, so that the next wait looks past it.
+    void putAside(const QByteArray& text) { m_unread.remove(0, m_unread.indexOf(text) + text.size()); }
+    // Everything heard since the last forget(), none of it put aside.
+    QByteArray all;
+    void forget()
+    {
+        all.clear();
+        m_unread.clear();
+    }
+
+private:
+    QSerialPort m_port;
+    QByteArray m_unread;
+};
+
+// QTRY_VERIFY evaluates its condition once more after it holds: the
+// condition must not change anything, so what was heard is put aside after.
+#define WAIT_HEARD(terminal, text)                                        \
+    do {                                                                  \
+        QTRY_VERIFY_WITH_TIMEOUT((terminal).hears(text), kWaitMs);        \
+        (terminal).putAside(text);                                        \
+    } while (false)
+
+// The model and a program on each side of it.
+struct Bench {
+    explicit Bench(SatelliteModem::Options options = quickOptions()) : modem(options) {}
+
+    bool open()
+    {
+        QString error;
+        if (!modem.open(&error)) {
+            qWarning() << error;
+            return false;
+        }
+        ground = std::make_unique<Terminal>(modem.device(SatelliteModem::Ground));
+        aircraft = std::make_unique<Terminal>(modem.device(SatelliteModem::Aircraft));
+        return ground->open() && aircraft->open();
+    }
+
+    SatelliteModem modem;
+    std::unique_ptr<Terminal> ground;
+    std::unique_ptr<Terminal> aircraft;
+};
+
+// A helper's failed check ends only the helper: this ends the test as well.
+#define CHECKED(call)                     \
+    do {                                  \
+        call;                             \
+        if (QTest::currentTestFailed())   \
+            return;                       \
+    } while (false)
+
+}  // namespace
+
+class TestSatelliteModem : public QObject {
+    Q_OBJECT
+
+    // The aircraft answers by itself; both sides use a short guard time.
+    // Each side hears the call's CONNECT, and nothing before it is kept.
+    void connectCall(Bench& b)
+    {
+        b.aircraft->send("ATE0S0=1S12=5\r");
+        WAIT_HEARD(*b.aircraft, kOk);
+        b.ground->send("ATE0S12=5\r");
+        WAIT_HEARD(*b.ground, kOk);
+        b.ground->send("ATD8816\r");
+        WAIT_HEARD(*b.ground, kConnect);
+        WAIT_HEARD(*b.aircraft, kConnect);
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Connected);
+        b.ground->forget();
+        b.aircraft->forget();
+    }
+
+    // Silence, the escape, and silence again: command mode with the call up.
+    void escape(Terminal& t)
+    {
+        QTest::qWait(kSilenceMs);  // the guard time before: silence is what is being made here
+        t.send(modem::kEscapeSequence);
+        WAIT_HEARD(t, kOk);
+    }
+
+private slots:
+    void atIsOkWithAndWithoutEcho()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        b.ground->send("AT\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "AT\r" + kOk, kWaitMs);
+        b.ground->forget();
+        b.ground->send("ate0\r\n");  // CR LF ends a line as CR does
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "ate0\r" + kOk, kWaitMs);
+        b.ground->forget();
+        b.ground->send("AT\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, kOk, kWaitMs);
+        b.ground->forget();
+        b.ground->send("ATE1\rAT\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, kOk + "AT\r" + kOk, kWaitMs);
+        QVERIFY(b.aircraft->all.isEmpty());
+    }
+
+    void commandsAndErrors()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        QSignalSpy commands(&b.modem, &SatelliteModem::commandReceived);
+        b.aircraft->send("ATE0\r");
+        WAIT_HEARD(*b.aircraft, kOk);
+        b.aircraft->forget();
+        const auto exchange = [&](const QByteArray& line, const QByteArray& answer) {
+            b.aircraft->send(line + '\r');
+            QTRY_COMPARE_WITH_TIMEOUT(b.aircraft->all, answer, kWaitMs);
+            b.aircraft->forget();
+        };
+        exchange("ATJ", kError);
+        exchange("ATV0", kError);  // only verbose results
+        exchange("AT&F&C1&D2&K3", kOk);  // typed with echo off; &F puts it back on
+        exchange("ATE0S0=2S12=5", "ATE0S0=2S12=5\r" + kOk);
+        exchange("ATS0?", "\r\n002\r\n" + kOk);
+        exchange("ats12?", "\r\n005\r\n" + kOk);
+        exchange("ATS0=999", kError);
+        exchange("ATA", kNoCarrier);  // nothing ringing
+        exchange("ATO", kError);      // no call to go back to
+        exchange("ATH", kOk);
+        exchange("ATZ", kOk);
+        exchange("ATS0?", "ATS0?\r\r\n000\r\n" + kOk);
+        QVERIFY(!commands.isEmpty());
+        QCOMPARE(commands.first().at(0).toInt(), int(SatelliteModem::Aircraft));
+        QCOMPARE(commands.at(1).at(1).toByteArray(), QByteArray("ATJ"));
+        QVERIFY(b.ground->all.isEmpty());
+    }
+
+    void dialRingsTheFarSideAndAnswerConnectsBoth()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        QSignalSpy states(&b.modem, &SatelliteModem::callStateChanged);
+        b.ground->send("ATD 00870 776 123456\r");
+        WAIT_HEARD(*b.aircraft, kRing);
+        b.aircraft->send("ATA\r");
+        WAIT_HEARD(*b.aircraft, kConnect);
+        WAIT_HEARD(*b.ground, kConnect);
+        QCOMPARE(b.ground->all, "ATD 00870 776 123456\r" + kConnect);  // no OK after a dial
+        QCOMPARE(b.modem.dialledNumber(SatelliteModem::Ground), QByteArray("00870776123456"));
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Connected);
+        QCOMPARE(states.size(), 3);
+        QCOMPARE(states.at(0).at(0).value<SatelliteModem::CallState>(), SatelliteModem::CallState::Dialling);
+        QCOMPARE(states.at(1).at(0).value<SatelliteModem::CallState>(), SatelliteModem::CallState::Ringing);
+        QCOMPARE(states.at(2).at(0).value<SatelliteModem::CallState>(), SatelliteModem::CallState::Connected);
+        QCOMPARE(b.modem.counters().calls, 1);
+    }
+
+    void autoAnswerAfterTheSetRings()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        b.aircraft->send("ATS0=2\r");
+        WAIT_HEARD(*b.aircraft, kOk);
+        b.ground->send("ATDT5551234\r");
+        WAIT_HEARD(*b.aircraft, kRing + kRing + kConnect);
+        WAIT_HEARD(*b.ground, kConnect);
+        QCOMPARE(b.modem.dialledNumber(SatelliteModem::Ground), QByteArray("5551234"));
+    }
+
+    void theAircraftMayCallTheGround()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        b.aircraft->send("ATDP1\r");
+        WAIT_HEARD(*b.ground, kRing);
+        b.ground->send("ATA\r");
+        WAIT_HEARD(*b.ground, kConnect);
+        WAIT_HEARD(*b.aircraft, kConnect);
+        QCOMPARE(b.modem.dialledNumber(SatelliteModem::Aircraft), QByteArray("1"));
+    }
+
+    void bytesArriveExactAndInOrderBothWays()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        CHECKED(connectCall(b));
+        QByteArray up, down;
+        for (int i = 0; i < 3; ++i) {
+            up += pattern(600, i);
+            down += pattern(600, 100 + i);
+            b.ground->send(pattern(600, i));
+            b.aircraft->send(pattern(600, 100 + i));
+        }
+        QTRY_COMPARE_WITH_TIMEOUT(b.aircraft->all.size(), up.size(), kWaitMs);
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all.size(), down.size(), kWaitMs);
+        QCOMPARE(b.aircraft->all, up);
+        QCOMPARE(b.ground->all, down);
+        QCOMPARE(b.modem.counters().bytesCarried[SatelliteModem::Ground], up.size());
+        QCOMPARE(b.modem.counters().bytesCarried[SatelliteModem::Aircraft], down.size());
+    }
+
+    void escapeKeepsTheCallAndHangUpEndsIt()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        CHECKED(connectCall(b));
+        QSignalSpy hungUp(&b.modem, &SatelliteModem::hungUp);
+        b.ground->send("hello");
+        WAIT_HEARD(*b.aircraft, "hello");
+        CHECKED(escape(*b.ground));
+        b.ground->send("ATO\r");
+        WAIT_HEARD(*b.ground, kConnect);
+        b.ground->send("again");
+        WAIT_HEARD(*b.aircraft, "again");
+        QCOMPARE(b.aircraft->all, QByteArray("helloagain"));  // the escape was not passed on
+        CHECKED(escape(*b.ground));
+        b.ground->send("ATH\r");
+        WAIT_HEARD(*b.ground, kOk);
+        WAIT_HEARD(*b.aircraft, kNoCarrier);
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Idle);
+        QCOMPARE(hungUp.size(), 1);
+        QCOMPARE(hungUp.first().at(0).toInt(), int(SatelliteModem::Ground));
+        QCOMPARE(hungUp.first().at(1).toString(), QStringLiteral("ATH"));
+        b.aircraft->send("AT\r");  // back in command mode, echo as it was set
+        WAIT_HEARD(*b.aircraft, kOk);
+    }
+
+    void plusesWithoutGuardSilenceAreData()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        CHECKED(connectCall(b));
+        b.ground->send("abc+++def");
+        WAIT_HEARD(*b.aircraft, "abc+++def");
+        QTest::qWait(kSilenceMs);  // silence before, but not after: still data
+        b.ground->send("+++xyz");
+        WAIT_HEARD(*b.aircraft, "+++xyz");
+        b.ground->send("more");
+        WAIT_HEARD(*b.aircraft, "more");
+        QCOMPARE(b.aircraft->all, QByteArray("abc+++def+++xyzmore"));
+        QVERIFY(b.ground->all.isEmpty());  // no OK: never in command mode
+    }
+
+    void dropCallGivesBothSidesNoCarrier()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        CHECKED(connectCall(b));
+        QSignalSpy hungUp(&b.modem, &SatelliteModem::hungUp);
+        b.ground->send(pattern(600, 0));  // on its way when the call drops: lost
+        b.modem.dropCall();
+        WAIT_HEARD(*b.ground, kNoCarrier);
+        WAIT_HEARD(*b.aircraft, kNoCarrier);
+        QCOMPARE(hungUp.size(), 1);
+        QCOMPARE(hungUp.first().at(0).toInt(), -1);
+        QCOMPARE(hungUp.first().at(1).toString(), QStringLiteral("dropped"));
+        QCOMPARE(b.modem.counters().drops, 1);
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Idle);
+        b.aircraft->send("AT\r");
+        WAIT_HEARD(*b.aircraft, kOk);
+    }
+
+    void callsDropAtRandomWhenAsked()
+    {
+        SatelliteModem::Options o = quickOptions();
+        o.meanTimeBetweenDrops = 200ms;
+        o.seed = 7;
+        Bench b(o);
+        QVERIFY(b.open());
+        QSignalSpy hungUp(&b.modem, &SatelliteModem::hungUp);
+        // Not connectCall(): the call may be gone before it could look at it.
+        b.aircraft->send("ATS0=1\r");
+        WAIT_HEARD(*b.aircraft, kOk);
+        b.ground->send("ATD1\r");
+        WAIT_HEARD(*b.ground, kConnect + kNoCarrier);
+        WAIT_HEARD(*b.aircraft, kConnect + kNoCarrier);
+        QCOMPARE(b.modem.counters().drops, 1);
+        QCOMPARE(hungUp.size(), 1);
+        QCOMPARE(hungUp.first().at(1).toString(), QStringLiteral("dropped"));
+    }
+
+    void busyFarSide()
+    {
+        SatelliteModem::Options o = quickOptions();
+        o.busy = true;
+        Bench b(o);
+        QVERIFY(b.open());
+        b.ground->send("ATD1\r");
+        WAIT_HEARD(*b.ground, "\r\nBUSY\r\n");
+        QVERIFY(b.aircraft->all.isEmpty());
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Idle);
+    }
+
+    void refusingARingingCallIsBusyForTheCaller()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        b.ground->send("ATD1\r");
+        WAIT_HEARD(*b.aircraft, kRing);
+        b.aircraft->send("ATH\r");
+        WAIT_HEARD(*b.aircraft, kOk);
+        WAIT_HEARD(*b.ground, "\r\nBUSY\r\n");
+    }
+
+    void noAnswerAfterTheRingLimit()
+    {
+        SatelliteModem::Options o = quickOptions();
+        o.ringLimit = 3;
+        Bench b(o);
+        QVERIFY(b.open());
+        b.ground->send("ATD1\r");
+        WAIT_HEARD(*b.ground, "\r\nNO ANSWER\r\n");
+        QCOMPARE(b.aircraft->all.count(kRing), qsizetype(3));
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Idle);
+    }
+
+    void noDialtoneWithoutService()
+    {
+        SatelliteModem::Options o = quickOptions();
+        o.noService = true;
+        Bench b(o);
+        QVERIFY(b.open());
+        QSignalSpy states(&b.modem, &SatelliteModem::callStateChanged);
+        b.ground->send("ATD1\r");
+        WAIT_HEARD(*b.ground, "\r\nNO DIALTONE\r\n");
+        QVERIFY(states.isEmpty());
+    }
+
+    void aKeyWhileDiallingAbandonsTheCall()
+    {
+        SatelliteModem::Options o = quickOptions();
+        o.callSetupTime = 60s;  // the key ends it long before
+        Bench b(o);
+        QVERIFY(b.open());
+        QSignalSpy hungUp(&b.modem, &SatelliteModem::hungUp);
+        b.ground->send("ATD1\r\n");  // the LF is the CR's partner, not a key
+        QTRY_COMPARE_WITH_TIMEOUT(b.modem.callState(), SatelliteModem::CallState::Dialling, kWaitMs);
+        b.ground->send("x");
+        WAIT_HEARD(*b.ground, kNoCarrier);
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Idle);
+        QCOMPARE(hungUp.size(), 1);
+        QCOMPARE(hungUp.first().at(1).toString(), QStringLiteral("aborted"));
+    }
+
+    void aProgramGoingAwayHangsUpAndAnotherMayComeBack()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        CHECKED(connectCall(b));
+        QSignalSpy hungUp(&b.modem, &SatelliteModem::hungUp);
+        b.ground->send(pattern(600, 0));  // unread by anyone when the aircraft's program goes
+        b.aircraft->close();
+        WAIT_HEARD(*b.ground, kNoCarrier);
+        QCOMPARE(hungUp.size(), 1);
+        QCOMPARE(hungUp.first().at(0).toInt(), int(SatelliteModem::Aircraft));
+        QCOMPARE(hungUp.first().at(1).toString(), QStringLiteral("slave closed"));
+
+        // A new program finds a modem in command mode and nothing stale.
+        Terminal again(b.modem.device(SatelliteModem::Aircraft));
+        QVERIFY(again.open());
+        again.send("ATS0?\r");
+        QTRY_COMPARE_WITH_TIMEOUT(again.all, "\r\n001\r\n" + kOk, kWaitMs);  // settings kept: E0, S0=1
+        b.ground->send("ATD2\r");
+        WAIT_HEARD(again, kConnect);
+        WAIT_HEARD(*b.ground, kConnect);
+        b.ground->send("after");
+        WAIT_HEARD(again, "after");
+    }
+
+    void backPressureStopsTheSenderAndLosesNothing()
+    {
+        SatelliteModem::Options o = quickOptions();
+        o.bufferLimit = 256;
+        Bench b(o);
+        QVERIFY(b.open());
+        CHECKED(connectCall(b));
+        QSignalSpy flow(&b.modem, &SatelliteModem::flowControlChanged);
+        const QByteArray bytes = pattern(5000, 3);
+        b.ground->send(bytes);
+        QTRY_VERIFY_WITH_TIMEOUT(!flow.isEmpty(), kWaitMs);
+        QCOMPARE(flow.first().at(0).toInt(), int(SatelliteModem::Ground));
+        QCOMPARE(flow.first().at(1).toBool(), true);
+        QTRY_COMPARE_WITH_TIMEOUT(b.aircraft->all.size(), bytes.size(), kWaitMs);
+        QCOMPARE(b.aircraft->all, bytes);
+        QVERIFY(b.modem.counters().flowControlStops[SatelliteModem::Ground] >= 1);
+        QTRY_COMPARE_WITH_TIMEOUT(flow.last().at(1).toBool(), false, kWaitMs);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestSatelliteModem)
+#include "tst_satmodem.moc"
