@@ -7,6 +7,7 @@
 #include "codec/message/Message.h"
 #include "link/session/ConsoleSession.h"
 #include "link/simulation/SatelliteModem.h"
+#include "link/simulation/SatelliteModemThread.h"
 #include "link/transport/ModemLink.h"
 #include "link/transport/SerialLink.h"
 #include "link/voice/VoiceSerialLink.h"
@@ -89,50 +90,16 @@ QStringList texts(const QSignalSpy& spy)
     return all;
 }
 
-// The model in a thread of its own, as satmodem is a process of its own:
-// a hang-up blocks the link's thread, which in some tests is this one.
-class ModemThread {
+// The model in its own thread (a hang-up blocks this one), with the hang-ups it saw.
+class ModemThread : public SatelliteModemThread {
 public:
-    explicit ModemThread(SatelliteModem::Options options)
+    explicit ModemThread(SatelliteModem::Options options) : SatelliteModemThread(options)
     {
-        m_maker.moveToThread(&m_thread);
-        m_thread.start();
-        // Made in its thread, with its timers.
-        QMetaObject::invokeMethod(
-            &m_maker, [&] { m_model = new SatelliteModem(options); }, Qt::BlockingQueuedConnection);
-        QObject::connect(&m_thread, &QThread::finished, m_model, &QObject::deleteLater);
-        // Queued to this thread, so the list is only ever touched here.
-        QObject::connect(m_model, &SatelliteModem::hungUp, &m_context,
-                         [this](int side, const QString& how) { hangUps.append({side, how}); });
+        connect(this, &SatelliteModemThread::hungUp, this,
+                [this](int side, const QString& how) { hangUps.append({side, how}); });
     }
-    ~ModemThread()
-    {
-        m_thread.quit();
-        m_thread.wait();
-    }
-    bool open(QString* error)
-    {
-        bool opened = false;
-        QMetaObject::invokeMethod(m_model, [&] { opened = m_model->open(error); }, Qt::BlockingQueuedConnection);
-        return opened;
-    }
-    QString device(int side) const { return m_model->device(side); }  // set once by open()
-    SatelliteModem::CallState callState() const
-    {
-        SatelliteModem::CallState state{};
-        QMetaObject::invokeMethod(m_model, [&] { state = m_model->callState(); }, Qt::BlockingQueuedConnection);
-        return state;
-    }
-
-    SatelliteModem* object() const { return m_model; }  // for queued calls only
 
     QList<QPair<int, QString>> hangUps;
-
-private:
-    QThread m_thread;
-    QObject m_maker;  // lives in m_thread
-    QObject m_context;
-    SatelliteModem* m_model = nullptr;  // lives in m_thread
 };
 
 }  // namespace
@@ -455,7 +422,7 @@ void TestModemLink::uasimAnswersTheConsolesCall()
     QVERIFY2(said.contains("answering a call") && said.contains("uasim: command "), said.constData());
 
     QSignalSpy lost(session.controller(), &LinkController::linkLost);
-    QMetaObject::invokeMethod(model.object(), "dropCall", Qt::QueuedConnection);
+    model.dropCall();
     QTRY_VERIFY_WITH_TIMEOUT(lost.count() == 1, kWaitMs);
     QTRY_VERIFY_WITH_TIMEOUT(said.contains("uasim: link lost"), kWaitMs);
     QVERIFY2(said.contains("call dropped (NO CARRIER)"), said.constData());

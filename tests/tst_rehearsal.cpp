@@ -58,6 +58,7 @@ private slots:
     void pacedRunGivesTheSameReport();
     void speedOneRunsTheRealPrograms_data();
     void speedOneRunsTheRealPrograms();
+    void modemCallDroppedAndRedialled();
     void frameLogHoldsBothDirections();
     void keyEnciphersTheRun();
     void samplesHold_data();
@@ -144,7 +145,7 @@ void TestRehearsal::wrongScenariosSayWhere_data()
     QTest::newRow("no duration") << QByteArray("{\"steps\": []}")
                                  << QStringLiteral("s.json:1:1: duration is seconds, more than 0");
     QTest::newRow("transport") << QByteArray("{\"duration\": 5,\n \"transport\": \"tcp\"}")
-                               << QStringLiteral("s.json:2:15: transport is \"udp\" or \"serial\"");
+                               << QStringLiteral("s.json:2:15: transport is \"udp\", \"serial\" or \"modem\"");
     QTest::newRow("unknown fault")
         << QByteArray("{\"duration\": 5, \"steps\": [\n  {\"at\": 1, \"fault\": {\"drop\": 0.1}}]}")
         << QStringLiteral("s.json:2:31: step 1: unknown fault \"drop\" (ber, outage, slip, burst, direction)");
@@ -164,6 +165,16 @@ void TestRehearsal::wrongScenariosSayWhere_data()
     QTest::newRow("within missing")
         << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"expect\": {\"alarm\": \"link-lost\"}}]}")
         << QStringLiteral("s.json:2:22: step 1: this expectation needs \"at\" and \"within\" (seconds)");
+    QTest::newRow("ber through the modem")
+        << QByteArray("{\"transport\": \"modem\", \"duration\": 5, \"steps\": [\n {\"at\": 1, \"fault\": {\"ber\": 0.1}}]}")
+        << QStringLiteral("s.json:2:21: step 1: the modem transport's faults are \"call-drop\" and \"clear\": its bytes "
+                          "go through the modem model, not the fault channel");
+    QTest::newRow("call-drop without the modem")
+        << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 1, \"fault\": \"call-drop\"}]}")
+        << QStringLiteral("s.json:2:21: step 1: call-drop needs \"transport\": \"modem\"");
+    QTest::newRow("the modem faster than real time")
+        << QByteArray("{\"transport\": \"modem\", \"speed\": 10, \"duration\": 5, \"steps\": []}")
+        << QStringLiteral("s.json:1:33: the modem transport runs at speed 1: the modem model keeps real time");
     QTest::newRow("missing plan")
         << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"upload\": \"nowhere.plan\"}]}")
         << QStringLiteral("s.json:2:22: step 1: /nonexistent/nowhere.plan: No such file or directory");
@@ -280,6 +291,40 @@ void TestRehearsal::speedOneRunsTheRealPrograms()
     FrameLogReader reader;
     QVERIFY(reader.open(logPath));
     QVERIFY(reader.count() >= int(r.frames.sentUp));
+}
+
+// The modem transport at speed 1: the console's modem dials uasim --modem
+// through the satellite modem model; the call drops and is redialled, and
+// the verdicts are those of the run in process (an outage for the drop).
+void TestRehearsal::modemCallDroppedAndRedialled()
+{
+    ScenarioRunner inProcess(load(QStringLiteral("call-drop.json")), QString());
+    inProcess.runToEnd();
+    ScenarioRunner real(load(QStringLiteral("call-drop.json")), QString());
+    QSignalSpy finished(&real, &ScenarioRunner::finished);
+    real.start(0, QStringLiteral(RCM_BIN_DIR "/uasim"));
+    QVERIFY(real.realPrograms());
+    QVERIFY(finished.wait(120'000));
+    const RehearsalReport& r = real.report();
+    QCOMPARE(r.transport, QStringLiteral("modem (uasim --modem as a process, the satellite modem model)"));
+    QStringList verdicts;
+    for (const auto& e : r.expectations)
+        verdicts << QStringLiteral("%1 %2").arg(e.step).arg(e.held ? QStringLiteral("held") : e.detail);
+    QStringList inProcessVerdicts;
+    for (const auto& e : inProcess.report().expectations)
+        inProcessVerdicts << QStringLiteral("%1 %2").arg(e.step).arg(e.held ? QStringLiteral("held") : e.detail);
+    QCOMPARE(verdicts, inProcessVerdicts);
+    QCOMPARE(verdicts, (QStringList{QStringLiteral("2 held"), QStringLiteral("4 held"), QStringLiteral("5 held"),
+                                    QStringLiteral("7 held"), QStringLiteral("8 held")}));
+    QCOMPARE(r.frames.wrong, 0);
+    QVERIFY(r.frames.receivedUp > 10);
+    QStringList events;
+    for (const auto& t : r.timeline)
+        events << t.text;
+    QVERIFY2(events.filter(QStringLiteral("console's modem: call dropped (NO CARRIER)")).size() == 1,
+             qPrintable(events.join('\n')));
+    QVERIFY(events.filter(QStringLiteral("console's modem: connected at 9600 bit/s")).size() == 2);
+    QVERIFY(events.contains(QStringLiteral("modem model: the network hung up (dropped)")));
 }
 
 void TestRehearsal::frameLogHoldsBothDirections()

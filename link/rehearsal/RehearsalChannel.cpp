@@ -96,6 +96,10 @@ void RehearsalChannel::apply(const FaultSpec& fault, double nowSeconds)
             case FaultSpec::Kind::Clear:
                 f = Faults{};
                 break;
+            case FaultSpec::Kind::CallDrop:
+                // In process there is no modem: nothing passes until the console has redialled.
+                f.outageUntil = nowSeconds + Scenario::kCallDropOutage;
+                break;
         }
     }
 }

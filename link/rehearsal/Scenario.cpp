@@ -241,10 +241,13 @@ QString ScenarioStep::describe() const
             what = QStringLiteral("set %1").arg(text);
             break;
         case Kind::Fault: {
-            static const char* const names[] = {"ber", "outage", "slip", "burst", "clear"};
-            what = fault.kind == FaultSpec::Kind::Clear
-                       ? QStringLiteral("clear faults")
-                       : QStringLiteral("fault %1 %2").arg(QLatin1String(names[int(fault.kind)])).arg(fault.value);
+            static const char* const names[] = {"ber", "outage", "slip", "burst", "clear", "call-drop"};
+            if (fault.kind == FaultSpec::Kind::Clear)
+                what = QStringLiteral("clear faults");
+            else if (fault.kind == FaultSpec::Kind::CallDrop)
+                what = QStringLiteral("drop the call");
+            else
+                what = QStringLiteral("fault %1 %2").arg(QLatin1String(names[int(fault.kind)])).arg(fault.value);
             if (fault.direction != FaultDirection::Both)
                 what += fault.direction == FaultDirection::Up ? QStringLiteral(" up") : QStringLiteral(" down");
             break;
@@ -327,16 +330,22 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
     scenario.airframe = *airframe;
 
     const QString transport = root.value(QStringLiteral("transport")).toString(QStringLiteral("udp"));
-    if (transport != QLatin1String("udp") && transport != QLatin1String("serial"))
-        return reader.fail(QStringLiteral("/transport"), -1, QStringLiteral("transport is \"udp\" or \"serial\"")),
+    static const QStringList transports = {QStringLiteral("udp"), QStringLiteral("serial"), QStringLiteral("modem")};
+    if (!transports.contains(transport))
+        return reader.fail(QStringLiteral("/transport"), -1,
+                           QStringLiteral("transport is \"udp\", \"serial\" or \"modem\"")),
                std::nullopt;
-    scenario.transport = transport == QLatin1String("udp") ? Transport::Udp : Transport::Serial;
+    scenario.transport = Transport(transports.indexOf(transport));
     if (root.contains(QStringLiteral("key")) && !root.value(QStringLiteral("key")).isBool())
         return reader.fail(QStringLiteral("/key"), -1, QStringLiteral("key is true or false")), std::nullopt;
     scenario.key = root.value(QStringLiteral("key")).toBool();
     scenario.speed = root.value(QStringLiteral("speed")).toDouble(1);
     if (!(scenario.speed >= 1))
         return reader.fail(QStringLiteral("/speed"), -1, QStringLiteral("speed is a number, 1 or more")), std::nullopt;
+    if (scenario.transport == Transport::Modem && scenario.speed != 1)
+        return reader.fail(QStringLiteral("/speed"), -1,
+                           QStringLiteral("the modem transport runs at speed 1: the modem model keeps real time")),
+               std::nullopt;
     scenario.duration = root.value(QStringLiteral("duration")).toDouble(-1);
     if (!(scenario.duration > 0))
         return reader.fail(QStringLiteral("/duration"), -1, QStringLiteral("duration is seconds, more than 0")),
@@ -400,8 +409,16 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
             step.plan = *plan;
         } else if (action == QLatin1String("fault")) {
             step.kind = ScenarioStep::Kind::Fault;
+            const bool modem = scenario.transport == Transport::Modem;
             if (value.toString() == QLatin1String("clear")) {
                 step.fault.kind = FaultSpec::Kind::Clear;
+            } else if (value.toString() == QLatin1String("call-drop")) {
+                if (!modem)
+                    return fail(action, QStringLiteral("call-drop needs \"transport\": \"modem\""));
+                step.fault.kind = FaultSpec::Kind::CallDrop;
+            } else if (modem) {
+                return fail(action, QStringLiteral("the modem transport's faults are \"call-drop\" and \"clear\": "
+                                                   "its bytes go through the modem model, not the fault channel"));
             } else if (value.isObject()) {
                 const QJsonObject fault = value.toObject();
                 static const QStringList kinds = {QStringLiteral("ber"), QStringLiteral("outage"),
@@ -431,7 +448,7 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
                     return fail(QStringLiteral("fault/direction"), QStringLiteral("direction is \"up\" or \"down\""));
                 step.fault.direction = FaultDirection(directions.indexOf(direction));
             } else {
-                return fail(action, QStringLiteral("a fault is an object or \"clear\""));
+                return fail(action, QStringLiteral("a fault is an object, \"clear\" or \"call-drop\""));
             }
         } else {
             if (!value.isObject())

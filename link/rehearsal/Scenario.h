@@ -48,7 +48,10 @@ struct ScenarioError {
 enum class FaultDirection { Both, Up, Down };
 
 struct FaultSpec {
-    enum class Kind { BitErrors, Outage, Slip, Burst, Clear };
+    // CallDrop: the modem transport's satellite call is lost (NO CARRIER at
+    // both ends); the console redials. In process it is an outage of
+    // kCallDropOutage both ways, what the redial takes.
+    enum class Kind { BitErrors, Outage, Slip, Burst, Clear, CallDrop };
     Kind kind = Kind::Clear;
     double value = 0;  // probability, or seconds for an outage
     FaultDirection direction = FaultDirection::Both;
@@ -84,7 +87,14 @@ struct ScenarioStep {
 };
 
 struct Scenario {
-    enum class Transport { Udp, Serial };
+    // Modem: the console dials uasim --modem through the satellite modem
+    // model (SatelliteModem); at speed 1 only, its one fault call-drop.
+    enum class Transport { Udp, Serial, Modem };
+
+    // What the modem transport's model and the console's redial take: a call
+    // set up in 2 s, redialled 10 s after it dropped.
+    static constexpr double kModemCallSetupSeconds = 2;
+    static constexpr double kCallDropOutage = 12;
 
     // Reads a plan file into the bytes sent (MissionPlan lives in the UI
     // library, so the caller passes it in); nothing, with the reason, when it cannot.

@@ -10,7 +10,9 @@
 #include "link/session/VirtualClock.h"
 #include "link/simulation/AircraftResponder.h"
 #include "link/simulation/RehearsalLauncher.h"
+#include "link/simulation/SatelliteModemThread.h"
 #include "link/simulation/SimulatedAircraft.h"
+#include "link/transport/ModemLink.h"
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
 
@@ -23,6 +25,12 @@
 #include <cmath>
 
 namespace {
+
+QString transportName(Scenario::Transport transport)
+{
+    static const char* const names[] = {"udp", "serial", "modem"};
+    return QLatin1String(names[int(transport)]);
+}
 
 // 2026-11-22 08:00:00 UTC: every run starts at the same instant, so that the
 // same scenario gives the same frames.
@@ -65,7 +73,7 @@ ScenarioRunner::ScenarioRunner(Scenario scenario, const QString& frameLogPath, Q
       m_clock(std::make_shared<VirtualClock>(kStartUtcMicros)),
       m_time(m_clock),
       m_startUtcMicros(kStartUtcMicros),
-      m_channel(m_scenario.transport == Scenario::Transport::Serial, kSeed)
+      m_channel(m_scenario.transport != Scenario::Transport::Udp, kSeed)
 {
     m_report.scenarioName = m_scenario.name;
     m_report.scenarioPath = m_scenario.path;
@@ -100,6 +108,24 @@ ScenarioRunner::ScenarioRunner(Scenario scenario, const QString& frameLogPath, Q
 }
 
 // The console's worker on `link`, keyed as the scenario says, on m_time.
+// The console's side of the modem transport: it dials uasim's modem, with
+// the modem model's short guard time, and redials a dropped call.
+std::unique_ptr<Link> ScenarioRunner::consoleModem(const QString& device)
+{
+    ModemLink::Options options;
+    options.number = QStringLiteral("881600000001");
+    options.initString = "ATE0V1&C1&D2S12=5";
+    options.guardTime = std::chrono::milliseconds(150);
+    options.redialDelay = std::chrono::milliseconds(qint64((Scenario::kCallDropOutage - Scenario::kModemCallSetupSeconds) * 1000));
+    auto link = std::make_unique<ModemLink>(
+        std::make_unique<SerialLink>(device, SerialLink::kDefaultBaudRate, SerialLink::FlowControl::RtsCts), options);
+    connect(link.get(), &Link::statusChanged, this, [this](const QString& status) {
+        if (!m_finished)
+            note(QStringLiteral("event"), QStringLiteral("console's modem: ") + status);
+    });
+    return link;
+}
+
 void ScenarioRunner::makeConsole(std::unique_ptr<Link> link)
 {
     LinkWorker::Options consoleOptions;
@@ -126,6 +152,12 @@ void ScenarioRunner::makeConsole(std::unique_ptr<Link> link)
                 p.decided = p.held = true, p.measured = now() - *p.step->at;
     };
     m_console = std::make_unique<LinkWorker>(std::move(link), std::move(m_log), std::move(consoleOptions));
+    connect(m_console.get(), &LinkWorker::frameSent, this, [this](quint32 id) {
+        ++m_sentUp;
+        m_sentIds.push_back(id);
+        if (m_sentIds.size() > 32)
+            m_sentIds.pop_front();
+    });
     connect(m_console.get(), &LinkWorker::messageReceived, this, [this](const ReceivedMessage& r) {
         received(RehearsalChannel::Aircraft, r.message);
         statusReceived(r.message);
@@ -144,8 +176,7 @@ void ScenarioRunner::buildInProcess()
     m_built = true;
     m_report.transport =
         QStringLiteral("%1 (in process)%2")
-            .arg(m_scenario.transport == Scenario::Transport::Serial ? QStringLiteral("serial") : QStringLiteral("udp"),
-                 m_scenario.key ? QStringLiteral(", secure link") : QString());
+            .arg(transportName(m_scenario.transport), m_scenario.key ? QStringLiteral(", secure link") : QString());
     m_aircraft = std::make_unique<SimulatedAircraft>(m_scenario.airframe);
     LinkWorker::Options aircraftOptions;
     aircraftOptions.clock = m_clock;
@@ -199,7 +230,10 @@ void ScenarioRunner::applyStep(const ScenarioStep& step)
             note(QStringLiteral("step"), step.describe());
             break;
         case ScenarioStep::Kind::Fault:
-            m_channel.apply(step.fault, now());
+            if (m_modem && step.fault.kind == FaultSpec::Kind::CallDrop)
+                m_modem->dropCall();
+            else
+                m_channel.apply(step.fault, now());
             note(QStringLiteral("fault"), step.describe());
             break;
         case ScenarioStep::Kind::Upload:
@@ -219,6 +253,8 @@ void ScenarioRunner::applyStep(const ScenarioStep& step)
 void ScenarioRunner::received(RehearsalChannel::End sender, const rcm::Message& message)
 {
     ++m_goodReceived[sender];
+    if (m_modem)
+        return;  // what uasim sent through the modem model is not seen here: counted, not judged
     const auto& recent = m_channel.recentFrames(sender);
     const bool sent = std::any_of(recent.rbegin(), recent.rend(),
                                   [&](const QByteArray& f) { return decoded(f, m_ciphers[sender].get()) == message; });
@@ -266,8 +302,9 @@ void ScenarioRunner::sampleQuality()
 {
     const auto& up = m_channel.counters(RehearsalChannel::Console);
     const auto& down = m_channel.counters(RehearsalChannel::Aircraft);
-    m_perSecond.push_back({up.framesSent, down.framesSent, m_goodReceived[RehearsalChannel::Console],
-                           m_goodReceived[RehearsalChannel::Aircraft]});
+    m_perSecond.push_back({m_modem ? m_sentUp : up.framesSent,
+                           m_modem ? m_goodReceived[RehearsalChannel::Aircraft] : down.framesSent,
+                           m_goodReceived[RehearsalChannel::Console], m_goodReceived[RehearsalChannel::Aircraft]});
     const std::size_t last = m_perSecond.size() - 1;
     const auto& before = m_perSecond[last >= kQualityWindow ? last - kQualityWindow : 0];
     const auto& nowCounts = m_perSecond[last];
@@ -326,6 +363,12 @@ void ScenarioRunner::finish()
     const auto& down = m_channel.counters(RehearsalChannel::Aircraft);
     frames.sentUp = up.framesSent;
     frames.sentDown = down.framesSent;
+    if (m_modem) {
+        // No channel in the path: the console says what it sent; what uasim
+        // sent is not seen, so the frames down are those that came.
+        frames.sentUp = m_sentUp;
+        frames.sentDown = m_goodReceived[RehearsalChannel::Aircraft];
+    }
     frames.receivedUp = m_goodReceived[RehearsalChannel::Console];
     frames.receivedDown = m_goodReceived[RehearsalChannel::Aircraft];
     frames.inOutage = up.framesInOutage + down.framesInOutage;
@@ -401,19 +444,37 @@ void ScenarioRunner::startReal(const QString& uasimProgram)
     m_real = m_built = true;
     m_time = std::make_shared<SystemClock>();
     const bool serial = m_scenario.transport == Scenario::Transport::Serial;
-    m_report.transport = QStringLiteral("%1%2")
-                             .arg(serial ? QStringLiteral("serial (uasim as a process, pseudo-terminal pairs)")
-                                         : QStringLiteral("udp (uasim as a process, real sockets)"),
-                                  m_scenario.key ? QStringLiteral(", secure link") : QString());
+    const bool modem = m_scenario.transport == Scenario::Transport::Modem;
+    static const char* const how[] = {"udp (uasim as a process, real sockets)",
+                                      "serial (uasim as a process, pseudo-terminal pairs)",
+                                      "modem (uasim --modem as a process, the satellite modem model)"};
+    m_report.transport = QStringLiteral("%1%2").arg(QLatin1String(how[int(m_scenario.transport)]),
+                                                    m_scenario.key ? QStringLiteral(", secure link") : QString());
     const auto cannot = [this](const QString& why) {
         m_startUtcMicros = m_time->utcMicros();
         note(QStringLiteral("event"), QStringLiteral("the run cannot start: ") + why);
         finish();
     };
-    m_proxy = std::make_unique<RehearsalProxy>(m_channel);
     QString error;
-    if (!(serial ? m_proxy->openSerial(&error) : m_proxy->open(&error)))
-        return cannot(error);
+    if (modem) {
+        SatelliteModem::Options satellite;
+        satellite.callSetupTime = std::chrono::milliseconds(qint64(Scenario::kModemCallSetupSeconds * 1000));
+        m_modem = std::make_unique<SatelliteModemThread>(satellite);
+        if (!m_modem->open(&error))
+            return cannot(error);
+        connect(m_modem.get(), &SatelliteModemThread::hungUp, this, [this](int side, const QString& how) {
+            if (!m_finished)
+                note(QStringLiteral("event"), QStringLiteral("modem model: %1 hung up (%2)")
+                                                  .arg(side == SatelliteModem::Ground ? QStringLiteral("the console")
+                                                       : side == SatelliteModem::Aircraft ? QStringLiteral("uasim")
+                                                                                          : QStringLiteral("the network"),
+                                                       how));
+        });
+    } else {
+        m_proxy = std::make_unique<RehearsalProxy>(m_channel);
+        if (!(serial ? m_proxy->openSerial(&error) : m_proxy->open(&error)))
+            return cannot(error);
+    }
     QString keyPath;
     if (m_psk) {
         m_keyDir = std::make_unique<QTemporaryDir>();
@@ -426,6 +487,10 @@ void ScenarioRunner::startReal(const QString& uasimProgram)
     m_launcher->setVerbose(true);
     if (serial)
         m_launcher->setSerialDevice(m_proxy->aircraftDevice());
+    if (modem) {
+        m_launcher->setSerialDevice(m_modem->device(SatelliteModem::Aircraft));
+        m_launcher->setModem(true);
+    }
     connect(m_launcher, &RehearsalLauncher::output, this, &ScenarioRunner::uasimSaid);
     connect(m_launcher, &RehearsalLauncher::failed, this, [this, cannot](const QString& why) {
         if (!m_started)
@@ -444,7 +509,7 @@ void ScenarioRunner::uasimSaid(const QString& line)
     if (!m_started && !m_console && listening.match(line).hasMatch()) {
         m_launcher->confirm();
         QString error;
-        const bool serial = m_scenario.transport == Scenario::Transport::Serial;
+        const bool serial = m_scenario.transport != Scenario::Transport::Udp;
         if (!serial && !m_proxy->connectAircraft(m_launcher->port(), &error)) {
             m_startUtcMicros = m_time->utcMicros();
             note(QStringLiteral("event"), QStringLiteral("the run cannot start: ") + error);
@@ -452,7 +517,9 @@ void ScenarioRunner::uasimSaid(const QString& line)
             return;
         }
         m_startUtcMicros = m_time->utcMicros();
-        if (serial)
+        if (m_modem)
+            makeConsole(consoleModem(m_modem->device(SatelliteModem::Ground)));
+        else if (serial)
             makeConsole(std::make_unique<SerialLink>(m_proxy->consoleDevice()));
         else
             makeConsole(std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0,
@@ -469,10 +536,13 @@ void ScenarioRunner::uasimSaid(const QString& line)
     ++m_goodReceived[RehearsalChannel::Console];
     const std::int64_t id = m.captured(1).toLongLong();
     const auto& recent = m_channel.recentFrames(RehearsalChannel::Console);
-    const bool sent = std::any_of(recent.rbegin(), recent.rend(), [&](const QByteArray& f) {
+    const auto sentFrame = [&](const QByteArray& f) {
         const rcm::Message sentMessage = decoded(f, m_ciphers[RehearsalChannel::Console].get());
         return sentMessage.header.has(rcm::ItemId::ID_msg) && sentMessage.header.number(rcm::ItemId::ID_msg) == id;
-    });
+    };
+    // Through the modem model no channel sees the frames: the console's own word for what it sent.
+    const bool sent = m_modem ? std::find(m_sentIds.begin(), m_sentIds.end(), quint32(id)) != m_sentIds.end()
+                              : std::any_of(recent.rbegin(), recent.rend(), sentFrame);
     if (!sent) {
         ++m_report.frames.wrong;
         note(QStringLiteral("event"), QStringLiteral("wrong frame delivered to the aircraft"));

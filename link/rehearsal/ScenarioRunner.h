@@ -23,6 +23,7 @@
 #include <QElapsedTimer>
 #include <QObject>
 
+#include <deque>
 #include <memory>
 #include <optional>
 
@@ -34,6 +35,7 @@ class LinkWorker;
 class QTemporaryDir;
 class RehearsalLauncher;
 class RehearsalProxy;
+class SatelliteModemThread;
 class QTimer;
 class SimulatedAircraft;
 class VirtualClock;
@@ -91,6 +93,7 @@ private:
     void startReal(const QString& uasimProgram);
     void uasimSaid(const QString& line);
     void makeConsole(std::unique_ptr<Link> link);
+    std::unique_ptr<Link> consoleModem(const QString& device);
     void beginPacing();
 
     Scenario m_scenario;
@@ -104,6 +107,9 @@ private:
     std::unique_ptr<QTemporaryDir> m_keyDir;  // real programs, keyed: uasim's key file
     RehearsalLauncher* m_launcher = nullptr;
     std::unique_ptr<RehearsalProxy> m_proxy;
+    std::unique_ptr<SatelliteModemThread> m_modem;  // the modem transport's pair of modems
+    std::deque<quint32> m_sentIds;                   // the modem transport: ID_msg of the console's last frames
+    qint64 m_sentUp = 0;                             // the modem transport: frames the console sent
     std::int64_t m_startUtcMicros;
     RehearsalChannel m_channel;
     std::unique_ptr<SimulatedAircraft> m_aircraft;

@@ -69,6 +69,8 @@ void RehearsalLauncher::launch()
         arguments << QStringLiteral("--udp") << QString::number(m_port);
     else
         arguments << QStringLiteral("--serial") << m_serialDevice;
+    if (m_modem)
+        arguments << QStringLiteral("--modem");
     if (!m_keyPath.isEmpty())
         arguments << QStringLiteral("--key") << m_keyPath;
     if (m_verbose)

@@ -40,6 +40,8 @@ public:
     void setVerbose(bool verbose) { m_verbose = verbose; }
     // uasim on this serial device (a pseudo-terminal) instead of a UDP port.
     void setSerialDevice(const QString& device) { m_serialDevice = device; }
+    // uasim --modem: the serial device is a satellite modem, whose calls it answers.
+    void setModem(bool modem) { m_modem = modem; }
 
     bool isRunning() const { return m_process && m_process->state() != QProcess::NotRunning; }
     quint16 port() const { return m_port; }
@@ -64,6 +66,7 @@ private:
     int m_attempt = 0;
     bool m_confirmed = false;
     bool m_verbose = false;
+    bool m_modem = false;
     QString m_serialDevice;
     QByteArray m_stderr;
 };
