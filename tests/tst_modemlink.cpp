@@ -238,7 +238,7 @@ void TestModemLink::busyBacksOffThenGivesUp()
     QVERIFY(said.contains(QStringLiteral("dialling 881612345678, attempt 3 of 3")));
     QCOMPARE(errors.count(), 2);
     QVERIFY(errors.at(0).at(0).toString().contains(QStringLiteral("redialling in 1 s, attempt 2 of 3")));
-    QVERIFY2(errors.at(1).at(0).toString().contains(QStringLiteral("; gave up after 3 attempts: connect again to dial")),
+    QVERIFY2(errors.at(1).at(0).toString().contains(QStringLiteral("; gave up after 3 attempts; hang up and dial again to retry")),
              qPrintable(errors.at(1).at(0).toString()));
     QVERIFY(!ground->isOpen());
 }

@@ -325,7 +325,7 @@ void ModemLink::scheduleRedial(const QString& what)
     if (m_attempt >= m_options.redialAttempts) {
         m_state = CallState::GaveUp;
         m_failureShown = false;  // giving up is news even after the errors before it
-        fail(tr("%1; gave up after %2 attempts: connect again to dial").arg(what).arg(m_attempt + 1));
+        fail(tr("%1; gave up after %2 attempts; hang up and dial again to retry").arg(what).arg(m_attempt + 1));
         return;
     }
     const Milliseconds doubled(m_options.redialDelay.count() << std::min(m_attempt, 20));
