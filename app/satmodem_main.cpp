@@ -74,9 +74,10 @@ int main(int argc, char* argv[])
     if (!modem.open(&error))
         return say(error, kRunError);
     const QString linkDir = parser.value("link-dir");
-    const auto linkOf = [&](int side) { return linkDir.isEmpty() ? QString() : QDir(linkDir).filePath(kSides[side]); };
+    const auto linkOf = [&](int side) { return QDir(linkDir).filePath(kSides[side]); };
     for (int side = 0; side < 2; ++side) {
-        QFile::remove(linkOf(side));  // left by a run that was killed
+        if (!linkDir.isEmpty())
+            QFile::remove(linkOf(side));  // left by a run that was killed
         if (!linkDir.isEmpty() && !QFile::link(modem.device(side), linkOf(side)))
             return say("cannot make the symlink " + linkOf(side), kRunError);
         std::printf("%s: %s\n", qPrintable(kSides[side]), qPrintable(modem.device(side)));
@@ -92,7 +93,7 @@ int main(int argc, char* argv[])
     QSocketNotifier stopped(::signalfd(-1, &stops, SFD_CLOEXEC), QSocketNotifier::Read);
     QObject::connect(&stopped, &QSocketNotifier::activated, &app, &QCoreApplication::quit);
     const int status = app.exec();
-    for (int side = 0; side < 2; ++side)
+    for (int side = 0; side < 2 && !linkDir.isEmpty(); ++side)
         QFile::remove(linkOf(side));
     return status;
 }

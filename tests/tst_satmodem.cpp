@@ -289,14 +289,16 @@ private slots:
         Bench b;
         QVERIFY(b.open());
         CHECKED(connectCall(b));
-        b.ground->send("abc+++def");
+        b.ground->send("abc+++def");  // no silence either side
         WAIT_HEARD(*b.aircraft, "abc+++def");
-        QTest::qWait(kSilenceMs);  // silence before, but not after: still data
+        b.ground->send("ghi+++");  // silence after, none before
+        WAIT_HEARD(*b.aircraft, "ghi+++");
+        QTest::qWait(kSilenceMs);  // silence before, none after
         b.ground->send("+++xyz");
         WAIT_HEARD(*b.aircraft, "+++xyz");
         b.ground->send("more");
         WAIT_HEARD(*b.aircraft, "more");
-        QCOMPARE(b.aircraft->all, QByteArray("abc+++def+++xyzmore"));
+        QCOMPARE(b.aircraft->all, QByteArray("abc+++defghi++++++xyzmore"));
         QVERIFY(b.ground->all.isEmpty());  // no OK: never in command mode
     }
 

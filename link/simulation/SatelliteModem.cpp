@@ -131,10 +131,13 @@ SatelliteModem::SatelliteModem(Options options, QObject* parent)
     : QObject(parent), m_options(options), m_random(options.seed)
 {
     m_clock.start();
+    for (QTimer* timer : {&m_setupTimer, &m_ringTimer, &m_dropTimer, &m_paceTimer})
+        timer->setParent(this);
     for (int side = 0; side < 2; ++side) {
         m_ports[std::size_t(side)] = std::make_unique<Port>();
         Port& p = port(side);
         p.side = side;
+        p.guard.setParent(this);  // children, so that they follow the model to another thread
         p.guard.setSingleShot(true);
         p.guard.setTimerType(Qt::PreciseTimer);  // a coarse timer may fire early, inside the guard time
         connect(&p.guard, &QTimer::timeout, this, [this, &p] { onGuardTimeAfterEscape(p); });
@@ -176,7 +179,7 @@ bool SatelliteModem::open(QString* error)
         if (!openPort(side, error))
             return false;
     }
-    m_inotifyNotifier = std::make_unique<QSocketNotifier>(m_inotify, QSocketNotifier::Read);
+    m_inotifyNotifier = std::make_unique<QSocketNotifier>(m_inotify, QSocketNotifier::Read, this);
     connect(m_inotifyNotifier.get(), &QSocketNotifier::activated, this, &SatelliteModem::readUserOpensAndCloses);
     return true;
 }
@@ -208,9 +211,9 @@ bool SatelliteModem::openPort(int side, QString* error)
             *error = systemError(QStringLiteral("cannot watch %1").arg(p.device));
         return false;
     }
-    p.readable = std::make_unique<QSocketNotifier>(p.master, QSocketNotifier::Read);
+    p.readable = std::make_unique<QSocketNotifier>(p.master, QSocketNotifier::Read, this);
     connect(p.readable.get(), &QSocketNotifier::activated, this, [this, &p] { readPty(p); });
-    p.writable = std::make_unique<QSocketNotifier>(p.master, QSocketNotifier::Write);
+    p.writable = std::make_unique<QSocketNotifier>(p.master, QSocketNotifier::Write, this);
     p.writable->setEnabled(false);
     connect(p.writable.get(), &QSocketNotifier::activated, this, [this, &p] { flushToUser(p); });
     return true;
