@@ -385,7 +385,7 @@ void TestConsoleSession::joinOfAStuckLinkThreadIsBounded()
     std::atomic<bool> gone = false;
     auto controller = std::make_unique<LinkController>(std::make_unique<StuckLink>(&release, &gone));
     QTest::ignoreMessage(QtWarningMsg,
-                         QRegularExpression(QStringLiteral("^LinkController: waited 5000 ms for the link thread to "
+                         QRegularExpression(QStringLiteral("^LinkController: waited 6000 ms for the link thread to "
                                                            "close its transport and end; it has not")));
     controller.reset();  // returns, the link thread still stuck in the link's destructor
     QVERIFY(!gone);

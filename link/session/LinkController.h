@@ -24,8 +24,8 @@ class LinkController : public LinkEvents {
 public:
     // How long the destructor waits for the link thread to end before it
     // gives up on it (and says so): closing a port or a socket takes far
-    // less; a modem's hang-up (ModemLink::hangUpBound()) about 2 s.
-    static constexpr std::chrono::milliseconds kJoinTimeout{5000};
+    // less; a modem's hang-up about 2 s, at most ModemLink::hangUpBound(), 6 s.
+    static constexpr std::chrono::milliseconds kJoinTimeout{6000};
 
     // The link and the log move to the worker's thread with the worker; the
     // caller keeps no access to them (Link::description() and friends are
