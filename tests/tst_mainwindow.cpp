@@ -23,6 +23,7 @@
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
 #include "link/session/LinkSettings.h"
+#include "link/simulation/SatelliteModemThread.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
 #include "ui/plan/MissionPlan.h"
@@ -131,6 +132,7 @@ private slots:
     void quitEndsTheLinkOnceConfirmed();
     void linkButtonsNeverHoldTheFocus();
     void aModemIsDialledAndHungUp();
+    void satelliteRoundTripIsNoMismatch();
     void fitsASmallScreen();
     void resetLayoutRestoresTheDefault();
     void nightThemeIsKept();
@@ -1092,11 +1094,58 @@ void TestMainWindow::aModemIsDialledAndHungUp()
     QCOMPARE(window.linkSettings()->settings().dialNumber, QStringLiteral("881612345678"));
     QCOMPARE(window.linkSettings()->settings().rtsCts, true);
     QCOMPARE(window.linkSettings()->settings().satelliteDelayMs, 1500);
-    QCOMPARE(window.linkSettings()->settings().oneWayDelay(), std::chrono::milliseconds(1500));
+    QCOMPARE(window.linkSettings()->settings().oneWayDelay(), std::chrono::milliseconds(2000));  // and a frame's airtime
     modem.dialNumber.clear();
     window.linkSettings()->setSettings(modem);
     QVERIFY(buttonTexts().contains(QStringLiteral("Connect")));
     QCOMPARE(window.linkSettings()->settings().oneWayDelay(), std::chrono::milliseconds(0));
+}
+
+// Through the satellite modem model at 1.5 s each way, to uasim --modem: a
+// changed command is answered some 4 to 6 s later, and the panels do not
+// call the reports in between a mismatch. The same reports compared without
+// the delay would have been one.
+void TestMainWindow::satelliteRoundTripIsNoMismatch()
+{
+    SatelliteModem::Options satellite;
+    satellite.callSetupTime = std::chrono::milliseconds(200);
+    satellite.oneWayDelay = std::chrono::milliseconds(1500);
+    SatelliteModemThread model(satellite);
+    QString error;
+    QVERIFY2(model.open(&error), qPrintable(error));
+    QProcess uasim;
+    QByteArray said;
+    connect(&uasim, &QProcess::readyReadStandardError, this, [&] { said += uasim.readAllStandardError(); });
+    uasim.start(QStringLiteral(RCM_BIN_DIR "/uasim"), {QStringLiteral("--serial"), model.device(SatelliteModem::Aircraft),
+                                                      QStringLiteral("--modem"), QStringLiteral("--verbose")});
+    QVERIFY(uasim.waitForStarted());
+    QTRY_VERIFY_WITH_TIMEOUT(said.contains("waiting for a call"), kLinkTimeoutMs);
+
+    MainWindow window(options());
+    LinkSettings modem = *LinkSettings::serial(model.device(SatelliteModem::Ground), QStringLiteral("9600"));
+    modem.dialNumber = QStringLiteral("881612345678");
+    modem.modemInit = QStringLiteral("ATE0V1&C1&D2S12=5");
+    window.connectWith(modem);
+    ReportedState* reported = window.reported();
+    const UnitRef flaps{rcm::UnitKind::Flaps, 0};
+    QTRY_VERIFY_WITH_TIMEOUT(reported->statusFrames() >= 2, 4 * kLinkTimeoutMs);
+    ReportedState direct(window.command());
+    connect(window.session()->controller(), &LinkController::messageReceived, &direct, &ReportedState::onReceived);
+    int mostDirect = 0;
+    bool mismatch = false;
+    connect(reported, &ReportedState::updated, this, [&] {
+        mismatch = mismatch || reported->mismatchPersistent(flaps, rcm::ItemId::F_rudder_set);
+        mostDirect = std::max(mostDirect, direct.mismatchFrames(flaps, rcm::ItemId::F_rudder_set));
+    });
+    window.command()->setNumber(flaps, rcm::ItemId::F_rudder_set, 7);
+    QTRY_VERIFY_WITH_TIMEOUT(reported->value(flaps, rcm::ItemId::F_rudder_set) &&
+                                 reported->value(flaps, rcm::ItemId::F_rudder_set)->number == 7,
+                             4 * kLinkTimeoutMs);
+    QVERIFY(!mismatch);
+    QVERIFY2(mostDirect > ReportedState::kTransientFrames, qPrintable(QString::number(mostDirect)));
+    window.disconnectLink();
+    uasim.terminate();
+    QVERIFY(uasim.waitForFinished());
 }
 
 QTEST_MAIN(TestMainWindow)

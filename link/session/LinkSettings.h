@@ -52,11 +52,14 @@ struct LinkSettings {
     static std::optional<LinkSettings> udpRemote(const QString& hostAndPort, QString* error = nullptr);
     // A modem to dial: a serial port with a number.
     bool dialsModem() const { return transport == Transport::Serial && !dialNumber.trimmed().isEmpty(); }
-    // The delay the link adds one way: the satellite's for a dialled modem, else none worth counting.
+    // From a frame's first byte sent to its last received: for a dialled
+    // modem the satellite's delay and a frame's 600 bytes at 1,200 a second;
+    // else none worth counting.
     std::chrono::milliseconds oneWayDelay() const
     {
-        return std::chrono::milliseconds(dialsModem() ? satelliteDelayMs : 0);
+        return std::chrono::milliseconds(dialsModem() ? satelliteDelayMs + kFrameAirtimeMs : 0);
     }
+    static constexpr int kFrameAirtimeMs = 500;
     // A serial port at a bit rate, as --serial and --baud take them.
     static std::optional<LinkSettings> serial(const QString& port, const QString& baudRate, QString* error = nullptr);
 

@@ -120,7 +120,8 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     m_satelliteDelay->setSingleStep(100);
     m_satelliteDelay->setSuffix(tr(" ms"));
     m_satelliteDelay->setToolTip(tr("The satellite's delay one way: a reported value is called a mismatch only "
-                                    "once twice this has passed since the command changed"));
+                                    "once twice this and a frame's airtime (0.5 s) have passed since the command "
+                                    "changed"));
     serial->addRow(tr("Delay, one way"), m_satelliteDelay);
 
     m_pages->addWidget(udpPage);
