@@ -4,6 +4,7 @@
 // NO ANSWER backing off, and the hang-up on close, on destruction and when
 // the console session stops. Times are shortened so the suite takes seconds;
 // nothing here asserts how long anything took.
+#include "QuickSatellite.h"
 #include "codec/message/Message.h"
 #include "link/session/ConsoleSession.h"
 #include "link/simulation/SatelliteModem.h"
@@ -35,13 +36,7 @@ const QString kNumber = QStringLiteral("881612345678");
 
 SatelliteModem::Options quickModem()
 {
-    SatelliteModem::Options o;
-    o.callSetupTime = 150ms;
-    o.oneWayDelay = 100ms;
-    o.airRate = 6000;
-    o.ringInterval = 100ms;
-    o.ringLimit = 3;
-    return o;
+    return rcm::test::quickSatellite(3);  // an unanswered call rings out quickly
 }
 
 // The modems' guard time is S12=5, a tenth of a second; the links keep 150 ms.

@@ -2,6 +2,7 @@
 // the aircraft use it: a serial port opened on each side's device, commands
 // written to it, and waits on what it hears. Times are shortened so that the
 // suite takes seconds; nothing here asserts how long anything took.
+#include "QuickSatellite.h"
 #include "link/simulation/SatelliteModem.h"
 
 #include <QSerialPort>
@@ -27,13 +28,7 @@ const QByteArray kNoCarrier = "\r\nNO CARRIER\r\n";
 
 SatelliteModem::Options quickOptions()
 {
-    SatelliteModem::Options o;
-    o.callSetupTime = 150ms;
-    o.oneWayDelay = 100ms;
-    o.airRate = 6000;
-    o.ringInterval = 100ms;
-    o.ringLimit = 50;  // a test answering a ring must not race the last one
-    return o;
+    return rcm::test::quickSatellite(50);  // a test answering a ring must not race the last one
 }
 
 // Bytes that show their order: every value, none of them twice in a row.

@@ -1,6 +1,7 @@
 #include "link/rehearsal/RehearsalProxy.h"
 
 #include "codec/frame/Frame.h"
+#include "link/simulation/PseudoTerminal.h"
 #include "link/transport/UdpLink.h"
 
 #include <cerrno>
@@ -52,18 +53,12 @@ bool RehearsalProxy::openSerial(QString* error)
 {
     for (int side = 0; side < 2; ++side) {
         Pty& p = m_ptys[std::size_t(side)];
-        char name[256] = {};
-        // Raw from the start: a new pty echoes, and would send a program's
-        // bytes back to it until the other program set its end raw.
-        termios raw{};
-        ::cfmakeraw(&raw);
-        if (::openpty(&p.master, &p.slave, name, &raw, nullptr) != 0) {
-            if (error)
-                *error = QStringLiteral("cannot open a pseudo-terminal: %1").arg(QString::fromLocal8Bit(strerror(errno)));
+        PseudoTerminal pty;
+        if (!openRawPseudoTerminal(pty, error))
             return false;
-        }
-        ::fcntl(p.master, F_SETFL, ::fcntl(p.master, F_GETFL) | O_NONBLOCK);
-        p.device = QString::fromLocal8Bit(name);
+        p.master = pty.master;
+        p.slave = pty.slave;
+        p.device = pty.device;
         p.notifier = std::make_unique<QSocketNotifier>(p.master, QSocketNotifier::Read);
         connect(p.notifier.get(), &QSocketNotifier::activated, this, [this, side] { readPty(side); });
     }

@@ -1,5 +1,7 @@
 #include "link/simulation/SatelliteModem.h"
 
+#include "link/simulation/PseudoTerminal.h"
+
 #include <QSocketNotifier>
 
 #include <algorithm>
@@ -187,25 +189,15 @@ bool SatelliteModem::open(QString* error)
 bool SatelliteModem::openPort(int side, QString* error)
 {
     Port& p = port(side);
-    char name[256] = {};
-    // Raw from the start: a new pty echoes, and would hand a program's bytes
-    // back to it as if the modem had said them.
-    termios raw{};
-    ::cfmakeraw(&raw);
-    if (::openpty(&p.master, &p.slave, name, &raw, nullptr) != 0) {
-        if (error)
-            *error = systemError(QStringLiteral("cannot open a pseudo-terminal"));
+    PseudoTerminal pty;
+    if (!openRawPseudoTerminal(pty, error))
         return false;
-    }
-    // Programs the host starts (uasim in a rehearsal) must not hold the
-    // model's ends: the slave would never look closed.
-    ::fcntl(p.master, F_SETFD, FD_CLOEXEC);
-    ::fcntl(p.slave, F_SETFD, FD_CLOEXEC);
-    ::fcntl(p.master, F_SETFL, ::fcntl(p.master, F_GETFL) | O_NONBLOCK);
-    p.device = QString::fromLocal8Bit(name);
+    p.master = pty.master;
+    p.slave = pty.slave;
+    p.device = pty.device;
     // Holding the slave hides a program's going away from the master, so its
     // opens and closes are counted instead.
-    p.watch = ::inotify_add_watch(m_inotify, name, IN_OPEN | IN_CLOSE);
+    p.watch = ::inotify_add_watch(m_inotify, p.device.toLocal8Bit().constData(), IN_OPEN | IN_CLOSE);
     if (p.watch < 0) {
         if (error)
             *error = systemError(QStringLiteral("cannot watch %1").arg(p.device));
