@@ -90,6 +90,7 @@ void ConsoleSession::connectWith(const LinkSettings& settings)
         return;
     }
     // The running link goes on until the key is accepted.
+    m_preparedDelay = settings.oneWayDelay();
     prepare(std::move(link), Kind::Live, settings.summary(), settings.keyPath);
 }
 
@@ -260,6 +261,8 @@ void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, cons
 
     LinkWorker::Options options;
     options.secure = std::move(opened.key);
+    // Over a satellite the first frame comes a one-way delay later than over a cable.
+    options.silenceTimeout += kind == Kind::Live ? m_preparedDelay : std::chrono::milliseconds(0);
     if (m_filterOptions)
         options = m_filterOptions(std::move(options));
     if (m_wrapLink)

@@ -26,6 +26,7 @@
 #include <QObject>
 #include <QPointer>
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -179,4 +180,5 @@ private:
     double m_replaySpeed = 1.0;
     bool m_replayPaused = false;
     bool m_datagram = true;
+    std::chrono::milliseconds m_preparedDelay{0};  // the live link being prepared: its one-way delay
 };
