@@ -259,10 +259,19 @@ public:
         if (QThread::currentThread() != thread())
             return QApplication::notify(receiver, event);
         if (m_depth++ > 0 || !m_on) {
+            // Inside a repaint: which widgets it painted, and for how long.
+            const bool paint = m_on && event->type() == QEvent::Paint;
+            const qint64 paintStart = paint ? threadCpuNanos() : 0;
+            const QString painted = paint ? QStringLiteral("%1 %2").arg(receiver->metaObject()->className(),
+                                                                          receiver->objectName())
+                                          : QString();
             const bool handled = QApplication::notify(receiver, event);
+            if (paint)
+                m_paints[painted] += threadCpuNanos() - paintStart;
             --m_depth;
             return handled;
         }
+        m_paints.clear();
         const qint64 start = threadCpuNanos();
         const int type = event->type();  // the event may be gone afterwards
         const QString what = QStringLiteral("%1 to a %2").arg(type).arg(receiver->metaObject()->className());
@@ -272,6 +281,21 @@ public:
         if (spent > m_longest) {
             m_longest = spent;
             m_longestWhat = what;
+        }
+        if (spent > kSpikeNanos) {
+            // What a spike painted: the costliest widgets first.
+            std::vector<std::pair<qint64, QString>> paints;
+            for (auto it = m_paints.cbegin(); it != m_paints.cend(); ++it)
+                paints.emplace_back(it.value(), it.key());
+            std::sort(paints.rbegin(), paints.rend());
+            QStringList parts;
+            for (std::size_t i = 0; i < std::min<std::size_t>(6, paints.size()); ++i)
+                parts << QStringLiteral("%1 %2 ms").arg(paints[i].second).arg(double(paints[i].first) / 1e6, 0, 'f', 2);
+            m_spikes << QStringLiteral("%1 ms, %2, %3 widgets painted: %4")
+                            .arg(double(spent) / 1e6, 0, 'f', 2)
+                            .arg(what)
+                            .arg(paints.size())
+                            .arg(parts.join(QStringLiteral(", ")));
         }
         if (spent > kSlowEventNanos) {
             auto& [count, longest] = m_slow[what];
@@ -286,7 +310,10 @@ public:
         m_longest = 0;
         m_longestWhat.clear();
         m_slow.clear();
+        m_spikes.clear();
     }
+    // Events over kSpikeNanos, with the widgets they painted.
+    QStringList spikes() const { return m_spikes; }
     QString report() const
     {
         QStringList slow;
@@ -310,11 +337,14 @@ private:
         return qint64(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
     }
     static constexpr qint64 kSlowEventNanos = 4'000'000;
+    static constexpr qint64 kSpikeNanos = 8'000'000;
     int m_depth = 0;
     bool m_on = false;
     qint64 m_longest = 0;
     QString m_longestWhat;
     QMap<QString, std::pair<int, qint64>> m_slow;  // events over kSlowEventNanos: how many, the longest
+    QMap<QString, qint64> m_paints;                // paint time by widget, in the event being handled
+    QStringList m_spikes;
 };
 
 // Opening the log (indexing, the log view's rows) until the first record
@@ -342,10 +372,14 @@ int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int sec
             say(QStringLiteral("opening a %1-frame log for replay, until its first frame played: %2; %3")
                     .arg(frames)
                     .arg(probe->report(), app.report()));
+            for (const QString& spike : app.spikes())
+                say(QStringLiteral("  event over 8 ms: ") + spike);
             probe = std::make_unique<StallProbe>();
             app.restart();
             QTimer::singleShot(seconds * 1000, &app, [&] {
                 say(QStringLiteral("%1 s of replay at 10x: %2; %3").arg(seconds).arg(probe->report(), app.report()));
+                for (const QString& spike : app.spikes())
+                    say(QStringLiteral("  event over 8 ms: ") + spike);
                 QCoreApplication::quit();
             });
         });

@@ -46,7 +46,22 @@ QSize LinkQualityPlot::minimumSizeHint() const
 
 void LinkQualityPlot::setNow(qint64 utcMicros)
 {
+    // The overview calls this every second, but only the minute at the right
+    // edge and the bars are drawn: the same picture is not painted again
+    // (a repaint of the plot is some milliseconds of the GUI thread).
     m_now = utcMicros;
+    Drawn drawn;
+    const auto& minutes = m_history->minutes();
+    const qint64 now = m_now ? m_now : (minutes.empty() ? 0 : minutes.back().startUtcMicros);
+    drawn.lastMinute = now - now % kMinuteMicros;
+    if (!minutes.empty()) {
+        drawn.first = minutes.front();
+        drawn.last = minutes.back();
+        drawn.count = minutes.size();
+    }
+    if (drawn == m_drawn)
+        return;
+    m_drawn = drawn;
     update();
 }
 

@@ -6,10 +6,12 @@
 // from a LinkQualityHistory; the window's palette gives the text and axes,
 // so it reads in the day and night themes alike.
 
+#include "ui/overview/LinkQualityHistory.h"
+
 #include <QColor>
 #include <QWidget>
 
-class LinkQualityHistory;
+#include <cstddef>
 
 class LinkQualityPlot : public QWidget {
     Q_OBJECT
@@ -29,6 +31,16 @@ protected:
     void paintEvent(QPaintEvent* event) override;
 
 private:
+    // What a picture shows: the minutes change only at the ends.
+    struct Drawn {
+        qint64 lastMinute = -1;
+        LinkQualityHistory::Minute first;
+        LinkQualityHistory::Minute last;
+        std::size_t count = 0;
+        friend bool operator==(const Drawn&, const Drawn&) = default;
+    };
+
     const LinkQualityHistory* m_history;
     qint64 m_now = 0;
+    Drawn m_drawn;
 };
