@@ -56,6 +56,7 @@
 #include <QScrollBar>
 #include <QTabBar>
 #include <QTabWidget>
+#include <QAbstractSpinBox>
 #include <QWheelEvent>
 #include <QComboBox>
 #include <QTableWidget>
@@ -1219,6 +1220,14 @@ void TestMainWindow::fitsASmallScreen()
                       Qt::NoModifier, Qt::NoScrollPhase, false);
     QApplication::sendEvent(transport, &wheel);
     QCOMPARE(transport->currentIndex(), before);
+    // Nor any number in it: bit rate, ports, the modem's cost a minute and delay.
+    const LinkSettings settings = window.linkSettings()->settings();
+    for (QAbstractSpinBox* box : window.linkSettings()->findChildren<QAbstractSpinBox*>()) {
+        QWheelEvent up(QPointF(5, 5), box->mapToGlobal(QPointF(5, 5)), QPoint(), QPoint(0, 120), Qt::NoButton,
+                       Qt::NoModifier, Qt::NoScrollPhase, false);
+        QApplication::sendEvent(box, &up);
+    }
+    QVERIFY(window.linkSettings()->settings() == settings);
 }
 
 void TestMainWindow::resetLayoutRestoresTheDefault()
