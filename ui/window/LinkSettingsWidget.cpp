@@ -147,7 +147,7 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     layout->addRow(tr("Key file"), key);
 
     connect(m_transport, &QComboBox::currentIndexChanged, this, [this](int index) {
-        m_pages->setCurrentIndex(index);
+        showPage(index);
         if (index == 1 && m_port->count() == 0)
             refreshPorts();
         emit changed();
@@ -195,7 +195,7 @@ LinkSettings LinkSettingsWidget::settings() const
 void LinkSettingsWidget::setSettings(const LinkSettings& s)
 {
     m_transport->setCurrentIndex(m_transport->findData(int(s.transport)));
-    m_pages->setCurrentIndex(m_transport->currentIndex());
+    showPage(m_transport->currentIndex());
     const int port = m_port->findData(s.serialPort);
     if (port >= 0)
         m_port->setCurrentIndex(port);
@@ -212,6 +212,18 @@ void LinkSettingsWidget::setSettings(const LinkSettings& s)
     m_rtsCts->setChecked(s.rtsCts);
     m_callCost->setValue(s.callCostPerMinute);
     m_satelliteDelay->setValue(s.satelliteDelayMs);
+}
+
+void LinkSettingsWidget::showPage(int index)
+{
+    // A stacked widget is as tall as its tallest page; the UDP page must not
+    // keep the serial page's modem rows as blank space under it.
+    for (int i = 0; i < m_pages->count(); ++i) {
+        const QSizePolicy::Policy policy = i == index ? QSizePolicy::Preferred : QSizePolicy::Ignored;
+        m_pages->widget(i)->setSizePolicy(policy, policy);
+    }
+    m_pages->setCurrentIndex(index);
+    m_pages->updateGeometry();
 }
 
 void LinkSettingsWidget::chooseKeyFile()

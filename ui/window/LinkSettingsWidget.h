@@ -40,6 +40,8 @@ signals:
     void changed();
 
 private:
+    void showPage(int index);
+
     QComboBox* m_transport;
     QStackedWidget* m_pages;
     QComboBox* m_port;
