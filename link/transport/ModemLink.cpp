@@ -5,7 +5,6 @@
 #include <QDeadlineTimer>
 
 #include <algorithm>
-#include <cmath>
 
 namespace {
 
@@ -321,7 +320,6 @@ void ModemLink::callEnded(const QString& why)
 
 void ModemLink::scheduleRedial(const QString& what)
 {
-    m_lastFailure = what;
     if (m_attempt >= m_options.redialAttempts) {
         m_state = CallState::GaveUp;
         m_failureShown = false;  // giving up is news even after the errors before it

@@ -114,7 +114,6 @@ private:
     int m_rate = 0;
     int m_calls = 0;
     int m_attempt = 0;            // redials in a row since the last call came up
-    QString m_lastFailure;
     QTimer m_timeout;             // a command's or a dial's time limit
     QTimer m_redial;
     QTimer m_carrierPoll;
