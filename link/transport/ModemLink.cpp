@@ -339,11 +339,12 @@ void ModemLink::scheduleRedial(const QString& what)
 
 void ModemLink::fail(const QString& message)
 {
-    emit statusChanged(message);
+    // The error first: who hears both says the status again only when it is not that error.
     if (!m_failureShown) {
         m_failureShown = true;
         emit errorOccurred(message);
     }
+    emit statusChanged(message);
 }
 
 void ModemLink::pollCarrier()
