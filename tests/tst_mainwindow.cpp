@@ -26,7 +26,9 @@
 #include "link/simulation/SatelliteModemThread.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
-#include "ui/plan/MissionPlan.h"
+#include "link/plan/MissionPlan.h"
+#include "link/plan/PlanFile.h"
+#include "link/plan/QgcPlanFile.h"
 #include "ui/window/StatusBarWidget.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/alerts/ErrorBanner.h"
@@ -342,7 +344,7 @@ void TestMainWindow::importsTheSamplePlan()
 void TestMainWindow::planBytes()
 {
     QString error;
-    const auto plan = MissionPlan::load(kSamplePlan, &error);
+    const auto plan = PlanFile::load(kSamplePlan, &error);
     QVERIFY2(plan, qPrintable(error));
     const QByteArray bytes = plan->toBytes();
     QCOMPARE(bytes.size(), MissionPlan::kHeaderBytes + 9 * MissionPlan::kItemBytes);
@@ -377,14 +379,14 @@ void TestMainWindow::planBytes()
     QVERIFY(upload.start(bytes));
     QCOMPARE(upload.progress().total, 2);
     QVERIFY(!MissionPlan::fromBytes(bytes.left(100), &error));
-    QCOMPARE(error, QStringLiteral("100 bytes for 9 items; expected 322"));
+    QCOMPARE(error, QStringLiteral("byte 84: mission item 3 of 9 needs 34 bytes; 16 left"));
 }
 
 void TestMainWindow::refusesPlansItCannotSend()
 {
     const auto error = [](const QByteArray& json) {
         QString e;
-        return MissionPlan::fromQgcJson(json, QStringLiteral("p.plan"), &e) ? QString() : e;
+        return QgcPlanFile::read(json, QStringLiteral("p.plan"), &e) ? QString() : e;
     };
     QCOMPARE(error(R"({"fileType": "Plan", "mission": {"items": [{"type": "ComplexItem",
              "complexItemType": "survey"}]}})"),

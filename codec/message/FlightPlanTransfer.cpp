@@ -70,15 +70,17 @@ FlightPlanSection FlightPlanAcknowledgement::toSection() const
     s.sectionId = kAcknowledgementSectionId;
     s.data.resize(FlightPlanDescriptor::kSize);
     descriptor.write(std::span<std::uint8_t, FlightPlanDescriptor::kSize>(s.data.data(), FlightPlanDescriptor::kSize));
+    s.data.insert(s.data.end(), report.begin(), report.begin() + std::ptrdiff_t(std::min(report.size(), kMaxReport)));
     return s;
 }
 
 std::optional<FlightPlanAcknowledgement> FlightPlanAcknowledgement::read(const FlightPlanSection& section)
 {
     if (section.sectionId != kAcknowledgementSectionId || section.planId == 0 ||
-        section.data.size() != FlightPlanDescriptor::kSize)
+        section.data.size() < FlightPlanDescriptor::kSize)
         return std::nullopt;
-    return FlightPlanAcknowledgement{section.planId, *FlightPlanDescriptor::read(section.data)};
+    return FlightPlanAcknowledgement{section.planId, *FlightPlanDescriptor::read(section.data),
+                                     {section.data.begin() + FlightPlanDescriptor::kSize, section.data.end()}};
 }
 
 FlightPlanUploader::FlightPlanUploader(std::uint32_t planId, std::span<const std::uint8_t> plan,
@@ -152,6 +154,7 @@ bool FlightPlanUploader::handleReply(const FlightPlanSection& reply)
     if (!ack || ack->planId != m_planId || ack->descriptor != m_descriptor)
         return false;
     m_state = State::Acknowledged;
+    m_report = ack->report;
     return true;
 }
 

@@ -50,7 +50,10 @@
 //     0xFFFF  acknowledgement, sent by the aircraft in BLOCK 2 of its status
 //             frames: flight_plan_ID = the plan received complete and CRC
 //             checked, data = that plan's 10-byte descriptor, echoed so that
-//             the sender also knows the aircraft holds the same content. The
+//             the sender also knows the aircraft holds the same content,
+//             then optionally up to 205 bytes of report: what the aircraft
+//             understood the plan to hold, defined by the plan's format
+//             (codec/plan/PlanContents.h), none for a format 1 plan. The
 //             aircraft repeats it in every status frame until a later plan is
 //             complete; its BLOCK 2 is empty before the first one.
 //     others  reserved: a receiver ignores them.
@@ -89,8 +92,10 @@ struct FlightPlanDescriptor {
 
 // The aircraft's "plan received" report (section ID 0xFFFF).
 struct FlightPlanAcknowledgement {
+    static constexpr std::size_t kMaxReport = FlightPlanSection::kMaxData - FlightPlanDescriptor::kSize;
     std::uint32_t planId = 0;
     FlightPlanDescriptor descriptor;
+    std::vector<std::uint8_t> report;  // opaque here; empty when the aircraft said nothing of the contents
 
     FlightPlanSection toSection() const;
     // Nothing when `section` is not a well-formed acknowledgement.
@@ -131,6 +136,8 @@ public:
     // Feed BLOCK 2 of every frame received from the aircraft. True when it
     // acknowledges this plan with the same descriptor; sending then stops.
     bool handleReply(const FlightPlanSection& reply);
+    // What the acknowledgement said of the plan's contents (see FlightPlanAcknowledgement).
+    const std::vector<std::uint8_t>& acknowledgedReport() const { return m_report; }
 
 private:
     std::uint32_t m_planId;
@@ -141,6 +148,7 @@ private:
     std::size_t m_sent = 0;
     int m_pass = 0;
     State m_state = State::Sending;
+    std::vector<std::uint8_t> m_report;
 };
 
 // The receiving side: fed BLOCK 2 of every frame, says how the plan stands.
@@ -170,7 +178,7 @@ public:
     Result add(const FlightPlanSection& section);
 
     // The acknowledgement of the plan last completed, for the aircraft's
-    // status frames.
+    // status frames; its report is the caller's to add.
     std::optional<FlightPlanAcknowledgement> lastComplete() const { return m_lastComplete; }
     // The plan being collected, 0 when none.
     std::uint32_t currentPlanId() const { return m_planId; }

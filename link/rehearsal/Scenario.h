@@ -96,8 +96,8 @@ struct Scenario {
     static constexpr double kModemCallSetupSeconds = 2;
     static constexpr double kCallDropOutage = 12;
 
-    // Reads a plan file into the bytes sent (MissionPlan lives in the UI
-    // library, so the caller passes it in); nothing, with the reason, when it cannot.
+    // Reads a plan file into the bytes sent (the caller chooses the reader:
+    // link/plan/PlanFile.h for every format); nothing, with the reason, when it cannot.
     using PlanLoader = std::function<std::optional<QByteArray>(const QString& path, QString* error)>;
 
     QString path;

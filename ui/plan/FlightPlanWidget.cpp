@@ -1,6 +1,7 @@
 #include "ui/plan/FlightPlanWidget.h"
 
 #include "codec/message/FlightPlanTransfer.h"
+#include "link/plan/PlanFile.h"
 
 #include <QFileDialog>
 #include <QFileInfo>
@@ -94,7 +95,7 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
 bool FlightPlanWidget::loadPlan(const QString& path, QString* error)
 {
     QString reason;
-    std::optional<MissionPlan> plan = MissionPlan::load(path, &reason);
+    std::optional<MissionPlan> plan = PlanFile::load(path, &reason);
     if (!plan) {
         m_state->setText(QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(reason.toHtmlEscaped()));
         emit message(reason);

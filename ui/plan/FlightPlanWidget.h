@@ -5,7 +5,7 @@
 // the progress of each pass and the aircraft's acknowledgement.
 
 #include "ui/plan/FlightPlanUpload.h"
-#include "ui/plan/MissionPlan.h"
+#include "link/plan/MissionPlan.h"
 
 #include <QWidget>
 

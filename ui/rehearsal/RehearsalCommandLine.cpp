@@ -1,7 +1,7 @@
 #include "ui/rehearsal/RehearsalCommandLine.h"
 
 #include "link/rehearsal/ScenarioRunner.h"
-#include "ui/plan/MissionPlan.h"
+#include "link/plan/PlanFile.h"
 
 #include <QDir>
 #include <QEventLoop>
@@ -43,8 +43,8 @@ bool RehearsalCommandLine::requested() const
 Scenario::PlanLoader RehearsalCommandLine::planLoader()
 {
     return [](const QString& path, QString* error) -> std::optional<QByteArray> {
-        const auto plan = MissionPlan::load(path, error);
-        return plan ? std::optional(plan->toBytes()) : std::nullopt;
+        const auto plan = PlanFile::load(path, error);
+        return plan ? plan->encode(error) : std::nullopt;
     };
 }
 

@@ -1,0 +1,254 @@
+#include "link/plan/MissionPlan.h"
+
+#include "codec/plan/PlanContents.h"
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace {
+
+constexpr double kDegreeSteps = 1e7;
+constexpr double kMillimetres = 1e3;
+
+// The int32 field scaled by `steps`, or nothing when the value does not fit.
+std::optional<std::int32_t> toFixed(double value, double steps)
+{
+    const double scaled = std::round(value * steps);
+    if (!std::isfinite(scaled) || scaled <= double(std::numeric_limits<std::int32_t>::min()) ||
+        scaled > double(std::numeric_limits<std::int32_t>::max()))
+        return std::nullopt;
+    return std::int32_t(scaled);
+}
+
+std::optional<double> fromFixed(std::int32_t value, double steps)
+{
+    return value == rcm::plan::kNotGiven ? std::nullopt : std::optional<double>(value / steps);
+}
+
+class Conversion {
+public:
+    // The field, kNotGiven for no value; records the first value out of range.
+    std::int32_t fixed(const std::optional<double>& value, double steps, const QString& what)
+    {
+        if (!value)
+            return rcm::plan::kNotGiven;
+        const auto f = toFixed(*value, steps);
+        if (!f && m_error.isEmpty())
+            m_error = QStringLiteral("%1 (%2) is out of the range the plan bytes hold").arg(what).arg(*value);
+        return f.value_or(0);
+    }
+    rcm::plan::Position position(const GeoPoint& p, const QString& what)
+    {
+        return {fixed(p.latitude, kDegreeSteps, what + QStringLiteral(" latitude")),
+                fixed(p.longitude, kDegreeSteps, what + QStringLiteral(" longitude"))};
+    }
+    const QString& error() const { return m_error; }
+
+private:
+    QString m_error;
+};
+
+GeoPoint toGeo(const rcm::plan::Position& p)
+{
+    return {p.latitude / kDegreeSteps, p.longitude / kDegreeSteps};
+}
+
+}  // namespace
+
+QString MissionItem::commandName() const
+{
+    switch (command) {
+        case 16:
+            return QStringLiteral("NAV_WAYPOINT");
+        case 17:
+            return QStringLiteral("NAV_LOITER_UNLIM");
+        case 18:
+            return QStringLiteral("NAV_LOITER_TURNS");
+        case 19:
+            return QStringLiteral("NAV_LOITER_TIME");
+        case 20:
+            return QStringLiteral("NAV_RETURN_TO_LAUNCH");
+        case 21:
+            return QStringLiteral("NAV_LAND");
+        case 22:
+            return QStringLiteral("NAV_TAKEOFF");
+        case 31:
+            return QStringLiteral("NAV_LOITER_TO_ALT");
+        case 84:
+            return QStringLiteral("NAV_VTOL_TAKEOFF");
+        case 85:
+            return QStringLiteral("NAV_VTOL_LAND");
+        case 112:
+            return QStringLiteral("CONDITION_DELAY");
+        case 177:
+            return QStringLiteral("DO_JUMP");
+        case 178:
+            return QStringLiteral("DO_CHANGE_SPEED");
+        case 189:
+            return QStringLiteral("DO_LAND_START");
+        case 201:
+            return QStringLiteral("DO_SET_ROI");
+        case 203:
+            return QStringLiteral("DO_DIGICAM_CONTROL");
+        case 206:
+            return QStringLiteral("DO_SET_CAM_TRIGG_DIST");
+        case 2000:
+            return QStringLiteral("IMAGE_START_CAPTURE");
+        case 2001:
+            return QStringLiteral("IMAGE_STOP_CAPTURE");
+    }
+    return QStringLiteral("MAV_CMD %1").arg(command);
+}
+
+QString MissionItem::frameName() const
+{
+    switch (frame) {
+        case 0:
+            return QStringLiteral("AMSL");
+        case 2:
+            return QStringLiteral("mission");
+        case 3:
+            return QStringLiteral("above home");
+        case 5:
+            return QStringLiteral("AMSL (int)");
+        case 6:
+            return QStringLiteral("above home (int)");
+        case 10:
+            return QStringLiteral("above terrain");
+        case 11:
+            return QStringLiteral("above terrain (int)");
+    }
+    return QStringLiteral("MAV_FRAME %1").arg(frame);
+}
+
+bool MissionItem::hasPosition() const
+{
+    const bool global = frame == 0 || frame == 3 || frame == 5 || frame == 6 || frame == 10 || frame == 11;
+    return global && latitude && longitude;
+}
+
+int MissionPlan::format() const
+{
+    return fencePolygons.isEmpty() && fenceCircles.isEmpty() && rallyPoints.isEmpty() ? 1 : 2;
+}
+
+void MissionPlan::renumber()
+{
+    for (qsizetype i = 0; i < items.size(); ++i)
+        items[i].seq = quint16(i);
+}
+
+std::optional<QByteArray> MissionPlan::encode(QString* error) const
+{
+    const auto fail = [&](const QString& what) -> std::optional<QByteArray> {
+        if (error)
+            *error = what;
+        return std::nullopt;
+    };
+    Conversion c;
+    rcm::plan::Contents contents;
+    contents.homeLatitude = c.fixed(homeLatitude, kDegreeSteps, QStringLiteral("home latitude"));
+    contents.homeLongitude = c.fixed(homeLongitude, kDegreeSteps, QStringLiteral("home longitude"));
+    contents.homeAltitude = c.fixed(homeAltitude, kMillimetres, QStringLiteral("home altitude"));
+    for (const MissionItem& item : items) {
+        const QString name = QStringLiteral("mission item %1").arg(item.seq);
+        rcm::plan::Item out;
+        out.seq = item.seq;
+        out.command = item.command;
+        out.frame = item.frame;
+        out.autoContinue = item.autoContinue;
+        for (std::size_t p = 0; p < 4; ++p) {
+            const double v = item.params[p];
+            if (std::isfinite(v) && std::abs(v) > double(std::numeric_limits<float>::max()))
+                return fail(QStringLiteral("%1: param%2 does not fit a 32-bit float").arg(name).arg(p + 1));
+            out.params[p] =
+                std::bit_cast<std::uint32_t>(std::isnan(v) ? std::numeric_limits<float>::quiet_NaN() : float(v));
+        }
+        out.x = c.fixed(item.latitude, kDegreeSteps, name + QStringLiteral(" latitude"));
+        out.y = c.fixed(item.longitude, kDegreeSteps, name + QStringLiteral(" longitude"));
+        out.z = c.fixed(item.altitude, kMillimetres, name + QStringLiteral(" altitude"));
+        contents.items.push_back(out);
+    }
+    for (qsizetype i = 0; i < fencePolygons.size(); ++i) {
+        rcm::plan::FencePolygon out;
+        out.inclusion = fencePolygons[i].inclusion;
+        for (const GeoPoint& p : fencePolygons[i].vertices)
+            out.vertices.push_back(c.position(p, QStringLiteral("fence polygon %1 vertex").arg(i + 1)));
+        contents.polygons.push_back(std::move(out));
+    }
+    for (qsizetype i = 0; i < fenceCircles.size(); ++i) {
+        const FenceCircle& circle = fenceCircles[i];
+        const QString name = QStringLiteral("fence circle %1").arg(i + 1);
+        rcm::plan::FenceCircle out;
+        out.inclusion = circle.inclusion;
+        out.centre = c.position(circle.centre, name + QStringLiteral(" centre"));
+        const double radius = std::round(circle.radius * kMillimetres);
+        if (!(radius >= 1 && radius <= double(std::numeric_limits<std::uint32_t>::max())))
+            return fail(QStringLiteral("%1: radius %2 m is not between 1 mm and 4294 km").arg(name).arg(circle.radius));
+        out.radius = std::uint32_t(radius);
+        contents.circles.push_back(out);
+    }
+    for (qsizetype i = 0; i < rallyPoints.size(); ++i) {
+        const QString name = QStringLiteral("rally point %1").arg(i + 1);
+        rcm::plan::RallyPoint out;
+        out.position = c.position(rallyPoints[i].position, name);
+        out.altitude = c.fixed(rallyPoints[i].altitude, kMillimetres, name + QStringLiteral(" altitude"));
+        contents.rallyPoints.push_back(out);
+    }
+    if (!c.error().isEmpty())
+        return fail(c.error());
+    try {
+        const std::vector<std::uint8_t> bytes = rcm::plan::encode(contents);
+        return QByteArray(reinterpret_cast<const char*>(bytes.data()), qsizetype(bytes.size()));
+    } catch (const std::invalid_argument& e) {
+        return fail(QString::fromStdString(e.what()));
+    }
+}
+
+QByteArray MissionPlan::toBytes() const
+{
+    return encode().value_or(QByteArray());
+}
+
+std::optional<MissionPlan> MissionPlan::fromBytes(const QByteArray& bytes, QString* error)
+{
+    std::string reason;
+    const auto contents = rcm::plan::decode(
+        std::span(reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size())), &reason);
+    if (!contents) {
+        if (error)
+            *error = QString::fromStdString(reason);
+        return std::nullopt;
+    }
+    MissionPlan plan;
+    plan.homeLatitude = fromFixed(contents->homeLatitude, kDegreeSteps);
+    plan.homeLongitude = fromFixed(contents->homeLongitude, kDegreeSteps);
+    plan.homeAltitude = fromFixed(contents->homeAltitude, kMillimetres);
+    for (const rcm::plan::Item& in : contents->items) {
+        MissionItem item;
+        item.seq = in.seq;
+        item.command = in.command;
+        item.frame = in.frame;
+        item.autoContinue = in.autoContinue;
+        for (std::size_t p = 0; p < 4; ++p)
+            item.params[p] = double(std::bit_cast<float>(in.params[p]));
+        item.latitude = fromFixed(in.x, kDegreeSteps);
+        item.longitude = fromFixed(in.y, kDegreeSteps);
+        item.altitude = fromFixed(in.z, kMillimetres);
+        plan.items.append(item);
+    }
+    for (const rcm::plan::FencePolygon& in : contents->polygons) {
+        FencePolygon polygon;
+        polygon.inclusion = in.inclusion;
+        for (const rcm::plan::Position& p : in.vertices)
+            polygon.vertices.append(toGeo(p));
+        plan.fencePolygons.append(polygon);
+    }
+    for (const rcm::plan::FenceCircle& in : contents->circles)
+        plan.fenceCircles.append({in.inclusion, toGeo(in.centre), in.radius / kMillimetres});
+    for (const rcm::plan::RallyPoint& in : contents->rallyPoints)
+        plan.rallyPoints.append({toGeo(in.position), in.altitude / kMillimetres});
+    return plan;
+}

@@ -1,0 +1,92 @@
+#pragma once
+
+// A flight plan as the console edits it: the mission items, home, the
+// geofence and the rally points, in degrees and metres. Its bytes for BLOCK 2
+// are laid out by codec/plan/PlanContents.h (format 1 without fence and rally
+// points, format 2 with them); toBytes() and fromBytes() convert, rounding
+// to the nearest step of each field (1e-7 degree, 1 mm).
+//
+// Reading and writing plan files of other programs is link/plan/PlanFile.h.
+
+#include <QByteArray>
+#include <QList>
+#include <QString>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+struct MissionItem {
+    quint16 seq = 0;
+    quint16 command = 0;
+    quint8 frame = 0;
+    bool autoContinue = true;
+    std::array<double, 4> params{};   // NaN: null in the plan
+    std::optional<double> latitude;   // degrees
+    std::optional<double> longitude;  // degrees
+    std::optional<double> altitude;   // metres, in the item's frame
+
+    // "NAV_WAYPOINT" for the commands a console shows often, else "MAV_CMD 1234".
+    QString commandName() const;
+    QString frameName() const;
+    // Frames whose latitude and longitude are a place on the map.
+    bool hasPosition() const;
+    friend bool operator==(const MissionItem&, const MissionItem&) = default;
+};
+
+struct GeoPoint {
+    double latitude = 0;   // degrees
+    double longitude = 0;  // degrees
+    friend bool operator==(const GeoPoint&, const GeoPoint&) = default;
+};
+
+struct FencePolygon {
+    bool inclusion = true;  // true: the aircraft stays inside; false: outside
+    QList<GeoPoint> vertices;
+    friend bool operator==(const FencePolygon&, const FencePolygon&) = default;
+};
+
+struct FenceCircle {
+    bool inclusion = true;
+    GeoPoint centre;
+    double radius = 0;  // metres
+    friend bool operator==(const FenceCircle&, const FenceCircle&) = default;
+};
+
+struct RallyPoint {
+    GeoPoint position;
+    double altitude = 0;  // metres above home
+    friend bool operator==(const RallyPoint&, const RallyPoint&) = default;
+};
+
+class MissionPlan {
+public:
+    static constexpr int kHeaderBytes = 16;
+    static constexpr int kItemBytes = 34;
+    static constexpr std::int32_t kNotGiven = INT32_MIN;
+
+    // Plan bytes (codec/plan/PlanContents.h). Nothing, with the reason, for a
+    // plan the layout cannot hold (a value out of its field's range, more
+    // than 65535 of something).
+    std::optional<QByteArray> encode(QString* error = nullptr) const;
+    // encode() for a plan known to fit (one that came from fromBytes() or a
+    // plan file reader, which check ranges); empty when it does not.
+    QByteArray toBytes() const;
+    static std::optional<MissionPlan> fromBytes(const QByteArray& bytes, QString* error = nullptr);
+
+    // 1 without fence and rally points, else 2.
+    int format() const;
+    bool hasFence() const { return !fencePolygons.isEmpty() || !fenceCircles.isEmpty(); }
+    // Renumbers seq 0 .. N-1 after an edit.
+    void renumber();
+
+    QList<MissionItem> items;
+    std::optional<double> homeLatitude;
+    std::optional<double> homeLongitude;
+    std::optional<double> homeAltitude;  // metres above mean sea level
+    QList<FencePolygon> fencePolygons;
+    QList<FenceCircle> fenceCircles;
+    QList<RallyPoint> rallyPoints;
+
+    friend bool operator==(const MissionPlan&, const MissionPlan&) = default;
+};
