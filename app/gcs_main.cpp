@@ -1,10 +1,8 @@
-// gcs: the operator console. `gcs --help` lists its options (the console,
-// a connection at start, replay, a screenshot at a size, tab and theme, a
-// rehearsal scenario run).
-//
-// Start-up, memory and GUI stall measurements: tests/bench/bench_console.cpp.
+// gcs: the operator console; `gcs --help` lists its options. Start-up, memory
+// and GUI stall measurements: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
+#include "ui/plan/PlanCommandLine.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
@@ -12,7 +10,6 @@
 
 #include <QApplication>
 #include <QCommandLineParser>
-#include <QPixmap>
 
 #include <cstdio>
 
@@ -84,6 +81,7 @@ int main(int argc, char* argv[])
     parser.addOptions(
         {rehearsal, udpRemote, serial, baud, dial, replay, airframe, key, screenshot, size, after, night, page});
     const RehearsalCommandLine rehearse(parser);
+    const PlanCommandLine planOptions(parser);
     parser.process(app);
     if (rehearse.requested())
         return rehearse.run();
@@ -127,6 +125,8 @@ int main(int argc, char* argv[])
     if (parser.isSet(night))
         window.setTheme(Theme::Kind::Night);
     window.showPanel(parser.value(page).toInt() - 1);
+    if (!planOptions.apply(*window.flightPlan(), &error))
+        return usage(error);
     if (parser.isSet(screenshot))
         window.screenshotAndQuit(parser.value(screenshot), windowSize, parser.value(after).toInt());
     window.show();

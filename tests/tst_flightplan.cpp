@@ -4,6 +4,7 @@
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/plan/PlanContents.h"
 
 #include <QtTest>
 
@@ -357,6 +358,100 @@ private slots:
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, FlightPlanUploader(1, plan, 216));
         const std::vector<std::uint8_t> huge(kMaxFlightPlanSections * 10);
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, FlightPlanUploader(1, huge, 10));
+    }
+
+    void planFormat2Layout()
+    {
+        // One waypoint, an inclusion square, an exclusion circle, one rally point.
+        plan::Contents c;
+        c.homeLatitude = 522076813;  // 52.2076813 deg
+        c.homeLongitude = 1189255;
+        c.homeAltitude = 14200;
+        plan::Item wp;
+        wp.command = 16;
+        wp.frame = 3;
+        wp.params = {0, 0, 0, 0x7FC00000};
+        wp.x = 522151260;
+        wp.y = 1205000;
+        wp.z = 120000;
+        c.items.push_back(wp);
+        QCOMPARE(c.format(), std::uint8_t{1});
+        QCOMPARE(plan::encode(c).size(), plan::kHeaderBytes + plan::kItemBytes);
+        c.polygons.push_back({true, {{1, 2}, {3, 4}, {5, 6}, {7, 8}}});
+        c.circles.push_back({false, {-10, -20}, 150000});
+        c.rallyPoints.push_back({{100, 200}, 50000});
+        QCOMPARE(c.format(), std::uint8_t{2});
+        const std::vector<std::uint8_t> bytes = plan::encode(c);
+        QCOMPARE(bytes.size(), std::size_t{16 + 34 + 2 + 4 + 32 + 2 + 14 + 2 + 12});
+        QCOMPARE(bytes[0], std::uint8_t{2});
+        const auto hex = [&](std::size_t at, std::size_t n) {
+            return QByteArray(reinterpret_cast<const char*>(bytes.data() + at), qsizetype(n)).toHex();
+        };
+        // P = 1, inclusion, reserved, V = 4, the first vertex (1, 2).
+        QCOMPARE(hex(50, 14), QByteArray("0001010000040000000100000002"));
+        // C = 1, exclusion, reserved, centre (-10, -20), radius 150 m = 150000 mm.
+        QCOMPARE(hex(50 + 2 + 4 + 32, 16), QByteArray("00010000fffffff6ffffffec000249f0"));
+        // R = 1, (100, 200), 50 m above home.
+        QCOMPARE(hex(50 + 2 + 36 + 16, 14), QByteArray("0001000000640000 00c80000c350").replace(" ", ""));
+        std::string error;
+        const auto back = plan::decode(bytes, &error);
+        QVERIFY2(back, error.c_str());
+        QVERIFY(*back == c);
+
+        const plan::Report report = plan::Report::of(c);
+        QCOMPARE(QByteArray(reinterpret_cast<const char*>(report.toBytes().data()), 11).toHex(),
+                 QByteArray("020001000100040001" "0001"));
+        QCOMPARE(report.describe(),
+                 std::string("1 mission item, fence 1 polygon (4 vertices) and 1 circle, 1 rally point"));
+        QVERIFY(plan::Report::read(report.toBytes()) == report);
+    }
+
+    void planDecodeErrors_data()
+    {
+        QTest::addColumn<QByteArray>("bytes");
+        QTest::addColumn<QString>("error");
+        const QByteArray header2 = QByteArray::fromHex("02000000" "80000000" "80000000" "80000000");
+        QTest::newRow("short header") << QByteArray::fromHex("0100") << "byte 0: the plan header needs 16 bytes; 2 left";
+        QTest::newRow("format 3") << QByteArray::fromHex("03000000800000008000000080000000")
+                                  << "byte 1: plan format 3; formats 1 and 2 are known";
+        QTest::newRow("item cut") << QByteArray::fromHex("01000001800000008000000080000000") + QByteArray(20, 0)
+                                  << "byte 16: mission item 1 of 1 needs 34 bytes; 20 left";
+        QTest::newRow("no fence count") << header2 << "byte 16: the fence polygon count needs 2 bytes; 0 left";
+        QTest::newRow("two vertices") << header2 + QByteArray::fromHex("000101000002")
+                                      << "byte 22: fence polygon 1 has 2 vertices; a polygon needs 3";
+        QTest::newRow("zero radius") << header2 + QByteArray::fromHex("0000" "0001" "0100" "0000000000000000" "00000000")
+                                     << "byte 34: fence circle 1 has no radius";
+        QTest::newRow("trailing") << header2 + QByteArray::fromHex("000000000000ff")
+                                  << "byte 22: 1 byte after the end of a format 2 plan";
+    }
+
+    void planDecodeErrors()
+    {
+        QFETCH(QByteArray, bytes);
+        QFETCH(QString, error);
+        std::string reason;
+        QVERIFY(!plan::decode({reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size())},
+                              &reason));
+        QCOMPARE(QString::fromStdString(reason), error);
+    }
+
+    void acknowledgementCarriesAReport()
+    {
+        FlightPlanAcknowledgement ack{77, {2, 300, 0xDEADBEEF}, {}};
+        // Without a report: the 10-byte descriptor, as before.
+        QCOMPARE(ack.toSection().data.size(), FlightPlanDescriptor::kSize);
+        ack.report = {2, 0, 9, 0, 1, 0, 4, 0, 0, 0, 3};
+        const FlightPlanSection s = overTheAir(ack.toSection(), FlightPlanSection::kMaxData);
+        QCOMPARE(s.data.size(), FlightPlanDescriptor::kSize + 11);
+        const auto back = FlightPlanAcknowledgement::read(s);
+        QVERIFY(back);
+        QVERIFY(*back == ack);
+        // The sender takes it for its plan and keeps what the aircraft said.
+        const auto bytes = randomPlan(300, 12);
+        FlightPlanUploader up(77, bytes);
+        ack.descriptor = up.descriptor();
+        QVERIFY(up.handleReply(ack.toSection()));
+        QVERIFY(up.acknowledgedReport() == ack.report);
     }
 
     void secureSectionSize()

@@ -308,7 +308,7 @@ void TestMainWindow::importsTheSamplePlan()
     const MissionPlan& plan = *widget->plan();
     QCOMPARE(plan.items.size(), 9);
     QCOMPARE(widget->table()->rowCount(), 9);
-    QCOMPARE(widget->summary(), QStringLiteral("9 mission items, 322 bytes, 2 BLOCK 2 sections"));
+    QCOMPARE(widget->summary(), QStringLiteral("9 mission items, 322 bytes, 2 BLOCK 2 sections, 2 s a pass"));
 
     const MissionItem& takeoff = plan.items[0];
     QCOMPARE(takeoff.seq, quint16(0));

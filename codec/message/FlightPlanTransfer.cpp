@@ -128,7 +128,9 @@ FlightPlanUploader::FlightPlanUploader(std::uint32_t planId, std::span<const std
 
 FlightPlanUploader::Progress FlightPlanUploader::progress() const
 {
-    return Progress{m_sent, m_sections.size(), m_pass, m_maxPasses};
+    // m_next wraps to 0 as the last section of a pass goes out.
+    const std::size_t inPass = m_pass == 0 ? 0 : (m_next == 0 ? m_sections.size() : m_next);
+    return Progress{m_sent, m_sections.size(), inPass, m_pass, m_maxPasses};
 }
 
 std::optional<FlightPlanSection> FlightPlanUploader::next()
@@ -323,7 +325,7 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
 
     Result r = progress(Kind::Complete);
     r.plan.assign(plan.begin(), plan.end());
-    m_lastComplete = FlightPlanAcknowledgement{m_planId, d};
+    m_lastComplete = FlightPlanAcknowledgement{m_planId, d, {}};
     restart(0);
     return r;
 }

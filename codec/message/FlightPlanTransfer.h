@@ -112,6 +112,7 @@ public:
     struct Progress {
         std::size_t sent = 0;   // distinct sections sent at least once
         std::size_t total = 0;  // sections in the plan
+        std::size_t inPass = 0; // sections of the current pass sent
         int pass = 0;           // 1 during the first pass; 0 before the first section
         int maxPasses = 0;
     };

@@ -231,8 +231,8 @@ std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string*
         }
     }
     if (r.left() != 0)
-        return fail(std::to_string(r.left()) + " bytes after the end of a format " + std::to_string(format) +
-                    " plan");
+        return fail(std::to_string(r.left()) + (r.left() == 1 ? " byte" : " bytes") +
+                    " after the end of a format " + std::to_string(format) + " plan");
     return c;
 }
 

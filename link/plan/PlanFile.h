@@ -10,9 +10,12 @@
 
 namespace PlanFile {
 
-// Reads a plan file, recognising its format by its contents: a
-// QGroundControl .plan (JSON), a QGC WPL 110 .waypoints (Mission Planner) or
-// a KML document.
+// Reads a plan file, recognising its format by its contents, whatever its
+// name: a JSON object is a QGroundControl .plan or .mission
+// (link/plan/QgcPlanFile.h), a first line "QGC WPL" a Mission Planner
+// .waypoints (link/plan/WaypointsFile.h), an XML document with <kml> a KML
+// one (link/plan/KmlFile.h). Anything else is refused with the list of the
+// formats read. A UTF-8 byte order mark is passed over.
 std::optional<MissionPlan> load(const QString& path, QString* error = nullptr);
 // The same over bytes already read; `source` names them in errors.
 std::optional<MissionPlan> read(const QByteArray& contents, const QString& source, QString* error = nullptr);

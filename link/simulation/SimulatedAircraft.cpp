@@ -2,6 +2,7 @@
 
 #include "codec/message/DigitPairs.h"
 #include "codec/message/ValueCodec.h"
+#include "codec/plan/PlanContents.h"
 
 #include <algorithm>
 #include <cmath>
@@ -163,12 +164,26 @@ SimulatedAircraft::ApplyReport SimulatedAircraft::apply(const Message& command)
     const auto& plan = report.flightPlan;
     switch (plan.kind) {
         case Kind::Complete:
+        {
             m_flightPlanId = plan.planId;
             m_flightPlan = plan.plan;
+            m_flightPlanReport.clear();
+            std::string reason;
+            std::string contents;
+            if (const auto decoded = rcm::plan::decode(plan.plan, &reason)) {
+                const auto held = rcm::plan::Report::of(*decoded);
+                contents = ": " + held.describe();
+                // A format 1 plan is acknowledged as before: with its descriptor only.
+                if (held.format >= 2)
+                    m_flightPlanReport = held.toBytes();
+            } else {
+                contents = "; its contents are not a plan this aircraft reads (" + reason + ")";
+            }
             report.events.push_back("flight plan " + std::to_string(plan.planId) +
                                     " complete: " + std::to_string(plan.plan.size()) + " bytes in " +
-                                    std::to_string(plan.total) + " sections");
+                                    std::to_string(plan.total) + " sections" + contents);
             break;
+        }
         case Kind::Missing: {
             std::string ids;
             for (std::uint16_t id : plan.missing)
@@ -237,7 +252,9 @@ Message SimulatedAircraft::status(std::chrono::system_clock::time_point utc) con
     for (std::size_t i = 0; i < m.cameras.size(); ++i)
         m.cameras[i].setFieldCode(take_one_photo, 0, m_cameras[i].photoSinceStatus ? kPhotoTake : kPhotoNone);
 
-    if (const auto ack = m_assembler.lastComplete())
+    if (auto ack = m_assembler.lastComplete()) {
+        ack->report = m_flightPlanReport;
         m.flightPlan = ack->toSection();
+    }
     return m;
 }

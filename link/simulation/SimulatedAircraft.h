@@ -22,7 +22,9 @@
 //              took a photograph, NONE otherwise.
 //   BLOCK 2  empty until a flight plan has been received complete; then the
 //            acknowledgement of the last complete plan (section ID 0xFFFF,
-//            see codec/message/FlightPlanTransfer.h) in every status frame.
+//            see codec/message/FlightPlanTransfer.h) in every status frame,
+//            with the report of its contents (codec/plan/PlanContents.h)
+//            when it is a format 2 plan: mission items, fence, rally points.
 //
 // Slave codes (eng_status, FLAP_status) and control sources are kept and
 // reported but do not change how the simulated parts move.
@@ -115,5 +117,6 @@ private:
     rcm::FlightPlanAssembler m_assembler;
     std::uint32_t m_flightPlanId = 0;
     std::vector<std::uint8_t> m_flightPlan;
+    std::vector<std::uint8_t> m_flightPlanReport;  // what the acknowledgement says of its contents
     std::uint32_t m_statusFrames = 0;
 };

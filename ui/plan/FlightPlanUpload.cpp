@@ -5,11 +5,34 @@
 #include <QMutexLocker>
 #include <QRandomGenerator>
 
+#include <algorithm>
 #include <stdexcept>
+
+namespace {
+
+// Sections a new measurement is averaged over: enough to smooth one late
+// frame, few enough that a link that slows down shows it within a minute.
+constexpr double kRateSmoothing = 8;
+
+}  // namespace
+
+double FlightPlanUpload::Progress::secondsLeftInPass(double nominal) const
+{
+    const double perSection = rateMeasured ? secondsPerSection : nominal;
+    return std::max(total - (pass == 0 ? 0 : inPass), 0) * perSection;
+}
+
+double FlightPlanUpload::Progress::secondsLeftAtMost(double nominal) const
+{
+    const double perSection = rateMeasured ? secondsPerSection : nominal;
+    const int passesAfterThis = std::max(maxPasses - std::max(pass, 1), 0);
+    return secondsLeftInPass(nominal) + double(passesAfterThis) * total * perSection;
+}
 
 FlightPlanUpload::FlightPlanUpload(QObject* parent) : QObject(parent)
 {
     qRegisterMetaType<FlightPlanUpload::Progress>();
+    m_clock.start();
 }
 
 FlightPlanUpload::~FlightPlanUpload() = default;
@@ -38,6 +61,7 @@ bool FlightPlanUpload::start(const QByteArray& plan, QString* error)
         }
         m_lastPlanId = id;
         m_state = State::Sending;
+        m_lastSectionNs = -1;
         progress = progressLocked();
     }
     emit progressChanged(progress);
@@ -79,8 +103,13 @@ FlightPlanUpload::Progress FlightPlanUpload::progressLocked() const
         p.planId = m_uploader->planId();
         p.sent = int(u.sent);
         p.total = int(u.total);
+        p.inPass = int(u.inPass);
         p.pass = u.pass;
         p.maxPasses = u.maxPasses;
+        p.rateMeasured = m_rateMeasured;
+        p.secondsPerSection = m_secondsPerSection;
+        const auto& report = m_uploader->acknowledgedReport();
+        p.report = QByteArray(reinterpret_cast<const char*>(report.data()), qsizetype(report.size()));
     }
     return p;
 }
@@ -105,6 +134,8 @@ std::optional<rcm::FlightPlanSection> FlightPlanUpload::next()
         if (!m_uploader || m_state != State::Sending)
             return std::nullopt;
         section = m_uploader->next();
+        if (section)
+            measureSection();
         if (m_uploader->state() == rcm::FlightPlanUploader::State::GaveUp)
             m_state = State::GaveUp;
         progress = progressLocked();
@@ -124,4 +155,16 @@ void FlightPlanUpload::handleReply(const rcm::FlightPlanSection& reply)
         progress = progressLocked();
     }
     emit progressChanged(progress);
+}
+
+void FlightPlanUpload::measureSection()
+{
+    const qint64 now = m_clock.nsecsElapsed();
+    if (m_lastSectionNs >= 0) {
+        const double seconds = double(now - m_lastSectionNs) / 1e9;
+        m_secondsPerSection = m_rateMeasured ? m_secondsPerSection + (seconds - m_secondsPerSection) / kRateSmoothing
+                                             : seconds;
+        m_rateMeasured = true;
+    }
+    m_lastSectionNs = now;
 }

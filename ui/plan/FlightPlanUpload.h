@@ -16,6 +16,7 @@
 #include "link/session/LinkWorker.h"
 
 #include <QByteArray>
+#include <QElapsedTimer>
 #include <QMutex>
 #include <QObject>
 
@@ -33,8 +34,22 @@ public:
         quint32 planId = 0;
         int sent = 0;   // distinct sections sent at least once
         int total = 0;  // sections in the plan
-        int pass = 0;   // 1 during the first pass
+        int inPass = 0;  // sections of the current pass sent
+        int pass = 0;    // 1 during the first pass
         int maxPasses = 0;
+        // Seconds between the last sections sent, as the link really sends
+        // them (a second a frame, or slower when the link falls behind),
+        // once two have gone.
+        bool rateMeasured = false;
+        double secondsPerSection = 0;
+        // Acknowledged: what the aircraft said the plan holds
+        // (codec/plan/PlanContents.h Report); empty when it said nothing.
+        QByteArray report;
+
+        // Seconds until this pass ends and until the last pass ends, at the
+        // measured rate or, before there is one, at `nominal` seconds a section.
+        double secondsLeftInPass(double nominal) const;
+        double secondsLeftAtMost(double nominal) const;
         friend bool operator==(const Progress&, const Progress&) = default;
     };
 
@@ -67,12 +82,17 @@ signals:
 
 private:
     Progress progressLocked() const;
+    void measureSection();
 
     mutable QMutex m_mutex;
     std::unique_ptr<rcm::FlightPlanUploader> m_uploader;
     State m_state = State::Idle;
     quint32 m_lastPlanId = 0;
     std::size_t m_sectionSize = rcm::FlightPlanSection::kMaxData;
+    QElapsedTimer m_clock;
+    qint64 m_lastSectionNs = -1;
+    bool m_rateMeasured = false;
+    double m_secondsPerSection = 0;
 };
 
 Q_DECLARE_METATYPE(FlightPlanUpload::Progress)

@@ -1,15 +1,25 @@
 #include "ui/plan/FlightPlanWidget.h"
 
 #include "codec/message/FlightPlanTransfer.h"
+#include "codec/plan/PlanContents.h"
 #include "link/plan/PlanFile.h"
+#include "ui/plan/PlanMapView.h"
 
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QLineEdit>
+#include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSplitter>
+#include <QStandardPaths>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -27,12 +37,44 @@ QString param(double value)
     return std::isnan(value) ? QStringLiteral("\u2014") : QString::number(value, 'g', 7);
 }
 
-// Sections the transfer cuts a plan of `bytes` into, for the summary line.
-int sectionCount(qsizetype bytes)
+QString red(const QString& text)
 {
-    const qsizetype stream = qsizetype(rcm::FlightPlanDescriptor::kSize) + bytes;
-    const qsizetype perSection = qsizetype(rcm::FlightPlanSection::kMaxData);
-    return int((stream + perSection - 1) / perSection);
+    return QStringLiteral("<span style=\"color:#b01c1c\"><b>%1</b></span>").arg(text.toHtmlEscaped());
+}
+
+QString count(qsizetype n, const QString& one, const QString& many)
+{
+    // Whole words: with no translation loaded, tr()'s %n would show "item(s)".
+    return QStringLiteral("%1 %2").arg(n).arg(n == 1 ? one : many);
+}
+
+// "45 s", "26 min 22 s", "2 h 12 min": what an operator plans around.
+QString duration(double seconds)
+{
+    const qint64 s = qint64(std::ceil(std::max(seconds, 0.0)));
+    if (s < 60)
+        return QStringLiteral("%1 s").arg(s);
+    if (s < 3600)
+        return s % 60 == 0 ? QStringLiteral("%1 min").arg(s / 60)
+                           : QStringLiteral("%1 min %2 s").arg(s / 60).arg(s % 60);
+    const qint64 minutes = (s + 59) / 60;
+    return minutes % 60 == 0 ? QStringLiteral("%1 h").arg(minutes / 60)
+                             : QStringLiteral("%1 h %2 min").arg(minutes / 60).arg(minutes % 60);
+}
+
+rcm::plan::Report reportOf(const MissionPlan& plan)
+{
+    rcm::plan::Report r;
+    r.format = std::uint8_t(plan.format());
+    r.items = std::uint16_t(std::min<qsizetype>(plan.items.size(), 65535));
+    r.polygons = std::uint16_t(std::min<qsizetype>(plan.fencePolygons.size(), 65535));
+    qsizetype vertices = 0;
+    for (const FencePolygon& p : plan.fencePolygons)
+        vertices += p.vertices.size();
+    r.vertices = std::uint16_t(std::min<qsizetype>(vertices, 65535));
+    r.circles = std::uint16_t(std::min<qsizetype>(plan.fenceCircles.size(), 65535));
+    r.rallyPoints = std::uint16_t(std::min<qsizetype>(plan.rallyPoints.size(), 65535));
+    return r;
 }
 
 }  // namespace
@@ -40,30 +82,61 @@ int sectionCount(qsizetype bytes)
 FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     : QWidget(parent),
       m_upload(upload),
+      m_tiles(new MapTiles(this)),
       m_file(new QLabel(tr("No flight plan loaded"))),
       m_summary(new QLabel),
+      m_edits(new QLabel),
+      m_mapSource(new QLabel),
       m_table(new QTableWidget(0, kColumnCount)),
-      m_open(new QPushButton(tr("Open .plan\u2026"))),
+      m_map(new PlanMapView),
+      m_open(new QPushButton(tr("Open plan\u2026"))),
+      m_save(new QPushButton(tr("Save as .plan\u2026"))),
+      m_editOnMap(new QPushButton(tr("Edit on map"))),
+      m_tileButton(new QPushButton(tr("Map tiles\u2026"))),
       m_send(new QPushButton(tr("Upload to aircraft"))),
       m_cancel(new QPushButton(tr("Cancel upload"))),
       m_progress(new QProgressBar),
       m_state(new QLabel)
 {
-    m_open->setToolTip(tr("Load a QGroundControl mission (.plan); only simple items can be sent"));
-    m_send->setToolTip(tr("Send the plan in BLOCK 2 sections, one per frame, until the aircraft acknowledges it"));
+    m_confirm = [this](const QString& text) {
+        QMessageBox box(QMessageBox::Question, tr("Upload flight plan"), text, QMessageBox::NoButton, this);
+        QPushButton* go = box.addButton(tr("Upload"), QMessageBox::AcceptRole);
+        go->setFocusPolicy(Qt::NoFocus);
+        QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+        box.setDefaultButton(cancel);
+        box.setEscapeButton(cancel);
+        box.exec();
+        return box.clickedButton() == go;
+    };
+    m_open->setToolTip(tr("Load a plan: QGroundControl .plan, Mission Planner .waypoints or KML"));
+    m_save->setToolTip(tr("Write the plan shown, with its edits, as a QGroundControl .plan"));
+    m_editOnMap->setCheckable(true);
+    m_editOnMap->setToolTip(tr("While on: drag a waypoint to move it, double-click the map to add one, Delete "
+                               "removes the selected one. Edits are not sent until you upload."));
+    m_tileButton->setToolTip(tr("Choose an MBTiles file for offline maps, or a tile server"));
     m_file->setTextInteractionFlags(Qt::TextSelectableByMouse);
     m_summary->setWordWrap(true);
+    m_edits->setTextFormat(Qt::RichText);
+    m_state->setTextFormat(Qt::RichText);
+    m_mapSource->setTextFormat(Qt::PlainText);
 
     m_table->setHorizontalHeaderLabels({tr("#"), tr("Command"), tr("Frame"), tr("Latitude (\u00b0)"),
                                         tr("Longitude (\u00b0)"), tr("Altitude (m)"), tr("Param 1"), tr("Param 2"),
                                         tr("Param 3"), tr("Param 4")});
     m_table->verticalHeader()->hide();
-    m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    // Only the altitude cell is editable, by a double-click or F2: a stray key
+    // must not start an edit.
+    m_table->setEditTriggers(QAbstractItemView::DoubleClicked | QAbstractItemView::EditKeyPressed);
     m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
+    m_table->setSelectionMode(QAbstractItemView::SingleSelection);
     m_table->setAlternatingRowColors(true);
     m_table->setShowGrid(false);
     m_table->horizontalHeader()->setStretchLastSection(true);
     m_table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+
+    m_map->setTiles(m_tiles);
+    m_map->setEditable(false);
+    m_map->setMinimumSize(320, 240);
 
     m_progress->setRange(0, 1);
     m_progress->setValue(0);
@@ -72,8 +145,25 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
 
     auto* top = new QHBoxLayout;
     top->addWidget(m_open);
-    top->addWidget(m_file, 1);
-    top->addWidget(m_summary);
+    top->addWidget(m_save);
+    top->addWidget(m_file);
+    top->addWidget(m_summary, 1);
+    auto* mapBar = new QHBoxLayout;
+    mapBar->addWidget(m_editOnMap);
+    mapBar->addWidget(m_edits, 1);
+    mapBar->addWidget(m_mapSource);
+    mapBar->addWidget(m_tileButton);
+    auto* mapBox = new QWidget;
+    auto* mapLayout = new QVBoxLayout(mapBox);
+    mapLayout->setContentsMargins(0, 0, 0, 0);
+    mapLayout->addLayout(mapBar);
+    mapLayout->addWidget(m_map, 1);
+    auto* split = new QSplitter(Qt::Horizontal);
+    split->addWidget(m_table);
+    split->addWidget(mapBox);
+    split->setStretchFactor(0, 1);
+    split->setStretchFactor(1, 1);
+    split->setChildrenCollapsible(false);
     auto* bottom = new QHBoxLayout;
     bottom->addWidget(m_send);
     bottom->addWidget(m_cancel);
@@ -82,31 +172,75 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(6, 6, 6, 6);
     layout->addLayout(top);
-    layout->addWidget(m_table, 1);
+    layout->addWidget(split, 1);
     layout->addLayout(bottom);
 
     connect(m_open, &QPushButton::clicked, this, &FlightPlanWidget::openPlan);
+    connect(m_save, &QPushButton::clicked, this, &FlightPlanWidget::savePlanAs);
+    connect(m_tileButton, &QPushButton::clicked, this, &FlightPlanWidget::chooseTiles);
     connect(m_send, &QPushButton::clicked, this, &FlightPlanWidget::uploadPlan);
     connect(m_cancel, &QPushButton::clicked, this, &FlightPlanWidget::cancelUpload);
+    connect(m_editOnMap, &QPushButton::toggled, m_map, &PlanMapView::setEditable);
     connect(m_upload, &FlightPlanUpload::progressChanged, this, &FlightPlanWidget::showProgress);
+    connect(m_table, &QTableWidget::currentCellChanged, this, [this](int row) { m_map->setSelectedItem(row); });
+    connect(m_table, &QTableWidget::cellChanged, this, &FlightPlanWidget::cellEdited);
+    connect(m_map, &PlanMapView::itemSelected, this, &FlightPlanWidget::selectRow);
+    connect(m_map, &PlanMapView::moveRequested, this, &FlightPlanWidget::moveItem);
+    connect(m_map, &PlanMapView::addRequested, this, &FlightPlanWidget::addWaypoint);
+    connect(m_map, &PlanMapView::deleteRequested, this, &FlightPlanWidget::deleteItem);
+    connect(m_map, &PlanMapView::altitudeRequested, this, [this](int index) {
+        selectRow(index);
+        if (QTableWidgetItem* cell = m_table->item(index, AltitudeColumn); cell && (cell->flags() & Qt::ItemIsEditable))
+            m_table->editItem(cell);
+    });
+    connect(m_tiles, &MapTiles::sourceChanged, this, [this] { m_mapSource->setText(m_tiles->description()); });
+    connect(m_tiles, &MapTiles::error, this, &FlightPlanWidget::problem);
+    m_mapSource->setText(m_tiles->description());
     showProgress(m_upload->progress());
 }
+
+FlightPlanWidget::~FlightPlanWidget() = default;
 
 bool FlightPlanWidget::loadPlan(const QString& path, QString* error)
 {
     QString reason;
     std::optional<MissionPlan> plan = PlanFile::load(path, &reason);
+    if (plan) {
+        // A plan the bytes cannot hold is refused now, not when the operator uploads it.
+        if (!plan->encode(&reason))
+            plan.reset(), reason = QStringLiteral("%1: %2").arg(QDir::toNativeSeparators(path), reason);
+    }
     if (!plan) {
-        m_state->setText(QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(reason.toHtmlEscaped()));
-        emit message(reason);
+        m_state->setText(red(reason));
+        emit problem(reason);
         if (error)
             *error = reason;
         return false;
     }
     m_plan = std::move(plan);
+    m_edited = false;
     m_file->setText(QFileInfo(path).fileName());
     m_file->setToolTip(path);
     showPlan();
+    m_map->setPlan(&*m_plan);
+    m_map->fitToPlan();
+    return true;
+}
+
+bool FlightPlanWidget::savePlan(const QString& path, QString* error)
+{
+    QString reason;
+    if (!m_plan || !PlanFile::save(*m_plan, path, &reason)) {
+        if (!m_plan)
+            reason = tr("no flight plan to save");
+        emit problem(reason);
+        if (error)
+            *error = reason;
+        return false;
+    }
+    m_file->setText(QFileInfo(path).fileName());
+    m_file->setToolTip(path);
+    emit message(tr("Flight plan saved as %1").arg(QDir::toNativeSeparators(path)));
     return true;
 }
 
@@ -116,12 +250,77 @@ void FlightPlanWidget::setLinkReady(bool ready)
     updateButtons();
 }
 
+void FlightPlanWidget::setTileSettings(const TileSettings& settings)
+{
+    TileSettings s = settings;
+    if (s.cacheDir.isEmpty())
+        s.cacheDir = QStandardPaths::writableLocation(QStandardPaths::CacheLocation) + QStringLiteral("/tiles");
+    m_tiles->configure(s);
+}
+
 void FlightPlanWidget::openPlan()
 {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open a QGroundControl flight plan"), QString(),
-                                                      tr("QGroundControl plans (*.plan);;All files (*)"));
+    const QString path =
+        QFileDialog::getOpenFileName(this, tr("Open a flight plan"), QString(), PlanFile::openFilter());
     if (!path.isEmpty())
         loadPlan(path);
+}
+
+void FlightPlanWidget::savePlanAs()
+{
+    if (!m_plan)
+        return;
+    QString path = QFileDialog::getSaveFileName(this, tr("Save the flight plan"), QString(),
+                                                tr("QGroundControl plans (*.plan)"));
+    if (path.isEmpty())
+        return;
+    if (!path.endsWith(QLatin1String(".plan"), Qt::CaseInsensitive))
+        path += QLatin1String(".plan");
+    savePlan(path);
+}
+
+void FlightPlanWidget::chooseTiles()
+{
+    QDialog dialog(this);
+    dialog.setWindowTitle(tr("Map tiles"));
+    const TileSettings current = m_tiles->settings();
+    auto* mbtiles = new QLineEdit(current.mbtilesPath);
+    auto* browse = new QPushButton(tr("Browse\u2026"));
+    auto* url = new QLineEdit(current.urlTemplate);
+    url->setPlaceholderText(QStringLiteral("https://tile.example.org/{z}/{x}/{y}.png"));
+    auto* attribution = new QLineEdit(current.attribution);
+    attribution->setPlaceholderText(tr("\u00a9 the map's authors, as the provider asks"));
+    auto* file = new QHBoxLayout;
+    file->addWidget(mbtiles, 1);
+    file->addWidget(browse);
+    auto* form = new QFormLayout;
+    form->addRow(tr("Offline MBTiles file"), file);
+    form->addRow(tr("Tile server URL"), url);
+    form->addRow(tr("Attribution"), attribution);
+    auto* note = new QLabel(tr("The MBTiles file is used when set; tiles from a server are kept in a disk cache "
+                               "for use offline. With neither, the map is a grid with coordinates."));
+    note->setWordWrap(true);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    auto* layout = new QVBoxLayout(&dialog);
+    layout->addLayout(form);
+    layout->addWidget(note);
+    layout->addWidget(buttons);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    connect(browse, &QPushButton::clicked, &dialog, [&] {
+        const QString path = QFileDialog::getOpenFileName(&dialog, tr("Offline map tiles"), mbtiles->text(),
+                                                          tr("MBTiles (*.mbtiles);;All files (*)"));
+        if (!path.isEmpty())
+            mbtiles->setText(path);
+    });
+    dialog.resize(560, dialog.sizeHint().height());
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    TileSettings s = current;
+    s.mbtilesPath = mbtiles->text().trimmed();
+    s.urlTemplate = url->text().trimmed();
+    s.attribution = attribution->text().trimmed();
+    setTileSettings(s);
 }
 
 void FlightPlanWidget::uploadPlan()
@@ -129,10 +328,35 @@ void FlightPlanWidget::uploadPlan()
     if (!m_plan)
         return;
     QString error;
-    if (!m_upload->start(m_plan->toBytes(), &error)) {
-        m_state->setText(error);
-        emit message(error);
+    const std::optional<QByteArray> bytes = m_plan->encode(&error);
+    if (!bytes) {
+        m_state->setText(red(error));
+        emit problem(error);
+        return;
     }
+    const int sections = sectionsFor(bytes->size());
+    const FlightPlanUpload::Progress now = m_upload->progress();
+    // Never less than the frame cadence: a rate measured over a burst must not hide a long upload.
+    const double perSection =
+        now.rateMeasured ? std::max(now.secondsPerSection, kNominalSecondsPerSection) : kNominalSecondsPerSection;
+    const double pass = sections * perSection;
+    if (pass > kLongUploadSeconds &&
+        !m_confirm(tr("This plan is %1 BLOCK 2 sections: one pass takes about %2 at %3 s a section, and up to %4 "
+                      "if frames are lost and all %5 passes are needed. Upload it?")
+                       .arg(sections)
+                       .arg(duration(pass))
+                       .arg(perSection, 0, 'f', 1)
+                       .arg(duration(pass * FlightPlanUpload::kMaxPasses))
+                       .arg(FlightPlanUpload::kMaxPasses)))
+        return;
+    if (!m_upload->start(*bytes, &error)) {
+        m_state->setText(red(error));
+        emit problem(error);
+        return;
+    }
+    m_sentPlan = m_plan;
+    m_edited = false;
+    planEdited();
 }
 
 void FlightPlanWidget::cancelUpload()
@@ -140,15 +364,24 @@ void FlightPlanWidget::cancelUpload()
     m_upload->cancel();
 }
 
+int FlightPlanWidget::sectionsFor(qsizetype bytes) const
+{
+    const qsizetype stream = qsizetype(rcm::FlightPlanDescriptor::kSize) + bytes;
+    const qsizetype perSection = m_upload->sectionSize();
+    return int((stream + perSection - 1) / perSection);
+}
+
 void FlightPlanWidget::showPlan()
 {
     const QList<MissionItem>& items = m_plan->items;
+    m_filling = true;
     m_table->setRowCount(int(items.size()));
     for (int row = 0; row < int(items.size()); ++row) {
         const MissionItem& item = items[row];
         const auto set = [&](int column, const QString& text, Qt::Alignment align = Qt::AlignRight) {
             auto* cell = new QTableWidgetItem(text);
             cell->setTextAlignment(align | Qt::AlignVCenter);
+            cell->setFlags(cell->flags() & ~Qt::ItemIsEditable);
             m_table->setItem(row, column, cell);
         };
         set(SeqColumn, QString::number(item.seq));
@@ -159,15 +392,49 @@ void FlightPlanWidget::showPlan()
         set(LatitudeColumn, positioned ? number(item.latitude, 7) : QStringLiteral("\u2014"));
         set(LongitudeColumn, positioned ? number(item.longitude, 7) : QStringLiteral("\u2014"));
         set(AltitudeColumn, positioned ? number(item.altitude, 1) : QStringLiteral("\u2014"));
+        if (positioned && item.altitude) {
+            QTableWidgetItem* altitude = m_table->item(row, AltitudeColumn);
+            altitude->setFlags(altitude->flags() | Qt::ItemIsEditable);
+            altitude->setToolTip(tr("Double-click to change the altitude (metres, %1)").arg(item.frameName()));
+        }
         for (int p = 0; p < 4; ++p)
             set(Param1Column + p, param(item.params[std::size_t(p)]));
     }
+    m_filling = false;
+
     const qsizetype bytes = m_plan->toBytes().size();
-    // Whole words: with no translation loaded, tr()'s %n would show "item(s)".
-    const int sections = sectionCount(bytes);
-    m_summary->setText((items.size() == 1 ? tr("1 mission item") : tr("%1 mission items").arg(items.size())) +
-                       tr(", %1 bytes, ").arg(bytes) +
-                       (sections == 1 ? tr("1 BLOCK 2 section") : tr("%1 BLOCK 2 sections").arg(sections)));
+    const int sections = sectionsFor(bytes);
+    QStringList parts{count(items.size(), tr("mission item"), tr("mission items"))};
+    if (m_plan->format() >= 2) {
+        rcm::plan::Report r = reportOf(*m_plan);
+        r.items = 0;
+        // "fence 1 polygon (4 vertices), 2 rally points": the report's words, without the items.
+        const QString contents = QString::fromStdString(r.describe());
+        parts << contents.mid(contents.indexOf(QLatin1Char(',')) + 2);
+    }
+    parts << tr("%1 bytes").arg(bytes) << count(sections, tr("BLOCK 2 section"), tr("BLOCK 2 sections"))
+          << tr("%1 a pass").arg(duration(sections * kNominalSecondsPerSection));
+    m_summary->setText(parts.join(QStringLiteral(", ")));
+    if (m_upload->progress().state != FlightPlanUpload::State::Sending) {
+        m_progress->setRange(0, sections);
+        m_progress->setValue(0);
+    }
+    planEdited();
+}
+
+void FlightPlanWidget::planEdited()
+{
+    if (!m_plan)
+        return;
+    const bool sending = m_upload->progress().state == FlightPlanUpload::State::Sending;
+    if (!m_edited)
+        m_edits->clear();
+    else if (sending)
+        m_edits->setText(QStringLiteral("<span style=\"color:#9a5b00\"><b>%1</b></span>")
+                             .arg(tr("Edited: the upload in progress sends the plan as it was before")));
+    else
+        m_edits->setText(QStringLiteral("<span style=\"color:#9a5b00\"><b>%1</b></span>")
+                             .arg(tr("Edited: not sent until you upload")));
     updateButtons();
 }
 
@@ -176,44 +443,186 @@ QString FlightPlanWidget::summary() const
     return m_summary->text();
 }
 
+QString FlightPlanWidget::uploadState() const
+{
+    return m_state->text();
+}
+
+void FlightPlanWidget::selectRow(int row)
+{
+    if (row < 0 || row >= m_table->rowCount())
+        return;
+    m_table->setCurrentCell(row, m_table->currentColumn() < 0 ? 0 : m_table->currentColumn());
+    m_table->scrollToItem(m_table->item(row, 0));
+}
+
+void FlightPlanWidget::cellEdited(int row, int column)
+{
+    if (m_filling || column != AltitudeColumn || !m_plan || row >= m_plan->items.size())
+        return;
+    bool ok = false;
+    const double metres = m_table->item(row, column)->text().trimmed().toDouble(&ok);
+    if (!ok || !std::isfinite(metres) || std::abs(metres) > 100000) {
+        const QString reason = tr("Mission item %1: altitude \"%2\" is not a number of metres within \u00b1100 km; "
+                                  "it stays %3 m")
+                                   .arg(row)
+                                   .arg(m_table->item(row, column)->text())
+                                   .arg(number(m_plan->items[row].altitude, 1));
+        emit problem(reason);
+        showPlan();
+        return;
+    }
+    setItemAltitude(row, metres);
+}
+
+void FlightPlanWidget::moveItem(int index, const GeoPoint& to)
+{
+    if (!m_plan || index < 0 || index >= m_plan->items.size() || !m_plan->items[index].hasPosition())
+        return;
+    m_plan->items[index].latitude = std::clamp(to.latitude, -85.0, 85.0);
+    m_plan->items[index].longitude = std::clamp(to.longitude, -180.0, 180.0);
+    m_edited = true;
+    showPlan();
+    m_map->planChanged();
+    selectRow(index);
+}
+
+void FlightPlanWidget::addWaypoint(const GeoPoint& at)
+{
+    if (!m_plan) {
+        m_plan = MissionPlan{};
+        m_map->setPlan(&*m_plan);
+        m_file->setText(tr("New plan"));
+    }
+    if (m_plan->items.size() >= 65535)
+        return;
+    const int after = m_table->currentRow() >= 0 ? m_table->currentRow() : int(m_plan->items.size()) - 1;
+    // The new waypoint flies at the altitude of the positioned item before it, in its frame.
+    MissionItem item;
+    item.command = 16;  // NAV_WAYPOINT
+    item.frame = 3;     // above home
+    item.params = {0, 0, 0, std::nan("")};
+    item.altitude = kNewWaypointAltitude;
+    for (int i = after; i >= 0; --i) {
+        if (m_plan->items[i].hasPosition() && m_plan->items[i].altitude) {
+            item.frame = m_plan->items[i].frame;
+            item.altitude = m_plan->items[i].altitude;
+            break;
+        }
+    }
+    item.latitude = std::clamp(at.latitude, -85.0, 85.0);
+    item.longitude = std::clamp(at.longitude, -180.0, 180.0);
+    m_plan->items.insert(after + 1, item);
+    m_plan->renumber();
+    m_edited = true;
+    showPlan();
+    m_map->planChanged();
+    selectRow(after + 1);
+}
+
+void FlightPlanWidget::deleteItem(int index)
+{
+    if (!m_plan || index < 0 || index >= m_plan->items.size())
+        return;
+    m_plan->items.removeAt(index);
+    m_plan->renumber();
+    m_edited = true;
+    showPlan();
+    m_map->setSelectedItem(-1);
+    m_map->planChanged();
+    selectRow(std::min(index, int(m_plan->items.size()) - 1));
+}
+
+void FlightPlanWidget::setItemAltitude(int index, double metres)
+{
+    if (!m_plan || index < 0 || index >= m_plan->items.size())
+        return;
+    m_plan->items[index].altitude = metres;
+    m_edited = true;
+    showPlan();
+    m_map->planChanged();
+    selectRow(index);
+}
+
 void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
 {
-    m_progress->setRange(0, std::max(progress.total, 1));
+    const int total = progress.total > 0 ? progress.total : (m_plan ? sectionsFor(m_plan->toBytes().size()) : 1);
+    m_progress->setRange(0, std::max(total, 1));
     m_progress->setValue(progress.state == FlightPlanUpload::State::Acknowledged ? progress.total : progress.sent);
     switch (progress.state) {
         case FlightPlanUpload::State::Idle:
             m_state->setText(tr("Not sent"));
             break;
-        case FlightPlanUpload::State::Sending:
+        case FlightPlanUpload::State::Sending: {
+            if (progress.pass == 0) {
+                m_state->setText(tr("Plan %1: waiting for the next frame").arg(progress.planId, 8, 16, QLatin1Char('0')));
+                break;
+            }
+            const double left = progress.secondsLeftInPass(kNominalSecondsPerSection);
+            const QString rate = progress.rateMeasured
+                                     ? tr("%1 s a section").arg(progress.secondsPerSection, 0, 'f', 1)
+                                     : tr("a section a frame");
             m_state->setText(
-                progress.pass == 0
-                    ? tr("Plan %1: waiting for the next frame").arg(progress.planId, 8, 16, QLatin1Char('0'))
-                    : tr("Pass %1 of %2: waiting for the aircraft's acknowledgement")
-                          .arg(progress.pass)
-                          .arg(progress.maxPasses));
+                left > 0 ? tr("Pass %1 of %2: %3 of %4 sections, %5 left in this pass (%6)")
+                               .arg(progress.pass)
+                               .arg(progress.maxPasses)
+                               .arg(progress.inPass)
+                               .arg(progress.total)
+                               .arg(duration(left), rate)
+                         : tr("Pass %1 of %2 sent: waiting for the aircraft's acknowledgement")
+                               .arg(progress.pass)
+                               .arg(progress.maxPasses));
+            m_progress->setValue(progress.inPass);
             break;
+        }
         case FlightPlanUpload::State::Acknowledged:
-            m_state->setText(QStringLiteral("<span style=\"color:#1d7a35\"><b>%1</b></span>")
-                                 .arg(tr("Acknowledged by the aircraft")));
-            emit message(tr("Flight plan acknowledged by the aircraft"));
+            showAcknowledgement(progress);
             break;
-        case FlightPlanUpload::State::GaveUp:
-            m_state->setText(QStringLiteral("<span style=\"color:#b01c1c\"><b>%1</b></span>")
-                                 .arg(tr("Not acknowledged after %1 passes").arg(progress.maxPasses)));
-            emit message(tr("Flight plan upload gave up: no acknowledgement"));
+        case FlightPlanUpload::State::GaveUp: {
+            const QString text = tr("Flight plan upload gave up: no acknowledgement after %1 passes")
+                                     .arg(progress.maxPasses);
+            m_state->setText(red(text));
+            emit problem(text);
             break;
+        }
         case FlightPlanUpload::State::Cancelled:
             m_state->setText(tr("Cancelled"));
             break;
     }
-    updateButtons();
+    planEdited();
+}
+
+void FlightPlanWidget::showAcknowledgement(const FlightPlanUpload::Progress& progress)
+{
+    const rcm::plan::Report sent = m_sentPlan ? reportOf(*m_sentPlan) : rcm::plan::Report{};
+    const auto held = rcm::plan::Report::read(std::span(
+        reinterpret_cast<const std::uint8_t*>(progress.report.constData()), std::size_t(progress.report.size())));
+    if (held && *held != sent) {
+        const QString text = tr("The aircraft acknowledged the flight plan but holds %1; %2 were sent")
+                                 .arg(QString::fromStdString(held->describe()), QString::fromStdString(sent.describe()));
+        m_state->setText(red(text));
+        emit problem(text);
+        return;
+    }
+    if (!held && sent.format >= 2) {
+        const QString text = tr("The aircraft acknowledged the flight plan's bytes but did not say it holds the "
+                                "geofence and rally points (it may read only plan format 1)");
+        m_state->setText(red(text));
+        emit problem(text);
+        return;
+    }
+    const QString holds = held ? tr(": it holds %1").arg(QString::fromStdString(held->describe())) : QString();
+    m_state->setText(QStringLiteral("<span style=\"color:#1d7a35\"><b>%1</b></span>")
+                         .arg((tr("Acknowledged by the aircraft") + holds).toHtmlEscaped()));
+    emit message(tr("Flight plan acknowledged by the aircraft") + holds);
 }
 
 void FlightPlanWidget::updateButtons()
 {
     const bool sending = m_upload->progress().state == FlightPlanUpload::State::Sending;
-    m_send->setEnabled(m_plan.has_value() && m_linkReady && !sending);
+    m_send->setEnabled(m_plan.has_value() && !m_plan->items.isEmpty() && m_linkReady && !sending);
     m_cancel->setEnabled(sending);
+    m_save->setEnabled(m_plan.has_value());
     m_send->setToolTip(m_linkReady ? tr("Send the plan in BLOCK 2 sections, one per frame, until the aircraft "
                                         "acknowledges it")
                                    : tr("Connect a link first"));

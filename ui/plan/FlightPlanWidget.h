@@ -1,16 +1,25 @@
 #pragma once
 
-// The flight plan tab: a QGroundControl mission loaded from a .plan file, its
-// items in a table, and its upload to the aircraft in BLOCK 2 sections with
-// the progress of each pass and the aircraft's acknowledgement.
+// The flight plan tab: a plan loaded from a file of another program
+// (QGroundControl, Mission Planner, KML), its items in a table and on a map
+// beside it, edited on the map, saved as a .plan, and its upload to the
+// aircraft in BLOCK 2 sections with the progress of each pass, the time left
+// at the rate the link really sends, and what the aircraft says it holds.
+//
+// Edits change the plan shown, never the plan being sent: an upload sends
+// the bytes of the plan as it was when the operator pressed Upload, so the
+// next frame's BLOCK 2 section is unaffected until the operator uploads.
 
-#include "ui/plan/FlightPlanUpload.h"
+#include "link/maptiles/MapTiles.h"
 #include "link/plan/MissionPlan.h"
+#include "ui/plan/FlightPlanUpload.h"
 
 #include <QWidget>
 
+#include <functional>
 #include <optional>
 
+class PlanMapView;
 class QLabel;
 class QProgressBar;
 class QPushButton;
@@ -30,40 +39,87 @@ public:
         Param1Column
     };
     static constexpr int kColumnCount = Param1Column + 4;
+    // A plan whose one pass takes longer than this is uploaded only after the
+    // operator confirms, having been told how long it takes.
+    static constexpr double kLongUploadSeconds = 10 * 60;
+    // Seconds a section before the link has sent two: the frame cadence.
+    static constexpr double kNominalSecondsPerSection = 1.0;
+    // The altitude given to a waypoint added on the map when there is no
+    // positioned item before it, metres above home.
+    static constexpr double kNewWaypointAltitude = 100;
 
     // `upload` carries the plan to the link; it must outlive this widget.
     explicit FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent = nullptr);
+    ~FlightPlanWidget() override;
 
     // Shows the plan; on an error keeps the plan shown before and says why.
     bool loadPlan(const QString& path, QString* error = nullptr);
+    bool savePlan(const QString& path, QString* error = nullptr);
     const std::optional<MissionPlan>& plan() const { return m_plan; }
     QTableWidget* table() const { return m_table; }
-    // "9 mission items, 322 bytes, 2 BLOCK 2 sections"; empty before a plan.
+    PlanMapView* map() const { return m_map; }
+    MapTiles* tiles() const { return m_tiles; }
+    // "9 mission items, 322 bytes, 2 BLOCK 2 sections, 2 s a pass"; empty before a plan.
     QString summary() const;
+    // The text beside the progress bar: state, pass, time left.
+    QString uploadState() const;
+    // True when the plan shown differs from the one last uploaded.
+    bool isEdited() const { return m_edited; }
 
     // Uploads go out only while a link that can send is running.
     void setLinkReady(bool ready);
+    void setTileSettings(const TileSettings& settings);
+
+    // Asks the operator to confirm a long upload; the default shows a dialog
+    // whose default button is Cancel. Tests replace it.
+    using Confirm = std::function<bool(const QString& text)>;
+    void setConfirm(Confirm confirm) { m_confirm = std::move(confirm); }
+
+    // The edits the map asks for, also for tests and keyboard use.
+    void moveItem(int index, const GeoPoint& to);
+    void addWaypoint(const GeoPoint& at);
+    void deleteItem(int index);
+    void setItemAltitude(int index, double metres);
 
 public slots:
     void openPlan();  // asks for a file
+    void savePlanAs();
+    void chooseTiles();
     void uploadPlan();
     void cancelUpload();
 
 signals:
-    void message(const QString& text);  // for the status bar
+    void message(const QString& text);  // for the status bar and the event log
+    void problem(const QString& text);  // an error the operator must see: the event log and the banner
 
 private:
     void showPlan();
+    void planEdited();
     void showProgress(const FlightPlanUpload::Progress& progress);
+    void showAcknowledgement(const FlightPlanUpload::Progress& progress);
     void updateButtons();
+    void selectRow(int row);
+    void cellEdited(int row, int column);
+    int sectionsFor(qsizetype bytes) const;
 
     FlightPlanUpload* m_upload;
+    MapTiles* m_tiles;
     std::optional<MissionPlan> m_plan;
+    std::optional<MissionPlan> m_sentPlan;  // as it was when the last upload started
+    bool m_edited = false;
     bool m_linkReady = false;
+    bool m_filling = false;  // the table is being filled, not edited
+    Confirm m_confirm;
     QLabel* m_file;
     QLabel* m_summary;
+    QLabel* m_edits;
+    QLabel* m_mapSource;
     QTableWidget* m_table;
+    PlanMapView* m_map;
     QPushButton* m_open;
+    QPushButton* m_save;
+    QPushButton* m_editOnMap;
+    QPushButton* m_tileButton;
     QPushButton* m_send;
     QPushButton* m_cancel;
     QProgressBar* m_progress;

@@ -25,7 +25,7 @@ public:
     // Runs it to the end (needs a QCoreApplication); the exit status.
     int run() const;
 
-    // Reads a QGroundControl .plan into the bytes uploaded (ui/plan/MissionPlan).
+    // Reads a plan file of any format PlanFile reads into the bytes uploaded.
     static Scenario::PlanLoader planLoader();
 
 private:

@@ -289,6 +289,8 @@ void MainWindow::buildDocks()
         statusBar()->showMessage(text, 8000);
         m_alerts->info(EventSource::Plan, text);
     });
+    connect(m_flightPlan, &FlightPlanWidget::problem, this,
+            [this](const QString& text) { m_alerts->error(EventSource::Plan, text); });
 
     QDockWidget* link = dock(tr("Link"), QStringLiteral("linkDock"), linkBox, this);
     QDockWidget* preview = dock(tr("Next frame"), QStringLiteral("previewDock"), m_preview, this);
@@ -448,6 +450,11 @@ void MainWindow::restoreSession(const Options& options)
         m_layoutRestored = restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray()) &&
                            restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
         m_linkSettings->setSettings(LinkSettings::load(settings));
+        TileSettings tiles;
+        tiles.mbtilesPath = settings.value(QStringLiteral("map/mbtiles")).toString();
+        tiles.urlTemplate = settings.value(QStringLiteral("map/url")).toString();
+        tiles.attribution = settings.value(QStringLiteral("map/attribution")).toString();
+        m_flightPlan->setTileSettings(tiles);
         theme = Theme::fromName(settings.value(QStringLiteral("theme")).toString()).value_or(Theme::Kind::Day);
         if (airframe.isEmpty())
             airframe = settings.value(QStringLiteral("airframe")).toString();
@@ -468,6 +475,10 @@ void MainWindow::saveSession() const
     settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
     settings.setValue(QStringLiteral("window/state"), saveState());
     m_linkSettings->settings().save(settings);
+    const TileSettings& tiles = m_flightPlan->tiles()->settings();
+    settings.setValue(QStringLiteral("map/mbtiles"), tiles.mbtilesPath);
+    settings.setValue(QStringLiteral("map/url"), tiles.urlTemplate);
+    settings.setValue(QStringLiteral("map/attribution"), tiles.attribution);
     settings.setValue(QStringLiteral("airframe"), m_airframePath);
     settings.setValue(QStringLiteral("theme"), Theme::name(theme()));
 }

@@ -1,0 +1,250 @@
+#include "link/plan/WaypointsFile.h"
+
+#include <QLocale>
+#include <QRegularExpression>
+#include <QStringList>
+
+#include <cmath>
+#include <limits>
+
+namespace {
+
+constexpr double kDegreeSteps = 1e7;
+constexpr double kMillimetres = 1e3;
+constexpr int kFieldCount = 12;
+const char* const kFieldNames[kFieldCount] = {"index",  "current", "frame",    "command",   "param1",   "param2",
+                                              "param3", "param4",  "latitude", "longitude", "altitude", "autocontinue"};
+enum Field { Index, Current, Frame, Command, Param1, Latitude = 8, Longitude, Altitude, AutoContinue };
+
+bool fitsInt32(double value, double steps)
+{
+    const double scaled = std::round(value * steps);
+    return std::isfinite(scaled) && scaled > double(std::numeric_limits<std::int32_t>::min()) &&
+           scaled <= double(std::numeric_limits<std::int32_t>::max());
+}
+
+bool isGlobalFrame(qint64 frame)
+{
+    return frame == 0 || frame == 3 || frame == 5 || frame == 6 || frame == 10 || frame == 11;
+}
+
+QString number(double value)
+{
+    return QString::number(value, 'g', QLocale::FloatingPointShortest);
+}
+
+// One line of the file, split into its fields.
+struct Line {
+    int number = 0;
+    QStringList fields;
+};
+
+class WaypointsReader {
+public:
+    explicit WaypointsReader(const QString& source) : m_source(source) {}
+
+    std::optional<MissionPlan> read(const QByteArray& text)
+    {
+        const QStringList lines = QString::fromUtf8(text).split(QLatin1Char('\n'));
+        if (!readHeader(lines[0]))
+            return std::nullopt;
+        MissionPlan plan;
+        bool first = true;
+        for (qsizetype i = 1; i < lines.size(); ++i) {
+            const QString content = lines[i].trimmed();
+            if (content.isEmpty() || content.startsWith(QLatin1Char('#')))
+                continue;
+            const Line line{int(i + 1), content.split(QRegularExpression(QStringLiteral("[ \t]+")))};
+            if (line.fields.size() != kFieldCount) {
+                fail(line.number, QStringLiteral("%1 fields; a QGC WPL 110 line has 12 (index, current, frame, "
+                                                 "command, param1..param4, latitude, longitude, altitude, "
+                                                 "autocontinue)")
+                                      .arg(line.fields.size()));
+                return std::nullopt;
+            }
+            const auto index = wholeNumber(line, Index, 0, std::numeric_limits<int>::max());
+            if (!index)
+                return std::nullopt;
+            const bool isHome = first && *index == 0;
+            first = false;
+            MissionItem item;
+            if (!readItem(line, isHome, item))
+                return std::nullopt;
+            if (isHome) {
+                plan.homeLatitude = item.latitude;
+                plan.homeLongitude = item.longitude;
+                plan.homeAltitude = item.altitude;
+                continue;
+            }
+            if (plan.items.size() == std::numeric_limits<quint16>::max()) {
+                fail(line.number, QStringLiteral("more than 65535 mission items; a plan holds at most 65535"));
+                return std::nullopt;
+            }
+            item.seq = quint16(plan.items.size());
+            plan.items.append(item);
+        }
+        return plan;
+    }
+
+    const QString& error() const { return m_error; }
+
+private:
+    bool fail(int line, const QString& what)
+    {
+        m_error = QStringLiteral("%1: line %2: %3").arg(m_source).arg(line).arg(what);
+        return false;
+    }
+
+    bool failField(const Line& line, int field, const QString& what)
+    {
+        m_error = QStringLiteral("%1: line %2, field %3 (%4): %5")
+                      .arg(m_source)
+                      .arg(line.number)
+                      .arg(field + 1)
+                      .arg(QLatin1String(kFieldNames[field]), what);
+        return false;
+    }
+
+    bool readHeader(QString first)
+    {
+        first = first.trimmed();
+        if (first.startsWith(QChar(0xFEFF)))
+            first = first.mid(1).trimmed();
+        if (!first.startsWith(QLatin1String("QGC WPL")))
+            return fail(1, first.isEmpty()
+                               ? QStringLiteral("not a QGC WPL 110 file (its first line is empty)")
+                               : QStringLiteral("not a QGC WPL 110 file (it starts with \"%1\")").arg(first.left(40)));
+        const QString version = first.mid(7).trimmed();
+        if (version == QLatin1String("110"))
+            return true;
+        if (version == QLatin1String("120"))
+            return fail(1, QStringLiteral("QGC WPL 120 (QGroundControl's format before 2016, without a home) is not "
+                                          "read; open the file in QGroundControl and save it as a .plan"));
+        return fail(1, QStringLiteral("QGC WPL version \"%1\"; this console reads QGC WPL 110").arg(version));
+    }
+
+    std::optional<qint64> wholeNumber(const Line& line, int field, qint64 min, qint64 max)
+    {
+        bool ok = false;
+        const qint64 value = line.fields[field].toLongLong(&ok);
+        if (!ok) {
+            failField(line, field, QStringLiteral("\"%1\" is not a whole number").arg(line.fields[field]));
+            return std::nullopt;
+        }
+        if (value < min || value > max) {
+            failField(line, field, QStringLiteral("%1 is outside %2..%3").arg(value).arg(min).arg(max));
+            return std::nullopt;
+        }
+        return value;
+    }
+
+    std::optional<double> real(const Line& line, int field)
+    {
+        bool ok = false;
+        const double value = line.fields[field].toDouble(&ok);
+        if (!ok) {
+            failField(line, field, QStringLiteral("\"%1\" is not a number").arg(line.fields[field]));
+            return std::nullopt;
+        }
+        return value;
+    }
+
+    // Latitude, longitude and altitude: not given when NaN; in range for the
+    // plan bytes and, in a frame of latitudes and longitudes, on the globe.
+    bool readPosition(const Line& line, bool global, std::optional<double> (&position)[3])
+    {
+        for (int i = 0; i < 3; ++i) {
+            const int field = Latitude + i;
+            const auto value = real(line, field);
+            if (!value)
+                return false;
+            if (std::isnan(*value))
+                continue;
+            const double limit = field == Latitude ? 90 : 180;
+            if (global && field != Altitude && std::abs(*value) > limit)
+                return failField(line, field, QStringLiteral("%1 is outside \u00b1%2").arg(number(*value)).arg(limit));
+            if (!fitsInt32(*value, field == Altitude ? kMillimetres : kDegreeSteps))
+                return failField(line, field,
+                                 QStringLiteral("%1 is out of the range the plan bytes hold").arg(number(*value)));
+            position[i] = *value;
+        }
+        return true;
+    }
+
+    // Every field of a line, the home's as well as an item's. The home is a
+    // place on the globe whatever its frame says.
+    bool readItem(const Line& line, bool isHome, MissionItem& item)
+    {
+        const auto current = wholeNumber(line, Current, 0, 1);
+        const auto frame = current ? wholeNumber(line, Frame, 0, 255) : std::nullopt;
+        const auto command = frame ? wholeNumber(line, Command, 0, 65535) : std::nullopt;
+        if (!command)
+            return false;
+        item.frame = quint8(*frame);
+        item.command = quint16(*command);
+        for (int p = 0; p < 4; ++p) {
+            const auto value = real(line, Param1 + p);
+            if (!value)
+                return false;
+            if (std::isfinite(*value) && std::abs(*value) > double(std::numeric_limits<float>::max()))
+                return failField(line, Param1 + p,
+                                 QStringLiteral("%1 does not fit a 32-bit float").arg(number(*value)));
+            item.params[std::size_t(p)] = *value;
+        }
+        std::optional<double> position[3];
+        if (!readPosition(line, isHome || isGlobalFrame(*frame), position))
+            return false;
+        item.latitude = position[0];
+        item.longitude = position[1];
+        item.altitude = position[2];
+        const auto autoContinue = wholeNumber(line, AutoContinue, 0, 1);
+        if (!autoContinue)
+            return false;
+        item.autoContinue = *autoContinue == 1;
+        return true;
+    }
+
+    const QString& m_source;
+    QString m_error;
+};
+
+QByteArray field(double value)
+{
+    return std::isnan(value) ? QByteArray("nan") : QByteArray::number(value, 'g', QLocale::FloatingPointShortest);
+}
+
+QByteArray line(const QList<QByteArray>& fields)
+{
+    return fields.join('\t') + '\n';
+}
+
+}  // namespace
+
+namespace WaypointsFile {
+
+std::optional<MissionPlan> read(const QByteArray& text, const QString& source, QString* error)
+{
+    WaypointsReader reader(source);
+    auto plan = reader.read(text);
+    if (!plan && error)
+        *error = reader.error();
+    return plan;
+}
+
+QByteArray write(const MissionPlan& plan)
+{
+    QByteArray out = "QGC WPL 110\n";
+    // The home line as Mission Planner writes it: current, absolute frame, NAV_WAYPOINT.
+    out += line({"0", "1", "0", "16", "0", "0", "0", "0", field(plan.homeLatitude.value_or(0)),
+                 field(plan.homeLongitude.value_or(0)), field(plan.homeAltitude.value_or(0)), "1"});
+    for (qsizetype i = 0; i < plan.items.size(); ++i) {
+        const MissionItem& item = plan.items[i];
+        out += line({QByteArray::number(i + 1), "0", QByteArray::number(item.frame), QByteArray::number(item.command),
+                     field(item.params[0]), field(item.params[1]), field(item.params[2]), field(item.params[3]),
+                     field(item.latitude.value_or(0)), field(item.longitude.value_or(0)),
+                     field(item.altitude.value_or(0)), item.autoContinue ? "1" : "0"});
+    }
+    return out;
+}
+
+}  // namespace WaypointsFile
