@@ -297,6 +297,9 @@ void TestPlanWidget::reportThatDiffersIsAnError()
     widget.setLinkReady(true);
     QSignalSpy problems(&widget, &FlightPlanWidget::problem);
     QSignalSpy messages(&widget, &FlightPlanWidget::message);
+    widget.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&widget));
+    const int width = widget.minimumSizeHint().width();
 
     widget.uploadPlan();
     rcm::FlightPlanAssembler aircraft;
@@ -312,6 +315,9 @@ void TestPlanWidget::reportThatDiffersIsAnError()
              QStringLiteral("The aircraft acknowledged the flight plan but holds 9 mission items, fence 1 polygon (4 "
                             "vertices) and 1 circle, 1 rally point; 9 mission items, fence 1 polygon (4 vertices) and "
                             "1 circle, 2 rally points were sent"));
+    // A long state wraps; it never widens the tab (and so the window).
+    QCoreApplication::sendPostedEvents(nullptr, QEvent::LayoutRequest);
+    QCOMPARE(widget.minimumSizeHint().width(), width);
 
     // One that says nothing of a format 2 plan may have dropped the fence.
     widget.uploadPlan();

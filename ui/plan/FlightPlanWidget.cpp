@@ -118,6 +118,17 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     m_summary->setWordWrap(true);
     m_edits->setTextFormat(Qt::RichText);
     m_state->setTextFormat(Qt::RichText);
+    // Long states (an acknowledgement that lists the fence, a refusal that
+    // names a file) wrap: they must never widen the window.
+    m_state->setWordWrap(true);
+    m_state->setMinimumWidth(0);
+    m_state->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    for (QLabel* label : {m_edits, m_mapSource}) {
+        label->setWordWrap(true);
+        label->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    }
+    m_file->setWordWrap(true);
+    m_file->setMaximumWidth(260);
     m_mapSource->setTextFormat(Qt::PlainText);
 
     m_table->setHorizontalHeaderLabels({tr("#"), tr("Command"), tr("Frame"), tr("Latitude (\u00b0)"),
@@ -136,7 +147,6 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
 
     m_map->setTiles(m_tiles);
     m_map->setEditable(false);
-    m_map->setMinimumSize(320, 240);
 
     m_progress->setRange(0, 1);
     m_progress->setValue(0);
@@ -151,7 +161,7 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     auto* mapBar = new QHBoxLayout;
     mapBar->addWidget(m_editOnMap);
     mapBar->addWidget(m_edits, 1);
-    mapBar->addWidget(m_mapSource);
+    mapBar->addWidget(m_mapSource, 2);
     mapBar->addWidget(m_tileButton);
     auto* mapBox = new QWidget;
     auto* mapLayout = new QVBoxLayout(mapBox);
@@ -168,7 +178,7 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     bottom->addWidget(m_send);
     bottom->addWidget(m_cancel);
     bottom->addWidget(m_progress, 1);
-    bottom->addWidget(m_state);
+    bottom->addWidget(m_state, 2);
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(6, 6, 6, 6);
     layout->addLayout(top);
