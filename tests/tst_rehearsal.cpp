@@ -393,7 +393,7 @@ void TestRehearsal::samplesHold_data()
 {
     QTest::addColumn<QString>("scenario");
     for (const char* name : {"ber.json", "outage.json", "slip.json", "burst.json", "gear-outage-plan.json",
-                             "secure.json", "slip-serial.json", "real-time.json"})
+                             "secure.json", "slip-serial.json", "real-time.json", "plans-from-other-programs.json"})
         QTest::newRow(name) << QString::fromLatin1(name);
 }
 
