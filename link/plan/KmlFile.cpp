@@ -9,17 +9,10 @@
 
 namespace {
 
-constexpr double kMillimetres = 1e3;
+constexpr double kMillimetres = MissionPlan::kMillimetres;
 constexpr quint8 kFrameAmsl = 0;       // MAV_FRAME_GLOBAL
 constexpr quint8 kFrameAboveHome = 3;  // MAV_FRAME_GLOBAL_RELATIVE_ALT
 constexpr quint16 kNavWaypoint = 16;
-
-bool fitsInt32(double value, double steps)
-{
-    const double scaled = std::round(value * steps);
-    return std::isfinite(scaled) && scaled > double(std::numeric_limits<std::int32_t>::min()) &&
-           scaled <= double(std::numeric_limits<std::int32_t>::max());
-}
 
 QString number(double value)
 {
@@ -202,7 +195,7 @@ private:
         if (std::abs(tuple.position.longitude) > 180)
             return fail(tuple.line, tuple.column,
                         QStringLiteral("%1: longitude %2 is outside \u00b1180").arg(what, number(values[0])));
-        if (tuple.altitude && !fitsInt32(*tuple.altitude, kMillimetres))
+        if (tuple.altitude && !MissionPlan::fitsField(*tuple.altitude, kMillimetres))
             return fail(tuple.line, tuple.column,
                         QStringLiteral("%1: altitude %2 m is out of the range the plan bytes hold")
                             .arg(what, number(*tuple.altitude)));

@@ -9,8 +9,8 @@
 
 namespace {
 
-constexpr double kDegreeSteps = 1e7;
-constexpr double kMillimetres = 1e3;
+constexpr double kDegreeSteps = MissionPlan::kDegreeSteps;
+constexpr double kMillimetres = MissionPlan::kMillimetres;
 
 // The int32 field scaled by `steps`, or nothing when the value does not fit.
 std::optional<std::int32_t> toFixed(double value, double steps)
@@ -123,10 +123,19 @@ QString MissionItem::frameName() const
     return QStringLiteral("MAV_FRAME %1").arg(frame);
 }
 
+bool MissionItem::isGlobalFrame(int frame)
+{
+    return frame == 0 || frame == 3 || frame == 5 || frame == 6 || frame == 10 || frame == 11;
+}
+
 bool MissionItem::hasPosition() const
 {
-    const bool global = frame == 0 || frame == 3 || frame == 5 || frame == 6 || frame == 10 || frame == 11;
-    return global && latitude && longitude;
+    return isGlobalFrame(frame) && latitude && longitude;
+}
+
+bool MissionPlan::fitsField(double value, double steps)
+{
+    return toFixed(value, steps).has_value();
 }
 
 int MissionPlan::format() const

@@ -29,7 +29,9 @@ struct MissionItem {
     // "NAV_WAYPOINT" for the commands a console shows often, else "MAV_CMD 1234".
     QString commandName() const;
     QString frameName() const;
-    // Frames whose latitude and longitude are a place on the map.
+    // MAV_FRAMEs whose x and y are a latitude and a longitude.
+    static bool isGlobalFrame(int frame);
+    // A global frame with both latitude and longitude: a place on the map.
     bool hasPosition() const;
     friend bool operator==(const MissionItem&, const MissionItem&) = default;
 };
@@ -64,6 +66,12 @@ public:
     static constexpr int kHeaderBytes = 16;
     static constexpr int kItemBytes = 34;
     static constexpr std::int32_t kNotGiven = INT32_MIN;
+    static constexpr double kDegreeSteps = 1e7;  // steps of a degree in the plan bytes
+    static constexpr double kMillimetres = 1e3;  // steps of a metre
+
+    // True when `value`, scaled by `steps` and rounded, fits the plan bytes'
+    // int32 fields (and is not INT32_MIN, which means "not given").
+    static bool fitsField(double value, double steps);
 
     // Plan bytes (codec/plan/PlanContents.h). Nothing, with the reason, for a
     // plan the layout cannot hold (a value out of its field's range, more

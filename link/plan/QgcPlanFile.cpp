@@ -12,8 +12,8 @@
 
 namespace {
 
-constexpr double kDegreeSteps = 1e7;
-constexpr double kMillimetres = 1e3;
+constexpr double kDegreeSteps = MissionPlan::kDegreeSteps;
+constexpr double kMillimetres = MissionPlan::kMillimetres;
 constexpr int kPlanVersion = 1;
 constexpr int kMissionVersion = 2;
 constexpr int kGeoFenceVersion = 2;
@@ -30,20 +30,6 @@ constexpr double kHoverSpeed = 5;
 const char* const kGroundStation = "RCM ground control station";
 // The largest radius the plan bytes hold: a uint32 of millimetres.
 constexpr double kMaxRadius = 4294967.295;
-
-// Fits the int32 field scaled by `steps`.
-bool fitsInt32(double value, double steps)
-{
-    const double scaled = std::round(value * steps);
-    return std::isfinite(scaled) && scaled > double(std::numeric_limits<std::int32_t>::min()) &&
-           scaled <= double(std::numeric_limits<std::int32_t>::max());
-}
-
-// Frames whose x and y are a latitude and a longitude.
-bool isGlobalFrame(quint8 frame)
-{
-    return frame == 0 || frame == 3 || frame == 5 || frame == 6 || frame == 10 || frame == 11;
-}
 
 QString number(double value)
 {
@@ -307,7 +293,7 @@ private:
         const QString problem = positionProblem(plan.homeLatitude.value_or(0), plan.homeLongitude.value_or(0));
         if (!problem.isEmpty())
             return fail(path, QStringLiteral("planned home position: ") + problem);
-        if (plan.homeAltitude && !fitsInt32(*plan.homeAltitude, kMillimetres))
+        if (plan.homeAltitude && !MissionPlan::fitsField(*plan.homeAltitude, kMillimetres))
             return fail(path, QStringLiteral("planned home position: altitude %1 m is out of the range the plan "
                                              "bytes hold")
                                   .arg(number(*plan.homeAltitude)));
@@ -390,13 +376,13 @@ private:
         item.latitude = given(params[4]);
         item.longitude = given(params[5]);
         item.altitude = given(params[6]);
-        if (isGlobalFrame(item.frame) &&
+        if (MissionItem::isGlobalFrame(item.frame) &&
             !positionProblem(item.latitude.value_or(0), item.longitude.value_or(0)).isEmpty())
             return fail(
                 path, QStringLiteral("%1: latitude must be within +-90 and longitude within +-180 degrees").arg(where));
-        if ((item.latitude && !fitsInt32(*item.latitude, kDegreeSteps)) ||
-            (item.longitude && !fitsInt32(*item.longitude, kDegreeSteps)) ||
-            (item.altitude && !fitsInt32(*item.altitude, kMillimetres)))
+        if ((item.latitude && !MissionPlan::fitsField(*item.latitude, kDegreeSteps)) ||
+            (item.longitude && !MissionPlan::fitsField(*item.longitude, kDegreeSteps)) ||
+            (item.altitude && !MissionPlan::fitsField(*item.altitude, kMillimetres)))
             return fail(path, QStringLiteral("%1: param5..param7 out of the range the plan bytes hold").arg(where));
         return true;
     }
@@ -564,7 +550,7 @@ private:
             const QString problem = positionProblem(point.position.latitude, point.position.longitude);
             if (!problem.isEmpty())
                 return fail(pointPath, QStringLiteral("%1: %2").arg(where, problem));
-            if (!fitsInt32(point.altitude, kMillimetres))
+            if (!MissionPlan::fitsField(point.altitude, kMillimetres))
                 return fail(pointPath, QStringLiteral("%1: altitude %2 m is out of the range the plan bytes hold")
                                            .arg(where, number(point.altitude)));
             plan.rallyPoints.append(point);

@@ -9,24 +9,12 @@
 
 namespace {
 
-constexpr double kDegreeSteps = 1e7;
-constexpr double kMillimetres = 1e3;
+constexpr double kDegreeSteps = MissionPlan::kDegreeSteps;
+constexpr double kMillimetres = MissionPlan::kMillimetres;
 constexpr int kFieldCount = 12;
 const char* const kFieldNames[kFieldCount] = {"index",  "current", "frame",    "command",   "param1",   "param2",
                                               "param3", "param4",  "latitude", "longitude", "altitude", "autocontinue"};
 enum Field { Index, Current, Frame, Command, Param1, Latitude = 8, Longitude, Altitude, AutoContinue };
-
-bool fitsInt32(double value, double steps)
-{
-    const double scaled = std::round(value * steps);
-    return std::isfinite(scaled) && scaled > double(std::numeric_limits<std::int32_t>::min()) &&
-           scaled <= double(std::numeric_limits<std::int32_t>::max());
-}
-
-bool isGlobalFrame(qint64 frame)
-{
-    return frame == 0 || frame == 3 || frame == 5 || frame == 6 || frame == 10 || frame == 11;
-}
 
 QString number(double value)
 {
@@ -163,7 +151,7 @@ private:
             const double limit = field == Latitude ? 90 : 180;
             if (global && field != Altitude && std::abs(*value) > limit)
                 return failField(line, field, QStringLiteral("%1 is outside \u00b1%2").arg(number(*value)).arg(limit));
-            if (!fitsInt32(*value, field == Altitude ? kMillimetres : kDegreeSteps))
+            if (!MissionPlan::fitsField(*value, field == Altitude ? kMillimetres : kDegreeSteps))
                 return failField(line, field,
                                  QStringLiteral("%1 is out of the range the plan bytes hold").arg(number(*value)));
             position[i] = *value;
@@ -192,7 +180,7 @@ private:
             item.params[std::size_t(p)] = *value;
         }
         std::optional<double> position[3];
-        if (!readPosition(line, isHome || isGlobalFrame(*frame), position))
+        if (!readPosition(line, isHome || MissionItem::isGlobalFrame(item.frame), position))
             return false;
         item.latitude = position[0];
         item.longitude = position[1];
