@@ -68,6 +68,10 @@ private slots:
     void progressSaysWhatIsLeft();
     void reportThatDiffersIsAnError();
     void savedPlanReadsBack();
+    void fenceForbidsAWaypoint();
+    void cancelledUploadIsSaid();
+    void openingAnotherPlanAsksFirst();
+    void fenceOnlyPlanCanBeSent();
     void aircraftReportsFenceAndRally();
 
 private:
@@ -198,6 +202,10 @@ void TestPlanWidget::altitudeTypedInTheTable()
     FlightPlanWidget widget(&upload);
     QVERIFY(widget.loadPlan(kSamplePlan));
     QSignalSpy problems(&widget, &FlightPlanWidget::problem);
+    // Not while editing is off: a double-click on the table changes nothing.
+    QVERIFY(!widget.isEditing());
+    QVERIFY(!(widget.table()->item(4, FlightPlanWidget::AltitudeColumn)->flags() & Qt::ItemIsEditable));
+    widget.setEditing(true);
     QTableWidgetItem* altitude = widget.table()->item(4, FlightPlanWidget::AltitudeColumn);
     QVERIFY(altitude->flags() & Qt::ItemIsEditable);
     // Nothing else in the row is.
@@ -210,7 +218,7 @@ void TestPlanWidget::altitudeTypedInTheTable()
     QCOMPARE(*widget.plan()->items[4].altitude, 135.5);
     QCOMPARE(problems.count(), 1);
     QCOMPARE(problems.at(0).at(0).toString(),
-             QStringLiteral("Mission item 4: altitude \"12o\" is not a number of metres within \u00b1100 km; it "
+             QStringLiteral("Mission item 4: altitude \"12o\" is not a number of metres from -500 to 20000; it "
                             "stays 135.5 m"));
     QCOMPARE(widget.table()->item(4, FlightPlanWidget::AltitudeColumn)->text(), QStringLiteral("135.5"));
 }
@@ -354,6 +362,106 @@ void TestPlanWidget::savedPlanReadsBack()
     QCOMPARE(back->toBytes(), widget.plan()->toBytes());
     QCOMPARE(*back->items[4].latitude, 52.219);
     QCOMPARE(back->rallyPoints.size(), 2);
+}
+
+void TestPlanWidget::fenceForbidsAWaypoint()
+{
+    FlightPlanUpload upload;
+    FlightPlanWidget widget(&upload);
+    QVERIFY(widget.loadPlan(kFencedPlan));
+    widget.setLinkReady(true);
+    QVERIFY(widget.plan()->fenceViolations().isEmpty());
+    // Into the exclusion circle (250 m about 52.2105 N 0.1560 E), and out of the square.
+    widget.moveItem(4, {52.2110, 0.1565});
+    widget.moveItem(3, {52.2300, 0.1468});
+    QCOMPARE(widget.plan()->fenceViolations(),
+             (QStringList{QStringLiteral("mission item 3 is outside every inclusion area"),
+                          QStringLiteral("mission item 4 is inside exclusion circle 1")}));
+    QStringList asked;
+    widget.setConfirm([&](const QString& text) {
+        asked << text;
+        return false;
+    });
+    widget.uploadPlan();
+    QCOMPARE(asked, QStringList{QStringLiteral("The plan's own fence forbids where it goes: mission item 3 is outside "
+                                               "every inclusion area; mission item 4 is inside exclusion circle 1. "
+                                               "Upload it anyway?")});
+    QCOMPARE(upload.progress().state, FlightPlanUpload::State::Idle);
+    const auto labels = widget.findChildren<QLabel*>();
+    QVERIFY(std::any_of(labels.begin(), labels.end(), [](const QLabel* l) {
+        return l->text().contains(QStringLiteral("Fence: mission item 3 is outside every inclusion area"));
+    }));
+
+    // 0 N 0 E is "no position" (Mission Planner writes it for DO_LAND_START): not on the map, not a violation.
+    MissionItem land;
+    land.command = 189;
+    land.frame = 0;
+    land.latitude = 0.0;
+    land.longitude = 0.0;
+    QVERIFY(!land.hasPosition());
+}
+
+void TestPlanWidget::cancelledUploadIsSaid()
+{
+    FlightPlanUpload upload;
+    FlightPlanWidget widget(&upload);
+    QVERIFY(widget.loadPlan(kSamplePlan));
+    widget.setLinkReady(true);
+    QSignalSpy messages(&widget, &FlightPlanWidget::message);
+    widget.uploadPlan();
+    QVERIFY(messages.constLast().at(0).toString().startsWith(QStringLiteral("Uploading flight plan ")));
+    QVERIFY(upload.next());
+    widget.cancelUpload();
+    QCOMPARE(upload.progress().state, FlightPlanUpload::State::Cancelled);
+    QCOMPARE(messages.constLast().at(0).toString(),
+             QStringLiteral("Flight plan upload cancelled: the aircraft holds the plan it last acknowledged"));
+    const auto labels = widget.findChildren<QLabel*>();
+    QVERIFY(std::any_of(labels.begin(), labels.end(), [](const QLabel* l) {
+        return l->text().contains(QStringLiteral("Not on the aircraft: the upload did not finish"));
+    }));
+}
+
+void TestPlanWidget::openingAnotherPlanAsksFirst()
+{
+    FlightPlanUpload upload;
+    FlightPlanWidget widget(&upload);
+    QVERIFY(widget.loadPlan(kSamplePlan));
+    widget.setEditing(true);
+    widget.moveItem(1, {52.22, 0.125});
+    QStringList asked;
+    bool answer = false;
+    widget.setConfirm([&](const QString& text) {
+        asked << text;
+        return answer;
+    });
+    QString error;
+    QVERIFY(!widget.loadPlan(kFencedPlan, &error));
+    QCOMPARE(asked, QStringList{QStringLiteral("The plan shown has edits that are neither uploaded nor saved. Open "
+                                               "fenced.plan and drop them?")});
+    QCOMPARE(*widget.plan()->items[1].latitude, 52.22);
+    answer = true;
+    QVERIFY(widget.loadPlan(kFencedPlan, &error));
+    QCOMPARE(widget.plan()->rallyPoints.size(), 2);
+    // Editing is off again for the plan just opened.
+    QVERIFY(!widget.isEditing());
+    QVERIFY(!widget.map()->isEditable());
+    // Nothing to ask about an unedited plan.
+    QVERIFY(widget.loadPlan(kSamplePlan));
+    QCOMPARE(asked.size(), 2);
+}
+
+void TestPlanWidget::fenceOnlyPlanCanBeSent()
+{
+    FlightPlanUpload upload;
+    FlightPlanWidget widget(&upload);
+    QString error;
+    QVERIFY2(widget.loadPlan(QStringLiteral(RCM_SOURCE_DIR "/tests/data/plans/ce_geofence_rd_2.plan"), &error),
+             qPrintable(error));
+    QVERIFY(widget.plan()->items.isEmpty());
+    QVERIFY(widget.plan()->hasFence());
+    widget.setLinkReady(true);
+    widget.uploadPlan();
+    QCOMPARE(upload.progress().state, FlightPlanUpload::State::Sending);
 }
 
 void TestPlanWidget::aircraftReportsFenceAndRally()

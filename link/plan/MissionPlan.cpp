@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 namespace {
@@ -49,6 +50,34 @@ public:
 private:
     QString m_error;
 };
+
+constexpr double kEarthRadius = 6371008.8;  // metres, mean
+
+double metresBetween(const GeoPoint& a, const GeoPoint& b)
+{
+    const double radians = std::numbers::pi / 180;
+    const double dLat = (b.latitude - a.latitude) * radians;
+    const double dLon = (b.longitude - a.longitude) * radians;
+    const double h = std::sin(dLat / 2) * std::sin(dLat / 2) + std::cos(a.latitude * radians) *
+                                                                    std::cos(b.latitude * radians) *
+                                                                    std::sin(dLon / 2) * std::sin(dLon / 2);
+    return 2 * kEarthRadius * std::asin(std::min(1.0, std::sqrt(h)));
+}
+
+// Even-odd rule: a ray to the east crosses the boundary an odd number of times.
+bool inside(const FencePolygon& polygon, const GeoPoint& p)
+{
+    bool in = false;
+    const QList<GeoPoint>& v = polygon.vertices;
+    for (qsizetype i = 0, j = v.size() - 1; i < v.size(); j = i++) {
+        if ((v[i].latitude > p.latitude) != (v[j].latitude > p.latitude) &&
+            p.longitude < (v[j].longitude - v[i].longitude) * (p.latitude - v[i].latitude) /
+                                  (v[j].latitude - v[i].latitude) +
+                              v[i].longitude)
+            in = !in;
+    }
+    return in;
+}
 
 GeoPoint toGeo(const rcm::plan::Position& p)
 {
@@ -130,7 +159,7 @@ bool MissionItem::isGlobalFrame(int frame)
 
 bool MissionItem::hasPosition() const
 {
-    return isGlobalFrame(frame) && latitude && longitude;
+    return isGlobalFrame(frame) && latitude && longitude && !(*latitude == 0 && *longitude == 0);
 }
 
 bool MissionPlan::fitsField(double value, double steps)
@@ -260,4 +289,41 @@ std::optional<MissionPlan> MissionPlan::fromBytes(const QByteArray& bytes, QStri
     for (const rcm::plan::RallyPoint& in : contents->rallyPoints)
         plan.rallyPoints.append({toGeo(in.position), in.altitude / kMillimetres});
     return plan;
+}
+
+QStringList MissionPlan::fenceViolations() const
+{
+    QStringList found;
+    bool anyInclusion = false;
+    for (const FencePolygon& p : fencePolygons)
+        anyInclusion |= p.inclusion;
+    for (const FenceCircle& c : fenceCircles)
+        anyInclusion |= c.inclusion;
+    for (const MissionItem& item : items) {
+        if (!item.hasPosition())
+            continue;
+        const GeoPoint at{*item.latitude, *item.longitude};
+        const QString name = QStringLiteral("mission item %1").arg(item.seq);
+        bool included = false;
+        QString excluded;
+        for (qsizetype i = 0; i < fencePolygons.size(); ++i) {
+            const bool in = inside(fencePolygons[i], at);
+            if (in && fencePolygons[i].inclusion)
+                included = true;
+            else if (in && excluded.isEmpty())
+                excluded = QStringLiteral("exclusion polygon %1").arg(i + 1);
+        }
+        for (qsizetype i = 0; i < fenceCircles.size(); ++i) {
+            const bool in = metresBetween(fenceCircles[i].centre, at) <= fenceCircles[i].radius;
+            if (in && fenceCircles[i].inclusion)
+                included = true;
+            else if (in && excluded.isEmpty())
+                excluded = QStringLiteral("exclusion circle %1").arg(i + 1);
+        }
+        if (!excluded.isEmpty())
+            found << QStringLiteral("%1 is inside %2").arg(name, excluded);
+        else if (anyInclusion && !included)
+            found << QStringLiteral("%1 is outside every inclusion area").arg(name);
+    }
+    return found;
 }

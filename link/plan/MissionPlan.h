@@ -11,6 +11,7 @@
 #include <QByteArray>
 #include <QList>
 #include <QString>
+#include <QStringList>
 
 #include <array>
 #include <cstdint>
@@ -32,6 +33,8 @@ struct MissionItem {
     // MAV_FRAMEs whose x and y are a latitude and a longitude.
     static bool isGlobalFrame(int frame);
     // A global frame with both latitude and longitude: a place on the map.
+    // 0 degrees north, 0 east is not: MAVLink planners write it for "no
+    // position" in items such as DO_LAND_START.
     bool hasPosition() const;
     friend bool operator==(const MissionItem&, const MissionItem&) = default;
 };
@@ -87,6 +90,12 @@ public:
     bool hasFence() const { return !fencePolygons.isEmpty() || !fenceCircles.isEmpty(); }
     // Renumbers seq 0 .. N-1 after an edit.
     void renumber();
+    // Each mission item with a position that the fence forbids, for people:
+    // "mission item 4 is inside exclusion circle 1", "mission item 3 is
+    // outside every inclusion area". Distances on a sphere of the Earth's mean
+    // radius; polygon edges as straight lines in latitude and longitude,
+    // which is what a fence a few kilometres across is drawn as.
+    QStringList fenceViolations() const;
 
     QList<MissionItem> items;
     std::optional<double> homeLatitude;

@@ -91,7 +91,7 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
       m_map(new PlanMapView),
       m_open(new QPushButton(tr("Open plan\u2026"))),
       m_save(new QPushButton(tr("Save as .plan\u2026"))),
-      m_editOnMap(new QPushButton(tr("Edit on map"))),
+      m_editOnMap(new QPushButton(tr("Edit plan"))),
       m_tileButton(new QPushButton(tr("Map tiles\u2026"))),
       m_send(new QPushButton(tr("Upload to aircraft"))),
       m_cancel(new QPushButton(tr("Cancel upload"))),
@@ -111,8 +111,9 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     m_open->setToolTip(tr("Load a plan: QGroundControl .plan, Mission Planner .waypoints or KML"));
     m_save->setToolTip(tr("Write the plan shown, with its edits, as a QGroundControl .plan"));
     m_editOnMap->setCheckable(true);
-    m_editOnMap->setToolTip(tr("While on: drag a waypoint to move it, double-click the map to add one, Delete "
-                               "removes the selected one. Edits are not sent until you upload."));
+    m_editOnMap->setToolTip(tr("While on: drag a waypoint to move it, double-click the map to add one after the "
+                               "selected item, Delete removes the selected one, double-click an altitude in the "
+                               "table to change it. Edits are not sent until you upload."));
     m_tileButton->setToolTip(tr("Choose an MBTiles file for offline maps, or a tile server"));
     m_file->setTextInteractionFlags(Qt::TextSelectableByMouse);
     m_summary->setWordWrap(true);
@@ -143,7 +144,10 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     m_table->setAlternatingRowColors(true);
     m_table->setShowGrid(false);
     m_table->horizontalHeader()->setStretchLastSection(true);
-    m_table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    // Widths from the first rows, once per fill: measuring every cell of a
+    // 10,000-item plan on every change held the GUI thread for seconds.
+    m_table->horizontalHeader()->setSectionResizeMode(QHeaderView::Interactive);
+    m_table->horizontalHeader()->setResizeContentsPrecision(kRowsMeasured);
 
     m_map->setTiles(m_tiles);
     m_map->setEditable(false);
@@ -191,6 +195,11 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     connect(m_send, &QPushButton::clicked, this, &FlightPlanWidget::uploadPlan);
     connect(m_cancel, &QPushButton::clicked, this, &FlightPlanWidget::cancelUpload);
     connect(m_editOnMap, &QPushButton::toggled, m_map, &PlanMapView::setEditable);
+    // The altitude cells follow the same switch: off, no key or click changes the plan.
+    connect(m_editOnMap, &QPushButton::toggled, this, [this] {
+        if (m_plan)
+            showPlan();
+    });
     connect(m_upload, &FlightPlanUpload::progressChanged, this, &FlightPlanWidget::showProgress);
     connect(m_table, &QTableWidget::currentCellChanged, this, [this](int row) { m_map->setSelectedItem(row); });
     connect(m_table, &QTableWidget::cellChanged, this, &FlightPlanWidget::cellEdited);
@@ -213,6 +222,13 @@ FlightPlanWidget::~FlightPlanWidget() = default;
 
 bool FlightPlanWidget::loadPlan(const QString& path, QString* error)
 {
+    if (m_edited && !m_confirm(tr("The plan shown has edits that are neither uploaded nor saved. Open %1 and drop "
+                                  "them?")
+                                   .arg(QFileInfo(path).fileName()))) {
+        if (error)
+            *error = tr("kept the edited plan");
+        return false;
+    }
     QString reason;
     std::optional<MissionPlan> plan = PlanFile::load(path, &reason);
     if (plan) {
@@ -229,11 +245,18 @@ bool FlightPlanWidget::loadPlan(const QString& path, QString* error)
     }
     m_plan = std::move(plan);
     m_edited = false;
+    m_sentPlan.reset();
+    // A new plan starts safe: editing is switched on for a plan, never carried over.
+    m_editOnMap->setChecked(false);
     m_file->setText(QFileInfo(path).fileName());
     m_file->setToolTip(path);
     showPlan();
     m_map->setPlan(&*m_plan);
     m_map->fitToPlan();
+    // An earlier refusal, or the last plan's acknowledgement, no longer stands beside the new plan.
+    if (m_upload->progress().state != FlightPlanUpload::State::Sending)
+        m_state->setText(tr("Not sent"));
+    emit message(tr("Flight plan opened: %1: %2").arg(QDir::toNativeSeparators(path), m_summary->text()));
     return true;
 }
 
@@ -344,6 +367,10 @@ void FlightPlanWidget::uploadPlan()
         emit problem(error);
         return;
     }
+    const QStringList fence = m_plan->fenceViolations();
+    if (!fence.isEmpty() && !m_confirm(tr("The plan's own fence forbids where it goes: %1. Upload it anyway?")
+                                           .arg(fence.join(QStringLiteral("; ")))))
+        return;
     const int sections = sectionsFor(bytes->size());
     const FlightPlanUpload::Progress now = m_upload->progress();
     // Never less than the frame cadence: a rate measured over a burst must not hide a long upload.
@@ -366,12 +393,19 @@ void FlightPlanWidget::uploadPlan()
     }
     m_sentPlan = m_plan;
     m_edited = false;
+    emit message(tr("Uploading flight plan %1 (%2): %3 BLOCK 2 sections")
+                     .arg(m_upload->progress().planId, 8, 16, QLatin1Char('0'))
+                     .arg(m_file->text())
+                     .arg(sections));
     planEdited();
 }
 
 void FlightPlanWidget::cancelUpload()
 {
+    if (m_upload->progress().state != FlightPlanUpload::State::Sending)
+        return;
     m_upload->cancel();
+    emit message(tr("Flight plan upload cancelled: the aircraft holds the plan it last acknowledged"));
 }
 
 int FlightPlanWidget::sectionsFor(qsizetype bytes) const
@@ -383,38 +417,55 @@ int FlightPlanWidget::sectionsFor(qsizetype bytes) const
 
 void FlightPlanWidget::showPlan()
 {
-    const QList<MissionItem>& items = m_plan->items;
     m_filling = true;
-    m_table->setRowCount(int(items.size()));
-    for (int row = 0; row < int(items.size()); ++row) {
-        const MissionItem& item = items[row];
-        const auto set = [&](int column, const QString& text, Qt::Alignment align = Qt::AlignRight) {
-            auto* cell = new QTableWidgetItem(text);
-            cell->setTextAlignment(align | Qt::AlignVCenter);
-            cell->setFlags(cell->flags() & ~Qt::ItemIsEditable);
-            m_table->setItem(row, column, cell);
-        };
-        set(SeqColumn, QString::number(item.seq));
-        set(CommandColumn, item.commandName(), Qt::AlignLeft);
-        m_table->item(row, CommandColumn)->setToolTip(tr("MAV_CMD %1").arg(item.command));
-        set(FrameColumn, item.frameName(), Qt::AlignLeft);
-        const bool positioned = item.frame != 2;
-        set(LatitudeColumn, positioned ? number(item.latitude, 7) : QStringLiteral("\u2014"));
-        set(LongitudeColumn, positioned ? number(item.longitude, 7) : QStringLiteral("\u2014"));
-        set(AltitudeColumn, positioned ? number(item.altitude, 1) : QStringLiteral("\u2014"));
-        if (positioned && item.altitude) {
-            QTableWidgetItem* altitude = m_table->item(row, AltitudeColumn);
-            altitude->setFlags(altitude->flags() | Qt::ItemIsEditable);
-            altitude->setToolTip(tr("Double-click to change the altitude (metres, %1)").arg(item.frameName()));
-        }
-        for (int p = 0; p < 4; ++p)
-            set(Param1Column + p, param(item.params[std::size_t(p)]));
-    }
+    m_table->setUpdatesEnabled(false);
+    const int previousRows = m_table->rowCount();
+    m_table->setRowCount(int(m_plan->items.size()));
+    for (int row = 0; row < int(m_plan->items.size()); ++row)
+        showRow(row);
+    // An edit keeps the widths the operator may have set; a new plan is measured.
+    if (previousRows == 0 || !m_edited)
+        m_table->resizeColumnsToContents();
+    m_table->setUpdatesEnabled(true);
     m_filling = false;
+    showSummary();
+}
 
+void FlightPlanWidget::showRow(int row)
+{
+    const bool filling = m_filling;
+    m_filling = true;
+    const MissionItem& item = m_plan->items[row];
+    const auto set = [&](int column, const QString& text, Qt::Alignment align = Qt::AlignRight) {
+        auto* cell = new QTableWidgetItem(text);
+        cell->setTextAlignment(align | Qt::AlignVCenter);
+        cell->setFlags(cell->flags() & ~Qt::ItemIsEditable);
+        m_table->setItem(row, column, cell);
+    };
+    set(SeqColumn, QString::number(item.seq));
+    set(CommandColumn, item.commandName(), Qt::AlignLeft);
+    m_table->item(row, CommandColumn)->setToolTip(tr("MAV_CMD %1").arg(item.command));
+    set(FrameColumn, item.frameName(), Qt::AlignLeft);
+    const bool positioned = item.frame != 2;
+    set(LatitudeColumn, positioned ? number(item.latitude, 7) : QStringLiteral("\u2014"));
+    set(LongitudeColumn, positioned ? number(item.longitude, 7) : QStringLiteral("\u2014"));
+    set(AltitudeColumn, positioned ? number(item.altitude, 1) : QStringLiteral("\u2014"));
+    if (positioned && item.altitude) {
+        QTableWidgetItem* altitude = m_table->item(row, AltitudeColumn);
+        if (m_editOnMap->isChecked())
+            altitude->setFlags(altitude->flags() | Qt::ItemIsEditable);
+        altitude->setToolTip(tr("Double-click to change the altitude (metres, %1)").arg(item.frameName()));
+    }
+    for (int p = 0; p < 4; ++p)
+        set(Param1Column + p, param(item.params[std::size_t(p)]));
+    m_filling = filling;
+}
+
+void FlightPlanWidget::showSummary()
+{
     const qsizetype bytes = m_plan->toBytes().size();
     const int sections = sectionsFor(bytes);
-    QStringList parts{count(items.size(), tr("mission item"), tr("mission items"))};
+    QStringList parts{count(m_plan->items.size(), tr("mission item"), tr("mission items"))};
     if (m_plan->format() >= 2) {
         rcm::plan::Report r = reportOf(*m_plan);
         r.items = 0;
@@ -436,8 +487,17 @@ void FlightPlanWidget::planEdited()
 {
     if (!m_plan)
         return;
-    const bool sending = m_upload->progress().state == FlightPlanUpload::State::Sending;
-    if (!m_edited)
+    const FlightPlanUpload::State state = m_upload->progress().state;
+    const bool sending = state == FlightPlanUpload::State::Sending;
+    const bool notSent = state == FlightPlanUpload::State::Cancelled || state == FlightPlanUpload::State::GaveUp;
+    const QStringList fence = m_plan->fenceViolations();
+    if (!fence.isEmpty())
+        m_edits->setText(red(tr("Fence: %1").arg(fence.join(QStringLiteral("; ")))));
+    else if (!m_edited && notSent && m_sentPlan)
+        m_edits->setText(QStringLiteral("<span style=\"color:#9a5b00\"><b>%1</b></span>")
+                             .arg(tr("Not on the aircraft: the upload did not finish; the aircraft holds the plan "
+                                     "it last acknowledged")));
+    else if (!m_edited)
         m_edits->clear();
     else if (sending)
         m_edits->setText(QStringLiteral("<span style=\"color:#9a5b00\"><b>%1</b></span>")
@@ -472,11 +532,13 @@ void FlightPlanWidget::cellEdited(int row, int column)
         return;
     bool ok = false;
     const double metres = m_table->item(row, column)->text().trimmed().toDouble(&ok);
-    if (!ok || !std::isfinite(metres) || std::abs(metres) > 100000) {
-        const QString reason = tr("Mission item %1: altitude \"%2\" is not a number of metres within \u00b1100 km; "
-                                  "it stays %3 m")
+    if (!ok || !std::isfinite(metres) || metres < kLowestAltitude || metres > kHighestAltitude) {
+        const QString reason = tr("Mission item %1: altitude \"%2\" is not a number of metres from %3 to %4; "
+                                  "it stays %5 m")
                                    .arg(row)
                                    .arg(m_table->item(row, column)->text())
+                                   .arg(kLowestAltitude)
+                                   .arg(kHighestAltitude)
                                    .arg(number(m_plan->items[row].altitude, 1));
         emit problem(reason);
         showPlan();
@@ -492,7 +554,8 @@ void FlightPlanWidget::moveItem(int index, const GeoPoint& to)
     m_plan->items[index].latitude = std::clamp(to.latitude, -85.0, 85.0);
     m_plan->items[index].longitude = std::clamp(to.longitude, -180.0, 180.0);
     m_edited = true;
-    showPlan();
+    showRow(index);
+    showSummary();
     m_map->planChanged();
     selectRow(index);
 }
@@ -538,9 +601,11 @@ void FlightPlanWidget::deleteItem(int index)
     m_plan->renumber();
     m_edited = true;
     showPlan();
-    m_map->setSelectedItem(-1);
     m_map->planChanged();
-    selectRow(std::min(index, int(m_plan->items.size()) - 1));
+    const int next = std::min(index, int(m_plan->items.size()) - 1);
+    selectRow(next);
+    // The row number may not have changed, so the table says nothing: tell the map.
+    m_map->setSelectedItem(next);
 }
 
 void FlightPlanWidget::setItemAltitude(int index, double metres)
@@ -549,7 +614,8 @@ void FlightPlanWidget::setItemAltitude(int index, double metres)
         return;
     m_plan->items[index].altitude = metres;
     m_edited = true;
-    showPlan();
+    showRow(index);
+    showSummary();
     m_map->planChanged();
     selectRow(index);
 }
@@ -630,10 +696,22 @@ void FlightPlanWidget::showAcknowledgement(const FlightPlanUpload::Progress& pro
 void FlightPlanWidget::updateButtons()
 {
     const bool sending = m_upload->progress().state == FlightPlanUpload::State::Sending;
-    m_send->setEnabled(m_plan.has_value() && !m_plan->items.isEmpty() && m_linkReady && !sending);
+    const bool somethingToSend =
+        m_plan && (!m_plan->items.isEmpty() || m_plan->hasFence() || !m_plan->rallyPoints.isEmpty());
+    m_send->setEnabled(somethingToSend && m_linkReady && !sending);
     m_cancel->setEnabled(sending);
     m_save->setEnabled(m_plan.has_value());
     m_send->setToolTip(m_linkReady ? tr("Send the plan in BLOCK 2 sections, one per frame, until the aircraft "
                                         "acknowledges it")
                                    : tr("Connect a link first"));
+}
+
+void FlightPlanWidget::setEditing(bool on)
+{
+    m_editOnMap->setChecked(on);
+}
+
+bool FlightPlanWidget::isEditing() const
+{
+    return m_editOnMap->isChecked();
 }

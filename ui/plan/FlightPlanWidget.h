@@ -47,6 +47,12 @@ public:
     // The altitude given to a waypoint added on the map when there is no
     // positioned item before it, metres above home.
     static constexpr double kNewWaypointAltitude = 100;
+    // Altitudes the table takes, metres: below the Dead Sea's shore, above
+    // any ceiling a fixed-wing aircraft of this kind flies.
+    static constexpr double kLowestAltitude = -500;
+    static constexpr double kHighestAltitude = 20000;
+    // Rows the table measures for its column widths.
+    static constexpr int kRowsMeasured = 100;
 
     // `upload` carries the plan to the link; it must outlive this widget.
     explicit FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent = nullptr);
@@ -65,6 +71,11 @@ public:
     QString uploadState() const;
     // True when the plan shown differs from the one last uploaded.
     bool isEdited() const { return m_edited; }
+
+    // "Edit plan": while off (the default, and after every plan opened) the
+    // map and the table only select; nothing changes the plan.
+    void setEditing(bool on);
+    bool isEditing() const;
 
     // Uploads go out only while a link that can send is running.
     void setLinkReady(bool ready);
@@ -94,6 +105,8 @@ signals:
 
 private:
     void showPlan();
+    void showRow(int row);
+    void showSummary();  // the summary line and the bar's sections
     void planEdited();
     void showProgress(const FlightPlanUpload::Progress& progress);
     void showAcknowledgement(const FlightPlanUpload::Progress& progress);

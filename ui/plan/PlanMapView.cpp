@@ -7,6 +7,7 @@
 #include <QMenu>
 #include <QMouseEvent>
 #include <QPainter>
+#include <QSet>
 #include <QPainterPath>
 #include <QToolButton>
 #include <QWheelEvent>
@@ -628,9 +629,24 @@ void PlanMapView::paintMission(QPainter& p)
             drawMarker(p, pos, label, kPathColour, Qt::white, MarkerShape::Circle);
         }
     };
-    for (int i = 0; i < m_geometry.items.size(); ++i) {
-        if (m_geometry.items[i] && i != m_selected && i != dragged)
-            drawItem(i, false);
+    // One marker a cell of a marker's size: a long survey zoomed out would
+    // otherwise paint thousands of markers on top of each other (seconds of
+    // GUI time for what looks the same). The later item wins its cell, as
+    // it would be drawn on top.
+    const double cell = 2 * kMarkerRadius;
+    QSet<quint64> taken;
+    for (int i = int(m_geometry.items.size()) - 1; i >= 0; --i) {
+        if (!m_geometry.items[i] || i == m_selected || i == dragged)
+            continue;
+        const QPointF pos = markerPos(i);
+        if (!visible.contains(pos))
+            continue;
+        const quint64 key = quint64(quint32(qint32(std::floor(pos.x() / cell)))) << 32 |
+                            quint32(qint32(std::floor(pos.y() / cell)));
+        if (taken.contains(key))
+            continue;
+        taken.insert(key);
+        drawItem(i, false);
     }
     if (dragged >= 0) {
         // Where it was, faint, until the owner moves it.
