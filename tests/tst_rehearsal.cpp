@@ -67,6 +67,7 @@ private slots:
     void malformedScenarioExitsTwo();
     void dialogShowsTheRun();
     void dialogSaysWhereTheScenarioIsWrong();
+    void uasimEndsWithTheConsole();
 };
 
 void TestRehearsal::issueExampleParses()
@@ -489,6 +490,59 @@ void TestRehearsal::dialogSaysWhereTheScenarioIsWrong()
     const QString path = kScenarios + QStringLiteral("malformed.json");
     QVERIFY(!dialog.run(path, QDir::tempPath()));
     QCOMPARE(dialog.verdict(), QStringLiteral("%1:7:22: step 2: the aircraft has no engine 7").arg(path));
+}
+
+namespace {
+
+// The processes `pid` started, from Linux's /proc.
+QList<qint64> childrenOf(qint64 pid)
+{
+    QFile file(QStringLiteral("/proc/%1/task/%1/children").arg(pid));
+    QList<qint64> children;
+    if (file.open(QIODevice::ReadOnly))
+        for (const QByteArray& id : file.readAll().split(' '))
+            if (!id.trimmed().isEmpty())
+                children << id.trimmed().toLongLong();
+    return children;
+}
+
+// Gone, or a zombie nobody reaped: either way it no longer runs.
+bool hasEnded(qint64 pid)
+{
+    QFile stat(QStringLiteral("/proc/%1/stat").arg(pid));
+    if (!stat.open(QIODevice::ReadOnly))
+        return true;
+    const QByteArray text = stat.readAll();
+    const qsizetype close = text.lastIndexOf(')');
+    return close < 0 || text.mid(close + 2, 1) == "Z";
+}
+
+}  // namespace
+
+void TestRehearsal::uasimEndsWithTheConsole()
+{
+#ifndef Q_OS_LINUX
+    QSKIP("reads /proc");
+#endif
+    QTemporaryDir home;
+    QProcess gcs;
+    QProcessEnvironment environment = QProcessEnvironment::systemEnvironment();
+    environment.insert(QStringLiteral("HOME"), home.path());
+    environment.insert(QStringLiteral("XDG_CONFIG_HOME"), home.filePath(QStringLiteral("config")));
+    environment.insert(QStringLiteral("XDG_DATA_HOME"), home.filePath(QStringLiteral("data")));
+    environment.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
+    gcs.setProcessEnvironment(environment);
+    gcs.start(QStringLiteral(RCM_BIN_DIR "/gcs"), {QStringLiteral("--rehearsal")});
+    QVERIFY(gcs.waitForStarted());
+    QList<qint64> children;
+    QTRY_VERIFY_WITH_TIMEOUT(!(children = childrenOf(gcs.processId())).isEmpty(), 30000);
+    QFile comm(QStringLiteral("/proc/%1/comm").arg(children.first()));
+    QVERIFY(comm.open(QIODevice::ReadOnly));
+    QCOMPARE(comm.readAll().trimmed(), QByteArray("uasim"));
+    // Killed, with no chance to stop its rehearsal: the aircraft goes too.
+    gcs.kill();
+    QVERIFY(gcs.waitForFinished());
+    QTRY_VERIFY_WITH_TIMEOUT(hasEnded(children.first()), 30000);
 }
 
 QTEST_MAIN(TestRehearsal)

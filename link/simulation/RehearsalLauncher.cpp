@@ -8,6 +8,11 @@
 #include <QRandomGenerator>
 #include <QTimer>
 
+#ifdef Q_OS_LINUX
+#include <csignal>
+#include <sys/prctl.h>
+#endif
+
 RehearsalLauncher::RehearsalLauncher(QObject* parent) : QObject(parent) {}
 
 RehearsalLauncher::~RehearsalLauncher()
@@ -75,6 +80,12 @@ void RehearsalLauncher::launch()
         arguments << QStringLiteral("--key") << m_keyPath;
     if (m_verbose)
         arguments << QStringLiteral("--verbose");
+#ifdef Q_OS_LINUX
+    // The simulated aircraft ends with the console, however the console ends
+    // (SIGTERM, SIGKILL, a crash): a uasim left behind would hold the port
+    // and answer the next console as if it were the rehearsal's.
+    m_process->setChildProcessModifier([] { ::prctl(PR_SET_PDEATHSIG, SIGTERM); });
+#endif
     m_process->start(m_program, arguments);
     emit ready(m_port);
 }
