@@ -228,12 +228,12 @@ void TestPlanWidget::longUploadAsksFirst()
     // 10,000 waypoints: 340,016 bytes, 1,582 sections of 215 bytes.
     QJsonArray items;
     for (int i = 0; i < 10000; ++i)
-        items.append(QJsonObject{{QStringLiteral("type"), QStringLiteral("SimpleItem")},
-                                 {QStringLiteral("command"), 16},
-                                 {QStringLiteral("frame"), 3},
-                                 {QStringLiteral("autoContinue"), true},
-                                 {QStringLiteral("params"),
-                                  QJsonArray{0, 0, 0, QJsonValue(), 52.0 + i * 1e-5, 0.1, 100}}});
+        items.append(
+            QJsonObject{{QStringLiteral("type"), QStringLiteral("SimpleItem")},
+                        {QStringLiteral("command"), 16},
+                        {QStringLiteral("frame"), 3},
+                        {QStringLiteral("autoContinue"), true},
+                        {QStringLiteral("params"), QJsonArray{0, 0, 0, QJsonValue(), 52.0 + i * 1e-5, 0.1, 100}}});
     const QJsonObject root{{QStringLiteral("fileType"), QStringLiteral("Plan")},
                            {QStringLiteral("version"), 1},
                            {QStringLiteral("mission"), QJsonObject{{QStringLiteral("items"), items}}}};
@@ -251,7 +251,7 @@ void TestPlanWidget::longUploadAsksFirst()
     widget.setLinkReady(true);
     QStringList asked;
     bool answer = false;
-    widget.setConfirm([&](const QString& text) {
+    widget.setConfirm([&](const QString& text, const QString&) {
         asked << text;
         return answer;
     });
@@ -378,7 +378,7 @@ void TestPlanWidget::fenceForbidsAWaypoint()
              (QStringList{QStringLiteral("mission item 3 is outside every inclusion area"),
                           QStringLiteral("mission item 4 is inside exclusion circle 1")}));
     QStringList asked;
-    widget.setConfirm([&](const QString& text) {
+    widget.setConfirm([&](const QString& text, const QString&) {
         asked << text;
         return false;
     });
@@ -430,7 +430,7 @@ void TestPlanWidget::openingAnotherPlanAsksFirst()
     widget.moveItem(1, {52.22, 0.125});
     QStringList asked;
     bool answer = false;
-    widget.setConfirm([&](const QString& text) {
+    widget.setConfirm([&](const QString& text, const QString&) {
         asked << text;
         return answer;
     });
@@ -482,9 +482,10 @@ void TestPlanWidget::aircraftReportsFenceAndRally()
     QTRY_COMPARE_WITH_TIMEOUT(upload->progress().state, FlightPlanUpload::State::Acknowledged, kLinkTimeoutMs);
     QCOMPARE(upload->progress().report.toHex(), QByteArray("0200090001000400010002"));
     // The widget hears of it through the queued signal from the link thread.
-    QTRY_VERIFY_WITH_TIMEOUT(window.flightPlan()->uploadState().contains(QStringLiteral(
-                                 "it holds 9 mission items, fence 1 polygon (4 vertices) and 1 circle, 2 rally points")),
-                             kLinkTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(
+        window.flightPlan()->uploadState().contains(
+            QStringLiteral("it holds 9 mission items, fence 1 polygon (4 vertices) and 1 circle, 2 rally points")),
+        kLinkTimeoutMs);
     QCOMPARE(problems.count(), 0);
     window.disconnectLink();
 }

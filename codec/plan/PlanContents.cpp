@@ -231,8 +231,8 @@ std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string*
         }
     }
     if (r.left() != 0)
-        return fail(std::to_string(r.left()) + (r.left() == 1 ? " byte" : " bytes") +
-                    " after the end of a format " + std::to_string(format) + " plan");
+        return fail(std::to_string(r.left()) + (r.left() == 1 ? " byte" : " bytes") + " after the end of a format " +
+                    std::to_string(format) + " plan");
     return c;
 }
 
@@ -295,7 +295,8 @@ std::string Report::describe() const
         if (circles != 0)
             text += count(circles, "circle", "circles");
     }
-    text += ", " + (rallyPoints == 0 ? std::string("no rally points") : count(rallyPoints, "rally point", "rally points"));
+    text +=
+        ", " + (rallyPoints == 0 ? std::string("no rally points") : count(rallyPoints, "rally point", "rally points"));
     return text;
 }
 

@@ -59,8 +59,8 @@ double metresBetween(const GeoPoint& a, const GeoPoint& b)
     const double dLat = (b.latitude - a.latitude) * radians;
     const double dLon = (b.longitude - a.longitude) * radians;
     const double h = std::sin(dLat / 2) * std::sin(dLat / 2) + std::cos(a.latitude * radians) *
-                                                                    std::cos(b.latitude * radians) *
-                                                                    std::sin(dLon / 2) * std::sin(dLon / 2);
+                                                                   std::cos(b.latitude * radians) * std::sin(dLon / 2) *
+                                                                   std::sin(dLon / 2);
     return 2 * kEarthRadius * std::asin(std::min(1.0, std::sqrt(h)));
 }
 
@@ -71,9 +71,9 @@ bool inside(const FencePolygon& polygon, const GeoPoint& p)
     const QList<GeoPoint>& v = polygon.vertices;
     for (qsizetype i = 0, j = v.size() - 1; i < v.size(); j = i++) {
         if ((v[i].latitude > p.latitude) != (v[j].latitude > p.latitude) &&
-            p.longitude < (v[j].longitude - v[i].longitude) * (p.latitude - v[i].latitude) /
-                                  (v[j].latitude - v[i].latitude) +
-                              v[i].longitude)
+            p.longitude <
+                (v[j].longitude - v[i].longitude) * (p.latitude - v[i].latitude) / (v[j].latitude - v[i].latitude) +
+                    v[i].longitude)
             in = !in;
     }
     return in;

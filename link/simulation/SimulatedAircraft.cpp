@@ -163,8 +163,7 @@ SimulatedAircraft::ApplyReport SimulatedAircraft::apply(const Message& command)
     using Kind = FlightPlanAssembler::Result::Kind;
     const auto& plan = report.flightPlan;
     switch (plan.kind) {
-        case Kind::Complete:
-        {
+        case Kind::Complete: {
             m_flightPlanId = plan.planId;
             m_flightPlan = plan.plan;
             m_flightPlanReport.clear();

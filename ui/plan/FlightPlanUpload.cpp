@@ -162,8 +162,8 @@ void FlightPlanUpload::measureSection()
     const qint64 now = m_clock.nsecsElapsed();
     if (m_lastSectionNs >= 0) {
         const double seconds = double(now - m_lastSectionNs) / 1e9;
-        m_secondsPerSection = m_rateMeasured ? m_secondsPerSection + (seconds - m_secondsPerSection) / kRateSmoothing
-                                             : seconds;
+        m_secondsPerSection =
+            m_rateMeasured ? m_secondsPerSection + (seconds - m_secondsPerSection) / kRateSmoothing : seconds;
         m_rateMeasured = true;
     }
     m_lastSectionNs = now;

@@ -32,8 +32,8 @@ public:
     struct Progress {
         State state = State::Idle;
         quint32 planId = 0;
-        int sent = 0;   // distinct sections sent at least once
-        int total = 0;  // sections in the plan
+        int sent = 0;    // distinct sections sent at least once
+        int total = 0;   // sections in the plan
         int inPass = 0;  // sections of the current pass sent
         int pass = 0;    // 1 during the first pass
         int maxPasses = 0;

@@ -3,6 +3,7 @@
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/plan/PlanContents.h"
 #include "link/plan/PlanFile.h"
+#include "ui/alerts/Confirmation.h"
 #include "ui/plan/PlanMapView.h"
 
 #include <QDialog>
@@ -98,22 +99,17 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
       m_progress(new QProgressBar),
       m_state(new QLabel)
 {
-    m_confirm = [this](const QString& text) {
-        QMessageBox box(QMessageBox::Question, tr("Upload flight plan"), text, QMessageBox::NoButton, this);
-        QPushButton* go = box.addButton(tr("Upload"), QMessageBox::AcceptRole);
-        go->setFocusPolicy(Qt::NoFocus);
-        QPushButton* cancel = box.addButton(QMessageBox::Cancel);
-        box.setDefaultButton(cancel);
-        box.setEscapeButton(cancel);
-        box.exec();
-        return box.clickedButton() == go;
+    m_confirm = [this](const QString& text, const QString& action) {
+        return Confirmation{QMessageBox::Question, tr("Flight plan"), text, QString(), action, QMessageBox::AcceptRole}
+            .ask(this);
     };
     m_open->setToolTip(tr("Load a plan: QGroundControl .plan, Mission Planner .waypoints or KML"));
     m_save->setToolTip(tr("Write the plan shown, with its edits, as a QGroundControl .plan"));
     m_editOnMap->setCheckable(true);
-    m_editOnMap->setToolTip(tr("While on: drag a waypoint to move it, double-click the map to add one after the "
-                               "selected item, Delete removes the selected one, double-click an altitude in the "
-                               "table to change it. Edits are not sent until you upload."));
+    m_editOnMap->setToolTip(
+        tr("While on: drag a waypoint to move it, double-click the map to add one after the "
+           "selected item, Delete removes the selected one, double-click an altitude in the "
+           "table to change it. Edits are not sent until you upload."));
     m_tileButton->setToolTip(tr("Choose an MBTiles file for offline maps, or a tile server"));
     m_file->setTextInteractionFlags(Qt::TextSelectableByMouse);
     m_summary->setWordWrap(true);
@@ -224,7 +220,8 @@ bool FlightPlanWidget::loadPlan(const QString& path, QString* error)
 {
     if (m_edited && !m_confirm(tr("The plan shown has edits that are neither uploaded nor saved. Open %1 and drop "
                                   "them?")
-                                   .arg(QFileInfo(path).fileName()))) {
+                                   .arg(QFileInfo(path).fileName()),
+                               tr("Drop the edits"))) {
         if (error)
             *error = tr("kept the edited plan");
         return false;
@@ -303,8 +300,8 @@ void FlightPlanWidget::savePlanAs()
 {
     if (!m_plan)
         return;
-    QString path = QFileDialog::getSaveFileName(this, tr("Save the flight plan"), QString(),
-                                                tr("QGroundControl plans (*.plan)"));
+    QString path =
+        QFileDialog::getSaveFileName(this, tr("Save the flight plan"), QString(), tr("QGroundControl plans (*.plan)"));
     if (path.isEmpty())
         return;
     if (!path.endsWith(QLatin1String(".plan"), Qt::CaseInsensitive))
@@ -330,8 +327,9 @@ void FlightPlanWidget::chooseTiles()
     form->addRow(tr("Offline MBTiles file"), file);
     form->addRow(tr("Tile server URL"), url);
     form->addRow(tr("Attribution"), attribution);
-    auto* note = new QLabel(tr("The MBTiles file is used when set; tiles from a server are kept in a disk cache "
-                               "for use offline. With neither, the map is a grid with coordinates."));
+    auto* note =
+        new QLabel(tr("The MBTiles file is used when set; tiles from a server are kept in a disk cache "
+                      "for use offline. With neither, the map is a grid with coordinates."));
     note->setWordWrap(true);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
     auto* layout = new QVBoxLayout(&dialog);
@@ -369,7 +367,8 @@ void FlightPlanWidget::uploadPlan()
     }
     const QStringList fence = m_plan->fenceViolations();
     if (!fence.isEmpty() && !m_confirm(tr("The plan's own fence forbids where it goes: %1. Upload it anyway?")
-                                           .arg(fence.join(QStringLiteral("; ")))))
+                                           .arg(fence.join(QStringLiteral("; "))),
+                                       tr("Upload anyway")))
         return;
     const int sections = sectionsFor(bytes->size());
     const FlightPlanUpload::Progress now = m_upload->progress();
@@ -384,7 +383,8 @@ void FlightPlanWidget::uploadPlan()
                        .arg(duration(pass))
                        .arg(perSection, 0, 'f', 1)
                        .arg(duration(pass * FlightPlanUpload::kMaxPasses))
-                       .arg(FlightPlanUpload::kMaxPasses)))
+                       .arg(FlightPlanUpload::kMaxPasses),
+                   tr("Upload")))
         return;
     if (!m_upload->start(*bytes, &error)) {
         m_state->setText(red(error));
@@ -631,23 +631,22 @@ void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
             break;
         case FlightPlanUpload::State::Sending: {
             if (progress.pass == 0) {
-                m_state->setText(tr("Plan %1: waiting for the next frame").arg(progress.planId, 8, 16, QLatin1Char('0')));
+                m_state->setText(
+                    tr("Plan %1: waiting for the next frame").arg(progress.planId, 8, 16, QLatin1Char('0')));
                 break;
             }
             const double left = progress.secondsLeftInPass(kNominalSecondsPerSection);
-            const QString rate = progress.rateMeasured
-                                     ? tr("%1 s a section").arg(progress.secondsPerSection, 0, 'f', 1)
-                                     : tr("a section a frame");
-            m_state->setText(
-                left > 0 ? tr("Pass %1 of %2: %3 of %4 sections, %5 left in this pass (%6)")
-                               .arg(progress.pass)
-                               .arg(progress.maxPasses)
-                               .arg(progress.inPass)
-                               .arg(progress.total)
-                               .arg(duration(left), rate)
-                         : tr("Pass %1 of %2 sent: waiting for the aircraft's acknowledgement")
-                               .arg(progress.pass)
-                               .arg(progress.maxPasses));
+            const QString rate = progress.rateMeasured ? tr("%1 s a section").arg(progress.secondsPerSection, 0, 'f', 1)
+                                                       : tr("a section a frame");
+            m_state->setText(left > 0 ? tr("Pass %1 of %2: %3 of %4 sections, %5 left in this pass (%6)")
+                                            .arg(progress.pass)
+                                            .arg(progress.maxPasses)
+                                            .arg(progress.inPass)
+                                            .arg(progress.total)
+                                            .arg(duration(left), rate)
+                                      : tr("Pass %1 of %2 sent: waiting for the aircraft's acknowledgement")
+                                            .arg(progress.pass)
+                                            .arg(progress.maxPasses));
             m_progress->setValue(progress.inPass);
             break;
         }
@@ -655,8 +654,8 @@ void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
             showAcknowledgement(progress);
             break;
         case FlightPlanUpload::State::GaveUp: {
-            const QString text = tr("Flight plan upload gave up: no acknowledgement after %1 passes")
-                                     .arg(progress.maxPasses);
+            const QString text =
+                tr("Flight plan upload gave up: no acknowledgement after %1 passes").arg(progress.maxPasses);
             m_state->setText(red(text));
             emit problem(text);
             break;
@@ -674,15 +673,17 @@ void FlightPlanWidget::showAcknowledgement(const FlightPlanUpload::Progress& pro
     const auto held = rcm::plan::Report::read(std::span(
         reinterpret_cast<const std::uint8_t*>(progress.report.constData()), std::size_t(progress.report.size())));
     if (held && *held != sent) {
-        const QString text = tr("The aircraft acknowledged the flight plan but holds %1; %2 were sent")
-                                 .arg(QString::fromStdString(held->describe()), QString::fromStdString(sent.describe()));
+        const QString text =
+            tr("The aircraft acknowledged the flight plan but holds %1; %2 were sent")
+                .arg(QString::fromStdString(held->describe()), QString::fromStdString(sent.describe()));
         m_state->setText(red(text));
         emit problem(text);
         return;
     }
     if (!held && sent.format >= 2) {
-        const QString text = tr("The aircraft acknowledged the flight plan's bytes but did not say it holds the "
-                                "geofence and rally points (it may read only plan format 1)");
+        const QString text =
+            tr("The aircraft acknowledged the flight plan's bytes but did not say it holds the "
+               "geofence and rally points (it may read only plan format 1)");
         m_state->setText(red(text));
         emit problem(text);
         return;

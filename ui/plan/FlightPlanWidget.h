@@ -81,9 +81,9 @@ public:
     void setLinkReady(bool ready);
     void setTileSettings(const TileSettings& settings);
 
-    // Asks the operator to confirm a long upload; the default shows a dialog
-    // whose default button is Cancel. Tests replace it.
-    using Confirm = std::function<bool(const QString& text)>;
+    // Asks the operator to confirm `text` with a button named `action`; the
+    // default shows a Confirmation (Cancel is the default). Tests replace it.
+    using Confirm = std::function<bool(const QString& text, const QString& action)>;
     void setConfirm(Confirm confirm) { m_confirm = std::move(confirm); }
 
     // The edits the map asks for, also for tests and keyboard use.

@@ -1,8 +1,11 @@
 #include "ui/window/MainWindow.h"
 
+#include "ui/alerts/Confirmation.h"
+
 #include "codec/message/MessageDecoder.h"
 #include "link/framelog/FrameLogCsv.h"
 #include "link/framelog/ReplayLink.h"
+#include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/eventlog/EventLogView.h"
 #include "ui/overview/OverviewPage.h"
@@ -529,19 +532,14 @@ bool MainWindow::confirmEndingLink(const QString& action)
 {
     if (!m_session->isLive())
         return true;
-    QMessageBox box(QMessageBox::Warning, kTitle,
-                    tr("%1 ends the live link: %2.").arg(action, m_session->description().isEmpty()
-                                                                    ? tr("a link being started")
-                                                                    : m_session->description()),
-                    QMessageBox::NoButton, this);
-    box.setInformativeText(tr("The aircraft stops receiving this console's commands."));
-    QPushButton* go = box.addButton(action, QMessageBox::DestructiveRole);
-    go->setFocusPolicy(Qt::NoFocus);
-    QPushButton* cancel = box.addButton(QMessageBox::Cancel);
-    box.setDefaultButton(cancel);
-    box.setEscapeButton(cancel);
-    box.exec();
-    return box.clickedButton() == go;
+    Confirmation ending;
+    ending.title = kTitle;
+    ending.text = tr("%1 ends the live link: %2.")
+                      .arg(action, m_session->description().isEmpty() ? tr("a link being started")
+                                                                      : m_session->description());
+    ending.informativeText = tr("The aircraft stops receiving this console's commands.");
+    ending.action = action;
+    return ending.ask(this);
 }
 
 void MainWindow::connectLink()
