@@ -16,6 +16,7 @@
 #include <QJsonObject>
 #include <QLabel>
 #include <QProgressBar>
+#include <QPushButton>
 #include <QSettings>
 #include <QSignalSpy>
 #include <QTableWidget>
@@ -72,6 +73,7 @@ private slots:
     void cancelledUploadIsSaid();
     void openingAnotherPlanAsksFirst();
     void fenceOnlyPlanCanBeSent();
+    void strayKeysAfterAClickPressNothing();
     void aircraftReportsFenceAndRally();
 
 private:
@@ -462,6 +464,50 @@ void TestPlanWidget::fenceOnlyPlanCanBeSent()
     widget.setLinkReady(true);
     widget.uploadPlan();
     QCOMPARE(upload.progress().state, FlightPlanUpload::State::Sending);
+}
+
+void TestPlanWidget::strayKeysAfterAClickPressNothing()
+{
+    FlightPlanUpload upload;
+    FlightPlanWidget widget(&upload);
+    QVERIFY(widget.loadPlan(kSamplePlan));
+    widget.setLinkReady(true);
+    widget.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&widget));
+    widget.activateWindow();
+    QPushButton* send = nullptr;
+    QPushButton* cancel = nullptr;
+    QPushButton* edit = nullptr;
+    for (QPushButton* b : widget.findChildren<QPushButton*>()) {
+        if (b->text() == QStringLiteral("Upload to aircraft"))
+            send = b;
+        else if (b->text() == QStringLiteral("Cancel upload"))
+            cancel = b;
+        else if (b->text() == QStringLiteral("Edit plan"))
+            edit = b;
+    }
+    QVERIFY(send && cancel && edit);
+    widget.table()->setFocus();
+
+    // Edit plan, clicked on and off: Space and Enter afterwards switch nothing.
+    QTest::mouseClick(edit, Qt::LeftButton);
+    QVERIFY(widget.isEditing());
+    QTest::mouseClick(edit, Qt::LeftButton);
+    QVERIFY(!widget.isEditing());
+    QVERIFY(QApplication::focusWidget() != edit);
+    QTest::keyClick(QApplication::focusWidget(), Qt::Key_Space);
+    QTest::keyClick(QApplication::focusWidget(), Qt::Key_Return);
+    QVERIFY(!widget.isEditing());
+
+    // Upload, then Cancel: a Space after each starts or cancels nothing more.
+    QTest::mouseClick(send, Qt::LeftButton);
+    QCOMPARE(upload.progress().state, FlightPlanUpload::State::Sending);
+    QTest::mouseClick(cancel, Qt::LeftButton);
+    QCOMPARE(upload.progress().state, FlightPlanUpload::State::Cancelled);
+    QVERIFY(QApplication::focusWidget() != send && QApplication::focusWidget() != cancel);
+    QTest::keyClick(QApplication::focusWidget(), Qt::Key_Space);
+    QCOMPARE(upload.progress().state, FlightPlanUpload::State::Cancelled);
+    QCOMPARE(widget.plan()->toBytes(), PlanFile::load(kSamplePlan)->toBytes());
 }
 
 void TestPlanWidget::aircraftReportsFenceAndRally()

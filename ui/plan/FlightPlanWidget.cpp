@@ -105,6 +105,11 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     };
     m_open->setToolTip(tr("Load a plan: QGroundControl .plan, Mission Planner .waypoints or KML"));
     m_save->setToolTip(tr("Write the plan shown, with its edits, as a QGroundControl .plan"));
+    // As the link's Connect and Disconnect: buttons that change what the
+    // aircraft gets, or what may change the plan, never hold the focus, so a
+    // stray Space or Enter after a click cannot press them again.
+    for (QPushButton* b : {m_editOnMap, m_send, m_cancel})
+        b->setFocusPolicy(Qt::NoFocus);
     m_editOnMap->setCheckable(true);
     m_editOnMap->setToolTip(
         tr("While on: drag a waypoint to move it, double-click the map to add one after the "
