@@ -68,7 +68,8 @@ int main(int argc, char* argv[])
         "Examples:\n"
         "  uasim --udp 5600 --verbose\n"
         "  uasim --serial /dev/pts/3 --baud 9600 --log uasim.pcapng --ber 1e-4 --drop 0.05 --outage 60:10\n"
-        "  uasim --serial /dev/pts/3 --voice-out heard.wav --voice-in reply.wav"));
+        "  uasim --serial /dev/pts/3 --voice-out heard.wav --voice-in reply.wav\n"
+        "  uasim --station GB_30226,5601,a.key --station GB_41251,5602,b.key --failover 5"));
     parser.addHelpOption();
     const SimulatorOptions options;
     options.addTo(parser);

@@ -1,13 +1,17 @@
 // The simulated aircraft: first frame by frame on its own clock; then flown
 // by the console's worker in simulated time (AircraftFixture); then the
-// built `uasim` program over UDP, spoken to as the console would. The
-// program checks wait on signals and conditions, never on a time.
+// built `uasim` program over UDP, spoken to as the console would, with one
+// link and with two stations (docs/protocol.md section 10). The program
+// checks wait on signals and conditions, never on a time.
 #include "codec/message/Airframe.h"
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLogReader.h"
+#include "link/session/LinkWorker.h"
 #include "link/simulation/SimulatedAircraft.h"
+#include "link/transport/UdpLink.h"
 
 #include "AircraftFixture.h"
 #include "UasimProcess.h"
@@ -131,6 +135,170 @@ struct Flight {
     Message command;
 };
 
+// The two ground stations of the multi-station cases.
+constexpr StationId kGb30226{44, 30226};
+constexpr StationId kGb41251{44, 41251};
+
+quint16 freeUdpPort()
+{
+    QUdpSocket probe;
+    probe.bind(QHostAddress::LocalHost, 0);
+    return probe.localPort();
+}
+
+// The built uasim with two stations, GB_30226 in control and GB_41251 its
+// backup, each on a free loopback port and with its key file when given:
+// `uasim --station GB_30226,PORT[,KEY] --station GB_41251,PORT[,KEY] --verbose`
+// plus the test's options.
+class TwoStationUasim {
+public:
+    explicit TwoStationUasim(const QStringList& extraArguments = {}, const QStringList& keys = {QString(), QString()})
+        : ports{freeUdpPort(), freeUdpPort()}
+    {
+        const auto station = [&](const char* id, int i) {
+            QString value = QStringLiteral("%1,%2").arg(QLatin1String(id)).arg(ports[i]);
+            if (!keys.value(i).isEmpty())
+                value += QLatin1Char(',') + keys[i];
+            return value;
+        };
+        m_process.setProgram(QStringLiteral(RCM_BIN_DIR "/uasim"));
+        m_process.setArguments(QStringList{QStringLiteral("--station"), station("GB_30226", 0),
+                                           QStringLiteral("--station"), station("GB_41251", 1),
+                                           QStringLiteral("--verbose")} +
+                               extraArguments);
+        QObject::connect(&m_process, &QProcess::readyReadStandardError,
+                         [this] { m_stderr += m_process.readAllStandardError(); });
+    }
+    ~TwoStationUasim()
+    {
+        if (m_process.state() != QProcess::NotRunning) {
+            m_process.kill();
+            m_process.waitForFinished();
+        }
+    }
+    TwoStationUasim(const TwoStationUasim&) = delete;
+    TwoStationUasim& operator=(const TwoStationUasim&) = delete;
+
+    bool start()
+    {
+        m_process.start();
+        return m_process.waitForStarted();
+    }
+    // Said once every channel is bound.
+    bool listening() const { return m_stderr.contains("stations: "); }
+    bool stop(int timeoutMs)
+    {
+        ::kill(static_cast<pid_t>(m_process.processId()), SIGTERM);
+        const bool done = m_process.waitForFinished(timeoutMs);
+        m_stderr += m_process.readAllStandardError();
+        return done && m_process.exitStatus() == QProcess::NormalExit && m_process.exitCode() == 0;
+    }
+    const QByteArray& stderrText() const { return m_stderr; }
+    bool said(const char* line) const { return m_stderr.contains(line); }
+
+    quint16 ports[2];
+
+private:
+    QProcess m_process;
+    QByteArray m_stderr;
+};
+
+// A ground station's console, as far as the aircraft can tell: a worker
+// over its own UDP socket to one of uasim's channels, sending once a second
+// on the system clock, under `key` when given, with a flight plan once one
+// is given to upload. `statuses` are the status frames it received.
+class StationClient {
+public:
+    explicit StationClient(quint16 uasimPort, const QString& key = {})
+        : worker(std::make_unique<UdpLink>(QHostAddress::LocalHost, 0, QHostAddress::LocalHost, uasimPort), nullptr,
+                 options(key, this)),
+          statuses(&worker, &LinkWorker::messageReceived)
+    {
+    }
+
+    // From the next frame on, a section a frame until acknowledged.
+    void upload(std::uint32_t planId, std::size_t bytes)
+    {
+        std::vector<std::uint8_t> plan(bytes);
+        for (std::size_t i = 0; i < plan.size(); ++i)
+            plan[i] = static_cast<std::uint8_t>(i * 3 + planId);
+        uploader = std::make_unique<FlightPlanUploader>(planId, plan);
+    }
+
+    // From the next frame on: the stations named, the gear, the right wing light.
+    void command(StationId destination, StationId backup, unsigned gear = kOut, unsigned wingLight = kOff)
+    {
+        Message m = restingCommand(Airframe::wellEquipped());
+        m.header.set(ItemId::ID_UA_source, Value::station({44, 133}));
+        m.header.set(ItemId::ID_GCS_destination, Value::station(destination));
+        m.header.set(ItemId::ID_GCS_backup, Value::station(backup));
+        for (int wheel = 0; wheel < 4; ++wheel)
+            m.settings.setFieldCode(ItemId::land_wheels, wheel, gear);
+        m.settings.setFieldCode(ItemId::lights, 0, wingLight);
+        worker.setCommand(m);
+    }
+    Message status(qsizetype i) const { return statuses.at(i).at(0).value<ReceivedMessage>().message; }
+    Message latest() const { return status(statuses.count() - 1); }
+    // Whether the last status frame names `control` in control and `backup` the backup.
+    bool latestNames(StationId control, StationId backup) const
+    {
+        if (statuses.isEmpty())
+            return false;
+        const Message m = latest();
+        const Value* d = m.header.find(ItemId::ID_GCS_destination);
+        const Value* b = m.header.find(ItemId::ID_GCS_backup);
+        return d && b && *d == Value::station(control) && *b == Value::station(backup);
+    }
+    unsigned latestGear() const { return latest().settings.fieldCode(ItemId::land_wheels, 0); }
+    unsigned latestWingLight() const { return latest().settings.fieldCode(ItemId::lights, 0); }
+
+    std::unique_ptr<FlightPlanUploader> uploader;  // before the worker that calls it
+    LinkWorker worker;
+    QSignalSpy statuses;
+
+private:
+    static LinkWorker::Options options(const QString& key, StationClient* client)
+    {
+        LinkWorker::Options o;
+        o.block2Source = [client]() -> std::optional<FlightPlanSection> {
+            return client->uploader ? client->uploader->next() : std::nullopt;
+        };
+        o.block2Reply = [client](const FlightPlanSection& reply) {
+            if (client->uploader)
+                client->uploader->handleReply(reply);
+        };
+        if (!key.isEmpty()) {
+            // Its counter in memory: two clients may hold the same key.
+            secure::SecureEndpoint::Options e;
+            e.persistState = false;
+            std::string error;
+            o.secure = secure::SecureEndpoint::open(key.toStdString(), secure::Direction::GcsToUa, error, e);
+            if (!o.secure)
+                qFatal("%s", error.c_str());
+        }
+        return o;
+    }
+};
+
+QString makeKey(const QTemporaryDir& dir, const char* name)
+{
+    const QString path = dir.filePath(QLatin1String(name));
+    std::string error;
+    if (!secure::writeKeyFile(path.toStdString(), secure::generateKey(), error))
+        qFatal("%s", error.c_str());
+    return path;
+}
+
+// "not in control: GB_30226 0 frames, GB_41251 12 frames" -> the count of `station`.
+int notInControlSaid(const QByteArray& said, const QByteArray& station)
+{
+    const qsizetype line = said.lastIndexOf("not in control: GB_30226 ");
+    if (line < 0)
+        return -1;
+    const QByteArray rest = said.mid(line, said.indexOf('\n', line) - line);
+    const qsizetype at = rest.indexOf(station + ' ');
+    return at < 0 ? -1 : rest.mid(at + station.size() + 1).split(' ').value(0).toInt();
+}
 
 }  // namespace
 
@@ -327,22 +495,52 @@ private slots:
         QVERIFY(p.waitForFinished());
         QCOMPARE(p.exitCode(), 0);
         const QByteArray help = p.readAllStandardOutput();
-        for (const char* option : {"--udp", "--serial", "--baud", "--log", "--ber", "--burst", "--drop", "--delay",
-                                   "--outage", "--silent", "--seed", "--airframe", "--verbose", "--help"})
+        for (const char* option :
+             {"--udp", "--serial", "--station", "--failover", "--baud", "--log", "--ber", "--burst", "--drop",
+              "--delay", "--outage", "--silent", "--seed", "--airframe", "--verbose", "--help"})
             QVERIFY2(help.contains(option), option);
         QVERIFY(help.contains("Example"));
         QVERIFY(help.contains("uasim --udp"));
+        QVERIFY(help.contains("uasim --station GB_30226,5601,a.key --station GB_41251,5602,b.key"));
     }
 
     void refusesBadOptions_data()
     {
         QTest::addColumn<QStringList>("arguments");
-        QTest::newRow("no transport") << QStringList{};
-        QTest::newRow("both transports") << QStringList{"--udp", "5000", "--serial", "/dev/null"};
-        QTest::newRow("ber above 1") << QStringList{"--udp", "5000", "--ber", "2"};
-        QTest::newRow("burst without rate") << QStringList{"--udp", "5000", "--burst", "16"};
-        QTest::newRow("outage not a pair") << QStringList{"--udp", "5000", "--outage", "soon"};
-        QTest::newRow("missing airframe") << QStringList{"--udp", "5000", "--airframe", "/nonexistent.json"};
+        QTest::addColumn<QByteArray>("says");  // the start of the line saying why; empty: not checked
+        QTest::newRow("no transport") << QStringList{} << QByteArray();
+        QTest::newRow("both transports") << QStringList{"--udp", "5000", "--serial", "/dev/null"} << QByteArray();
+        QTest::newRow("ber above 1") << QStringList{"--udp", "5000", "--ber", "2"} << QByteArray();
+        QTest::newRow("burst without rate") << QStringList{"--udp", "5000", "--burst", "16"} << QByteArray();
+        QTest::newRow("outage not a pair") << QStringList{"--udp", "5000", "--outage", "soon"} << QByteArray();
+        QTest::newRow("missing airframe")
+            << QStringList{"--udp", "5000", "--airframe", "/nonexistent.json"} << QByteArray();
+        QTest::newRow("station and udp")
+            << QStringList{"--station", "GB_30226,5601", "--udp", "5000"}
+            << QByteArray("--station gives each station a UDP port of its own: not with --udp or --serial\n");
+        QTest::newRow("station and serial")
+            << QStringList{"--station", "GB_30226,5601", "--serial", "/dev/null"}
+            << QByteArray("--station gives each station a UDP port of its own: not with --udp or --serial\n");
+        QTest::newRow("station and key")
+            << QStringList{"--station", "GB_30226,5601", "--key", "a.key"}
+            << QByteArray("with --station, give each station's key as --station ID,PORT,KEYFILE, not --key\n");
+        QTest::newRow("station without port")
+            << QStringList{"--station", "GB_30226"}
+            << QByteArray("--station wants ID,PORT[,KEYFILE] such as GB_30226,5601,a.key, not GB_30226\n");
+        QTest::newRow("station not a station")
+            << QStringList{"--station", "XX_1,5601"} << QByteArray("--station XX_1,5601: unknown country 'XX'");
+        QTest::newRow("station twice") << QStringList{"--station", "GB_1,5601", "--station", "GB_1,5602"}
+                                       << QByteArray("--station GB_1,5602: that station was given already\n");
+        QTest::newRow("port twice") << QStringList{"--station", "GB_1,5601", "--station", "GB_2,5601"}
+                                    << QByteArray("--station GB_2,5601: port 5601 was given to another station\n");
+        QTest::newRow("key twice") << QStringList{"--station", "GB_1,5601,a.key", "--station", "GB_2,5602,a.key"}
+                                   << QByteArray("--station GB_2,5602,a.key: each station needs a key of its own\n");
+        QTest::newRow("failover, one station")
+            << QStringList{"--station", "GB_1,5601", "--failover", "2"}
+            << QByteArray("--failover is for an aircraft with two --station or more\n");
+        QTest::newRow("failover not seconds")
+            << QStringList{"--station", "GB_1,5601", "--station", "GB_2,5602", "--failover", "soon"}
+            << QByteArray("--failover wants seconds, 0.001 to 3600, not soon\n");
     }
 
     void refusesBadOptions()
@@ -353,7 +551,10 @@ private slots:
         QVERIFY(p.waitForFinished());
         QCOMPARE(p.exitStatus(), QProcess::NormalExit);
         QCOMPARE(p.exitCode(), 2);
-        QVERIFY(p.readAllStandardError().startsWith("uasim: "));
+        QFETCH(QByteArray, says);
+        const QByteArray said = p.readAllStandardError();
+        QVERIFY(said.startsWith("uasim: "));
+        QVERIFY2(said.startsWith("uasim: " + says), said.constData());
     }
 
     // In simulated time from here on: the console's worker against the
@@ -530,6 +731,207 @@ private slots:
         for (const FrameRecord& r : records) {
             QCOMPARE(r.transport, FrameTransport::Udp);
             QCOMPARE(r.bytes.size(), qsizetype(kDatagramSize));
+        }
+    }
+
+    // Two stations, each with a channel of its own (docs/protocol.md section
+    // 10), over real loopback sockets at uasim's own 1 Hz.
+    void actsOnlyOnTheStationInControl()
+    {
+        QTemporaryDir dir;
+        TwoStationUasim uasim({QStringLiteral("--log"), dir.filePath(QStringLiteral("uasim.pcapng"))});
+        QVERIFY(uasim.start());
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
+        QVERIFY2(uasim.said("uasim: stations: GB_30226 in control (not yet taken up), GB_41251 backup; failover after "
+                            "5 s\n"),
+                 uasim.stderrText().constData());
+
+        StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
+        primary.command(kGb30226, kGb41251, kOut);
+        // The backup's console before any status: it names itself, commands
+        // the gear up and uploads a flight plan.
+        backup.command(kGb41251, kGb30226, kRetracted);
+        backup.upload(0xB0, 300);
+        primary.worker.start();
+        backup.worker.start();
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("taken up: GB_30226 in control, GB_41251 backup\n"), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(
+            uasim.said("not in control: GB_41251's frames are not acted on; GB_30226 in control\n"), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("GB_41251: command 2 not acted on: not in control\n"), kPatienceMs);
+        // Two status frames more on each channel after the backup's third command.
+        const qsizetype seen[] = {primary.statuses.count(), backup.statuses.count()};
+        QTRY_VERIFY_WITH_TIMEOUT(primary.statuses.count() >= seen[0] + 2 && backup.statuses.count() >= seen[1] + 2,
+                                 kPatienceMs);
+        // Every status frame, on both channels, names GB_30226 in control
+        // and GB_41251 the backup; the gear stays down.
+        for (StationClient* client : {&primary, &backup})
+            for (qsizetype i = 0; i < client->statuses.count(); ++i) {
+                const Message status = client->status(i);
+                QCOMPARE(*status.header.find(ItemId::ID_GCS_destination), Value::station(kGb30226));
+                QCOMPARE(*status.header.find(ItemId::ID_GCS_backup), Value::station(kGb41251));
+                for (int wheel = 0; wheel < 4; ++wheel)
+                    QCOMPARE(status.settings.fieldCode(ItemId::land_wheels, wheel), kOut);
+            }
+        QVERIFY(!uasim.said("retracting"));
+        QVERIFY(!uasim.said("flight plan"));
+        QVERIFY(backup.latest().flightPlan.empty());
+
+        // The station in control commands it: the gear comes up, as both see.
+        primary.command(kGb30226, kGb41251, kRetracted);
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("GB_30226: command "), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("Left wheel: retracting"), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(!primary.statuses.isEmpty() && primary.latestGear() == kRetracted, kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(backup.latestGear() == kRetracted, kPatienceMs);
+        QVERIFY(primary.latestNames(kGb30226, kGb41251) && backup.latestNames(kGb30226, kGb41251));
+
+        // Its flight plan is acted on, and both see the acknowledgement of it.
+        primary.upload(0xA0, 300);
+        QTRY_VERIFY_WITH_TIMEOUT(primary.uploader->state() == FlightPlanUploader::State::Acknowledged, kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(!backup.latest().flightPlan.empty(), kPatienceMs);
+        QCOMPARE(FlightPlanAcknowledgement::read(backup.latest().flightPlan)->planId, 0xA0u);
+        QVERIFY(backup.uploader->state() != FlightPlanUploader::State::Acknowledged);
+
+        primary.worker.stop();
+        backup.worker.stop();
+        QVERIFY(uasim.stop(kPatienceMs));
+        const QByteArray said = uasim.stderrText();
+        QVERIFY(said.contains("GB_30226: command ") && said.contains("flight plan 160 section"));
+        QVERIFY(!said.contains("flight plan 176"));
+        QCOMPARE(notInControlSaid(said, "GB_30226"), 0);
+        QVERIFY2(notInControlSaid(said, "GB_41251") >= 3, said.constData());
+        QVERIFY(!said.contains("handover") && !said.contains("failover:"));
+
+        // One log per channel, each with the frames both ways.
+        for (const char* name : {"uasim-GB_30226.pcapng", "uasim-GB_41251.pcapng"}) {
+            FrameLogReader reader;
+            QVERIFY2(reader.open(dir.filePath(QLatin1String(name))), qPrintable(reader.errorString()));
+            const auto records = reader.readAll();
+            const auto sent = std::count_if(records.begin(), records.end(),
+                                            [](const FrameRecord& r) { return r.direction == FrameDirection::Sent; });
+            QVERIFY2(sent >= 2, name);
+            QVERIFY2(records.size() > sent, name);
+        }
+        QVERIFY(!QFile::exists(dir.filePath(QStringLiteral("uasim.pcapng"))));
+    }
+
+    void handsOverToTheBackup()
+    {
+        TwoStationUasim uasim;
+        QVERIFY(uasim.start());
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
+        StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
+        primary.command(kGb30226, kGb41251);
+        backup.command(kGb30226, kGb41251);  // the backup, observing
+        primary.worker.start();
+        backup.worker.start();
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("taken up: GB_30226 in control, GB_41251 backup\n"), kPatienceMs);
+
+        // Handing over: the primary names the backup as destination.
+        primary.command(kGb41251, kGb30226);
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("handover: GB_30226 hands control to GB_41251, not yet taken up\n"),
+                                 kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(primary.latestNames(kGb41251, kGb30226) && backup.latestNames(kGb41251, kGb30226),
+                                 kPatienceMs);
+
+        // Given control, not yet taken up: it names the reported backup, and
+        // its commands are not acted on.
+        backup.command(kGb30226, kGb41251, kOut, kOn);
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("not acted on: control not yet taken up (names GB_30226 as destination)\n"),
+                                 kPatienceMs);
+        QCOMPARE(backup.latestWingLight(), kOff);
+        // Taking up control: it names itself; the light goes on.
+        backup.command(kGb41251, kGb30226, kOut, kOn);
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("taken up: GB_41251 in control, GB_30226 backup\n"), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(primary.latestWingLight() == kOn && backup.latestWingLight() == kOn, kPatienceMs);
+        QVERIFY(primary.latestNames(kGb41251, kGb30226) && backup.latestNames(kGb41251, kGb30226));
+
+        // The former primary, now the backup, commands nothing.
+        primary.command(kGb30226, kGb41251, kOut, kOff);
+        QTRY_VERIFY_WITH_TIMEOUT(
+            uasim.said("not in control: GB_30226's frames are not acted on; GB_41251 in control\n"), kPatienceMs);
+        const qsizetype seen = primary.statuses.count();
+        QTRY_VERIFY_WITH_TIMEOUT(primary.statuses.count() >= seen + 2, kPatienceMs);
+        QCOMPARE(primary.latestWingLight(), kOn);
+        primary.worker.stop();
+        backup.worker.stop();
+        QVERIFY(uasim.stop(kPatienceMs));
+        QVERIFY(!uasim.said("failover:"));
+    }
+
+    void failsOverWhenTheStationInControlFallsSilent()
+    {
+        TwoStationUasim uasim({QStringLiteral("--failover"), QStringLiteral("2")});
+        QVERIFY(uasim.start());
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
+        QVERIFY(uasim.said("; failover after 2 s\n"));
+        StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
+        primary.command(kGb30226, kGb41251);
+        backup.command(kGb30226, kGb41251);
+        primary.worker.start();
+        backup.worker.start();
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("taken up: GB_30226 in control, GB_41251 backup\n"), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(backup.latestNames(kGb30226, kGb41251), kPatienceMs);
+
+        primary.worker.stop();
+        QTRY_VERIFY_WITH_TIMEOUT(
+            uasim.said("failover: nothing from GB_30226 for 2 s; GB_41251 in control, not yet taken up\n"),
+            kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(backup.latestNames(kGb41251, kGb30226), kPatienceMs);
+        // Not acted on until the new station in control takes it up.
+        backup.command(kGb41251, kGb30226, kOut, kOn);
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("taken up: GB_41251 in control, GB_30226 backup\n"), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(backup.latestWingLight() == kOn, kPatienceMs);
+        backup.worker.stop();
+        QVERIFY(uasim.stop(kPatienceMs));
+    }
+
+    // Each station's key opens its own channel only.
+    void refusesTheOtherStationsKey()
+    {
+        QTemporaryDir dir;
+        const QString keyA = makeKey(dir, "a.key"), keyB = makeKey(dir, "b.key");
+        TwoStationUasim uasim({}, {keyA, keyB});
+        QVERIFY(uasim.start());
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
+        QVERIFY(uasim.said("GB_30226: secure link: encrypted and authenticated, key fingerprint "));
+        QVERIFY(uasim.said("GB_41251: secure link: encrypted and authenticated, key fingerprint "));
+
+        // On GB_30226's channel under GB_41251's key, and the other way round:
+        // both would command the gear up.
+        StationClient intruderOnA(uasim.ports[0], keyB), intruderOnB(uasim.ports[1], keyA);
+        intruderOnA.command(kGb41251, kGb30226, kRetracted);
+        intruderOnB.command(kGb30226, kGb41251, kRetracted);
+        intruderOnA.worker.start();
+        intruderOnB.worker.start();
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("GB_30226: command rejected: forged: "), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("GB_41251: command rejected: forged: "), kPatienceMs);
+
+        // Each station with its own key: status frames both can read.
+        StationClient primary(uasim.ports[0], keyA), backup(uasim.ports[1], keyB);
+        primary.command(kGb30226, kGb41251);
+        backup.command(kGb30226, kGb41251);
+        primary.worker.start();
+        backup.worker.start();
+        QTRY_VERIFY_WITH_TIMEOUT(uasim.said("taken up: GB_30226 in control, GB_41251 backup\n"), kPatienceMs);
+        QTRY_VERIFY_WITH_TIMEOUT(primary.latestNames(kGb30226, kGb41251) && backup.latestNames(kGb30226, kGb41251),
+                                 kPatienceMs);
+        for (StationClient* client : {&intruderOnA, &intruderOnB, &primary, &backup})
+            client->worker.stop();
+        QCOMPARE(intruderOnA.statuses.count(), 0);
+        QCOMPARE(intruderOnB.statuses.count(), 0);
+        QCOMPARE(primary.latestGear(), kOut);
+        QVERIFY(!uasim.said("retracting"));
+
+        QVERIFY(uasim.stop(kPatienceMs));
+        const QByteArray said = uasim.stderrText();
+        for (const char* station : {"GB_30226", "GB_41251"}) {
+            const QByteArray prefix = QByteArray(station) + ": rejected commands: ";
+            const qsizetype at = said.indexOf(prefix);
+            QVERIFY2(at >= 0, said.constData());
+            const int forged = said.mid(at + prefix.size()).split(' ').value(0).toInt();
+            QVERIFY2(forged >= 1, said.constData());
+            QVERIFY(said.mid(at).startsWith(prefix + QByteArray::number(forged) +
+                                            " forged, 0 replayed, 0 stale time, 0 plaintext\n"));
         }
     }
 };

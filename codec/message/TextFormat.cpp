@@ -1310,4 +1310,30 @@ ParseResult parseMessage(std::string_view text, const EncodeOptions& limits, std
     return Parser(text, limits, filledWhenAbsent).run();
 }
 
+std::string formatStation(StationId station)
+{
+    std::string out;
+    appendStation(out, Value::station(station));
+    return out;
+}
+
+std::optional<StationId> parseStation(std::string_view text, std::string* error)
+{
+    // Through the one parser, so that a station reads the same everywhere.
+    const std::string_view item = itemInfo(ItemId::ID_GCS_destination).name;
+    const std::string line = std::string(item) + ' ' + std::string(text);
+    const bool oneToken = !text.empty() && text.find_first_of(" \t\n\"#") == std::string_view::npos;
+    ParseResult parsed = oneToken ? parseMessage(line) : ParseResult{};
+    const Value* value = parsed.message.header.find(ItemId::ID_GCS_destination);
+    if (oneToken && parsed.ok() && value)
+        return StationId{static_cast<std::uint16_t>(value->number), static_cast<std::uint16_t>(value->second)};
+    if (error) {
+        if (!oneToken)
+            *error = "expected a station COUNTRY_UNIT such as GB_133, got '" + std::string(text) + "'";
+        else
+            *error = parsed.errors.empty() ? std::string("not a station") : parsed.errors.front().message;
+    }
+    return std::nullopt;
+}
+
 }  // namespace rcm

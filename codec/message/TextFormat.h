@@ -131,6 +131,7 @@
 #include "codec/message/Message.h"
 #include "codec/message/MessageEncoder.h"
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -160,5 +161,11 @@ struct ParseResult {
 // for a caller that fills them in before encoding.
 ParseResult parseMessage(std::string_view text, const EncodeOptions& limits = {},
                          std::span<const ItemId> filledWhenAbsent = {});
+
+// One station as the text format writes it ("GB_30226") and reads it (also
+// "44_30226"): for command lines and settings that name a station. The
+// error says what is wrong, without a line or column.
+std::string formatStation(StationId station);
+std::optional<StationId> parseStation(std::string_view text, std::string* error = nullptr);
 
 }  // namespace rcm

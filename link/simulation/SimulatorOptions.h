@@ -9,6 +9,7 @@
 #include <QCommandLineOption>
 
 #include <optional>
+#include <vector>
 
 class QCommandLineParser;
 
@@ -23,6 +24,12 @@ public:
     std::optional<SimulatorSession::Settings> read(const QCommandLineParser& parser, QString* error) const;
 
 private:
+    // The --station options, or an error.
+    std::optional<std::vector<SimulatorSession::Station>> readStations(const QCommandLineParser& parser,
+                                                                       QString* error) const;
+
+    QCommandLineOption m_station;
+    QCommandLineOption m_failover;
     QCommandLineOption m_udp;
     QCommandLineOption m_serial;
     QCommandLineOption m_baud;
