@@ -450,10 +450,10 @@ void LinkWorker::log(FrameDirection direction, QByteArray bytes, FrameStatus sta
     logged.messageId = messageId;
     if (m_log && m_log->isOpen())
         m_log->append(record, &logged.entry.offset);
-    // A frame that is in no file (no log, or the log failed) carries its
-    // bytes: the signal is then their only copy.
-    if (!logged.inLog())
-        logged.bytes = std::move(record.bytes);
+    // The bytes go along even when in the file, for whoever passes frames on
+    // (the broker) without reading the file back; a view keeps them only for
+    // a frame in no file.
+    logged.bytes = std::move(record.bytes);
     logged.correctedSymbols = std::move(record.correctedSymbols);
     emit frameLogged(logged);
 }

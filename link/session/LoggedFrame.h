@@ -1,10 +1,11 @@
 #pragma once
 
 // One frame the link logged, as the link thread tells the GUI of it: what a
-// row of the frame log view shows, and where its bytes are. With a frame log
-// they are in the file, at entry.offset, and are not copied into the signal:
-// a day of frames would otherwise be a day of bytes held twice. Without one
-// (or once the log has failed), the bytes travel here, being nowhere else.
+// row of the frame log view shows, where its bytes are, and the bytes. With a
+// frame log they are in the file, at entry.offset, and a view keeps only that
+// (a day of frames would otherwise be a day of bytes held twice); the bytes
+// travel here as well for whoever passes each frame on as it comes (the
+// broker), so that nobody reads the file back on the GUI thread.
 
 #include "link/framelog/FrameLog.h"
 #include "link/framelog/FrameLogReader.h"
@@ -24,7 +25,7 @@ struct LoggedFrame {
     // ID_msg when the link knows it (frames sent, good frames received), so
     // that the view need not decode, nor can misread a secure link's ciphertext.
     std::optional<quint32> messageId;
-    // The frame itself, only when entry.offset is -1.
+    // The frame itself.
     QByteArray bytes;
 
     bool inLog() const { return entry.offset >= 0; }

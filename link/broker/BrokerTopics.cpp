@@ -1,0 +1,606 @@
+#include "link/broker/BrokerTopics.h"
+
+#include "codec/message/CountryCodes.h"
+#include "link/framelog/FrameLog.h"
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QJsonParseError>
+#include <QStringList>
+
+#include <array>
+#include <limits>
+#include <utility>
+
+namespace {
+
+const QString kRoot = QStringLiteral("rcm");
+
+constexpr std::array<std::pair<LinkState, const char*>, 4> kLinkStates{{
+    {LinkState::Closed, "closed"},
+    {LinkState::Waiting, "waiting"},
+    {LinkState::Connected, "connected"},
+    {LinkState::Lost, "lost"},
+}};
+constexpr std::array<std::pair<FrameDirection, const char*>, 2> kFrameDirections{{
+    {FrameDirection::Sent, "up"},
+    {FrameDirection::Received, "down"},
+}};
+constexpr std::array<const char*, 4> kRoles{"control", "backup", "observing", "unknown"};
+constexpr std::array<const char*, 4> kSeverities{"info", "warning", "error", "alarm"};
+
+template <typename E, std::size_t N>
+QString nameIn(const std::array<std::pair<E, const char*>, N>& table, E value)
+{
+    for (const auto& [v, name] : table)
+        if (v == value)
+            return QString::fromLatin1(name);
+    return {};
+}
+
+template <typename E, std::size_t N>
+std::optional<E> valueIn(const std::array<std::pair<E, const char*>, N>& table, const QString& name)
+{
+    for (const auto& [v, n] : table)
+        if (name == QLatin1String(n))
+            return v;
+    return std::nullopt;
+}
+
+template <std::size_t N>
+bool isOneOf(const std::array<const char*, N>& names, const QString& name)
+{
+    for (const char* n : names)
+        if (name == QLatin1String(n))
+            return true;
+    return false;
+}
+
+// "\"a\", \"b\" or \"c\"", for an error that lists what a field may hold.
+template <std::size_t N>
+QString alternatives(const std::array<const char*, N>& names)
+{
+    QString out;
+    for (std::size_t i = 0; i < N; ++i) {
+        if (i > 0)
+            out += i + 1 == N ? QStringLiteral(" or ") : QStringLiteral(", ");
+        out += u'"' + QString::fromLatin1(names[i]) + u'"';
+    }
+    return out;
+}
+
+template <typename E, std::size_t N>
+QString alternatives(const std::array<std::pair<E, const char*>, N>& table)
+{
+    std::array<const char*, N> names{};
+    for (std::size_t i = 0; i < N; ++i)
+        names[i] = table[i].second;
+    return alternatives(names);
+}
+
+// The frame log's names of statuses and transports (FrameLog.h), the one
+// spelling of them in the project, as a table like the ones above.
+template <typename E, std::size_t N>
+std::array<std::pair<E, const char*>, N> namedBy(QString (*name)(E))
+{
+    static std::array<QByteArray, N> texts;
+    std::array<std::pair<E, const char*>, N> table{};
+    for (std::size_t i = 0; i < N; ++i) {
+        texts[i] = name(E(i)).toLatin1();
+        table[i] = {E(i), texts[i].constData()};
+    }
+    return table;
+}
+
+const std::array<std::pair<FrameStatus, const char*>, 5> kFrameStatuses = namedBy<FrameStatus, 5>(&::frameStatusName);
+const std::array<std::pair<FrameTransport, const char*>, 4> kFrameTransports =
+    namedBy<FrameTransport, 4>(&::frameTransportName);
+
+// Reads one payload's object, field by field, keeping the first error: each
+// getter returns a default once something failed, and ok() says whether the
+// whole payload held. Errors are "<payload>: <field> <what is wrong>".
+class JsonFields {
+public:
+    JsonFields(const QByteArray& json, const char* payload) : m_payload(QString::fromLatin1(payload))
+    {
+        QJsonParseError parseError;
+        const QJsonDocument doc = QJsonDocument::fromJson(json, &parseError);
+        if (parseError.error != QJsonParseError::NoError)
+            m_error = m_payload +
+                      QStringLiteral(": not JSON: %1 at byte %2").arg(parseError.errorString()).arg(parseError.offset);
+        else if (!doc.isObject())
+            m_error = m_payload + QStringLiteral(": not a JSON object");
+        else
+            m_object = doc.object();
+    }
+
+    bool ok() const { return m_error.isEmpty(); }
+    // Passes the first error on; false when there was one.
+    bool report(QString* error) const
+    {
+        if (error && !ok())
+            *error = m_error;
+        return ok();
+    }
+    bool has(const char* field) const { return ok() && m_object.contains(QLatin1String(field)); }
+
+    QString string(const char* field, bool required = true)
+    {
+        const QJsonValue v = value(field, required);
+        if (v.isUndefined())
+            return {};
+        if (!v.isString()) {
+            fail(field, QStringLiteral("must be a string"));
+            return {};
+        }
+        return v.toString();
+    }
+
+    bool boolean(const char* field, bool required = true)
+    {
+        const QJsonValue v = value(field, required);
+        if (v.isUndefined())
+            return false;
+        if (!v.isBool()) {
+            fail(field, QStringLiteral("must be true or false"));
+            return false;
+        }
+        return v.toBool();
+    }
+
+    // An integer in [min, max]. JSON numbers are doubles to most readers;
+    // times in microseconds and counters stay well inside 2^53.
+    qint64 integer(const char* field, qint64 min, qint64 max, bool required = true)
+    {
+        const QJsonValue v = value(field, required);
+        if (v.isUndefined())
+            return 0;
+        if (!v.isDouble()) {
+            fail(field, QStringLiteral("must be a number"));
+            return 0;
+        }
+        const double d = v.toDouble();
+        const qint64 n = v.toInteger(std::numeric_limits<qint64>::min());
+        if (n == std::numeric_limits<qint64>::min() || double(n) != d) {
+            fail(field, QStringLiteral("must be a whole number, not %1").arg(d));
+            return 0;
+        }
+        if (n < min || n > max) {
+            fail(field, QStringLiteral("must be %1..%2, not %3").arg(min).arg(max).arg(n));
+            return 0;
+        }
+        return n;
+    }
+    qint64 time(const char* field, bool required = true)
+    {
+        return integer(field, 0, std::numeric_limits<qint64>::max(), required);
+    }
+    quint64 count(const char* field) { return quint64(integer(field, 0, std::numeric_limits<qint64>::max())); }
+
+    template <std::size_t N>
+    QString oneOf(const char* field, const std::array<const char*, N>& names)
+    {
+        const QString s = string(field);
+        if (ok() && !isOneOf(names, s))
+            fail(field, QStringLiteral("must be %1, not \"%2\"").arg(alternatives(names), s));
+        return ok() ? s : QString();
+    }
+
+    template <typename E, std::size_t N>
+    E named(const char* field, const std::array<std::pair<E, const char*>, N>& table, E fallback, bool required = true)
+    {
+        if (!required && !has(field))
+            return fallback;
+        const QString s = string(field);
+        if (!ok())
+            return fallback;
+        const std::optional<E> v = valueIn(table, s);
+        if (!v) {
+            fail(field, QStringLiteral("must be %1, not \"%2\"").arg(alternatives(table), s));
+            return fallback;
+        }
+        return *v;
+    }
+
+    QByteArray base64(const char* field)
+    {
+        const QString s = string(field);
+        if (!ok())
+            return {};
+        auto decoded = QByteArray::fromBase64Encoding(s.toLatin1(), QByteArray::AbortOnBase64DecodingErrors);
+        if (!decoded || s.size() % 4 != 0) {
+            fail(field, QStringLiteral("must be base64"));
+            return {};
+        }
+        return *decoded;
+    }
+
+    QJsonArray array(const char* field, bool required = true)
+    {
+        const QJsonValue v = value(field, required);
+        if (v.isUndefined())
+            return {};
+        if (!v.isArray()) {
+            fail(field, QStringLiteral("must be an array"));
+            return {};
+        }
+        return v.toArray();
+    }
+
+    void fail(const char* field, const QString& what)
+    {
+        if (ok())
+            m_error = m_payload + QStringLiteral(": ") + QLatin1String(field) + u' ' + what;
+    }
+
+private:
+    // Undefined when absent (an error if required) or after an error.
+    QJsonValue value(const char* field, bool required)
+    {
+        if (!ok())
+            return QJsonValue(QJsonValue::Undefined);
+        const QJsonValue v = m_object.value(QLatin1String(field));
+        if (v.isUndefined() && required)
+            fail(field, QStringLiteral("is missing"));
+        return v;
+    }
+
+    QString m_payload;
+    QJsonObject m_object;
+    QString m_error;
+};
+
+QByteArray compact(const QJsonObject& object)
+{
+    return QJsonDocument(object).toJson(QJsonDocument::Compact);
+}
+
+}  // namespace
+
+// StationReport ---------------------------------------------------------------
+
+QByteArray StationReport::toJson() const
+{
+    return compact(QJsonObject{
+        {QStringLiteral("station"), station},
+        {QStringLiteral("role"), role},
+        {QStringLiteral("link"), BrokerTopics::linkStateName(link)},
+        {QStringLiteral("description"), description},
+        {QStringLiteral("online"), online},
+        {QStringLiteral("utcMicros"), utcMicros},
+        {QStringLiteral("lastFrameUtcMicros"), lastFrameUtcMicros},
+        {QStringLiteral("destination"), destination},
+        {QStringLiteral("backup"), backup},
+    });
+}
+
+std::optional<StationReport> StationReport::fromJson(const QByteArray& json, QString* error)
+{
+    JsonFields f(json, "station");
+    StationReport r;
+    r.station = f.string("station");
+    r.role = f.oneOf("role", kRoles);
+    r.link = f.named("link", kLinkStates, LinkState::Closed);
+    r.description = f.string("description", false);
+    r.online = f.boolean("online");
+    r.utcMicros = f.time("utcMicros");
+    r.lastFrameUtcMicros = f.time("lastFrameUtcMicros", false);
+    r.destination = f.string("destination", false);
+    r.backup = f.string("backup", false);
+    if (!f.report(error))
+        return std::nullopt;
+    return r;
+}
+
+// FrameReport -----------------------------------------------------------------
+
+QByteArray FrameReport::toJson() const
+{
+    QJsonObject o{
+        {QStringLiteral("station"), station},
+        {QStringLiteral("direction"), BrokerTopics::frameDirectionName(direction)},
+        {QStringLiteral("status"), BrokerTopics::frameStatusName(status)},
+        {QStringLiteral("utcMicros"), utcMicros},
+        {QStringLiteral("bytes"), QString::fromLatin1(bytes.toBase64())},
+        {QStringLiteral("transport"), BrokerTopics::frameTransportName(transport)},
+    };
+    if (messageId)
+        o.insert(QStringLiteral("messageId"), qint64(*messageId));
+    if (!corrected.isEmpty()) {
+        QJsonArray a;
+        for (int n : corrected)
+            a.append(n);
+        o.insert(QStringLiteral("corrected"), a);
+    }
+    if (!text.isEmpty())
+        o.insert(QStringLiteral("text"), text);
+    if (enciphered)
+        o.insert(QStringLiteral("enciphered"), true);
+    return compact(o);
+}
+
+std::optional<FrameReport> FrameReport::fromJson(const QByteArray& json, QString* error)
+{
+    JsonFields f(json, "frames");
+    FrameReport r;
+    r.station = f.string("station");
+    r.direction = f.named("direction", kFrameDirections, FrameDirection::Received);
+    r.status = f.named("status", kFrameStatuses, FrameStatus::NotChecked);
+    r.utcMicros = f.time("utcMicros");
+    if (f.has("messageId"))
+        r.messageId = quint32(f.integer("messageId", 0, std::numeric_limits<quint32>::max()));
+    const QJsonArray corrected = f.array("corrected", false);
+    for (const QJsonValue& v : corrected) {
+        // One count per codeword: 0..16 bytes corrected (RS(255,223) corrects
+        // up to 16), -1 beyond correction.
+        if (!v.isDouble() || v.toDouble() != double(v.toInt()) || v.toInt() < -1 || v.toInt() > 255) {
+            f.fail("corrected", QStringLiteral("must hold whole numbers -1..255"));
+            break;
+        }
+        r.corrected.append(v.toInt());
+    }
+    r.bytes = f.base64("bytes");
+    r.text = f.string("text", false);
+    r.transport = f.named("transport", kFrameTransports, FrameTransport::Serial, false);
+    r.enciphered = f.boolean("enciphered", false);
+    if (!f.report(error))
+        return std::nullopt;
+    return r;
+}
+
+// StateReport -----------------------------------------------------------------
+
+QByteArray StateReport::toJson() const
+{
+    return compact(QJsonObject{
+        {QStringLiteral("utcMicros"), utcMicros},
+        {QStringLiteral("text"), text},
+        {QStringLiteral("destination"), destination},
+        {QStringLiteral("backup"), backup},
+    });
+}
+
+std::optional<StateReport> StateReport::fromJson(const QByteArray& json, QString* error)
+{
+    JsonFields f(json, "state");
+    StateReport r;
+    r.utcMicros = f.time("utcMicros");
+    r.text = f.string("text");
+    r.destination = f.string("destination", false);
+    r.backup = f.string("backup", false);
+    if (!f.report(error))
+        return std::nullopt;
+    return r;
+}
+
+// StatsReport -----------------------------------------------------------------
+
+StatsReport StatsReport::of(const LinkStatistics& s)
+{
+    StatsReport r;
+    r.framesSent = s.framesSent;
+    r.framesReceived = s.framesReceived;
+    r.refused = s.refusedTotal();
+    r.correctedBytesBlock1 = s.correctedBytesBlock1;
+    r.correctedBytesBlock2 = s.correctedBytesBlock2;
+    r.lastGoodFrameUtcMicros = s.lastGoodFrameUtcMicros;
+    r.state = s.state;
+    return r;
+}
+
+LinkStatistics StatsReport::toStatistics() const
+{
+    LinkStatistics s;
+    s.state = state;
+    s.framesSent = framesSent;
+    s.framesReceived = framesReceived;
+    // The report keeps only the total; it is told as the first reason, so
+    // refusedTotal() reads it back.
+    s.refused[0] = refused;
+    s.correctedBytesBlock1 = correctedBytesBlock1;
+    s.correctedBytesBlock2 = correctedBytesBlock2;
+    s.lastGoodFrameUtcMicros = lastGoodFrameUtcMicros;
+    return s;
+}
+
+QByteArray StatsReport::toJson() const
+{
+    return compact(QJsonObject{
+        {QStringLiteral("framesSent"), qint64(framesSent)},
+        {QStringLiteral("framesReceived"), qint64(framesReceived)},
+        {QStringLiteral("refused"), qint64(refused)},
+        {QStringLiteral("correctedBytesBlock1"), qint64(correctedBytesBlock1)},
+        {QStringLiteral("correctedBytesBlock2"), qint64(correctedBytesBlock2)},
+        {QStringLiteral("lastGoodFrameUtcMicros"), lastGoodFrameUtcMicros},
+        {QStringLiteral("state"), BrokerTopics::linkStateName(state)},
+    });
+}
+
+std::optional<StatsReport> StatsReport::fromJson(const QByteArray& json, QString* error)
+{
+    JsonFields f(json, "stats");
+    StatsReport r;
+    r.framesSent = f.count("framesSent");
+    r.framesReceived = f.count("framesReceived");
+    r.refused = f.count("refused");
+    r.correctedBytesBlock1 = f.count("correctedBytesBlock1");
+    r.correctedBytesBlock2 = f.count("correctedBytesBlock2");
+    r.lastGoodFrameUtcMicros = f.time("lastGoodFrameUtcMicros");
+    r.state = f.named("state", kLinkStates, LinkState::Closed);
+    if (!f.report(error))
+        return std::nullopt;
+    return r;
+}
+
+// EventReport -----------------------------------------------------------------
+
+QByteArray EventReport::toJson() const
+{
+    return compact(QJsonObject{
+        {QStringLiteral("utcMicros"), utcMicros},
+        {QStringLiteral("severity"), severity},
+        {QStringLiteral("text"), text},
+        {QStringLiteral("station"), station},
+    });
+}
+
+std::optional<EventReport> EventReport::fromJson(const QByteArray& json, QString* error)
+{
+    JsonFields f(json, "events");
+    EventReport r;
+    r.utcMicros = f.time("utcMicros");
+    r.severity = f.oneOf("severity", kSeverities);
+    r.text = f.string("text");
+    r.station = f.string("station", false);
+    if (!f.report(error))
+        return std::nullopt;
+    return r;
+}
+
+// Topics ----------------------------------------------------------------------
+
+namespace BrokerTopics {
+
+namespace {
+
+const QString kStation = QStringLiteral("station");
+const QString kFrames = QStringLiteral("frames");
+const QString kState = QStringLiteral("state");
+const QString kStats = QStringLiteral("stats");
+const QString kEvents = QStringLiteral("events");
+
+QString aircraftTopic(const QString& aircraft, const QString& kind)
+{
+    return kRoot + u'/' + aircraft + u'/' + kind;
+}
+
+}  // namespace
+
+QString stationTopic(const QString& aircraft, const QString& station)
+{
+    return aircraftTopic(aircraft, kStation) + u'/' + station;
+}
+QString framesTopic(const QString& aircraft)
+{
+    return aircraftTopic(aircraft, kFrames);
+}
+QString stateTopic(const QString& aircraft)
+{
+    return aircraftTopic(aircraft, kState);
+}
+QString statsTopic(const QString& aircraft)
+{
+    return aircraftTopic(aircraft, kStats);
+}
+QString eventsTopic(const QString& aircraft)
+{
+    return aircraftTopic(aircraft, kEvents);
+}
+
+QString allStationsPattern()
+{
+    return kRoot + QStringLiteral("/+/") + kStation + QStringLiteral("/+");
+}
+QString aircraftPattern(const QString& aircraft)
+{
+    return kRoot + u'/' + aircraft + QStringLiteral("/#");
+}
+
+std::optional<Topic> parseTopic(const QString& topic)
+{
+    const QStringList levels = topic.split(u'/');
+    if (levels.size() < 3 || levels[0] != kRoot || !isTopicLevel(levels[1]))
+        return std::nullopt;
+    Topic t;
+    t.aircraft = levels[1];
+    const QString& kind = levels[2];
+    if (kind == kStation) {
+        if (levels.size() != 4 || !isTopicLevel(levels[3]))
+            return std::nullopt;
+        t.kind = Kind::Station;
+        t.station = levels[3];
+        return t;
+    }
+    if (levels.size() != 3)
+        return std::nullopt;
+    if (kind == kFrames)
+        t.kind = Kind::Frames;
+    else if (kind == kState)
+        t.kind = Kind::State;
+    else if (kind == kStats)
+        t.kind = Kind::Stats;
+    else if (kind == kEvents)
+        t.kind = Kind::Events;
+    else
+        return std::nullopt;
+    return t;
+}
+
+bool isTopicLevel(const QString& name)
+{
+    if (name.isEmpty())
+        return false;
+    for (const QChar c : name)
+        if (c == u'/' || c == u'+' || c == u'#' || c == QChar(0))
+            return false;
+    return true;
+}
+
+QString stationText(const rcm::Message& message, rcm::ItemId item)
+{
+    const rcm::Value* v = message.header.find(item);
+    if (!v)
+        return {};
+    // As the text format prints a station (its appendStation): the country's
+    // alpha-2 when the dialling code has one, else the number.
+    std::string_view country;
+    if (v->number >= 0 && v->number <= std::numeric_limits<quint16>::max())
+        country = rcm::countryForDiallingCode(quint16(v->number));
+    const QString countryText =
+        country.empty() ? QString::number(v->number) : QString::fromLatin1(country.data(), qsizetype(country.size()));
+    return countryText + u'_' + QString::number(v->second);
+}
+
+QString linkStateName(LinkState state)
+{
+    return nameIn(kLinkStates, state);
+}
+std::optional<LinkState> linkStateFromName(const QString& name)
+{
+    return valueIn(kLinkStates, name);
+}
+QString frameStatusName(FrameStatus status)
+{
+    return ::frameStatusName(status);
+}
+std::optional<FrameStatus> frameStatusFromName(const QString& name)
+{
+    return valueIn(kFrameStatuses, name);
+}
+QString frameDirectionName(FrameDirection direction)
+{
+    return nameIn(kFrameDirections, direction);
+}
+std::optional<FrameDirection> frameDirectionFromName(const QString& name)
+{
+    return valueIn(kFrameDirections, name);
+}
+QString frameTransportName(FrameTransport transport)
+{
+    return ::frameTransportName(transport);
+}
+std::optional<FrameTransport> frameTransportFromName(const QString& name)
+{
+    return valueIn(kFrameTransports, name);
+}
+bool isStationRole(const QString& role)
+{
+    return isOneOf(kRoles, role);
+}
+bool isEventSeverity(const QString& severity)
+{
+    return isOneOf(kSeverities, severity);
+}
+
+}  // namespace BrokerTopics

@@ -1,0 +1,480 @@
+#include "link/broker/MqttClient.h"
+
+#include <QMetaObject>
+
+#include <mosquitto.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstring>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <utility>
+
+namespace {
+
+// The pause before the n-th attempt in a row: 1 s, 2 s ... 8 s, as
+// libmosquitto's own reconnection (mosquitto_reconnect_delay_set below).
+constexpr unsigned kFirstDelaySeconds = 1;
+constexpr unsigned kMaxDelaySeconds = 8;
+// A goodbye not written by then is not going to be: the connection is dead.
+constexpr std::chrono::milliseconds kGoodbyeTimeout{3000};
+
+std::chrono::seconds delayBefore(int attempt)
+{
+    return std::chrono::seconds(
+        std::min<unsigned>(kFirstDelaySeconds * unsigned(std::max(attempt, 1)), kMaxDelaySeconds));
+}
+
+// libmosquitto's and the C library's texts ("Connection refused", "The
+// connection was lost.") as a clause after "broker HOST:PORT: ".
+QString forPeople(const char* text)
+{
+    QString s = QString::fromUtf8(text).trimmed();
+    while (s.endsWith(u'.'))
+        s.chop(1);
+    if (s.size() > 1 && s[0].isUpper() && !s[1].isUpper())
+        s[0] = s[0].toLower();
+    return s;
+}
+
+QString errnoReason(int error)
+{
+    return error ? forPeople(std::strerror(error)) : QStringLiteral("system error");
+}
+
+QString resultReason(int rc)
+{
+    switch (rc) {
+        case MOSQ_ERR_CONN_LOST:
+            return QStringLiteral("connection lost");
+        case MOSQ_ERR_KEEPALIVE:
+            return QStringLiteral("no answer within the keepalive");
+        case MOSQ_ERR_EAI:
+            return QStringLiteral("host not found");
+        default:
+            return forPeople(mosquitto_strerror(rc));
+    }
+}
+
+// "Connection Refused: not authorised." -> "connection refused: not authorised"
+QString connackReason(int code)
+{
+    return forPeople(mosquitto_connack_string(code)).toLower();
+}
+
+// "OpenSSL Error[0]: error:0A000086:SSL routines::certificate verify failed"
+// -> "certificate verify failed"
+QString tlsReason(const QString& logLine)
+{
+    const qsizetype at = logLine.lastIndexOf(QStringLiteral("::"));
+    return at >= 0 ? logLine.mid(at + 2).trimmed() : logLine;
+}
+
+// Results after which libmosquitto's loop (mosquitto_loop_forever) ends
+// instead of reconnecting: the client starts it again itself.
+bool endsTheLoop(int rc)
+{
+    switch (rc) {
+        case MOSQ_ERR_NOMEM:
+        case MOSQ_ERR_PROTOCOL:
+        case MOSQ_ERR_INVAL:
+        case MOSQ_ERR_NOT_FOUND:
+        case MOSQ_ERR_TLS:
+        case MOSQ_ERR_PAYLOAD_SIZE:
+        case MOSQ_ERR_NOT_SUPPORTED:
+        case MOSQ_ERR_AUTH:
+        case MOSQ_ERR_ACL_DENIED:
+        case MOSQ_ERR_UNKNOWN:
+        case MOSQ_ERR_EAI:
+        case MOSQ_ERR_PROXY:
+            return true;
+        default:
+            return false;
+    }
+}
+
+void initLibraryOnce()
+{
+    static std::once_flag once;
+    std::call_once(once, [] { mosquitto_lib_init(); });
+}
+
+}  // namespace
+
+// What the other threads share with the client: the handle, and the client
+// while it lives, under a mutex. The callbacks' userdata; it outlives the
+// client until the handle is destroyed, so a callback never calls into a
+// deleted object.
+struct MqttClient::Core {
+    mosquitto* mosq = nullptr;
+    std::mutex mutex;
+    std::condition_variable wake;  // ends a starter's pause when the client stops; says a goodbye went
+    MqttClient* owner = nullptr;   // guarded by mutex
+    bool stopRequested = false;    // guarded by mutex
+    bool goodbyePending = false;   // guarded by mutex: DISCONNECT queued, not yet written
+    int inFlight = 0;              // guarded by mutex: messages published, not yet acknowledged
+    // Connects and starts libmosquitto's loop, off the owner's thread. Each
+    // one joins the one before it, so they never overlap.
+    std::thread starter;
+
+    // Runs f(owner) in the owner's thread, if it still lives.
+    template <typename F>
+    void post(F&& f)
+    {
+        std::lock_guard lock(mutex);
+        if (!owner)
+            return;
+        MqttClient* client = owner;
+        QMetaObject::invokeMethod(
+            client, [client, f = std::forward<F>(f)] { f(client); }, Qt::QueuedConnection);
+    }
+
+    void requestStop()
+    {
+        {
+            std::lock_guard lock(mutex);
+            stopRequested = true;
+        }
+        wake.notify_all();
+    }
+
+    // False when the client stopped meanwhile.
+    bool pause(std::chrono::seconds delay)
+    {
+        std::unique_lock lock(mutex);
+        return !wake.wait_for(lock, delay, [this] { return stopRequested; });
+    }
+
+    // Ends the session, if there is one, without losing what was published
+    // before: waits (a while) for the broker to acknowledge every message in
+    // flight, queues DISCONNECT, waits for libmosquitto's loop to write it,
+    // then stops the loop. Each wait matters: a socket closed with the
+    // broker's acknowledgements still unread is reset, not closed, and a
+    // reset may reach the broker before it has read what came just before
+    // (our last messages, the goodbye), so that it drops them and sends the
+    // will; and a loop stopped before its next turn never writes the goodbye.
+    void endSession()
+    {
+        {
+            std::unique_lock lock(mutex);
+            wake.wait_for(lock, kGoodbyeTimeout, [this] { return inFlight <= 0; });
+            goodbyePending = true;
+        }
+        if (mosquitto_disconnect(mosq) == MOSQ_ERR_SUCCESS) {
+            std::unique_lock lock(mutex);
+            wake.wait_for(lock, kGoodbyeTimeout, [this] { return !goodbyePending; });
+        }
+        {
+            std::lock_guard lock(mutex);
+            goodbyePending = false;
+            // What was not acknowledged is gone with the session.
+            inFlight = 0;
+        }
+        mosquitto_loop_stop(mosq, false);
+    }
+
+    void connectionEnded()
+    {
+        {
+            std::lock_guard lock(mutex);
+            goodbyePending = false;
+        }
+        wake.notify_all();
+    }
+
+    bool stopping()
+    {
+        std::lock_guard lock(mutex);
+        return stopRequested;
+    }
+
+    // In libmosquitto's thread.
+    static void onConnect(mosquitto*, void* userdata, int resultCode)
+    {
+        const QString reason = resultCode ? connackReason(resultCode) : QString();
+        static_cast<Core*>(userdata)->post([resultCode, reason](MqttClient* c) { c->onConnect(resultCode, reason); });
+    }
+
+    static void onDisconnect(mosquitto*, void* userdata, int resultCode)
+    {
+        const int error = errno;
+        const QString reason = resultCode == MOSQ_ERR_ERRNO ? errnoReason(error) : resultReason(resultCode);
+        const bool expected = resultCode == MOSQ_ERR_SUCCESS;
+        const bool restart = endsTheLoop(resultCode) || (resultCode == MOSQ_ERR_ERRNO && error == EPROTO);
+        auto* core = static_cast<Core*>(userdata);
+        core->connectionEnded();
+        core->post([reason, expected, restart](MqttClient* c) { c->onDisconnect(reason, expected, restart); });
+    }
+
+    static void onPublish(mosquitto*, void* userdata, int)
+    {
+        auto* core = static_cast<Core*>(userdata);
+        {
+            std::lock_guard lock(core->mutex);
+            // Messages resent after a new session began are not counted.
+            if (core->inFlight > 0)
+                --core->inFlight;
+        }
+        core->wake.notify_all();
+    }
+
+    static void onMessage(mosquitto*, void* userdata, const mosquitto_message* message)
+    {
+        QString topic = QString::fromUtf8(message->topic);
+        QByteArray payload(static_cast<const char*>(message->payload), message->payloadlen);
+        static_cast<Core*>(userdata)->post([topic = std::move(topic), payload = std::move(payload)](MqttClient* c) {
+            emit c->messageReceived(topic, payload);
+        });
+    }
+
+    // A failed TLS handshake is said only here, and ends libmosquitto's loop
+    // without a disconnect callback.
+    static void onLog(mosquitto*, void* userdata, int level, const char* text)
+    {
+        if (!(level & MOSQ_LOG_ERR) || !text || std::strncmp(text, "OpenSSL Error[0]", 16) != 0)
+            return;
+        const QString reason = QStringLiteral("TLS failed: ") + tlsReason(QString::fromUtf8(text));
+        static_cast<Core*>(userdata)->post([reason](MqttClient* c) { c->onDisconnect(reason, false, true); });
+    }
+};
+
+MqttClient::MqttClient(BrokerSettings settings, QObject* parent)
+    : QObject(parent), m_settings(std::move(settings)), m_core(std::make_shared<Core>())
+{
+    initLibraryOnce();
+    const QByteArray id = m_settings.clientId.toUtf8();
+    // Clean sessions: the broker keeps nothing for us between connections,
+    // and the client restates its subscriptions itself.
+    m_core->mosq = mosquitto_new(id.isEmpty() ? nullptr : id.constData(), true, m_core.get());
+    m_core->owner = this;
+    if (!m_core->mosq)
+        return;
+    mosquitto_connect_callback_set(m_core->mosq, &Core::onConnect);
+    mosquitto_disconnect_callback_set(m_core->mosq, &Core::onDisconnect);
+    mosquitto_message_callback_set(m_core->mosq, &Core::onMessage);
+    mosquitto_publish_callback_set(m_core->mosq, &Core::onPublish);
+    mosquitto_log_callback_set(m_core->mosq, &Core::onLog);
+    mosquitto_reconnect_delay_set(m_core->mosq, kFirstDelaySeconds, kMaxDelaySeconds, false);
+}
+
+MqttClient::~MqttClient()
+{
+    {
+        std::lock_guard lock(m_core->mutex);
+        m_core->owner = nullptr;
+    }
+    m_core->requestStop();
+    // Joining libmosquitto's thread can take as long as a reconnection
+    // attempt or the pause between two: a thread of its own waits for it,
+    // so that whoever deletes the client does not.
+    std::thread([core = m_core] {
+        if (core->starter.joinable())
+            core->starter.join();
+        if (core->mosq) {
+            core->endSession();
+            mosquitto_destroy(core->mosq);
+        }
+    }).detach();
+}
+
+void MqttClient::setWill(const QString& topic, const QByteArray& payload, bool retain)
+{
+    if (!m_core->mosq || m_stopping)
+        return;
+    Will will{topic.toUtf8(), payload, retain};
+    if (!m_started) {
+        mosquitto_will_set(m_core->mosq, will.topic.constData(), int(will.payload.size()), will.payload.constData(), 1,
+                           will.retain);
+        return;
+    }
+    // libmosquitto's thread reads the will when it connects: it is changed
+    // only once that thread has stopped, by the thread that starts it again.
+    m_connected = false;
+    connectInThread(true, will, std::chrono::seconds(0));
+}
+
+void MqttClient::start()
+{
+    if (m_started)
+        return;
+    m_started = true;
+    if (!m_core->mosq) {
+        reportError(QStringLiteral("cannot create a client: ") + errnoReason(errno));
+        return;
+    }
+    if (!m_settings.user.isEmpty()) {
+        const QByteArray user = m_settings.user.toUtf8();
+        const QByteArray password = m_settings.password.toUtf8();
+        mosquitto_username_pw_set(m_core->mosq, user.constData(),
+                                  m_settings.password.isEmpty() ? nullptr : password.constData());
+    }
+    if (m_settings.tls) {
+        const QByteArray ca = m_settings.caFile.toLocal8Bit();
+        const QByteArray cert = m_settings.certFile.toLocal8Bit();
+        const QByteArray key = m_settings.keyFile.toLocal8Bit();
+        const int rc = mosquitto_tls_set(m_core->mosq, ca.isEmpty() ? nullptr : ca.constData(), nullptr,
+                                         cert.isEmpty() ? nullptr : cert.constData(),
+                                         key.isEmpty() ? nullptr : key.constData(), nullptr);
+        if (rc != MOSQ_ERR_SUCCESS) {
+            // libmosquitto checks that the files can be opened, nothing more.
+            reportError(QStringLiteral("TLS: cannot read the CA file \"%1\"%2")
+                            .arg(m_settings.caFile, cert.isEmpty()
+                                                        ? QString()
+                                                        : QStringLiteral(" or the certificate \"%1\" and key \"%2\"")
+                                                              .arg(m_settings.certFile, m_settings.keyFile)));
+            return;
+        }
+    }
+    connectInThread(false, std::nullopt, std::chrono::seconds(0));
+}
+
+void MqttClient::connectInThread(bool restart, std::optional<Will> will, std::chrono::seconds delay)
+{
+    // Looking the host up and opening the socket may take a while: the
+    // connection starts in a thread of its own, which then hands over to
+    // libmosquitto's loop. That loop reconnects by itself once it runs, but
+    // it never starts after a first attempt that failed at once (a refused
+    // connection on loopback, an unknown host): those are retried here,
+    // paced as the loop would. To restart, the thread first says goodbye on
+    // the connection there is (the broker drops the old will) and waits for
+    // the loop to end.
+    const std::string host = m_settings.host.toStdString();
+    const int port = m_settings.port;
+    const int keepAlive = m_settings.keepAliveSeconds;
+    Core* core = m_core.get();
+    core->starter = std::thread([core, host, port, keepAlive, restart, will = std::move(will), delay,
+                                 before = std::move(core->starter)]() mutable {
+        if (before.joinable())
+            before.join();
+        if (restart)
+            core->endSession();
+        if (will)
+            mosquitto_will_set(core->mosq, will->topic.constData(), int(will->payload.size()),
+                               will->payload.constData(), 1, will->retain);
+        if (delay.count() > 0 && !core->pause(delay))
+            return;
+        for (int attempt = 1;; ++attempt) {
+            if (core->stopping())
+                return;
+            errno = 0;
+            const int rc = mosquitto_connect_async(core->mosq, host.c_str(), port, keepAlive);
+            if (rc == MOSQ_ERR_SUCCESS)
+                break;
+            const QString reason = rc == MOSQ_ERR_ERRNO ? errnoReason(errno) : resultReason(rc);
+            core->post([reason](MqttClient* c) { c->reportError(reason); });
+            if (!core->pause(delayBefore(attempt)))
+                return;
+        }
+        const int loop = mosquitto_loop_start(core->mosq);
+        if (loop != MOSQ_ERR_SUCCESS) {
+            const QString reason = QStringLiteral("cannot start the network thread: ") + resultReason(loop);
+            core->post([reason](MqttClient* c) { c->reportError(reason); });
+        }
+    });
+}
+
+void MqttClient::stop()
+{
+    if (!m_started || m_stopping || !m_core->mosq)
+        return;
+    m_stopping = true;
+    m_core->requestStop();
+    // The goodbye goes behind whatever was published before, so the broker
+    // has those first; its waits are in a thread of their own.
+    Core* core = m_core.get();
+    core->starter = std::thread([core, before = std::move(core->starter)]() mutable {
+        if (before.joinable())
+            before.join();
+        core->endSession();
+    });
+    if (m_connected) {
+        m_connected = false;
+        emit disconnected(QStringLiteral("stopped"));
+    }
+}
+
+bool MqttClient::publish(const QString& topic, const QByteArray& payload, int qos, bool retain)
+{
+    if (!m_connected || m_stopping)
+        return false;
+    const QByteArray t = topic.toUtf8();
+    if (qos > 0) {
+        // Counted before it may be acknowledged, in libmosquitto's thread.
+        std::lock_guard lock(m_core->mutex);
+        ++m_core->inFlight;
+    }
+    const int rc =
+        mosquitto_publish(m_core->mosq, nullptr, t.constData(), int(payload.size()), payload.constData(), qos, retain);
+    if (rc == MOSQ_ERR_SUCCESS)
+        return true;
+    if (qos > 0) {
+        std::lock_guard lock(m_core->mutex);
+        --m_core->inFlight;
+    }
+    // Gone between our hearing of it and now: the disconnection will say so.
+    if (rc != MOSQ_ERR_NO_CONN && rc != MOSQ_ERR_CONN_LOST)
+        reportError(QStringLiteral("cannot publish to %1: %2").arg(topic, resultReason(rc)));
+    return false;
+}
+
+void MqttClient::subscribe(const QString& pattern, int qos)
+{
+    m_subscriptions.append({pattern, qos});
+    if (m_connected) {
+        const QByteArray p = pattern.toUtf8();
+        mosquitto_subscribe(m_core->mosq, nullptr, p.constData(), qos);
+    }
+}
+
+void MqttClient::onConnect(int resultCode, const QString& reason)
+{
+    if (m_stopping)
+        return;
+    if (resultCode != 0) {
+        // Refused by the broker (a wrong password): the loop tries again.
+        reportError(reason);
+        return;
+    }
+    m_connected = true;
+    m_errorReported = false;
+    m_restarts = 0;
+    sendSubscriptions();
+    emit connected();
+}
+
+void MqttClient::onDisconnect(const QString& reason, bool expected, bool restart)
+{
+    if (m_stopping || expected)
+        return;
+    // A refused connection was reported with its broker's reason already.
+    reportError(reason);
+    if (m_connected) {
+        m_connected = false;
+        emit disconnected(reason);
+    }
+    if (restart) {
+        ++m_restarts;
+        connectInThread(true, std::nullopt, delayBefore(m_restarts));
+    }
+}
+
+void MqttClient::reportError(const QString& reason)
+{
+    if (m_errorReported)
+        return;
+    m_errorReported = true;
+    emit errorOccurred(QStringLiteral("broker %1: %2").arg(m_settings.hostAndPort(), reason));
+}
+
+void MqttClient::sendSubscriptions()
+{
+    for (const Subscription& s : std::as_const(m_subscriptions)) {
+        const QByteArray p = s.pattern.toUtf8();
+        mosquitto_subscribe(m_core->mosq, nullptr, p.constData(), s.qos);
+    }
+}

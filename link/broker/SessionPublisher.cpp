@@ -1,0 +1,353 @@
+#include "link/broker/SessionPublisher.h"
+
+#include "codec/message/TextFormat.h"
+#include "link/broker/MqttClient.h"
+#include "link/session/LinkEvents.h"
+
+#include <QDateTime>
+#include <QTimer>
+
+namespace {
+
+// Statistics change with every frame; the broker hears of them at most this often.
+constexpr int kStatsIntervalMs = 1000;
+// How long a good frame received waits for its decoded message, which the
+// link sends just after it, before it goes without its text.
+constexpr int kPendingFrameMs = 500;
+// Frames kept for the broker while it is away: ten minutes of both ways.
+constexpr std::size_t kBacklogFrames = 1200;
+
+bool waitsForMessage(const FrameReport& r)
+{
+    return r.direction == FrameDirection::Received &&
+           (r.status == FrameStatus::Decoded || r.status == FrameStatus::Corrected) && r.messageId.has_value();
+}
+
+}  // namespace
+
+SessionPublisher::SessionPublisher(MqttClient* client, const QString& station, const LinkEvents* events,
+                                   QObject* parent)
+    : QObject(parent),
+      m_client(client),
+      m_station(station),
+      m_frameBytes([](const LoggedFrame& frame) { return frame.bytes; }),
+      m_pendingTimer(new QTimer(this)),
+      m_statsTimer(new QTimer(this))
+{
+    m_pendingTimer->setSingleShot(true);
+    m_pendingTimer->setInterval(kPendingFrameMs);
+    connect(m_pendingTimer, &QTimer::timeout, this, &SessionPublisher::flushPendingFrame);
+    m_statsTimer->setSingleShot(true);
+    connect(m_statsTimer, &QTimer::timeout, this, &SessionPublisher::publishStats);
+
+    if (client) {
+        connect(client, &MqttClient::connected, this, &SessionPublisher::clientConnected);
+        setWill();
+    }
+    if (events) {
+        connect(events, &LinkEvents::frameLogged, this, &SessionPublisher::frameLogged);
+        connect(events, &LinkEvents::messageReceived, this, &SessionPublisher::messageReceived);
+        connect(events, &LinkEvents::statisticsChanged, this, &SessionPublisher::statisticsChanged);
+        connect(events, &LinkEvents::stateChanged, this, &SessionPublisher::stateChanged);
+        connect(events, &LinkEvents::started, this,
+                [this] { publishEvent(QStringLiteral("info"), QStringLiteral("link started")); });
+        connect(events, &LinkEvents::stopped, this,
+                [this] { publishEvent(QStringLiteral("info"), QStringLiteral("link stopped")); });
+        connect(events, &LinkEvents::linkLost, this,
+                [this] { publishEvent(QStringLiteral("alarm"), QStringLiteral("link lost")); });
+        connect(events, &LinkEvents::linkRegained, this,
+                [this] { publishEvent(QStringLiteral("info"), QStringLiteral("link regained")); });
+        connect(events, &LinkEvents::errorOccurred, this,
+                [this](const QString& message) { publishEvent(QStringLiteral("error"), message); });
+        connect(events, &LinkEvents::transportStatusChanged, this,
+                [this](const QString& status) { publishEvent(QStringLiteral("info"), status); });
+        connect(events, &LinkEvents::commandRejected, this, [this](const QString& reasons) {
+            publishEvent(QStringLiteral("warning"), QStringLiteral("command refused: ") + reasons);
+        });
+    }
+}
+
+SessionPublisher::~SessionPublisher() = default;
+
+void SessionPublisher::setFrameBytesReader(FrameBytesReader reader)
+{
+    m_frameBytes = reader ? std::move(reader) : [](const LoggedFrame& frame) { return frame.bytes; };
+}
+
+void SessionPublisher::setRole(const QString& role, const QString& destination, const QString& backup)
+{
+    m_role = BrokerTopics::isStationRole(role) ? role : QStringLiteral("unknown");
+    m_destination = destination;
+    m_backup = backup;
+    willChanged();
+    publishStation();
+}
+
+void SessionPublisher::setDescription(const QString& description)
+{
+    if (description == m_description)
+        return;
+    m_description = description;
+    willChanged();
+    publishStation();
+}
+
+void SessionPublisher::setAircraft(const QString& aircraft)
+{
+    m_aircraftSet = true;
+    if (aircraft == m_aircraft || !BrokerTopics::isTopicLevel(aircraft))
+        return;
+    // This station's retained reports under the old name would describe it
+    // there for ever: an empty retained message removes them.
+    if (m_client) {
+        m_client->publish(BrokerTopics::stationTopic(m_aircraft, m_station), {}, BrokerTopics::kStationQos, true);
+        if (m_statistics)
+            m_client->publish(BrokerTopics::statsTopic(m_aircraft), {}, BrokerTopics::kStatsQos, true);
+        if (m_state)
+            m_client->publish(BrokerTopics::stateTopic(m_aircraft), {}, BrokerTopics::kStateQos, true);
+    }
+    m_aircraft = aircraft;
+    setWill();
+    // Published at once if still connected; otherwise on the reconnection
+    // that renews the will, by clientConnected().
+    publishStation();
+    if (m_statistics)
+        publishStats();
+    if (m_state)
+        publishState();
+    sendBacklog();
+}
+
+void SessionPublisher::publishEvent(const QString& severity, const QString& text)
+{
+    if (!m_client)
+        return;
+    EventReport e;
+    e.utcMicros = nowMicros();
+    e.severity = BrokerTopics::isEventSeverity(severity) ? severity : QStringLiteral("info");
+    e.text = text;
+    e.station = m_station;
+    m_client->publish(BrokerTopics::eventsTopic(m_aircraft), e.toJson(), BrokerTopics::kEventsQos, false);
+}
+
+void SessionPublisher::finish()
+{
+    if (m_finished)
+        return;
+    flushPendingFrame();
+    if (m_statsTimer->isActive()) {
+        m_statsTimer->stop();
+        publishStats();
+    }
+    m_finished = true;
+    if (!m_client)
+        return;
+    // The same report as the will, said before the goodbye, which makes the
+    // broker drop the will.
+    m_client->publish(BrokerTopics::stationTopic(m_aircraft, m_station), stationReport().toJson(),
+                      BrokerTopics::kStationQos, true);
+    m_client->stop();
+}
+
+StationReport SessionPublisher::stationReport() const
+{
+    StationReport r;
+    r.station = m_station;
+    r.role = m_role;
+    r.link = m_linkState;
+    r.description = m_description;
+    r.online = !m_finished;
+    r.utcMicros = nowMicros();
+    r.lastFrameUtcMicros = m_statistics ? m_statistics->lastGoodFrameUtcMicros : 0;
+    r.destination = m_destination;
+    r.backup = m_backup;
+    return r;
+}
+
+void SessionPublisher::clientConnected()
+{
+    if (m_finished)
+        return;
+    // Retained state is restated on every connection: the broker may have
+    // restarted without it, or the aircraft's topics changed meanwhile.
+    publishStation();
+    if (m_statistics)
+        publishStats();
+    if (m_state)
+        publishState();
+    sendBacklog();
+}
+
+void SessionPublisher::frameLogged(const LoggedFrame& frame)
+{
+    flushPendingFrame();
+    FrameReport r;
+    r.station = m_station;
+    r.direction = frame.entry.direction;
+    r.status = frame.entry.status;
+    r.utcMicros = frame.entry.utcMicros;
+    r.messageId = frame.messageId;
+    r.corrected = frame.correctedSymbols;
+    r.bytes = m_frameBytes(frame);
+    r.transport = frame.entry.transport;
+    r.enciphered = frame.entry.enciphered;
+    if (waitsForMessage(r)) {
+        m_pendingFrame = std::move(r);
+        m_pendingTimer->start();
+        return;
+    }
+    publishFrame(r);
+}
+
+void SessionPublisher::messageReceived(const ReceivedMessage& received)
+{
+    const rcm::Message& m = received.message;
+    if (!m_aircraftSet && m_aircraft == BrokerTopics::kUnknownAircraft) {
+        const QString aircraft = BrokerTopics::stationText(m, rcm::ItemId::ID_UA_source);
+        if (BrokerTopics::isTopicLevel(aircraft)) {
+            setAircraft(aircraft);
+            // Learned, not set: a later status may not move it again, but
+            // the caller may.
+            m_aircraftSet = false;
+        }
+    }
+
+    const QString text = QString::fromStdString(rcm::formatMessage(m));
+    if (m_pendingFrame && m_pendingFrame->messageId == quint32(m.header.number(rcm::ItemId::ID_msg)))
+        m_pendingFrame->text = text;
+    flushPendingFrame();
+
+    const QString destination = BrokerTopics::stationText(m, rcm::ItemId::ID_GCS_destination);
+    const QString backup = BrokerTopics::stationText(m, rcm::ItemId::ID_GCS_backup);
+    bool stationChanged = false;
+    if (!destination.isEmpty() && destination != m_destination) {
+        m_destination = destination;
+        stationChanged = true;
+    }
+    if (!backup.isEmpty() && backup != m_backup) {
+        m_backup = backup;
+        stationChanged = true;
+    }
+    if (stationChanged)
+        publishStation();
+
+    StateReport s;
+    s.utcMicros = received.utcMicros;
+    s.text = text;
+    s.destination = destination;
+    s.backup = backup;
+    m_state = s;
+    publishState();
+}
+
+void SessionPublisher::statisticsChanged(const LinkStatistics& statistics)
+{
+    m_statistics = statistics;
+    if (!m_sinceStats.isValid() || m_sinceStats.elapsed() >= kStatsIntervalMs) {
+        m_statsTimer->stop();
+        publishStats();
+    } else if (!m_statsTimer->isActive()) {
+        m_statsTimer->start(int(kStatsIntervalMs - m_sinceStats.elapsed()));
+    }
+}
+
+void SessionPublisher::stateChanged(LinkState state)
+{
+    if (state == m_linkState)
+        return;
+    m_linkState = state;
+    publishStation();
+}
+
+void SessionPublisher::flushPendingFrame()
+{
+    m_pendingTimer->stop();
+    if (!m_pendingFrame)
+        return;
+    const FrameReport r = std::move(*m_pendingFrame);
+    m_pendingFrame.reset();
+    publishFrame(r);
+}
+
+void SessionPublisher::publishFrame(const FrameReport& report)
+{
+    if (!m_client || m_finished)
+        return;
+    m_backlog.push_back(report);
+    if (m_backlog.size() > kBacklogFrames) {
+        m_backlog.pop_front();
+        ++m_backlogDropped;
+    }
+    sendBacklog();
+}
+
+void SessionPublisher::sendBacklog()
+{
+    // Under "unknown" an observer of the aircraft would never see them.
+    if (!m_client || (!m_aircraftSet && m_aircraft == BrokerTopics::kUnknownAircraft))
+        return;
+    while (!m_backlog.empty() && m_client->publish(BrokerTopics::framesTopic(m_aircraft), m_backlog.front().toJson(),
+                                                   BrokerTopics::kFramesQos, false))
+        m_backlog.pop_front();
+    if (m_backlogDropped && m_backlog.empty()) {
+        publishEvent(QStringLiteral("warning"),
+                     QStringLiteral("%1 frames were not published: the broker was away longer than %2 frames")
+                         .arg(m_backlogDropped)
+                         .arg(kBacklogFrames));
+        m_backlogDropped = 0;
+    }
+}
+
+void SessionPublisher::publishStats()
+{
+    if (!m_statistics || m_finished)
+        return;
+    m_sinceStats.start();
+    if (!m_client)
+        return;
+    m_client->publish(BrokerTopics::statsTopic(m_aircraft), StatsReport::of(*m_statistics).toJson(),
+                      BrokerTopics::kStatsQos, true);
+    // The station report says when the last good frame came: kept as fresh
+    // as the statistics, for a fleet view that reads only the reports.
+    if (m_statistics->lastGoodFrameUtcMicros != m_stationLastFrame)
+        publishStation();
+}
+
+void SessionPublisher::publishStation()
+{
+    if (!m_client || m_finished)
+        return;
+    const StationReport r = stationReport();
+    if (m_client->publish(BrokerTopics::stationTopic(m_aircraft, m_station), r.toJson(), BrokerTopics::kStationQos,
+                          true))
+        m_stationLastFrame = r.lastFrameUtcMicros;
+}
+
+void SessionPublisher::publishState()
+{
+    if (m_client && m_state && !m_finished)
+        m_client->publish(BrokerTopics::stateTopic(m_aircraft), m_state->toJson(), BrokerTopics::kStateQos, true);
+}
+
+void SessionPublisher::willChanged()
+{
+    // Before the client starts the will costs nothing to change, so it says
+    // who this station is as fully as it can; later, only a new aircraft is
+    // worth a new connection (setAircraft).
+    if (m_client && !m_client->isStarted())
+        setWill();
+}
+
+void SessionPublisher::setWill()
+{
+    if (!m_client)
+        return;
+    StationReport will = stationReport();
+    will.online = false;
+    m_client->setWill(BrokerTopics::stationTopic(m_aircraft, m_station), will.toJson(), true);
+}
+
+qint64 SessionPublisher::nowMicros() const
+{
+    return QDateTime::currentMSecsSinceEpoch() * 1000;
+}

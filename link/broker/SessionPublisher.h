@@ -1,0 +1,122 @@
+#pragma once
+
+// Publishes one console session on the broker (BrokerTopics.h): every frame
+// the console logged, both ways, with its bytes; the last status received;
+// the link's statistics (at most once a second); who this station is and how
+// its link is; the session's events. It only listens to the session's
+// LinkEvents and never touches the link or the frame log, so a broker that is
+// away costs the local session nothing: publishing fails quietly, the client
+// having said so once, and the retained station report, state and
+// statistics are published again as soon as the client is back.
+//
+// The station report's will (online=false, retained) is set on the client
+// here, best before the client is started: until then it follows the role
+// and description set. An aircraft learned later from the first status
+// moves the reports to its topics: the old retained ones are cleared, and
+// the client connects anew with the will on the new topic.
+
+#include "link/broker/BrokerTopics.h"
+#include "link/session/LoggedFrame.h"
+#include "link/session/ReceivedMessage.h"
+
+#include <QElapsedTimer>
+#include <QObject>
+#include <QPointer>
+#include <QString>
+
+#include <deque>
+#include <functional>
+#include <optional>
+
+class LinkEvents;
+class MqttClient;
+class QTimer;
+
+class SessionPublisher : public QObject {
+    Q_OBJECT
+
+public:
+    // The bytes of a logged frame. The link's LoggedFrame carries them; a
+    // caller whose frames come without (LoggedFrame promises them only for a
+    // frame in no file) reads them back from the frame log here.
+    using FrameBytesReader = std::function<QByteArray(const LoggedFrame&)>;
+
+    // `client` and `events` must outlive the publisher (or be destroyed with
+    // it); `station` is this console's station ID in text form ("GB_30226").
+    SessionPublisher(MqttClient* client, const QString& station, const LinkEvents* events, QObject* parent = nullptr);
+    ~SessionPublisher() override;
+
+    // Default: LoggedFrame::bytes.
+    void setFrameBytesReader(FrameBytesReader reader);
+
+    // This station's role ("control", "backup", "observing", "unknown") and
+    // the control and backup stations as the console sees them; published at
+    // once in the station report. Statuses received update the latter two.
+    void setRole(const QString& role, const QString& destination, const QString& backup);
+    // The link, for people: "UDP 127.0.0.1:5600".
+    void setDescription(const QString& description);
+    // The aircraft whose topics this session goes under. Unless set, it is
+    // learned from the first status's ID_UA_source; until then "unknown".
+    // Changing it clears this station's retained reports under the old name.
+    void setAircraft(const QString& aircraft);
+    QString aircraft() const { return m_aircraft; }
+    QString station() const { return m_station; }
+
+    // An event of this console's own: severity "info", "warning", "error" or
+    // "alarm" (anything else is published as "info").
+    void publishEvent(const QString& severity, const QString& text);
+
+    // The session ends: publishes the station report with online=false, then
+    // stops the client (a graceful goodbye sends no will).
+    void finish();
+
+    // What the publisher would put in the station report now.
+    StationReport stationReport() const;
+
+private:
+    void clientConnected();
+    void frameLogged(const LoggedFrame& frame);
+    void messageReceived(const ReceivedMessage& received);
+    void statisticsChanged(const LinkStatistics& statistics);
+    void stateChanged(LinkState state);
+    void flushPendingFrame();
+    void sendBacklog();
+    void publishFrame(const FrameReport& report);
+    void publishStats();
+    void publishStation();
+    void publishState();
+    void setWill();
+    void willChanged();
+    qint64 nowMicros() const;
+
+    QPointer<MqttClient> m_client;
+    QString m_station;
+    QString m_aircraft = BrokerTopics::kUnknownAircraft;
+    bool m_aircraftSet = false;  // by setAircraft(), not learned
+    FrameBytesReader m_frameBytes;
+
+    QString m_role = QStringLiteral("unknown");
+    QString m_description;
+    QString m_destination;
+    QString m_backup;
+    LinkState m_linkState = LinkState::Closed;
+    bool m_finished = false;
+
+    // A good frame received waits for the message decoded from it, which the
+    // link says just after, so that its report carries the text.
+    std::optional<FrameReport> m_pendingFrame;
+    // Frames not yet on the broker, oldest first: while the aircraft, whose
+    // topic they go under, is not known yet, and while the client is away.
+    // Bounded: a long outage keeps the newest kBacklogFrames.
+    std::deque<FrameReport> m_backlog;
+    quint64 m_backlogDropped = 0;
+    QTimer* m_pendingTimer = nullptr;
+
+    std::optional<LinkStatistics> m_statistics;
+    std::optional<StateReport> m_state;
+    // Statistics go out at most once a second: the latest, when the second is up.
+    QElapsedTimer m_sinceStats;
+    QTimer* m_statsTimer = nullptr;
+    // lastFrameUtcMicros of the station report last published.
+    qint64 m_stationLastFrame = -1;
+};
