@@ -1,0 +1,618 @@
+// The fleet view through one broker, for docs/performance.md: N simulated
+// aircraft, each publishing as a console does at the link's real cadence,
+// through one real mosquitto on loopback to one FleetFeed, FleetModel and
+// FleetView (offscreen), measuring what each side costs and how late a
+// frame reaches its row.
+//
+//   bench_fleet N [SECONDS] [WARMUP] [--no-view]
+//       N aircraft (10, 100, 1000), measured for SECONDS (default 30) after
+//       WARMUP seconds (default 5); prints a table and exits 0, or 1 when
+//       the broker or the publishers could not be started. --no-view: the
+//       FleetView is made but not shown, so nothing paints (what the feed
+//       and the model cost alone).
+//
+// Processes apart, so that each side's CPU and memory stand alone: the
+// broker (started here on a free port, with tests/MosquittoProcess.h), the
+// publishers (this program again, with --publish: one MqttClient per
+// aircraft, as each aircraft's console has its own connection, at most 250
+// to a process, see runFleet) and the fleet side (this process: one
+// MqttClient, FleetFeed, FleetModel and a FleetView shown on the offscreen
+// platform).
+//
+// Each aircraft, every second, at its own offset in the second (the fleet
+// spread evenly over it): a frame up (a FrameReport of a 600-byte frame,
+// base64), a frame down half a second later (with its decoded text, as a
+// console publishes what it received), its station report and its link
+// statistics (both retained), all QoS 1 as the console publishes them. A
+// frame's utcMicros is stamped when it is handed to the client, as a console
+// stamps it when it goes on the link; its delay is taken when the model tells
+// its views of the row that counts it (the dataChanged() or rowsInserted() of
+// the model's once-a-pass flush).
+#include "codec/message/Airframe.h"
+#include "codec/message/TextFormat.h"
+#include "link/broker/BrokerSettings.h"
+#include "link/broker/BrokerTopics.h"
+#include "link/broker/FleetFeed.h"
+#include "link/broker/MqttClient.h"
+#include "tests/MosquittoProcess.h"
+#include "ui/fleet/FleetModel.h"
+#include "ui/fleet/FleetView.h"
+
+#include <QApplication>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QHash>
+#include <QProcess>
+#include <QRandomGenerator>
+#include <QTimer>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace {
+
+constexpr int kUsageError = 2;
+constexpr qint64 kSecond = 1'000'000;
+constexpr int kClientsPerProcess = 250;
+
+qint64 utcMicros()
+{
+    return qint64(
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+            .count());
+}
+
+void say(const QString& line)
+{
+    std::fprintf(stderr, "bench_fleet: %s\n", qPrintable(line));
+}
+
+// CPU time a process (or one of its threads: /proc/PID/task/TID) has used,
+// user and system, in seconds (10 ms steps).
+double cpuSeconds(const QString& statPath)
+{
+    QFile stat(statPath);
+    if (!stat.open(QIODevice::ReadOnly))
+        return -1;
+    const QByteArray s = stat.readAll();
+    // Fields 14 and 15 (utime, stime), counted after the parenthesised name.
+    const QList<QByteArray> fields = s.mid(s.lastIndexOf(')') + 2).split(' ');
+    return (fields.value(11).toDouble() + fields.value(12).toDouble()) / double(sysconf(_SC_CLK_TCK));
+}
+
+double processCpu(qint64 pid)
+{
+    return cpuSeconds(QStringLiteral("/proc/%1/stat").arg(pid));
+}
+
+// A line of /proc/PID/status in MiB: "VmRSS" now, "VmHWM" its peak.
+double statusMiB(qint64 pid, const char* field)
+{
+    QFile status(QStringLiteral("/proc/%1/status").arg(pid));
+    if (!status.open(QIODevice::ReadOnly))
+        return -1;
+    for (const QByteArray& line : status.readAll().split('\n'))
+        if (line.startsWith(field) && line.size() > qsizetype(qstrlen(field)) && line[qstrlen(field)] == ':')
+            return line.simplified().split(' ').value(1).toDouble() / 1024.0;
+    return -1;
+}
+
+// The process ID of this process's child running `command` (its name in
+// /proc/PID/stat), -1 if none: MosquittoProcess keeps its QProcess to itself.
+qint64 childProcess(const QByteArray& command)
+{
+    const qint64 self = QCoreApplication::applicationPid();
+    const QStringList entries = QDir(QStringLiteral("/proc")).entryList(QDir::Dirs | QDir::NoDotAndDotDot);
+    for (const QString& entry : entries) {
+        bool numeric = false;
+        const qint64 pid = entry.toLongLong(&numeric);
+        if (!numeric)
+            continue;
+        QFile stat(QStringLiteral("/proc/%1/stat").arg(pid));
+        if (!stat.open(QIODevice::ReadOnly))
+            continue;
+        const QByteArray s = stat.readAll();
+        const qsizetype open = s.indexOf('(');
+        const qsizetype close = s.lastIndexOf(')');
+        if (open < 0 || close < open)
+            continue;
+        // Field 4, the parent's ID, is the second after the name.
+        const QList<QByteArray> fields = s.mid(close + 2).split(' ');
+        if (s.mid(open + 1, close - open - 1) == command && fields.value(1).toLongLong() == self)
+            return pid;
+    }
+    return -1;
+}
+
+QString aircraftName(int i)
+{
+    return QStringLiteral("GB_%1").arg(i + 1);
+}
+
+QString stationName(int i)
+{
+    return QStringLiteral("GB_%1").arg(50000 + i);
+}
+
+BrokerSettings brokerAt(quint16 port, const QString& clientId)
+{
+    BrokerSettings settings;
+    settings.host = QStringLiteral("127.0.0.1");
+    settings.port = port;
+    settings.clientId = clientId;
+    return settings;
+}
+
+// ---------------------------------------------------------------- publishers
+
+// One simulated console: its connection, and what it has said so far.
+struct Console {
+    std::unique_ptr<MqttClient> client;
+    QString station;
+    QString framesTopic;
+    QString stationTopic;
+    QString statsTopic;
+    QByteArray frameBytes;
+    StatsReport stats;
+    qint64 lastDownUtcMicros = 0;
+    quint32 messageId = 0;
+};
+
+// A frame as SessionPublisher reports it: up, our own send; down, received,
+// decoded and with its text.
+FrameReport frameReport(const Console& c, bool up, qint64 utcMicros, const QString& downText)
+{
+    FrameReport f;
+    f.station = c.station;
+    f.direction = up ? FrameDirection::Sent : FrameDirection::Received;
+    f.status = up ? FrameStatus::NotChecked : FrameStatus::Decoded;
+    f.utcMicros = utcMicros;
+    f.messageId = c.messageId;
+    f.bytes = c.frameBytes;
+    f.transport = FrameTransport::Serial;
+    if (!up) {
+        f.corrected = {0, 0};
+        f.text = downText;
+    }
+    return f;
+}
+
+// What an aircraft publishes when, as offsets in its second.
+enum class Act { FrameUp, Station, Stats, FrameDown };
+struct Due {
+    qint64 offsetMicros;
+    int console;
+    Act act;
+};
+
+// Publishes for aircraft first .. first + count - 1 of a fleet of `total`
+// for `seconds`, then exits; prints "ready" once every client is connected,
+// and each second the messages published so far and how late the latest of
+// them went, for the fleet side to read. The fleet's seconds start on the
+// UTC second, so that the processes sharing it keep one schedule.
+int publish(int first, int count, int total, quint16 port, int seconds)
+{
+    const QString downText =
+        QString::fromStdString(rcm::formatMessage(rcm::restingCommand(rcm::Airframe::wellEquipped())));
+    QRandomGenerator random(133);
+    std::vector<Console> consoles(static_cast<std::size_t>(count));
+    int connected = 0;
+    for (int k = 0; k < count; ++k) {
+        const int i = first + k;
+        Console& c = consoles[std::size_t(k)];
+        c.client = std::make_unique<MqttClient>(brokerAt(port, QStringLiteral("bench-publisher-%1").arg(i)));
+        c.station = stationName(i);
+        c.framesTopic = BrokerTopics::framesTopic(aircraftName(i));
+        c.stationTopic = BrokerTopics::stationTopic(aircraftName(i), stationName(i));
+        c.statsTopic = BrokerTopics::statsTopic(aircraftName(i));
+        c.frameBytes.resize(600);
+        for (char& b : c.frameBytes)
+            b = char(random.bounded(256));
+        QObject::connect(c.client.get(), &MqttClient::connected, [&connected] { ++connected; });
+        QObject::connect(c.client.get(), &MqttClient::errorOccurred,
+                         [](const QString& error) { say(QStringLiteral("publisher: ") + error); });
+        c.client->start();
+    }
+    QElapsedTimer waited;
+    waited.start();
+    qint64 told = 0;
+    while (connected < count) {
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+        if (waited.elapsed() - told >= 5000) {
+            told = waited.elapsed();
+            say(QStringLiteral("publisher: %1 of %2 clients connected after %3 s")
+                    .arg(connected)
+                    .arg(count)
+                    .arg(told / 1000));
+        }
+        if (waited.elapsed() > 60'000) {
+            say(QStringLiteral("publisher: %1 of %2 clients connected after 60 s").arg(connected).arg(count));
+            return 1;
+        }
+    }
+    if (first == 0)
+        say(QStringLiteral("a frame's JSON is %1 bytes up, %2 bytes down")
+                .arg(frameReport(consoles[0], true, utcMicros(), downText).toJson().size())
+                .arg(frameReport(consoles[0], false, utcMicros(), downText).toJson().size()));
+    std::printf("ready\n");
+    std::fflush(stdout);
+
+    std::vector<Due> plan;
+    plan.reserve(std::size_t(count) * 4);
+    for (int k = 0; k < count; ++k) {
+        const qint64 offset = qint64(first + k) * kSecond / total;
+        plan.push_back({offset, k, Act::FrameUp});
+        plan.push_back({(offset + 100'000) % kSecond, k, Act::Station});
+        plan.push_back({(offset + 200'000) % kSecond, k, Act::Stats});
+        plan.push_back({(offset + 500'000) % kSecond, k, Act::FrameDown});
+    }
+    std::sort(plan.begin(), plan.end(), [](const Due& a, const Due& b) { return a.offsetMicros < b.offsetMicros; });
+
+    quint64 published = 0;
+    quint64 refused = 0;
+    qint64 lateMaxMicros = 0;
+    std::size_t next = 0;
+    const qint64 begin = (utcMicros() / kSecond + 1) * kSecond;
+    qint64 cycleStart = begin;
+    const auto act = [&](const Due& due) {
+        Console& c = consoles[std::size_t(due.console)];
+        const QString& station = c.station;
+        const qint64 now = utcMicros();
+        bool ok = false;
+        switch (due.act) {
+            case Act::FrameUp:
+            case Act::FrameDown: {
+                const bool up = due.act == Act::FrameUp;
+                const FrameReport f = frameReport(c, up, now, downText);
+                if (up) {
+                    ++c.messageId;
+                    ++c.stats.framesSent;
+                } else {
+                    c.lastDownUtcMicros = now;
+                    ++c.stats.framesReceived;
+                }
+                ok = c.client->publish(c.framesTopic, f.toJson(), BrokerTopics::kFramesQos, false);
+                break;
+            }
+            case Act::Station: {
+                StationReport r;
+                r.station = station;
+                r.role = QStringLiteral("control");
+                r.link = LinkState::Connected;
+                r.description = QStringLiteral("serial /dev/ttyUSB0 9600 8N1");
+                r.online = true;
+                r.utcMicros = now;
+                r.lastFrameUtcMicros = c.lastDownUtcMicros;
+                r.destination = station;
+                ok = c.client->publish(c.stationTopic, r.toJson(), BrokerTopics::kStationQos, true);
+                break;
+            }
+            case Act::Stats:
+                c.stats.lastGoodFrameUtcMicros = c.lastDownUtcMicros;
+                c.stats.state = LinkState::Connected;
+                ok = c.client->publish(c.statsTopic, c.stats.toJson(), BrokerTopics::kStatsQos, true);
+                break;
+        }
+        ++(ok ? published : refused);
+    };
+    QTimer ticker;
+    ticker.setTimerType(Qt::PreciseTimer);
+    ticker.setInterval(2);
+    int reportedSecond = 0;
+    QObject::connect(&ticker, &QTimer::timeout, [&] {
+        const qint64 now = utcMicros();
+        while (!plan.empty()) {
+            if (next == plan.size()) {
+                next = 0;
+                cycleStart += kSecond;
+            }
+            const qint64 due = cycleStart + plan[next].offsetMicros;
+            if (due > now)
+                break;
+            lateMaxMicros = std::max(lateMaxMicros, now - due);
+            act(plan[next++]);
+        }
+        if (now > begin && (now - begin) / kSecond > reportedSecond) {
+            reportedSecond = int((now - begin) / kSecond);
+            std::printf("second %d published %llu refused %llu late_max_us %lld\n", reportedSecond,
+                        static_cast<unsigned long long>(published), static_cast<unsigned long long>(refused),
+                        static_cast<long long>(lateMaxMicros));
+            std::fflush(stdout);
+            lateMaxMicros = 0;
+            if (reportedSecond >= seconds)
+                QCoreApplication::quit();
+        }
+    });
+    ticker.start();
+    QCoreApplication::exec();
+    for (Console& c : consoles)
+        c.client->stop();
+    return 0;
+}
+
+// ---------------------------------------------------------------- fleet side
+
+struct Snapshot {
+    qint64 steadyMicros = 0;
+    double brokerCpu = 0;
+    double publishersCpu = 0;
+    double fleetCpu = 0;
+    double fleetGuiCpu = 0;
+    quint64 framesReported = 0;
+    quint64 published = 0;
+};
+
+// What the publishers said last ("second S published P refused R late_max_us L").
+struct PublisherLine {
+    int second = 0;
+    quint64 published = 0;
+    quint64 refused = 0;
+    qint64 lateMaxMicros = 0;
+};
+
+int runFleet(int n, int seconds, int warmup, bool shown)
+{
+    rcm::test::MosquittoProcess broker;
+    if (!broker.start()) {
+        say(QStringLiteral("cannot start /usr/sbin/mosquitto: ") + broker.setupError());
+        return 1;
+    }
+    QElapsedTimer waited;
+    waited.start();
+    while (!broker.accepts()) {
+        if (waited.elapsed() > 10'000) {
+            say(QStringLiteral("mosquitto does not listen: ") + QString::fromLocal8Bit(broker.stderrText()));
+            return 1;
+        }
+    }
+    const qint64 mosquittoPid = childProcess("mosquitto");
+    if (mosquittoPid <= 0) {
+        say(QStringLiteral("cannot find mosquitto among this process's children"));
+        return 1;
+    }
+
+    MqttClient fleetClient(brokerAt(broker.port(), QStringLiteral("bench-fleet")));
+    FleetFeed feed(&fleetClient);
+    FleetModel model;
+    QObject::connect(&feed, &FleetFeed::aircraftUpdated, &model, &FleetModel::update);
+    FleetView view(&model);
+    view.setBroker(QStringLiteral("mqtt://127.0.0.1:%1").arg(broker.port()));
+    QObject::connect(&fleetClient, &MqttClient::connected, &view, [&view] { view.setBrokerConnected(true); });
+    view.resize(1000, 700);
+    if (shown)
+        view.show();
+
+    // Frames reported since the model's last flush, by their utcMicros; the
+    // flush is the model's dataChanged() without roles, or rowsInserted()
+    // (refreshAges() names its roles).
+    bool measuring = false;
+    quint64 framesReported = 0;
+    std::vector<qint64> waiting;
+    std::vector<std::int64_t> delays;
+    delays.reserve(std::size_t(n) * 2 * std::size_t(seconds) + 1024);
+    // Frames lost on the way: each aircraft's frames carry consecutive
+    // message IDs each way, so a gap is a frame that never arrived.
+    struct Sequence {
+        std::optional<quint32> up;
+        std::optional<quint32> down;
+    };
+    QHash<QString, Sequence> sequences;
+    quint64 framesMissing = 0;
+    QObject::connect(&feed, &FleetFeed::frameReported, [&](const QString& aircraft, const FrameReport& frame) {
+        ++framesReported;
+        Sequence& seen = sequences[aircraft];
+        std::optional<quint32>& last = frame.direction == FrameDirection::Sent ? seen.up : seen.down;
+        if (measuring && last && frame.messageId && *frame.messageId > *last + 1)
+            framesMissing += *frame.messageId - *last - 1;
+        last = frame.messageId;
+        if (measuring)
+            waiting.push_back(frame.utcMicros);
+    });
+    const auto told = [&] {
+        if (waiting.empty())
+            return;
+        const qint64 now = utcMicros();
+        for (qint64 sent : waiting)
+            delays.push_back(now - sent);
+        waiting.clear();
+    };
+    QObject::connect(&model, &QAbstractItemModel::rowsInserted, told);
+    QObject::connect(&model, &QAbstractItemModel::dataChanged,
+                     [&](const QModelIndex&, const QModelIndex&, const QList<int>& roles) {
+                         if (roles.isEmpty())
+                             told();
+                     });
+    fleetClient.start();
+
+    // The publishers, in processes of at most kClientsPerProcess clients:
+    // libmosquitto's network loop waits with select(), which cannot watch a
+    // descriptor above 1023, and each client holds three (its socket and
+    // the loop's wake-up pair): about 340 clients is all one process holds.
+    const int processes = (n + kClientsPerProcess - 1) / kClientsPerProcess;
+    std::vector<std::unique_ptr<QProcess>> publishers;
+    std::vector<PublisherLine> lines(static_cast<std::size_t>(processes));
+    int ready = 0;
+    for (int p = 0; p < processes; ++p) {
+        const int first = p * n / processes;
+        const int count = (p + 1) * n / processes - first;
+        auto process = std::make_unique<QProcess>();
+        QProcess* raw = process.get();
+        raw->setProgram(QCoreApplication::applicationFilePath());
+        raw->setArguments({QStringLiteral("--publish"), QString::number(first), QString::number(count),
+                           QString::number(n), QString::number(broker.port()), QString::number(warmup + seconds + 10)});
+        raw->setProcessChannelMode(QProcess::ForwardedErrorChannel);
+        PublisherLine& last = lines[std::size_t(p)];
+        QObject::connect(raw, &QProcess::readyReadStandardOutput, [raw, &last, &ready] {
+            while (raw->canReadLine()) {
+                const QByteArray line = raw->readLine().trimmed();
+                if (line == "ready") {
+                    ++ready;
+                    continue;
+                }
+                const QList<QByteArray> f = line.split(' ');
+                if (f.size() == 8 && f[0] == "second") {
+                    last.second = f[1].toInt();
+                    last.published = f[3].toULongLong();
+                    last.refused = f[5].toULongLong();
+                    last.lateMaxMicros = std::max(last.lateMaxMicros, f[7].toLongLong());
+                }
+            }
+        });
+        raw->start();
+        if (!raw->waitForStarted()) {
+            say(QStringLiteral("cannot start the publishers: ") + raw->errorString());
+            return 1;
+        }
+        publishers.push_back(std::move(process));
+    }
+    waited.restart();
+    while (ready < processes) {
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+        const bool ended = std::any_of(publishers.begin(), publishers.end(),
+                                       [](const auto& p) { return p->state() == QProcess::NotRunning; });
+        if (ended || waited.elapsed() > 90'000) {
+            say(QStringLiteral("the publishers did not get ready"));
+            return 1;
+        }
+    }
+    const qint64 fleetPid = QCoreApplication::applicationPid();
+    say(QStringLiteral("%1 aircraft connected in %2 ms (%3 publisher processes); warming up %4 s, then measuring %5 s")
+            .arg(n)
+            .arg(waited.elapsed())
+            .arg(processes)
+            .arg(warmup)
+            .arg(seconds));
+    const auto publishersCpu = [&] {
+        double total = 0;
+        for (const auto& p : publishers)
+            total += processCpu(p->processId());
+        return total;
+    };
+    const auto publishersRssNow = [&] {
+        double total = 0;
+        for (const auto& p : publishers)
+            total += statusMiB(p->processId(), "VmRSS");
+        return total;
+    };
+    const auto publishedSoFar = [&] {
+        quint64 total = 0;
+        for (const PublisherLine& l : lines)
+            total += l.published;
+        return total;
+    };
+
+    QElapsedTimer steady;
+    steady.start();
+    const auto snapshot = [&] {
+        Snapshot s;
+        s.steadyMicros = steady.nsecsElapsed() / 1000;
+        s.brokerCpu = processCpu(mosquittoPid);
+        s.publishersCpu = publishersCpu();
+        s.fleetCpu = processCpu(fleetPid);
+        s.fleetGuiCpu = cpuSeconds(QStringLiteral("/proc/%1/task/%1/stat").arg(fleetPid));
+        s.framesReported = framesReported;
+        s.published = publishedSoFar();
+        return s;
+    };
+    Snapshot start, end;
+    double brokerRss = 0, publishersRss = 0, fleetRss = 0;
+    QEventLoop loop;
+    QTimer::singleShot(warmup * 1000, Qt::PreciseTimer, &loop, [&] {
+        start = snapshot();
+        for (PublisherLine& l : lines)
+            l.lateMaxMicros = 0;
+        measuring = true;
+    });
+    QTimer::singleShot((warmup + seconds) * 1000, Qt::PreciseTimer, &loop, [&] {
+        end = snapshot();
+        measuring = false;
+        brokerRss = statusMiB(mosquittoPid, "VmRSS");
+        publishersRss = publishersRssNow();
+        fleetRss = statusMiB(fleetPid, "VmRSS");
+        loop.quit();
+    });
+    loop.exec();
+
+    quint64 refusedByClients = 0;
+    qint64 lateMaxMicros = 0;
+    for (const PublisherLine& l : lines) {
+        refusedByClients += l.refused;
+        lateMaxMicros = std::max(lateMaxMicros, l.lateMaxMicros);
+    }
+    const double wall = double(end.steadyMicros - start.steadyMicros) / 1e6;
+    const auto percent = [&](double a, double b) { return 100.0 * (b - a) / wall; };
+    // Two frames a second for each aircraft, over the time measured.
+    const quint64 expected = quint64(double(n) * 2.0 * wall + 0.5);
+    const quint64 reported = end.framesReported - start.framesReported;
+    std::sort(delays.begin(), delays.end());
+    const auto at = [&](double q) {
+        return delays.empty() ? 0.0 : double(delays[std::size_t(q * double(delays.size() - 1))]) / 1000.0;
+    };
+
+    std::printf("\nbench_fleet: %d aircraft through one mosquitto, %.1f s measured after %d s warm-up\n", n, wall,
+                warmup);
+    std::printf(
+        "messages published: %llu in the window (%.0f/s; %llu refused by the client); publishers at most "
+        "%.1f ms late on their schedule\n",
+        static_cast<unsigned long long>(end.published - start.published),
+        double(end.published - start.published) / wall, static_cast<unsigned long long>(refusedByClients),
+        double(lateMaxMicros) / 1000.0);
+    std::printf("frames reported to the fleet: %llu, %llu due (%.2f %%); missing from the message ID sequences: %llu\n",
+                static_cast<unsigned long long>(reported), static_cast<unsigned long long>(expected),
+                expected ? 100.0 * double(reported) / double(expected) : 0.0,
+                static_cast<unsigned long long>(framesMissing));
+    std::printf("rows: %d\n\n", model.rowCount());
+    std::printf("| process | CPU (%% of one core) | RSS (MiB) |\n|---|---:|---:|\n");
+    std::printf("| mosquitto | %.1f | %.1f |\n", percent(start.brokerCpu, end.brokerCpu), brokerRss);
+    std::printf("| publishers (%d MqttClients in %d processes) | %.1f | %.1f |\n", n, processes,
+                percent(start.publishersCpu, end.publishersCpu), publishersRss);
+    std::printf("| fleet side (MqttClient, FleetFeed, FleetModel%s) | %.1f | %.1f |\n",
+                shown ? ", FleetView shown" : ", no view shown", percent(start.fleetCpu, end.fleetCpu), fleetRss);
+    std::printf("| of which its GUI thread | %.1f | |\n\n", percent(start.fleetGuiCpu, end.fleetGuiCpu));
+    std::printf("frame to row: n=%zu  median %.1f ms  p99 %.1f ms  max %.1f ms\n", delays.size(), at(0.5), at(0.99),
+                delays.empty() ? 0.0 : double(delays.back()) / 1000.0);
+
+    for (const auto& p : publishers) {
+        p->kill();
+        p->waitForFinished();
+    }
+    fleetClient.stop();
+    broker.stop();
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    if (argc >= 2 && qstrcmp(argv[1], "--publish") == 0) {
+        // --publish FIRST COUNT TOTAL PORT SECONDS: started by the fleet side.
+        QCoreApplication app(argc, argv);
+        if (argc != 7)
+            return kUsageError;
+        const auto number = [&](int i) { return QByteArray(argv[i]).toInt(); };
+        return publish(number(2), number(3), number(4), quint16(number(5)), number(6));
+    }
+    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM"))
+        qputenv("QT_QPA_PLATFORM", "offscreen");
+    QApplication app(argc, argv);
+    QStringList args = app.arguments().mid(1);
+    const bool shown = !args.removeAll(QStringLiteral("--no-view"));
+    bool ok = !args.isEmpty();
+    const int n = ok ? args[0].toInt(&ok) : 0;
+    const int seconds = args.size() >= 2 ? args[1].toInt() : 30;
+    const int warmup = args.size() >= 3 ? args[2].toInt() : 5;
+    if (!ok || n < 1 || seconds < 1 || warmup < 0 || args.size() > 3) {
+        std::fprintf(stderr,
+                     "usage: bench_fleet N [SECONDS] [WARMUP] [--no-view]   (N aircraft, e.g. 10, 100, 1000)\n");
+        return kUsageError;
+    }
+    return runFleet(n, seconds, warmup, shown);
+}

@@ -1,0 +1,371 @@
+#include "ui/fleet/FleetModel.h"
+
+#include <QBrush>
+#include <QColor>
+#include <QDateTime>
+#include <QTimeZone>
+#include <QTimer>
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+namespace {
+
+// Dark text on a light tint, as the events' warnings: over 7:1 contrast
+// whatever the window's palette (Theme's day or night).
+struct Colours {
+    QColor text;
+    QColor background;
+};
+
+std::optional<Colours> coloursOf(FleetModel::RowState state)
+{
+    switch (state) {
+        case FleetModel::RowState::Offline:
+            return Colours{QColor(0x3a, 0x3a, 0x3a), QColor(0xdc, 0xdc, 0xdc)};
+        case FleetModel::RowState::Stale:
+            return Colours{QColor(0x3d, 0x2b, 0x00), QColor(0xff, 0xe5, 0x99)};
+        case FleetModel::RowState::Live:
+            break;
+    }
+    return std::nullopt;
+}
+
+QString isoTime(qint64 utcMicros)
+{
+    const QDateTime t = QDateTime::fromMSecsSinceEpoch(utcMicros / 1000, QTimeZone::utc());
+    return t.toString(QStringLiteral("yyyy-MM-dd hh:mm:ss.zzz 'UTC'"));
+}
+
+QString orDash(const QString& text)
+{
+    return text.isEmpty() ? QStringLiteral("\u2014") : text;
+}
+
+// For sorting by link: the best first.
+int linkRank(LinkState state)
+{
+    switch (state) {
+        case LinkState::Connected:
+            return 0;
+        case LinkState::Lost:
+            return 1;
+        case LinkState::Waiting:
+            return 2;
+        case LinkState::Closed:
+            break;
+    }
+    return 3;
+}
+
+}  // namespace
+
+FleetModel::FleetModel(QObject* parent)
+    : QAbstractTableModel(parent), m_clock([] {
+          return qint64(
+              std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+                  .count());
+      })
+{
+}
+
+FleetModel::~FleetModel() = default;
+
+int FleetModel::rowCount(const QModelIndex& parent) const
+{
+    return parent.isValid() ? 0 : int(m_rows.size());
+}
+
+int FleetModel::columnCount(const QModelIndex& parent) const
+{
+    return parent.isValid() ? 0 : kColumnCount;
+}
+
+QVariant FleetModel::headerData(int section, Qt::Orientation orientation, int role) const
+{
+    if (orientation != Qt::Horizontal)
+        return {};
+    if (role == Qt::DisplayRole) {
+        switch (section) {
+            case AircraftColumn:
+                return tr("Aircraft");
+            case LinkColumn:
+                return tr("Link");
+            case InControlColumn:
+                return tr("In control");
+            case BackupColumn:
+                return tr("Backup");
+            case StationsColumn:
+                return tr("Stations");
+            case LastFrameColumn:
+                return tr("Last frame");
+            case FramesColumn:
+                return tr("Frames");
+        }
+    }
+    if (role == Qt::ToolTipRole) {
+        switch (section) {
+            case LinkColumn:
+                return tr("The best link any online station has to the aircraft");
+            case InControlColumn:
+                return tr("The station in control as the aircraft last reported it (ID_GCS_destination)");
+            case BackupColumn:
+                return tr("The backup station as the aircraft last reported it (ID_GCS_backup)");
+            case StationsColumn:
+                return tr("Stations publishing for this aircraft that are online, of all that have reported");
+            case LastFrameColumn:
+                return tr("Time since the last good frame from the aircraft any station reported");
+            case FramesColumn:
+                return tr("Frames reported going up to the aircraft and coming down from it since this view started");
+        }
+    }
+    return {};
+}
+
+QVariant FleetModel::data(const QModelIndex& index, int role) const
+{
+    if (!index.isValid() || index.row() >= int(m_rows.size()))
+        return {};
+    const Row& row = m_rows[std::size_t(index.row())];
+    switch (role) {
+        case Qt::DisplayRole:
+            return cellText(row, index.column());
+        case AircraftRole:
+            return row.summary.aircraft;
+        case StateRole:
+            return int(stateOf(row.summary));
+        case SortRole:
+            return sortValue(row, index.column());
+        case Qt::ToolTipRole:
+            if (index.column() == LastFrameColumn && row.summary.lastFrameUtcMicros)
+                return isoTime(row.summary.lastFrameUtcMicros);
+            if (index.column() == AircraftColumn) {
+                switch (stateOf(row.summary)) {
+                    case RowState::Offline:
+                        return tr("No station publishing for %1 is online").arg(row.summary.aircraft);
+                    case RowState::Stale:
+                        return tr("%1 has not been heard for %2 s or more")
+                            .arg(row.summary.aircraft)
+                            .arg(m_staleLimitMicros / 1'000'000);
+                    case RowState::Live:
+                        break;
+                }
+            }
+            return {};
+        case Qt::TextAlignmentRole:
+            if (index.column() == LastFrameColumn || index.column() == FramesColumn)
+                return QVariant::fromValue(Qt::AlignRight | Qt::AlignVCenter);
+            return QVariant::fromValue(Qt::AlignLeft | Qt::AlignVCenter);
+        case Qt::ForegroundRole:
+            if (const std::optional<Colours> c = coloursOf(stateOf(row.summary)))
+                return QBrush(c->text);
+            return {};
+        case Qt::BackgroundRole:
+            if (const std::optional<Colours> c = coloursOf(stateOf(row.summary)))
+                return QBrush(c->background);
+            return {};
+    }
+    return {};
+}
+
+QString FleetModel::linkText(LinkState state)
+{
+    switch (state) {
+        case LinkState::Closed:
+            return tr("Not connected");
+        case LinkState::Waiting:
+            return tr("Waiting");
+        case LinkState::Connected:
+            return tr("Connected");
+        case LinkState::Lost:
+            return tr("Lost");
+    }
+    return {};
+}
+
+QString FleetModel::ageText(qint64 ageMicros)
+{
+    // Whole seconds, as the view refreshes them once a second.
+    const qint64 s = std::max<qint64>(ageMicros, 0) / 1'000'000;
+    if (s < 60)
+        return tr("%1 s").arg(s);
+    if (s < 3600)
+        return tr("%1 min %2 s").arg(s / 60).arg(s % 60, 2, 10, QLatin1Char('0'));
+    return tr("%1 h %2 min").arg(s / 3600).arg(s / 60 % 60, 2, 10, QLatin1Char('0'));
+}
+
+QString FleetModel::cellText(const Row& row, int column) const
+{
+    const AircraftSummary& s = row.summary;
+    switch (column) {
+        case AircraftColumn:
+            return s.aircraft;
+        case LinkColumn:
+            return linkText(s.link);
+        case InControlColumn:
+            return orDash(s.inControl);
+        case BackupColumn:
+            return orDash(s.backup);
+        case StationsColumn:
+            return tr("%1 of %2 online").arg(s.stationsOnline).arg(s.stations);
+        case LastFrameColumn:
+            return s.lastFrameUtcMicros ? ageText(m_clock() - s.lastFrameUtcMicros) : QStringLiteral("\u2014");
+        case FramesColumn:
+            return tr("%1 up, %2 down").arg(s.framesUp).arg(s.framesDown);
+    }
+    return {};
+}
+
+QVariant FleetModel::sortValue(const Row& row, int column) const
+{
+    const AircraftSummary& s = row.summary;
+    switch (column) {
+        case AircraftColumn:
+            return s.aircraft;
+        case LinkColumn:
+            return linkRank(s.link);
+        case InControlColumn:
+            return s.inControl;
+        case BackupColumn:
+            return s.backup;
+        case StationsColumn:
+            return s.stationsOnline;
+        case LastFrameColumn:
+            // By age: never heard sorts after the oldest.
+            return s.lastFrameUtcMicros ? m_clock() - s.lastFrameUtcMicros : std::numeric_limits<qint64>::max();
+        case FramesColumn:
+            return qulonglong(s.framesUp + s.framesDown);
+    }
+    return {};
+}
+
+FleetModel::RowState FleetModel::stateOf(const AircraftSummary& summary) const
+{
+    if (summary.stationsOnline == 0)
+        return RowState::Offline;
+    if (summary.lastFrameUtcMicros == 0 || m_clock() - summary.lastFrameUtcMicros > m_staleLimitMicros)
+        return RowState::Stale;
+    return RowState::Live;
+}
+
+bool FleetModel::tell(Row& row)
+{
+    const RowState now = stateOf(row.summary);
+    if (row.told == now)
+        return false;
+    if (row.told)
+        --m_told[std::size_t(*row.told)];
+    ++m_told[std::size_t(now)];
+    row.told = now;
+    return true;
+}
+
+FleetModel::RowState FleetModel::rowState(int row) const
+{
+    return stateOf(m_rows[std::size_t(row)].summary);
+}
+
+void FleetModel::setClock(Clock clock)
+{
+    m_clock = std::move(clock);
+    refreshAges();
+}
+
+void FleetModel::setStaleLimitMicros(qint64 micros)
+{
+    m_staleLimitMicros = micros;
+    refreshAges();
+}
+
+int FleetModel::rowOf(const QString& aircraft) const
+{
+    const int row = m_index.value(aircraft, -1);
+    return row < int(m_rows.size()) ? row : -1;
+}
+
+void FleetModel::update(const AircraftSummary& summary)
+{
+    ++m_pendingUpdates;
+    const auto found = m_index.constFind(summary.aircraft);
+    if (found == m_index.cend()) {
+        m_index.insert(summary.aircraft, int(m_rows.size() + m_pending.size()));
+        m_pending.push_back(Row{summary, std::nullopt});
+    } else if (const int row = *found; row >= int(m_rows.size())) {
+        m_pending[std::size_t(row) - m_rows.size()].summary = summary;
+    } else {
+        // Changed in place now, told in the flush: a view reads cells only
+        // when it paints, after this pass.
+        m_rows[std::size_t(row)].summary = summary;
+        m_changedFirst = m_changedFirst < 0 ? row : std::min(m_changedFirst, row);
+        m_changedLast = std::max(m_changedLast, row);
+    }
+    scheduleFlush();
+}
+
+void FleetModel::scheduleFlush()
+{
+    if (m_flushQueued)
+        return;
+    m_flushQueued = true;
+    // Once per event-loop pass, but not more than ten times a second: at a
+    // hundred aircraft a pass each message would repaint the view hundreds of
+    // times a second (docs/performance.md, "Fleet through one broker"), and
+    // no operator reads a row faster than that.
+    const qint64 wait = m_sinceFlush.isValid() ? kMinFlushIntervalMs - m_sinceFlush.elapsed() : 0;
+    if (wait <= 0)
+        QMetaObject::invokeMethod(this, &FleetModel::flushPending, Qt::QueuedConnection);
+    else
+        QTimer::singleShot(int(wait), this, &FleetModel::flushPending);
+}
+
+void FleetModel::flushPending()
+{
+    m_sinceFlush.start();
+    m_flushQueued = false;
+    m_pendingUpdates = 0;
+    if (m_changedFirst >= 0) {
+        const int first = m_changedFirst;
+        const int last = m_changedLast;
+        m_changedFirst = m_changedLast = -1;
+        bool stateChanged = false;
+        for (int r = first; r <= last; ++r)
+            stateChanged = tell(m_rows[std::size_t(r)]) || stateChanged;
+        // From the link column on unless a row's colours changed: a row's
+        // aircraft never changes, so a view sorted by aircraft has nothing
+        // to move.
+        emit dataChanged(index(first, stateChanged ? AircraftColumn : LinkColumn), index(last, kColumnCount - 1));
+    }
+    if (!m_pending.empty()) {
+        const int first = int(m_rows.size());
+        beginInsertRows({}, first, first + int(m_pending.size()) - 1);
+        for (Row& row : m_pending) {
+            tell(row);
+            m_rows.push_back(std::move(row));
+        }
+        m_pending.clear();
+        endInsertRows();
+    }
+}
+
+void FleetModel::refreshAges()
+{
+    if (m_rows.empty())
+        return;
+    const int last = int(m_rows.size()) - 1;
+    emit dataChanged(index(0, LastFrameColumn), index(last, LastFrameColumn),
+                     {Qt::DisplayRole, Qt::ToolTipRole, SortRole});
+    // Rows the passing time made stale (or live again, under a fake clock):
+    // their whole row, in runs of neighbours.
+    int runStart = -1;
+    for (int r = 0; r <= last + 1; ++r) {
+        const bool moved = r <= last && tell(m_rows[std::size_t(r)]);
+        if (moved && runStart < 0)
+            runStart = r;
+        if (!moved && runStart >= 0) {
+            emit dataChanged(index(runStart, 0), index(r - 1, kColumnCount - 1),
+                             {Qt::ForegroundRole, Qt::BackgroundRole, Qt::ToolTipRole, StateRole});
+            runStart = -1;
+        }
+    }
+}

@@ -1,0 +1,53 @@
+#pragma once
+
+// The fleet on screen: a line naming the broker and counting the aircraft,
+// and the table of aircraft sorted by name, their last frame's age kept
+// current once a second. Double-click or Enter on an aircraft asks for it to
+// be observed (the console opens it read-only); the view itself opens nothing.
+
+#include <QWidget>
+
+class FleetModel;
+class QLabel;
+class QSortFilterProxyModel;
+class QTableView;
+class QTimer;
+
+class FleetView : public QWidget {
+    Q_OBJECT
+
+public:
+    explicit FleetView(FleetModel* model, QWidget* parent = nullptr);
+
+    FleetModel* model() const { return m_model; }
+    QSortFilterProxyModel* sorted() const { return m_sorted; }
+    QTableView* table() const { return m_table; }
+    // Ticks once a second while the view is shown: FleetModel::refreshAges().
+    QTimer* ageTimer() const { return m_ageTimer; }
+
+    // The broker the rows come from, for the line above them ("mqtt://host:1883").
+    void setBroker(const QString& broker);
+    void setBrokerConnected(bool connected);
+    // "Broker mqtt://127.0.0.1:1883, connected: 3 aircraft, 1 stale, 1 offline"
+    QString summaryText() const;
+
+signals:
+    // Double-click or Enter on an aircraft's row.
+    void observeRequested(const QString& aircraft);
+
+protected:
+    void showEvent(QShowEvent* event) override;
+    void hideEvent(QHideEvent* event) override;
+
+private:
+    void tick();
+    void updateSummary();
+
+    FleetModel* m_model;
+    QSortFilterProxyModel* m_sorted;
+    QTableView* m_table;
+    QLabel* m_summary;
+    QTimer* m_ageTimer;
+    QString m_broker;
+    bool m_connected = false;
+};
