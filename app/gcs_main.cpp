@@ -2,6 +2,7 @@
 // and GUI stall measurements: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
+#include "ui/control/StationCommandLine.h"
 #include "ui/plan/PlanCommandLine.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
 #include "ui/window/LinkSettingsWidget.h"
@@ -14,14 +15,8 @@
 #include <cstdio>
 
 namespace {
-
 constexpr int kUsageError = 2;
-
-void say(const QString& line)
-{
-    std::fprintf(stderr, "gcs: %s\n", qPrintable(line));
-}
-
+void say(const QString& line) { std::fprintf(stderr, "gcs: %s\n", qPrintable(line)); }
 }  // namespace
 
 int main(int argc, char* argv[])
@@ -39,7 +34,8 @@ int main(int argc, char* argv[])
                        "  gcs --rehearsal                  rehearse against the simulated aircraft (uasim)\n"
                        "  gcs --udp-remote 10.0.0.2:5600   connect over UDP\n"
                        "  gcs --serial /dev/ttyUSB0        connect through the radio modem\n"
-                       "  gcs --serial /dev/ttyUSB0 --dial 881612345678   dial the aircraft's satellite phone"));
+                       "  gcs --serial /dev/ttyUSB0 --dial 881612345678   dial the aircraft's satellite phone\n"
+                       "  gcs --observe mqtt://127.0.0.1:1883/GB_133    watch an aircraft read-only"));
     parser.addHelpOption();
     const QCommandLineOption rehearsal(QStringLiteral("rehearsal"),
                                        QStringLiteral("Start the simulated aircraft (uasim, beside gcs) on a free "
@@ -82,6 +78,7 @@ int main(int argc, char* argv[])
         {rehearsal, udpRemote, serial, baud, dial, replay, airframe, key, screenshot, size, after, night, page});
     const RehearsalCommandLine rehearse(parser);
     const PlanCommandLine planOptions(parser);
+    const StationCommandLine stationOptions(parser);
     parser.process(app);
     if (rehearse.requested())
         return rehearse.run();
@@ -93,8 +90,11 @@ int main(int argc, char* argv[])
     };
     const int connections = int(parser.isSet(rehearsal)) + int(parser.isSet(udpRemote)) + int(parser.isSet(serial)) +
                             int(parser.isSet(replay));
-    if (connections > 1)
-        return usage(QStringLiteral("give at most one of --rehearsal, --udp-remote, --serial and --replay"));
+    QString error;
+    if (connections + int(stationOptions.observes()) > 1)
+        return usage(QStringLiteral("give at most one of --rehearsal, --udp-remote, --serial, --replay and --observe"));
+    if (!stationOptions.check(&error))
+        return usage(error);
     if (!parser.positionalArguments().isEmpty())
         return usage(QStringLiteral("unexpected argument %1").arg(parser.positionalArguments().constLast()));
     const QStringList wh = parser.value(size).split(QLatin1Char('x'));
@@ -105,7 +105,6 @@ int main(int argc, char* argv[])
         !parser.isSet(replay))
         return usage(QStringLiteral("--key goes with --rehearsal, --udp-remote, --serial or --replay"));
     std::optional<LinkSettings> link;
-    QString error;
     if (parser.isSet(udpRemote) && !(link = LinkSettings::udpRemote(parser.value(udpRemote), &error)))
         return usage(error);
     if (parser.isSet(serial) && !(link = LinkSettings::serial(parser.value(serial), parser.value(baud), &error)))
@@ -125,7 +124,7 @@ int main(int argc, char* argv[])
     if (parser.isSet(night))
         window.setTheme(Theme::Kind::Night);
     window.showPanel(parser.value(page).toInt() - 1);
-    if (!planOptions.apply(*window.flightPlan(), &error))
+    if (!planOptions.apply(*window.flightPlan(), &error) || !stationOptions.apply(window, &error))
         return usage(error);
     if (parser.isSet(screenshot))
         window.screenshotAndQuit(parser.value(screenshot), windowSize, parser.value(after).toInt());

@@ -6,6 +6,7 @@
 // Every wait is a QTRY_* on state the console exposes; the timeouts only bound
 // a broken build.
 
+#include "AnswerBox.h"
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -937,33 +938,7 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
 
 namespace {
 
-// What the confirmation showed, and the button pressed in it.
-struct Confirmation {
-    bool shown = false;
-    bool cancelIsDefault = false;
-    bool cancelHasFocus = false;
-    QString text;
-};
-
-// Answers the next modal message box with `button` ("Cancel" or the action).
-void answerNextBox(Confirmation* seen, bool cancel)
-{
-    QTimer::singleShot(0, [seen, cancel] {
-        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-        if (!box)
-            return;
-        seen->shown = true;
-        seen->text = box->text();
-        QAbstractButton* cancelButton = box->button(QMessageBox::Cancel);
-        seen->cancelIsDefault = box->defaultButton() == cancelButton;
-        seen->cancelHasFocus = box->focusWidget() == cancelButton;
-        QAbstractButton* go = nullptr;
-        for (QAbstractButton* b : box->buttons())
-            if (b != cancelButton)
-                go = b;
-        (cancel ? cancelButton : go)->click();
-    });
-}
+using rcm::test::answerNextBox;
 
 // The console connected over UDP to a bare socket standing in for the aircraft.
 void connectToABareSocket(MainWindow& window, UdpLink& aircraft)
@@ -1010,7 +985,7 @@ void TestMainWindow::asksBeforeEndingALiveLink()
     QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
     const LinkController* live = window.session()->controller();
 
-    Confirmation seen;
+    rcm::test::SeenBox seen;
     answerNextBox(&seen, true);
     if (action.isEmpty()) {
         window.connectLink();  // its button and menu item are disabled while connected; Ctrl+K is the slot
@@ -1041,7 +1016,7 @@ void TestMainWindow::quitEndsTheLinkOnceConfirmed()
     window.show();
     connectToABareSocket(window, aircraft);
     QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
-    Confirmation seen;
+    rcm::test::SeenBox seen;
     answerNextBox(&seen, false);
     QVERIFY(window.close());
     QVERIFY(seen.shown);

@@ -110,12 +110,7 @@ void SessionPublisher::setAircraft(const QString& aircraft)
     setWill();
     // Published at once if still connected; otherwise on the reconnection
     // that renews the will, by clientConnected().
-    publishStation();
-    if (m_statistics)
-        publishStats();
-    if (m_state)
-        publishState();
-    sendBacklog();
+    publishEverything();
 }
 
 void SessionPublisher::publishEvent(const QString& severity, const QString& text)
@@ -170,6 +165,11 @@ void SessionPublisher::clientConnected()
         return;
     // Retained state is restated on every connection: the broker may have
     // restarted without it, or the aircraft's topics changed meanwhile.
+    publishEverything();
+}
+
+void SessionPublisher::publishEverything()
+{
     publishStation();
     if (m_statistics)
         publishStats();

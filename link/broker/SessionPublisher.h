@@ -81,6 +81,8 @@ private:
     void stateChanged(LinkState state);
     void flushPendingFrame();
     void sendBacklog();
+    // The retained reports under the aircraft's topics, then the frames waiting.
+    void publishEverything();
     void publishFrame(const FrameReport& report);
     void publishStats();
     void publishStation();

@@ -85,6 +85,8 @@ QString eventSourceName(EventSource source)
         return QStringLiteral("alarm");
     case EventSource::Console:
         return QStringLiteral("console");
+    case EventSource::Control:
+        return QStringLiteral("control");
     }
     return {};
 }
@@ -116,8 +118,7 @@ std::optional<ConsoleEvent> parseEventLine(const QString& line)
     if (!found)
         return std::nullopt;
     found = false;
-    for (EventSource s : {EventSource::Link, EventSource::Key, EventSource::Plan, EventSource::Alarm,
-                          EventSource::Console})
+    for (EventSource s : kEventSources)
         if (eventSourceName(s) == parts[2]) {
             event.source = s;
             found = true;

@@ -23,7 +23,10 @@ enum class EventSource : quint8 {
     Plan,     // the flight plan and its upload
     Alarm,    // the link-loss alarm: lost, silenced, regained
     Console,  // the rest: airframe files, exports
+    Control,  // control between stations: taken, handed over, failover
 };
+inline constexpr EventSource kEventSources[] = {EventSource::Link,  EventSource::Key,     EventSource::Plan,
+                                                EventSource::Alarm, EventSource::Console, EventSource::Control};
 
 struct ConsoleEvent {
     qint64 utcMicros = 0;  // microseconds since 1970-01-01T00:00:00Z
@@ -35,7 +38,7 @@ struct ConsoleEvent {
 };
 
 QString eventSeverityName(EventSeverity severity);  // "info", "warning", "error"
-QString eventSourceName(EventSource source);        // "link", "key", "plan", "alarm", "console"
+QString eventSourceName(EventSource source);        // "link", "key", "plan", "alarm", "console", "control"
 
 // One line of the event log file, without its newline:
 // "2026-11-23T17:45:20.123Z<TAB>error<TAB>link<TAB>text", the text's

@@ -46,9 +46,13 @@ QString keyRefused(const QString& reason)
 }  // namespace
 
 ConsoleSession::ConsoleSession(const QString& frameLogDirectory, QObject* parent)
-    : QObject(parent), m_frameLogDirectory(frameLogDirectory), m_rehearsal(new RehearsalLauncher(this))
+    : QObject(parent),
+      m_frameLogDirectory(frameLogDirectory),
+      m_rehearsal(new RehearsalLauncher(this)),
+      m_control(new StationControl(this))
 {
     LinkWorker::registerMetaTypes();
+    connect(m_control, &StationControl::headerChanged, this, &ConsoleSession::sendCommand);
     connect(m_rehearsal, &RehearsalLauncher::ready, this, &ConsoleSession::rehearsalReady);
     connect(m_rehearsal, &RehearsalLauncher::failed, this, &ConsoleSession::rehearsalFailed);
 }
@@ -271,8 +275,12 @@ void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, cons
     if (kind == Kind::Rehearsal)
         // Frames came back: from now on an exit of uasim is a failure, not a port clash.
         connect(m_controller.get(), &LinkController::messageReceived, m_rehearsal, [this] { m_rehearsal->confirm(); });
-    if (m_command)
-        m_controller->setCommand(*m_command);
+    m_control->reset();
+    if (kind != Kind::Replay)
+        // Who is in control is what the aircraft says now, not what a log said.
+        connect(m_controller.get(), &LinkController::messageReceived, m_control,
+                [this](const ReceivedMessage& received) { m_control->statusReceived(received.message); });
+    sendCommand();
     emit linkStarted(m_controller.get());
     m_controller->start();
 }
@@ -289,6 +297,7 @@ void ConsoleSession::stopController()
     m_description.clear();
     m_sessionLogPath.clear();
     m_keyFingerprint.clear();
+    m_control->reset();
     emit linkStopped();
 }
 
@@ -305,8 +314,16 @@ void ConsoleSession::stop()
 void ConsoleSession::setCommand(const rcm::Message& command)
 {
     m_command = command;
-    if (m_controller)
-        m_controller->setCommand(command);
+    sendCommand();
+}
+
+void ConsoleSession::sendCommand()
+{
+    if (!m_controller || !m_command)
+        return;
+    rcm::Message named = *m_command;
+    m_control->applyTo(named);
+    m_controller->setCommand(named);
 }
 
 void ConsoleSession::setReplayPaused(bool paused)

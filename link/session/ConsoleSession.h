@@ -21,6 +21,7 @@
 #include "link/session/LinkSettings.h"
 #include "link/session/LinkStatistics.h"
 #include "link/session/LinkWorker.h"
+#include "link/session/StationControl.h"
 #include "link/simulation/RehearsalLauncher.h"
 
 #include <QObject>
@@ -102,6 +103,10 @@ public:
     // frames in the log with; null for none. Codecs of its own: the GUI
     // thread's, not the link thread's.
     std::shared_ptr<const rcm::LogKey> logKey() const { return m_logKey; }
+    // Control between stations (docs/protocol.md section 10): fed by the
+    // status frames of a live link, applied to every command sent. Set its
+    // station to follow control; hand over and take control through it.
+    StationControl* stationControl() const { return m_control; }
 
 public slots:
     // Opens the key file (if the settings name one) off the GUI thread, then
@@ -159,11 +164,14 @@ private:
     void startReplay(const QString& path, quint64 request, std::shared_ptr<Opened> opened);
     void rehearsalReady(quint16 port);
     void rehearsalFailed(const QString& reason);
+    // The command as control wants it named, to the running link.
+    void sendCommand();
 
     QString m_frameLogDirectory;
     LinkWrapper m_wrapLink;
     OptionsFilter m_filterOptions;
     RehearsalLauncher* m_rehearsal;
+    StationControl* m_control;
     std::unique_ptr<LinkController> m_controller;
     std::unique_ptr<Link> m_preparedLink;  // the transport waiting for its key and log
     QPointer<ReplayLink> m_replay;  // lives in the link thread; only queued calls

@@ -74,14 +74,13 @@ EventLogView* ConsoleAlerts::eventView()
     return m_view;
 }
 
-void ConsoleAlerts::follow(const LinkController* controller)
+void ConsoleAlerts::follow(const LinkEvents* link)
 {
-    connect(controller, &LinkController::errorOccurred, this,
-            [this](const QString& message) { error(EventSource::Link, message); });
-    connect(controller, &LinkController::statisticsChanged, this, &ConsoleAlerts::setStatistics);
-    connect(controller, &LinkController::frameRejected, m_refusals, &RefusalDigest::refused);
+    connect(link, &LinkEvents::errorOccurred, this, [this](const QString& message) { error(EventSource::Link, message); });
+    connect(link, &LinkEvents::statisticsChanged, this, &ConsoleAlerts::setStatistics);
+    connect(link, &LinkEvents::frameRejected, m_refusals, &RefusalDigest::refused);
     // The counts of the last minute belong to this link's session.
-    connect(controller, &QObject::destroyed, m_refusals, &RefusalDigest::flush);
+    connect(link, &QObject::destroyed, m_refusals, &RefusalDigest::flush);
 }
 
 void ConsoleAlerts::info(EventSource source, const QString& text)

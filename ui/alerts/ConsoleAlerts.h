@@ -19,7 +19,7 @@ class EventLogModel;
 class EventLogView;
 class LinkAlarm;
 class LinkAlarmBanner;
-class LinkController;
+class LinkEvents;
 class RefusalDigest;
 class QWidget;
 
@@ -46,8 +46,8 @@ public:
 
     // The link's errors and statistics reach the event log, the banner and
     // the alarm, its refused frames the event log (RefusalDigest). The
-    // connections end with the controller.
-    void follow(const LinkController* controller);
+    // connections end with the link (a LinkController, or an observation).
+    void follow(const LinkEvents* link);
     RefusalDigest* refusals() const { return m_refusals; }
 
 public slots:

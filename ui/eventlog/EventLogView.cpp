@@ -39,9 +39,10 @@ EventLogView::EventLogView(EventLogModel* model, QWidget* parent)
     fit(EventLogModel::TimeColumn, {QStringLiteral("00:00:00")});
     fit(EventLogModel::SeverityColumn, {eventSeverityName(EventSeverity::Info), eventSeverityName(EventSeverity::Warning),
                                         eventSeverityName(EventSeverity::Error)});
-    fit(EventLogModel::SourceColumn,
-        {eventSourceName(EventSource::Link), eventSourceName(EventSource::Key), eventSourceName(EventSource::Plan),
-         eventSourceName(EventSource::Alarm), eventSourceName(EventSource::Console)});
+    QStringList sources;
+    for (EventSource s : kEventSources)
+        sources << eventSourceName(s);
+    fit(EventLogModel::SourceColumn, sources);
     header->setSectionResizeMode(EventLogModel::TextColumn, QHeaderView::Stretch);
     // Long texts are elided in the row and whole in its tool tip: the dock
     // never grows wider than the window gives it.

@@ -7,6 +7,13 @@
 #include "link/framelog/ReplayLink.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
+#include "ui/control/StationControlWidget.h"
+#include "link/broker/BrokerObservation.h"
+#include "link/broker/FleetFeed.h"
+#include "link/broker/MqttClient.h"
+#include "link/broker/SessionBroadcast.h"
+#include "ui/fleet/FleetModel.h"
+#include "ui/fleet/FleetView.h"
 #include "ui/eventlog/EventLogView.h"
 #include "ui/overview/OverviewPage.h"
 #include "link/simulation/AirframeLoader.h"
@@ -181,6 +188,7 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_session, &ConsoleSession::failed, this, &MainWindow::actionFailed);
     connect(m_session, &ConsoleSession::warning, this,
             [this](const QString& message) { showError(message, EventSource::Link); });
+    bindStationControl();
     connect(m_session, &ConsoleSession::starting, m_linkNote, &QLabel::setText);
     connect(m_session, &ConsoleSession::starting, this,
             [this](const QString& what) { m_alerts->info(EventSource::Link, what); });
@@ -267,6 +275,8 @@ void MainWindow::buildDocks()
            "(Ctrl+R)"));
     m_rehearsalButton->setFocusPolicy(Qt::NoFocus);
     linkLayout->addWidget(m_rehearsalButton);
+    m_stationControl = new StationControlWidget(m_session->stationControl());
+    linkLayout->addWidget(m_stationControl);
     m_linkNote = new QLabel;
     m_linkNote->setWordWrap(true);
     m_linkNote->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -453,6 +463,7 @@ void MainWindow::restoreSession(const Options& options)
         m_layoutRestored = restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray()) &&
                            restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
         m_linkSettings->setSettings(LinkSettings::load(settings));
+        m_stationControl->setStationText(settings.value(QStringLiteral("control/station")).toString());
         TileSettings tiles;
         tiles.mbtilesPath = settings.value(QStringLiteral("map/mbtiles")).toString();
         tiles.urlTemplate = settings.value(QStringLiteral("map/url")).toString();
@@ -478,6 +489,7 @@ void MainWindow::saveSession() const
     settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
     settings.setValue(QStringLiteral("window/state"), saveState());
     m_linkSettings->settings().save(settings);
+    settings.setValue(QStringLiteral("control/station"), m_stationControl->stationText());
     const TileSettings& tiles = m_flightPlan->tiles()->settings();
     settings.setValue(QStringLiteral("map/mbtiles"), tiles.mbtilesPath);
     settings.setValue(QStringLiteral("map/url"), tiles.urlTemplate);
@@ -565,6 +577,7 @@ void MainWindow::requestDisconnect()
 void MainWindow::disconnectLink()
 {
     m_session->stop();
+    endObservation();
     showNotConnected();
     updateLinkControls();
 }
@@ -641,37 +654,9 @@ void MainWindow::linkStarted(const LinkController* controller)
         if (!logPath.isEmpty())
             m_logModel->setSessionLog(logPath);
     }
-    connect(controller, &LinkController::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
-    connect(controller, &LinkController::statisticsChanged, m_overview, &OverviewPage::setStatistics);
-    // Its errors to the event log and the banner, its silences to the alarm.
-    m_alerts->follow(controller);
-    // A modem's call: dialling, connected, redialling, hung up. Its failures
-    // come as errors too (once an outage), and are logged once, as errors.
-    m_status->setTransportStatus(QString());
-    m_reported->setLinkDelay(m_session->kind() == ConsoleSession::Kind::Live ? m_linkSettings->settings().oneWayDelay()
-                                                                              : std::chrono::milliseconds(0));
-    connect(controller, &LinkController::errorOccurred, this, [this](const QString& error) { m_lastLinkError = error; });
-    connect(controller, &LinkController::transportStatusChanged, this, [this](const QString& status) {
-        m_status->setTransportStatus(status);
-        if (status != m_lastLinkError)
-            m_alerts->info(EventSource::Link, status);
-    });
-    // A live session's frames become rows as the link logs them; a replay's
-    // rows are its log file, opened already.
-    if (!replay)
-        connect(controller, &LinkController::frameLogged, m_logModel, &FrameLogModel::appendLogged);
-    connect(controller, &LinkController::stateChanged, m_status, &StatusBarWidget::setState);
-    connect(controller, &LinkController::messageReceived, this, &MainWindow::messageReceived);
-    connect(controller, &LinkController::frameSent, this, &MainWindow::frameSent);
-    connect(controller, &LinkController::commandRejected, this, [this](const QString& reasons) {
-        showError(tr("The link refused the command: %1").arg(reasons), EventSource::Link);
-    });
-    // Not the banner: a forger could send one a second. The status bar
-    // counts them by reason; the event log has them through m_alerts
-    // (RefusalDigest).
-    connect(controller, &LinkController::frameRejected, this, [this](const QString& reason) {
-        statusBar()->showMessage(tr("A frame was refused: %1").arg(reason), 8000);
-    });
+    endObservation();
+    m_status->setTransportLabel(tr("Call"), tr("The satellite phone's call: what the modem does, and for how long"));
+    bindLinkEvents(controller, !replay);
     if (const ReplayLink* r = m_session->replay()) {
         beginReplay(r);
         connect(r, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
@@ -713,6 +698,135 @@ void MainWindow::linkStarted(const LinkController* controller)
                             : tr("%1\nFrame log: %2").arg(description, QDir::toNativeSeparators(logPath)));
     updateTitle();
     updateLinkControls();
+}
+
+void MainWindow::bindLinkEvents(const LinkEvents* events, bool logRows)
+{
+    connect(events, &LinkEvents::statisticsChanged, m_status, &StatusBarWidget::setStatistics);
+    connect(events, &LinkEvents::statisticsChanged, m_overview, &OverviewPage::setStatistics);
+    // Its errors to the event log and the banner, its silences to the alarm.
+    m_alerts->follow(events);
+    // A modem's call: dialling, connected, redialling, hung up. Its failures
+    // come as errors too (once an outage), and are logged once, as errors.
+    m_status->setTransportStatus(QString());
+    m_reported->setLinkDelay(m_session->kind() == ConsoleSession::Kind::Live ? m_linkSettings->settings().oneWayDelay()
+                                                                              : std::chrono::milliseconds(0));
+    connect(events, &LinkEvents::errorOccurred, this, [this](const QString& error) { m_lastLinkError = error; });
+    connect(events, &LinkEvents::transportStatusChanged, this, [this](const QString& status) {
+        m_status->setTransportStatus(status);
+        if (status != m_lastLinkError)
+            m_alerts->info(EventSource::Link, status);
+    });
+    // A live session's frames become rows as the link logs them; a replay's
+    // rows are its log file, opened already.
+    if (logRows)
+        connect(events, &LinkEvents::frameLogged, m_logModel, &FrameLogModel::appendLogged);
+    connect(events, &LinkEvents::stateChanged, m_status, &StatusBarWidget::setState);
+    connect(events, &LinkEvents::messageReceived, this, &MainWindow::messageReceived);
+    connect(events, &LinkEvents::frameSent, this, &MainWindow::frameSent);
+    connect(events, &LinkEvents::commandRejected, this, [this](const QString& reasons) {
+        showError(tr("The link refused the command: %1").arg(reasons), EventSource::Link);
+    });
+    // Not the banner: a forger could send one a second. The status bar
+    // counts them by reason; the event log has them through m_alerts
+    // (RefusalDigest).
+    connect(events, &LinkEvents::frameRejected, this, [this](const QString& reason) {
+        statusBar()->showMessage(tr("A frame was refused: %1").arg(reason), 8000);
+    });
+}
+
+void MainWindow::joinBroker(const BrokerSettings& settings, bool publish)
+{
+    if (m_broker)
+        return;  // once a run: the command line's broker
+    m_broker = std::make_unique<BrokerSettings>(settings);
+    if (publish) {
+        m_broadcast = new SessionBroadcast(m_session, settings, this);
+        m_broadcast->follow(m_alerts->events());
+        connect(m_broadcast, &SessionBroadcast::errorOccurred, this,
+                [this](const QString& error) { m_alerts->warning(EventSource::Link, error); });
+        m_alerts->info(EventSource::Link, tr("Publishing every link on the broker %1").arg(settings.url()));
+    }
+    // The fleet has a connection of its own: it reads everything, the publisher only writes.
+    BrokerSettings fleetSettings = settings;
+    fleetSettings.clientId.clear();
+    m_fleetClient = new MqttClient(fleetSettings, this);
+    auto* feed = new FleetFeed(m_fleetClient, this);
+    m_fleetModel = new FleetModel(this);
+    connect(feed, &FleetFeed::aircraftUpdated, m_fleetModel, &FleetModel::update);
+    m_fleetView = new FleetView(m_fleetModel);
+    m_fleetView->setBroker(settings.url());
+    connect(m_fleetClient, &MqttClient::connected, m_fleetView, [this] { m_fleetView->setBrokerConnected(true); });
+    connect(m_fleetClient, &MqttClient::disconnected, m_fleetView, [this] { m_fleetView->setBrokerConnected(false); });
+    if (!publish)
+        connect(m_fleetClient, &MqttClient::errorOccurred, this,
+                [this](const QString& error) { m_alerts->warning(EventSource::Link, error); });
+    connect(m_fleetView, &FleetView::observeRequested, this, &MainWindow::observeRequested);
+    QDockWidget* fleet = dock(tr("Fleet"), QStringLiteral("fleetDock"), m_fleetView, this);
+    tabifyDockWidget(m_docks[5], fleet);
+    fleet->raise();
+    m_fleetClient->start();
+}
+
+void MainWindow::observeRequested(const QString& aircraft)
+{
+    if (!m_broker || !confirmEndingLink(tr("Observe %1").arg(aircraft)))
+        return;
+    BrokerSettings settings = *m_broker;
+    settings.aircraft = aircraft;
+    settings.clientId.clear();
+    observe(settings);
+}
+
+void MainWindow::observe(const BrokerSettings& settings)
+{
+    m_session->stop();
+    endObservation();
+    m_observation = new BrokerObservation(settings, this);
+    m_logModel->clear();
+    m_logModel->setLogKey(nullptr);
+    m_status->setTransportLabel(tr("Broker"), tr("The broker the observation comes through, and for how long"));
+    bindLinkEvents(m_observation, true);
+    // Read only, as a replay: the panels show what the observed station commands.
+    m_ownCommand = m_command->message();
+    m_replayMicros = QDateTime::currentMSecsSinceEpoch() * 1000;
+    m_reported->clear();
+    m_replayNote->setText(tr("Observing %1: read only, nothing is sent").arg(m_observation->aircraft()));
+    m_replayNote->show();
+    m_replayReadOnly = new ReadOnlyArea(m_panels, this);
+    qApp->installEventFilter(m_replayReadOnly);
+    connect(m_observation, &LinkEvents::frameLogged, this, [this](const LoggedFrame& frame) {
+        m_replayMicros = frame.entry.utcMicros;
+        if (frame.entry.direction != FrameDirection::Sent || frame.entry.enciphered)
+            return;
+        rcm::DecodeResult r = rcm::decodeFrame(std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()),
+                                                         std::size_t(frame.bytes.size())));
+        if (r.ok() && r.diagnostics.empty())
+            m_command->replaceMessage(r.message);
+    });
+    const QString description = tr("Observing %1 on %2").arg(m_observation->aircraft(), settings.url());
+    m_status->setLinkDescription(description);
+    m_status->setStatistics(LinkStatistics());
+    m_flightPlan->setLinkReady(false);
+    m_linkNote->setText(tr("%1: read only, nothing is sent to the aircraft").arg(description));
+    m_alerts->info(EventSource::Link, description);
+    m_observation->start();
+    updateLinkControls();
+}
+
+void MainWindow::endObservation()
+{
+    if (!m_observation)
+        return;
+    m_observation->stop();
+    m_observation->deleteLater();
+    m_observation = nullptr;
+    m_replayNote->setText(tr("Replay: the log's commands, read only"));
+    endReplay();
+    m_status->setLinkDescription(QString());
+    m_status->setStatistics(LinkStatistics());
+    m_alerts->setStatistics(LinkStatistics());  // closed: no alarm
+    m_alerts->info(EventSource::Link, tr("Stopped observing"));
 }
 
 void MainWindow::linkStopped()
@@ -815,8 +929,9 @@ void MainWindow::frameSent(quint32 messageId)
 void MainWindow::updateLinkControls()
 {
     const bool running = m_session->isRunning();
-    const bool active = m_session->isActive();
+    const bool active = m_session->isActive() || m_observation;
     m_linkSettings->setEnabled(!running);
+    m_stationControl->setStationEditable(!running);
     m_connectButton->setEnabled(!running);
     m_connectAction->setEnabled(!running);
     m_disconnectButton->setEnabled(active);
@@ -899,6 +1014,26 @@ void MainWindow::chooseAirframe()
         QFileDialog::getOpenFileName(this, tr("Open an airframe"), QString(), tr("Airframes (*.json);;All files (*)"));
     if (!path.isEmpty())
         loadAirframe(path);
+}
+
+void MainWindow::bindStationControl()
+{
+    StationControl* control = m_session->stationControl();
+    // Control moving unasked is an error for the banner and the log; as asked, an event.
+    connect(control, &StationControl::alarm, this,
+            [this](const QString& reason) { showError(reason, EventSource::Control); });
+    connect(control, &StationControl::event, this, [this](const QString& text) {
+        statusBar()->showMessage(text, 8000);
+        m_alerts->info(EventSource::Control, text);
+    });
+    connect(m_stationControl, &StationControlWidget::stationRefused, this,
+            [this](const QString& reason) { showError(reason, EventSource::Control); });
+    // The header panel shows the stations the frames name, as sent.
+    connect(control, &StationControl::headerChanged, this, [this, control] {
+        rcm::Message named = m_command->message();
+        control->applyTo(named);
+        m_command->editUnit({rcm::UnitKind::Header, 0}, [&](rcm::Unit& header) { header = named.header; });
+    });
 }
 
 void MainWindow::showError(const QString& message, EventSource source)

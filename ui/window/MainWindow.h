@@ -39,6 +39,15 @@ class QTabWidget;
 class ReplayControls;
 class ReplayLink;
 class ReportedState;
+class StationControlWidget;
+class BrokerObservation;
+class FleetFeed;
+class FleetModel;
+class FleetView;
+class LinkEvents;
+class MqttClient;
+class SessionBroadcast;
+struct BrokerSettings;
 class StatusBarWidget;
 class VoiceChannel;
 struct ReceivedMessage;
@@ -68,6 +77,10 @@ public:
     FlightPlanWidget* flightPlan() const { return m_flightPlan; }
     StatusBarWidget* linkStatus() const { return m_status; }
     LinkSettingsWidget* linkSettings() const { return m_linkSettings; }
+    StationControlWidget* stationControl() const { return m_stationControl; }
+    FleetView* fleetView() const { return m_fleetView; }
+    SessionBroadcast* broadcast() const { return m_broadcast; }
+    BrokerObservation* observation() const { return m_observation; }
     ConsoleSession* session() const { return m_session; }
     // The event log, its dock, the error banner and the link-loss alarm.
     ConsoleAlerts* alerts() const { return m_alerts; }
@@ -115,6 +128,16 @@ public slots:
     void setReplayPaused(bool paused);
     // 0.25 to 10 times the logged pace.
     void setReplaySpeed(double speed);
+    // Joins the broker: the Fleet dock lists every aircraft on it, and with
+    // `publish` every link this console runs is published there
+    // (docs/architecture.md, "Stations and the broker").
+    void joinBroker(const BrokerSettings& settings, bool publish);
+    // Shows settings.aircraft read-only from the broker: its frames, status
+    // and events as the station publishing it logged them; nothing is sent.
+    // Ends the running link, without asking (observeRequested() asks).
+    void observe(const BrokerSettings& settings);
+    // The Fleet dock's double-click: asks first while a link is live.
+    void observeRequested(const QString& aircraft);
 
 signals:
     // The replay reached the end of its log.
@@ -128,6 +151,11 @@ private:
     void buildPanels();
     void buildDocks();
     void placeDocks();
+    // Control between stations: its alarms and events to the log, its header to the panels.
+    void bindStationControl();
+    // What a link or an observation says, to the status bar, overview, alerts and log view.
+    void bindLinkEvents(const LinkEvents* events, bool logRows);
+    void endObservation();
     void buildMenus();
     void restoreSession(const Options& options);
     void saveSession() const;
@@ -178,6 +206,13 @@ private:
     QPushButton* m_disconnectButton = nullptr;
     QPushButton* m_rehearsalButton = nullptr;
     QLabel* m_linkNote = nullptr;
+    StationControlWidget* m_stationControl = nullptr;
+    SessionBroadcast* m_broadcast = nullptr;
+    MqttClient* m_fleetClient = nullptr;
+    FleetModel* m_fleetModel = nullptr;
+    FleetView* m_fleetView = nullptr;
+    BrokerObservation* m_observation = nullptr;
+    std::unique_ptr<BrokerSettings> m_broker;  // joined: where fleet and observations go
     QMenu* m_viewMenu = nullptr;
     QActionGroup* m_airframeActions = nullptr;
     QAction* m_connectAction = nullptr;

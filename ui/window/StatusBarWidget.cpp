@@ -143,8 +143,7 @@ void StatusBarWidget::setTransportStatus(const QString& status)
     m_transportSince = QDateTime::currentMSecsSinceEpoch();
     m_transportSeparator->setVisible(!status.isEmpty());
     m_transport->setVisible(!status.isEmpty());
-    m_transport->setToolTip(status.isEmpty() ? QString()
-                                             : tr("The satellite phone's call: what the modem does, and for how long"));
+    m_transport->setToolTip(status.isEmpty() ? QString() : m_transportToolTip);
     if (!status.isEmpty())
         m_ageTimer.start();
     updateTransport();
@@ -153,7 +152,14 @@ void StatusBarWidget::setTransportStatus(const QString& status)
 void StatusBarWidget::updateTransport()
 {
     if (!m_transportStatus.isEmpty())
-        m_transport->setText(field(tr("Call"), transportText().toHtmlEscaped()));
+        m_transport->setText(field(m_transportLabel, transportText().toHtmlEscaped()));
+}
+
+void StatusBarWidget::setTransportLabel(const QString& label, const QString& toolTip)
+{
+    m_transportLabel = label;
+    m_transportToolTip = toolTip;
+    updateTransport();
 }
 
 void StatusBarWidget::setKeyFingerprint(const QString& fingerprint)

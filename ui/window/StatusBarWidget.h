@@ -48,6 +48,8 @@ public slots:
     void setReplay(bool replay);
     void setReplayTime(qint64 utcMicros);
     // What the transport says it does (a modem's call); empty: nothing to show.
+    // What the transport status is of: "Call" (a modem's), "Broker" (an observation's).
+    void setTransportLabel(const QString& label, const QString& toolTip);
     void setTransportStatus(const QString& status);
 
 signals:
@@ -65,6 +67,8 @@ private:
     QString m_description;
     QString m_fingerprint;
     QString m_transportStatus;
+    QString m_transportLabel = tr("Call");
+    QString m_transportToolTip = tr("The satellite phone's call: what the modem does, and for how long");
     qint64 m_transportSince = 0;  // ms since the epoch
     bool m_alarm = false;
     bool m_replay = false;

@@ -1,0 +1,219 @@
+#include "link/session/StationControl.h"
+
+#include "codec/message/ItemTable.h"
+#include "codec/message/TextFormat.h"
+#include "codec/message/ValueCodec.h"
+
+using namespace rcm;
+
+namespace {
+
+std::optional<StationId> headerStation(const Message& message, ItemId id)
+{
+    const Value* v = message.header.find(id);
+    if (!v || !checkValue(itemInfo(id), *v).empty())
+        return std::nullopt;
+    return StationId{static_cast<std::uint16_t>(v->number), static_cast<std::uint16_t>(v->second)};
+}
+
+QString text(std::optional<StationId> station)
+{
+    return station ? QString::fromStdString(formatStation(*station)) : QStringLiteral("no station");
+}
+
+void setStationItem(Message& message, ItemId id, std::optional<StationId> station)
+{
+    if (station)
+        message.header.set(id, Value::station(*station));
+    else
+        message.header.erase(id);
+}
+
+}  // namespace
+
+StationControl::StationControl(QObject* parent) : QObject(parent) {}
+
+void StationControl::setStation(std::optional<StationId> station)
+{
+    if (station == m_station)
+        return;
+    m_station = station;
+    m_reportedControl.reset();
+    m_reportedBackup.reset();
+    m_namesItself = true;
+    m_heldControl = false;
+    setRole(Role::Unknown);
+    emit headerChanged();
+}
+
+void StationControl::reset()
+{
+    // What the aircraft said last is kept: a station that was not in control
+    // when its link ended must not take control up by naming itself on the
+    // next one before it hears the aircraft.
+    setRole(Role::Unknown);
+}
+
+bool StationControl::canHandOver() const
+{
+    return m_role == Role::InControl && m_reportedBackup && m_reportedBackup != m_station;
+}
+
+void StationControl::applyTo(Message& command) const
+{
+    if (!m_station)
+        return;
+    using enum ItemId;
+    Role role = m_role;
+    if (role == Role::Unknown && !m_namesItself)
+        // A new link, this station not in control when the last one ended:
+        // as the aircraft last had it, until it says otherwise.
+        role = m_reportedControl == m_station ? Role::Offered : Role::Backup;
+    switch (role) {
+        case Role::Unknown:
+            setStationItem(command, ID_GCS_destination, m_station);
+            break;  // the backup the operator set, if any
+        case Role::InControl:
+            setStationItem(command, ID_GCS_destination, m_station);
+            if (m_reportedBackup)
+                setStationItem(command, ID_GCS_backup, m_reportedBackup);
+            break;
+        case Role::Offered:
+        case Role::HandingOver:
+            // Not naming itself: the aircraft acts on none of it (not yet taken
+            // up), or passes control to the backup (handing over).
+            setStationItem(command, ID_GCS_destination, m_reportedBackup);
+            setStationItem(command, ID_GCS_backup, m_station);
+            break;
+        case Role::Backup:
+        case Role::Observing:
+            setStationItem(command, ID_GCS_destination, m_reportedControl);
+            setStationItem(command, ID_GCS_backup, m_reportedBackup);
+            break;
+    }
+}
+
+void StationControl::statusReceived(const Message& status)
+{
+    if (!m_station)
+        return;
+    const std::optional<StationId> control = headerStation(status, ItemId::ID_GCS_destination);
+    const std::optional<StationId> backup = headerStation(status, ItemId::ID_GCS_backup);
+    const bool changed = control != m_reportedControl || backup != m_reportedBackup;
+    const std::optional<StationId> previousControl = m_reportedControl;
+    m_reportedControl = control;
+    m_reportedBackup = backup;
+
+    Role next;
+    if (m_role == Role::HandingOver && control == previousControl)
+        next = Role::HandingOver;  // the aircraft has not seen it yet
+    else if (control == m_station)
+        next = m_namesItself ? Role::InControl : Role::Offered;
+    else
+        next = backup == m_station ? Role::Backup : Role::Observing;
+
+    if (next != m_role) {
+        const Role previous = m_role;
+        if (next == Role::Offered) {
+            emit alarm(tr("The aircraft gave control to this station (%1 was in control): "
+                          "check what it reports, then Take control to command it")
+                           .arg(text(previousControl ? previousControl : backup)));
+        } else if (previous == Role::Offered) {
+            emit alarm(tr("Control went to %1: this station did not take it within the aircraft's failover time")
+                           .arg(text(control)));
+        } else if (previous == Role::InControl || (previous == Role::Unknown && m_heldControl)) {
+            emit alarm(tr("Control lost: the aircraft names %1 in control, and this station did not hand over")
+                           .arg(text(control)));
+        } else if (previous == Role::HandingOver && control != m_station) {
+            emit event(tr("Handed over: %1 is in control, this station is %2")
+                           .arg(text(control), next == Role::Backup ? tr("its backup") : tr("observing")));
+        } else if (previous == Role::Unknown && next != Role::InControl) {
+            emit event(tr("This station is %1; %2 in control")
+                           .arg(next == Role::Backup ? tr("the backup") : tr("observing"), text(control)));
+        } else if (next == Role::InControl && previous == Role::Unknown) {
+            emit event(tr("This station is in control; backup %1").arg(text(backup)));
+        } else if (next == Role::InControl) {
+            emit event(tr("Took control: the aircraft acts on this station's commands; backup %1").arg(text(backup)));
+        }
+        if (next != Role::InControl && next != Role::Unknown)
+            m_namesItself = false;
+        if (next == Role::InControl || next == Role::Offered)
+            m_heldControl = true;
+        else if (next != Role::HandingOver)
+            m_heldControl = false;
+        setRole(next);
+    }
+    if (changed)
+        emit headerChanged();
+}
+
+void StationControl::handOver()
+{
+    if (!canHandOver())
+        return;
+    m_namesItself = false;
+    emit event(tr("Handing over to %1").arg(text(m_reportedBackup)));
+    setRole(Role::HandingOver);
+    emit headerChanged();
+}
+
+void StationControl::takeControl()
+{
+    if (!canTakeControl())
+        return;
+    m_namesItself = true;
+    emit event(tr("Taking control: the next frames name this station in control"));
+    // The role follows the aircraft's next status, which names this station in control.
+    setRole(Role::InControl);
+    emit headerChanged();
+}
+
+QString StationControl::roleName(Role role)
+{
+    switch (role) {
+        case Role::Unknown:
+            return tr("Control not reported yet");
+        case Role::InControl:
+            return tr("In control");
+        case Role::Offered:
+            return tr("Given control: not taken");
+        case Role::HandingOver:
+            return tr("Handing over");
+        case Role::Backup:
+            return tr("Backup");
+        case Role::Observing:
+            return tr("Observing");
+    }
+    return {};
+}
+
+QString StationControl::describe() const
+{
+    if (!m_station)
+        return {};
+    const QString me = text(m_station);
+    switch (m_role) {
+        case Role::Unknown:
+            return tr("%1: control not reported yet").arg(me);
+        case Role::InControl:
+            return m_reportedBackup ? tr("%1: in control, backup %2").arg(me, text(m_reportedBackup))
+                                    : tr("%1: in control, no backup").arg(me);
+        case Role::Offered:
+            return tr("%1: given control, not taken: Take control to command").arg(me);
+        case Role::HandingOver:
+            return tr("%1: handing over to %2").arg(me, text(m_reportedBackup));
+        case Role::Backup:
+            return tr("%1: backup, %2 in control").arg(me, text(m_reportedControl));
+        case Role::Observing:
+            return tr("%1: observing, %2 in control").arg(me, text(m_reportedControl));
+    }
+    return {};
+}
+
+void StationControl::setRole(Role role)
+{
+    if (role == m_role)
+        return;
+    m_role = role;
+    emit roleChanged(role);
+}
