@@ -35,6 +35,8 @@
 #include "ui/alerts/ErrorBanner.h"
 #include "ui/alerts/LinkAlarm.h"
 #include "ui/eventlog/EventLogModel.h"
+#include "link/session/StationControl.h"
+#include "ui/control/StationControlWidget.h"
 #include "ui/overview/OverviewPage.h"
 #include <QTextDocumentFragment>
 #include <QUdpSocket>
@@ -135,6 +137,7 @@ private slots:
     void asksBeforeEndingALiveLink();
     void quitEndsTheLinkOnceConfirmed();
     void linkButtonsNeverHoldTheFocus();
+    void controlAlarmsReachBannerAndEventLog();
     void aModemIsDialledAndHungUp();
     void satelliteRoundTripIsNoMismatch();
     void fitsASmallScreen();
@@ -1051,6 +1054,39 @@ void TestMainWindow::linkButtonsNeverHoldTheFocus()
         QTest::keyClick(focus ? focus : &window, Qt::Key_Tab);
     }
     window.disconnectLink();
+}
+
+// Control moving without this station asking: on the banner and in the event
+// log as an error of "control"; the header panel names the stations sent.
+void TestMainWindow::controlAlarmsReachBannerAndEventLog()
+{
+    MainWindow window(options());
+    window.stationControl()->setStationText(QStringLiteral("GB_30226"));
+    StationControl* control = window.session()->stationControl();
+    const auto status = [](rcm::StationId c, rcm::StationId b) {
+        rcm::Message m;
+        m.header.set(rcm::ItemId::ID_GCS_destination, rcm::Value::station(c));
+        m.header.set(rcm::ItemId::ID_GCS_backup, rcm::Value::station(b));
+        return m;
+    };
+    const rcm::StationId primary{44, 30226}, backup{44, 41251};
+    control->statusReceived(status(primary, backup));
+    const EventLogModel* events = window.alerts()->model();
+    QCOMPARE(events->event(events->rowCount() - 1).text,
+             QStringLiteral("This station is in control; backup GB_41251"));
+    QCOMPARE(events->event(events->rowCount() - 1).source, EventSource::Control);
+    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_backup)->second, 41251);
+
+    control->statusReceived(status(backup, primary));
+    const QString alarm = QStringLiteral(
+        "Control lost: the aircraft names GB_41251 in control, and this station did not hand over");
+    QCOMPARE(window.alerts()->errorBanner()->currentText(), alarm);
+    QCOMPARE(events->event(events->rowCount() - 1).text, alarm);
+    QCOMPARE(events->event(events->rowCount() - 1).severity, EventSeverity::Error);
+    QCOMPARE(events->event(events->rowCount() - 1).source, EventSource::Control);
+    // The frames now name the station in control, this one as its backup.
+    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_destination)->second, 41251);
+    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_backup)->second, 30226);
 }
 
 void TestMainWindow::aModemIsDialledAndHungUp()
