@@ -124,7 +124,11 @@ public:
                 auto* out = new QTcpSocket(this);
                 in->setParent(this);
                 m_sockets << in << out;
-                connect(in, &QTcpSocket::readyRead, out, [in, out] { out->write(in->readAll()); });
+                connect(in, &QTcpSocket::readyRead, out, [this, in, out] {
+                    const QByteArray bytes = in->readAll();
+                    if (!m_dropToBroker)
+                        out->write(bytes);
+                });
                 connect(out, &QTcpSocket::readyRead, in, [in, out] { in->write(out->readAll()); });
                 connect(out, &QTcpSocket::connected, in, [in, out] { out->write(in->readAll()); });
                 connect(in, &QTcpSocket::disconnected, out, &QTcpSocket::disconnectFromHost);
@@ -133,18 +137,31 @@ public:
             }
         });
     }
-    quint16 port() const { return m_server.serverPort(); }
+    quint16 port() const { return m_server.isListening() ? m_server.serverPort() : m_port; }
     void cut()
     {
+        m_port = m_server.serverPort();
         m_server.close();
         for (QTcpSocket* s : std::as_const(m_sockets))
             s->abort();
+        m_sockets.clear();
     }
+    // After cut(): listens again on the same port, passing everything.
+    bool reopen()
+    {
+        m_dropToBroker = false;
+        return m_server.listen(QHostAddress::LocalHost, m_port);
+    }
+    // What the client writes from now on is lost on the way: a network that
+    // takes the bytes and delivers none.
+    void dropToBroker() { m_dropToBroker = true; }
 
 private:
     quint16 m_brokerPort;
+    quint16 m_port = 0;
     QTcpServer m_server;
     QList<QTcpSocket*> m_sockets;
+    bool m_dropToBroker = false;
 };
 
 }  // namespace
@@ -172,6 +189,7 @@ private slots:
     void gracefulFinishSaysOffline();
     void learnedAircraftMovesReports();
     void brokerRestartRejoins();
+    void framesLostOnTheWayGoAgain();
     void password();
     void tls();
 };
@@ -939,8 +957,12 @@ void TestBroker::brokerRestartRejoins()
     QVERIFY(broker.start());
     QTRY_VERIFY_WITH_TIMEOUT(broker.accepts(), kTimeoutMs);
 
+    // The publisher through a relay, so that it comes back only after the
+    // observer has: frames are not retained, and an observer not yet
+    // subscribed again would miss them.
+    TcpRelay relay(broker.port());
     LinkEvents events;
-    MqttClient client(local(broker.port()));
+    MqttClient client(local(relay.port()));
     SessionPublisher publisher(&client, kStation, &events);
     publisher.setAircraft(kAircraft);
     publisher.setRole(QStringLiteral("control"), kStation, {});
@@ -967,9 +989,10 @@ void TestBroker::brokerRestartRejoins()
     QTRY_COMPARE_WITH_TIMEOUT(logged.count(), 1, kTimeoutMs);
 
     QVERIFY(broker.stop());
+    relay.cut();
     QTRY_COMPARE_WITH_TIMEOUT(disconnected.count(), 1, kTimeoutMs);
     QCOMPARE(errors.count(), 1);
-    QCOMPARE(errors.at(0).at(0).toString(), QStringLiteral("broker 127.0.0.1:%1: connection lost").arg(broker.port()));
+    QCOMPARE(errors.at(0).at(0).toString(), QStringLiteral("broker 127.0.0.1:%1: connection lost").arg(relay.port()));
     QCOMPARE(disconnected.at(0).at(0).toString(), QStringLiteral("connection lost"));
     QTRY_COMPARE_WITH_TIMEOUT(observerErrors.count(), 1, kTimeoutMs);
     QCOMPARE(observerErrors.at(0).at(0).toString(),
@@ -988,8 +1011,9 @@ void TestBroker::brokerRestartRejoins()
     // Same port, no persistence: the retained reports are gone until the
     // publisher restates them.
     QVERIFY(broker.start());
-    QTRY_COMPARE_WITH_TIMEOUT(connected.count(), 2, kRejoinTimeoutMs);
     QTRY_VERIFY_WITH_TIMEOUT(observer.isConnected(), kRejoinTimeoutMs);
+    QVERIFY(relay.reopen());
+    QTRY_COMPARE_WITH_TIMEOUT(connected.count(), 2, kRejoinTimeoutMs);
     Listener late(broker.port(), BrokerTopics::stationTopic(kAircraft, kStation));
     QTRY_COMPARE_WITH_TIMEOUT(late.messages.count(), 1, kTimeoutMs);
     QCOMPARE(StationReport::fromJson(late.messages.at(0).at(1).toByteArray(), nullptr)->role,
@@ -1006,6 +1030,54 @@ void TestBroker::brokerRestartRejoins()
         QCOMPARE(logged.at(i).at(0).value<LoggedFrame>().bytes, frameBytes(i + 1));
     QCOMPARE(errors.count(), 1);
     QCOMPARE(observerErrors.count(), 1);
+}
+
+// Frames the client wrote into a connection that then died, which the
+// broker never acknowledged, go again once the client is back: an observer
+// gets every frame, once each, in order.
+void TestBroker::framesLostOnTheWayGoAgain()
+{
+    MosquittoProcess broker;
+    QVERIFY(broker.start());
+    QTRY_VERIFY_WITH_TIMEOUT(broker.accepts(), kTimeoutMs);
+    TcpRelay relay(broker.port());
+
+    LinkEvents events;
+    MqttClient client(local(relay.port()));
+    SessionPublisher publisher(&client, kStation, &events);
+    publisher.setAircraft(kAircraft);
+    QSignalSpy connected(&client, &MqttClient::connected);
+    client.start();
+    QTRY_COMPARE_WITH_TIMEOUT(connected.count(), 1, kTimeoutMs);
+
+    BrokerSettings settings = local(broker.port());
+    settings.aircraft = kAircraft;
+    BrokerObservation observer(settings);
+    QSignalSpy logged(&observer, &LinkEvents::frameLogged);
+    observer.start();
+    QTRY_VERIFY_WITH_TIMEOUT(observer.isConnected(), kTimeoutMs);
+    const auto frame = [](int i) {
+        return loggedFrame(FrameDirection::Sent, FrameStatus::NotChecked, kT0 + i, quint32(i), frameBytes(i));
+    };
+    emit events.frameLogged(frame(1));
+    QTRY_COMPARE_WITH_TIMEOUT(logged.count(), 1, kTimeoutMs);
+
+    // Written, never delivered, never acknowledged; then the connection dies.
+    relay.dropToBroker();
+    for (int i = 2; i <= 4; ++i)
+        emit events.frameLogged(frame(i));
+    QCoreApplication::processEvents();
+    relay.cut();
+    QVERIFY(relay.reopen());
+    QTRY_COMPARE_WITH_TIMEOUT(connected.count(), 2, kRejoinTimeoutMs);
+    emit events.frameLogged(frame(5));
+    QTRY_COMPARE_WITH_TIMEOUT(logged.count(), 5, kTimeoutMs);
+    for (int i = 0; i < 5; ++i)
+        QCOMPARE(logged.at(i).at(0).value<LoggedFrame>().bytes, frameBytes(i + 1));
+    // Nothing more comes (no frame twice): one more frame is the sixth.
+    emit events.frameLogged(frame(6));
+    QTRY_COMPARE_WITH_TIMEOUT(logged.count(), 6, kTimeoutMs);
+    QCOMPARE(logged.at(5).at(0).value<LoggedFrame>().bytes, frameBytes(6));
 }
 
 void TestBroker::password()

@@ -242,6 +242,8 @@ private slots:
             observed.insert({int(f.entry.direction), f.entry.utcMicros, f.bytes});
         });
         observer.start();
+        // Frames are not retained: the observer is there before the first one.
+        QTRY_VERIFY_WITH_TIMEOUT(observer.isConnected(), kPatience);
 
         PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.primaryPort(), primaryKey,
                                broker.port());
@@ -268,10 +270,20 @@ private slots:
         for (const FrameRecord& r : log.readAll())
             logged.push_back({int(r.direction), r.utcMicros, r.bytes});
         QVERIFY2(logged.size() >= 10, qPrintable(QString::number(logged.size())));
-        const auto allObserved = [&] {
-            return std::all_of(logged.begin(), logged.end(), [&](const FrameKey& k) { return observed.count(k) > 0; });
+        const auto missing = [&] {
+            QStringList out;
+            for (qsizetype i = 0; i < logged.size(); ++i)
+                if (!observed.count(logged[i]))
+                    out << QStringLiteral("#%1 %2 at %3").arg(i).arg(std::get<0>(logged[i])).arg(std::get<1>(logged[i]));
+            return out;
         };
-        QTRY_VERIFY_WITH_TIMEOUT(allObserved(), kPatience);
+        QTRY_VERIFY2_WITH_TIMEOUT(missing().isEmpty(),
+                                  qPrintable(QStringLiteral("%1 of %2 logged frames not observed (of %3 observed): %4")
+                                                 .arg(missing().size())
+                                                 .arg(logged.size())
+                                                 .arg(observed.size())
+                                                 .arg(missing().join(QStringLiteral(", ")))),
+                                  kPatience);
 
         // The primary's process dies: the backup is given control, and told.
         QSignalSpy alarms(backup.control(), &StationControl::alarm);

@@ -134,6 +134,13 @@ void BrokerObservation::frameReported(const QByteArray& payload)
         m_firstFrameFrom = r->station;
     if (r->station != followedStation())
         return;
+    // A frame published again after its session ended unacknowledged, or
+    // resent by the client library, is told once: a station publishes its
+    // frames in order, each way.
+    qint64& last = m_lastFrameUtc[r->station + QLatin1Char(r->direction == FrameDirection::Sent ? '>' : '<')];
+    if (r->utcMicros <= last)
+        return;
+    last = r->utcMicros;
 
     LoggedFrame frame;
     frame.entry.utcMicros = r->utcMicros;

@@ -24,6 +24,7 @@
 #include "link/broker/BrokerTopics.h"
 #include "link/session/LinkEvents.h"
 
+#include <QHash>
 #include <QMap>
 #include <QString>
 
@@ -79,6 +80,7 @@ private:
     QString m_followed;        // set by followStation()
     QString m_firstFrameFrom;  // the first station a frame came from
     QMap<QString, StationReport> m_stations;
+    QHash<QString, qint64> m_lastFrameUtc;  // by station and direction: the newest frame told
     std::optional<LinkStatistics> m_statistics;
     LinkState m_state = LinkState::Closed;
     std::optional<rcm::Message> m_lastMessage;  // the last status told, not to tell it twice

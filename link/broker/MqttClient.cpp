@@ -211,7 +211,7 @@ struct MqttClient::Core {
         core->post([reason, expected, restart](MqttClient* c) { c->onDisconnect(reason, expected, restart); });
     }
 
-    static void onPublish(mosquitto*, void* userdata, int)
+    static void onPublish(mosquitto*, void* userdata, int messageId)
     {
         auto* core = static_cast<Core*>(userdata);
         {
@@ -221,6 +221,7 @@ struct MqttClient::Core {
                 --core->inFlight;
         }
         core->wake.notify_all();
+        core->post([messageId](MqttClient* c) { emit c->published(messageId); });
     }
 
     static void onMessage(mosquitto*, void* userdata, const mosquitto_message* message)
@@ -398,7 +399,7 @@ void MqttClient::stop()
     }
 }
 
-bool MqttClient::publish(const QString& topic, const QByteArray& payload, int qos, bool retain)
+bool MqttClient::publish(const QString& topic, const QByteArray& payload, int qos, bool retain, int* messageId)
 {
     if (!m_connected || m_stopping)
         return false;
@@ -408,8 +409,8 @@ bool MqttClient::publish(const QString& topic, const QByteArray& payload, int qo
         std::lock_guard lock(m_core->mutex);
         ++m_core->inFlight;
     }
-    const int rc =
-        mosquitto_publish(m_core->mosq, nullptr, t.constData(), int(payload.size()), payload.constData(), qos, retain);
+    const int rc = mosquitto_publish(m_core->mosq, messageId, t.constData(), int(payload.size()), payload.constData(),
+                                     qos, retain);
     if (rc == MOSQ_ERR_SUCCESS)
         return true;
     if (qos > 0) {

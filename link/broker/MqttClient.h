@@ -56,7 +56,8 @@ public:
     // Queues one message; false (and nothing is kept) while not connected:
     // the publisher restates its retained state on connected(), and a
     // session's frames while the broker is away are in its frame log.
-    bool publish(const QString& topic, const QByteArray& payload, int qos, bool retain);
+    // `messageId`, when given, gets the ID that published() will name.
+    bool publish(const QString& topic, const QByteArray& payload, int qos, bool retain, int* messageId = nullptr);
     // Kept, and sent again after every reconnection (sessions are clean).
     void subscribe(const QString& pattern, int qos);
 
@@ -68,6 +69,9 @@ signals:
     // After a connection that had been made; `reason` for people.
     void disconnected(const QString& reason);
     void messageReceived(const QString& topic, const QByteArray& payload);
+    // The broker has the message publish() gave this ID (QoS 1: its PUBACK).
+    // A message whose session ended first may never be named here.
+    void published(int messageId);
     // Once per outage: "broker 127.0.0.1:1884: connection refused".
     void errorOccurred(const QString& message);
 

@@ -5,6 +5,8 @@
 #include "link/session/LinkEvents.h"
 
 #include <QDateTime>
+
+#include <algorithm>
 #include <QTimer>
 
 namespace {
@@ -42,6 +44,7 @@ SessionPublisher::SessionPublisher(MqttClient* client, const QString& station, c
 
     if (client) {
         connect(client, &MqttClient::connected, this, &SessionPublisher::clientConnected);
+        connect(client, &MqttClient::published, this, &SessionPublisher::acknowledged);
         setWill();
     }
     if (events) {
@@ -164,8 +167,21 @@ void SessionPublisher::clientConnected()
     if (m_finished)
         return;
     // Retained state is restated on every connection: the broker may have
-    // restarted without it, or the aircraft's topics changed meanwhile.
+    // restarted without it, or the aircraft's topics changed meanwhile. The
+    // frames the last session did not see acknowledged go again, first.
+    while (!m_unacknowledged.empty()) {
+        m_backlog.push_front(std::move(m_unacknowledged.back().second));
+        m_unacknowledged.pop_back();
+    }
     publishEverything();
+}
+
+void SessionPublisher::acknowledged(int messageId)
+{
+    const auto it = std::find_if(m_unacknowledged.begin(), m_unacknowledged.end(),
+                                 [messageId](const auto& sent) { return sent.first == messageId; });
+    if (it != m_unacknowledged.end())
+        m_unacknowledged.erase(it);
 }
 
 void SessionPublisher::publishEverything()
@@ -274,8 +290,11 @@ void SessionPublisher::publishFrame(const FrameReport& report)
     if (!m_client || m_finished)
         return;
     m_backlog.push_back(report);
-    if (m_backlog.size() > kBacklogFrames) {
-        m_backlog.pop_front();
+    if (m_backlog.size() + m_unacknowledged.size() > kBacklogFrames) {
+        if (!m_unacknowledged.empty())
+            m_unacknowledged.pop_front();
+        else
+            m_backlog.pop_front();
         ++m_backlogDropped;
     }
     sendBacklog();
@@ -286,9 +305,12 @@ void SessionPublisher::sendBacklog()
     // Under "unknown" an observer of the aircraft would never see them.
     if (!m_client || (!m_aircraftSet && m_aircraft == BrokerTopics::kUnknownAircraft))
         return;
+    int messageId = 0;
     while (!m_backlog.empty() && m_client->publish(BrokerTopics::framesTopic(m_aircraft), m_backlog.front().toJson(),
-                                                   BrokerTopics::kFramesQos, false))
+                                                   BrokerTopics::kFramesQos, false, &messageId)) {
+        m_unacknowledged.emplace_back(messageId, std::move(m_backlog.front()));
         m_backlog.pop_front();
+    }
     if (m_backlogDropped && m_backlog.empty()) {
         publishEvent(QStringLiteral("warning"),
                      QStringLiteral("%1 frames were not published: the broker was away longer than %2 frames")

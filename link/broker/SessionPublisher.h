@@ -81,6 +81,7 @@ private:
     void stateChanged(LinkState state);
     void flushPendingFrame();
     void sendBacklog();
+    void acknowledged(int messageId);
     // The retained reports under the aircraft's topics, then the frames waiting.
     void publishEverything();
     void publishFrame(const FrameReport& report);
@@ -109,8 +110,12 @@ private:
     std::optional<FrameReport> m_pendingFrame;
     // Frames not yet on the broker, oldest first: while the aircraft, whose
     // topic they go under, is not known yet, and while the client is away.
-    // Bounded: a long outage keeps the newest kBacklogFrames.
+    // Then, once published, until the broker acknowledges them: a session
+    // that ends first (a broker lost, a reconnection for a new will) loses
+    // what it had not acknowledged, which goes again on the next one.
+    // Bounded together: a long outage keeps the newest kBacklogFrames.
     std::deque<FrameReport> m_backlog;
+    std::deque<std::pair<int, FrameReport>> m_unacknowledged;  // by message ID
     quint64 m_backlogDropped = 0;
     QTimer* m_pendingTimer = nullptr;
 
