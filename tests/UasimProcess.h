@@ -1,5 +1,9 @@
-// The built `uasim`, run as a user runs it: `uasim --udp PORT --verbose`
-// plus the test's options, collecting what it says on standard error.
+// The built `uasim`, run as a user runs it, collecting what it says on
+// standard error: with one link, `uasim --udp PORT --verbose` plus the
+// test's options; or with two stations (kTwoStations), GB_30226 in control
+// and GB_41251 its backup, each on a free loopback port and under its key
+// file when given: `uasim --station GB_30226,PORT[,KEY] --station
+// GB_41251,PORT[,KEY] --verbose` plus the test's options.
 #pragma once
 
 #include <QByteArray>
@@ -7,20 +11,32 @@
 #include <QStringList>
 #include <QUdpSocket>
 
+#include <array>
 #include <csignal>
 
 namespace rcm::test {
+
+struct TwoStations {};
+inline constexpr TwoStations kTwoStations;
 
 class UasimProcess {
 public:
     explicit UasimProcess(const QStringList& extraArguments = {}) : m_port(freePort())
     {
-        m_process.setProgram(QStringLiteral(RCM_BIN_DIR "/uasim"));
-        m_process.setArguments(
-            QStringList{QStringLiteral("--udp"), QString::number(m_port), QStringLiteral("--verbose")} +
-            extraArguments);
-        QObject::connect(&m_process, &QProcess::readyReadStandardError,
-                         [this] { m_stderr += m_process.readAllStandardError(); });
+        prepare({QStringLiteral("--udp"), QString::number(m_port)}, extraArguments);
+    }
+    UasimProcess(TwoStations, const QStringList& extraArguments = {}, const QStringList& keys = {})
+        : ports{freePort(), freePort()}
+    {
+        QStringList stations;
+        const char* ids[] = {"GB_30226", "GB_41251"};
+        for (int i = 0; i < 2; ++i) {
+            QString value = QStringLiteral("%1,%2").arg(QLatin1String(ids[i])).arg(ports[i]);
+            if (!keys.value(i).isEmpty())
+                value += QLatin1Char(',') + keys[i];
+            stations << QStringLiteral("--station") << value;
+        }
+        prepare(stations, extraArguments);
     }
     ~UasimProcess()
     {
@@ -37,19 +53,25 @@ public:
         m_process.start();
         return m_process.waitForStarted();
     }
-    // uasim says so once its socket is bound: the first command can go.
-    bool listening() const { return m_stderr.contains("on udp"); }
-    // SIGTERM: uasim stops, printing its counts, and exits.
+    // uasim says so once its sockets are bound: the first command can go.
+    bool listening() const { return m_stderr.contains("on udp") || m_stderr.contains("stations: "); }
+    // SIGTERM: uasim stops, printing its counts, and exits; true when it
+    // did, of its own accord, with status 0.
     bool stop(int timeoutMs)
     {
         ::kill(static_cast<pid_t>(m_process.processId()), SIGTERM);
         const bool done = m_process.waitForFinished(timeoutMs);
         m_stderr += m_process.readAllStandardError();
-        return done;
+        return done && m_process.exitStatus() == QProcess::NormalExit && m_process.exitCode() == 0;
     }
+    // The one link's port (none with stations).
     quint16 port() const { return m_port; }
     QProcess& process() { return m_process; }
     const QByteArray& stderrText() const { return m_stderr; }
+    bool said(const char* text) const { return m_stderr.contains(text); }
+
+    // With kTwoStations: GB_30226's channel, then GB_41251's.
+    std::array<quint16, 2> ports{};
 
 private:
     static quint16 freePort()
@@ -58,8 +80,15 @@ private:
         probe.bind(QHostAddress::LocalHost, 0);
         return probe.localPort();
     }
+    void prepare(const QStringList& link, const QStringList& extraArguments)
+    {
+        m_process.setProgram(QStringLiteral(RCM_BIN_DIR "/uasim"));
+        m_process.setArguments(link + QStringList{QStringLiteral("--verbose")} + extraArguments);
+        QObject::connect(&m_process, &QProcess::readyReadStandardError,
+                         [this] { m_stderr += m_process.readAllStandardError(); });
+    }
 
-    quint16 m_port;
+    quint16 m_port = 0;
     QProcess m_process;
     QByteArray m_stderr;
 };

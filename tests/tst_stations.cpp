@@ -20,6 +20,7 @@
 #include "link/session/LinkController.h"
 #include "link/session/StationControl.h"
 #include "MosquittoProcess.h"
+#include "UasimProcess.h"
 
 #include <QDir>
 #include <QDirIterator>
@@ -29,7 +30,6 @@
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QTest>
-#include <QUdpSocket>
 
 #include <csignal>
 #include <set>
@@ -50,13 +50,6 @@ const StationId kPrimary{44, 30226};
 const StationId kBackup{44, 41251};
 const QString kPrimaryText = QStringLiteral("GB_30226");
 const QString kBackupText = QStringLiteral("GB_41251");
-
-quint16 freeUdpPort()
-{
-    QUdpSocket probe;
-    probe.bind(QHostAddress::LocalHost, 0);
-    return probe.localPort();
-}
 
 QString makeKey(const QTemporaryDir& dir, const QString& name)
 {
@@ -120,42 +113,13 @@ struct Station {
     QList<Message> statuses;
 };
 
-// The uasim of the test: one channel and one key per station.
-class Aircraft {
-public:
-    Aircraft(const QString& primaryKey, const QString& backupKey, int failoverSeconds = kFailoverSeconds)
-        : m_primaryPort(freeUdpPort()), m_backupPort(freeUdpPort())
-    {
-        m_process.setProgram(QStringLiteral(RCM_BIN_DIR "/uasim"));
-        m_process.setArguments({QStringLiteral("--station"),
-                                QStringLiteral("%1,%2,%3").arg(kPrimaryText).arg(m_primaryPort).arg(primaryKey),
-                                QStringLiteral("--station"),
-                                QStringLiteral("%1,%2,%3").arg(kBackupText).arg(m_backupPort).arg(backupKey),
-                                QStringLiteral("--failover"), QString::number(failoverSeconds),
-                                QStringLiteral("--ua-id"), QStringLiteral("44:133"), QStringLiteral("--verbose")});
-        QObject::connect(&m_process, &QProcess::readyReadStandardError,
-                         [this] { m_stderr += m_process.readAllStandardError(); });
-    }
-    ~Aircraft()
-    {
-        m_process.kill();
-        m_process.waitForFinished();
-    }
-    bool start()
-    {
-        m_process.start();
-        return m_process.waitForStarted();
-    }
-    quint16 primaryPort() const { return m_primaryPort; }
-    quint16 backupPort() const { return m_backupPort; }
-    const QByteArray& said() const { return m_stderr; }
-
-private:
-    quint16 m_primaryPort;
-    quint16 m_backupPort;
-    QProcess m_process;
-    QByteArray m_stderr;
-};
+// The options of the test's uasim (test::kTwoStations, a key each): the
+// failover time, and the aircraft GB_133.
+QStringList aircraftOptions(int failoverSeconds = kFailoverSeconds)
+{
+    return {QStringLiteral("--failover"), QString::number(failoverSeconds), QStringLiteral("--ua-id"),
+            QStringLiteral("44:133")};
+}
 
 // The primary console: gcs as an operator starts it, offscreen, with its
 // settings and frame logs in `home`.
@@ -229,7 +193,7 @@ private slots:
         const QString backupKey = makeKey(dir, QStringLiteral("backup.key"));
         test::MosquittoProcess broker;
         QVERIFY(broker.start());
-        Aircraft aircraft(primaryKey, backupKey);
+        test::UasimProcess aircraft(test::kTwoStations, aircraftOptions(), {primaryKey, backupKey});
         QVERIFY(aircraft.start());
 
         BrokerSettings brokerSettings;
@@ -245,13 +209,13 @@ private slots:
         // Frames are not retained: the observer is there before the first one.
         QTRY_VERIFY_WITH_TIMEOUT(observer.isConnected(), kPatience);
 
-        PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.primaryPort(), primaryKey,
+        PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.ports[0], primaryKey,
                                broker.port());
         QVERIFY(primary.start());
 
         // The backup commands the gear up all along; the primary, at rest, down.
         Station backup(dir.filePath(QStringLiteral("backup-logs")));
-        backup.start(kBackup, gearCommand(code::kRetracted), aircraft.backupPort(), backupKey);
+        backup.start(kBackup, gearCommand(code::kRetracted), aircraft.ports[1], backupKey);
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
         QCOMPARE(backup.control()->reportedControl(), std::optional<StationId>(kPrimary));
         QCOMPARE(backup.control()->reportedBackup(), std::optional<StationId>(kBackup));
@@ -298,7 +262,7 @@ private slots:
         QCOMPARE(alarms.at(0).at(0).toString(),
                  QStringLiteral("The aircraft gave control to this station (GB_30226 was in control): check what it "
                                 "reports, then Take control to command it"));
-        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said().contains("failover"), kPatience);
+        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("failover"), kPatience);
 
         // Given control is not taken: the gear stays down until the operator takes it.
         const qsizetype offered = backup.statuses.size();
@@ -322,12 +286,12 @@ private slots:
         const QString primaryKey = makeKey(dir, QStringLiteral("primary.key"));
         const QString backupKey = makeKey(dir, QStringLiteral("backup.key"));
         // Long enough that the offer does not lapse while the test looks at it.
-        Aircraft aircraft(primaryKey, backupKey, 30);
+        test::UasimProcess aircraft(test::kTwoStations, aircraftOptions(30), {primaryKey, backupKey});
         QVERIFY(aircraft.start());
         Station primary(dir.filePath(QStringLiteral("primary-logs")));
-        primary.start(kPrimary, gearCommand(code::kOut), aircraft.primaryPort(), primaryKey);
+        primary.start(kPrimary, gearCommand(code::kOut), aircraft.ports[0], primaryKey);
         Station backup(dir.filePath(QStringLiteral("backup-logs")));
-        backup.start(kBackup, gearCommand(code::kRetracted), aircraft.backupPort(), backupKey);
+        backup.start(kBackup, gearCommand(code::kRetracted), aircraft.ports[1], backupKey);
         QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::InControl, kPatience);
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
         QVERIFY(primary.control()->canHandOver());
@@ -357,12 +321,12 @@ private slots:
         QTemporaryDir dir;
         const QString primaryKey = makeKey(dir, QStringLiteral("primary.key"));
         const QString backupKey = makeKey(dir, QStringLiteral("backup.key"));
-        Aircraft aircraft(primaryKey, backupKey);
+        test::UasimProcess aircraft(test::kTwoStations, aircraftOptions(), {primaryKey, backupKey});
         QVERIFY(aircraft.start());
         Station primary(dir.filePath(QStringLiteral("primary-logs")));
-        primary.start(kPrimary, gearCommand(code::kOut), aircraft.primaryPort(), primaryKey);
+        primary.start(kPrimary, gearCommand(code::kOut), aircraft.ports[0], primaryKey);
         Station backup(dir.filePath(QStringLiteral("backup-logs")));
-        backup.start(kBackup, gearCommand(code::kOut), aircraft.backupPort(), backupKey);
+        backup.start(kBackup, gearCommand(code::kOut), aircraft.ports[1], backupKey);
         QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::InControl, kPatience);
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
 
@@ -372,9 +336,9 @@ private slots:
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Offered, kFailoverBoundMs);
         QCOMPARE(backupAlarms.count(), 1);
         backup.control()->takeControl();
-        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said().contains("taken up: GB_41251"), kPatience);
+        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_41251"), kPatience);
 
-        primary.connectTo(aircraft.primaryPort(), primaryKey);
+        primary.connectTo(aircraft.ports[0], primaryKey);
         QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Backup, kPatience);
         QCOMPARE(primaryAlarms.count(), 1);
         QCOMPARE(primaryAlarms.at(0).at(0).toString(),

@@ -139,70 +139,6 @@ struct Flight {
 constexpr StationId kGb30226{44, 30226};
 constexpr StationId kGb41251{44, 41251};
 
-quint16 freeUdpPort()
-{
-    QUdpSocket probe;
-    probe.bind(QHostAddress::LocalHost, 0);
-    return probe.localPort();
-}
-
-// The built uasim with two stations, GB_30226 in control and GB_41251 its
-// backup, each on a free loopback port and with its key file when given:
-// `uasim --station GB_30226,PORT[,KEY] --station GB_41251,PORT[,KEY] --verbose`
-// plus the test's options.
-class TwoStationUasim {
-public:
-    explicit TwoStationUasim(const QStringList& extraArguments = {}, const QStringList& keys = {QString(), QString()})
-        : ports{freeUdpPort(), freeUdpPort()}
-    {
-        const auto station = [&](const char* id, int i) {
-            QString value = QStringLiteral("%1,%2").arg(QLatin1String(id)).arg(ports[i]);
-            if (!keys.value(i).isEmpty())
-                value += QLatin1Char(',') + keys[i];
-            return value;
-        };
-        m_process.setProgram(QStringLiteral(RCM_BIN_DIR "/uasim"));
-        m_process.setArguments(QStringList{QStringLiteral("--station"), station("GB_30226", 0),
-                                           QStringLiteral("--station"), station("GB_41251", 1),
-                                           QStringLiteral("--verbose")} +
-                               extraArguments);
-        QObject::connect(&m_process, &QProcess::readyReadStandardError,
-                         [this] { m_stderr += m_process.readAllStandardError(); });
-    }
-    ~TwoStationUasim()
-    {
-        if (m_process.state() != QProcess::NotRunning) {
-            m_process.kill();
-            m_process.waitForFinished();
-        }
-    }
-    TwoStationUasim(const TwoStationUasim&) = delete;
-    TwoStationUasim& operator=(const TwoStationUasim&) = delete;
-
-    bool start()
-    {
-        m_process.start();
-        return m_process.waitForStarted();
-    }
-    // Said once every channel is bound.
-    bool listening() const { return m_stderr.contains("stations: "); }
-    bool stop(int timeoutMs)
-    {
-        ::kill(static_cast<pid_t>(m_process.processId()), SIGTERM);
-        const bool done = m_process.waitForFinished(timeoutMs);
-        m_stderr += m_process.readAllStandardError();
-        return done && m_process.exitStatus() == QProcess::NormalExit && m_process.exitCode() == 0;
-    }
-    const QByteArray& stderrText() const { return m_stderr; }
-    bool said(const char* line) const { return m_stderr.contains(line); }
-
-    quint16 ports[2];
-
-private:
-    QProcess m_process;
-    QByteArray m_stderr;
-};
-
 // A ground station's console, as far as the aircraft can tell: a worker
 // over its own UDP socket to one of uasim's channels, sending once a second
 // on the system clock, under `key` when given, with a flight plan once one
@@ -739,7 +675,7 @@ private slots:
     void actsOnlyOnTheStationInControl()
     {
         QTemporaryDir dir;
-        TwoStationUasim uasim({QStringLiteral("--log"), dir.filePath(QStringLiteral("uasim.pcapng"))});
+        test::UasimProcess uasim(test::kTwoStations, {QStringLiteral("--log"), dir.filePath(QStringLiteral("uasim.pcapng"))});
         QVERIFY(uasim.start());
         QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
         QVERIFY2(uasim.said("uasim: stations: GB_30226 in control (not yet taken up), GB_41251 backup; failover after "
@@ -816,7 +752,7 @@ private slots:
 
     void handsOverToTheBackup()
     {
-        TwoStationUasim uasim;
+        test::UasimProcess uasim(test::kTwoStations);
         QVERIFY(uasim.start());
         QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
         StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
@@ -860,7 +796,7 @@ private slots:
 
     void failsOverWhenTheStationInControlFallsSilent()
     {
-        TwoStationUasim uasim({QStringLiteral("--failover"), QStringLiteral("2")});
+        test::UasimProcess uasim(test::kTwoStations, {QStringLiteral("--failover"), QStringLiteral("2")});
         QVERIFY(uasim.start());
         QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
         QVERIFY(uasim.said("; failover after 2 s\n"));
@@ -890,7 +826,7 @@ private slots:
     {
         QTemporaryDir dir;
         const QString keyA = makeKey(dir, "a.key"), keyB = makeKey(dir, "b.key");
-        TwoStationUasim uasim({}, {keyA, keyB});
+        test::UasimProcess uasim(test::kTwoStations, {}, {keyA, keyB});
         QVERIFY(uasim.start());
         QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
         QVERIFY(uasim.said("GB_30226: secure link: encrypted and authenticated, key fingerprint "));
