@@ -67,6 +67,8 @@
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QTextBlock>
+#include <QTextDocument>
 
 #include <cmath>
 #include <set>
@@ -426,8 +428,22 @@ void TestMainWindow::previewMarksChangedItems()
     QVERIFY(command.setNumber(UnitRef{rcm::UnitKind::Flaps, 0}, rcm::ItemId::F_rudder_set, -12));
     preview.setCommand(command.message());
     QCOMPARE(preview.changedItems(), 2);
+    // The lines marked on screen are the changed items, and only they.
+    auto* items = preview.findChild<QTextEdit*>(QStringLiteral("previewItems"));
+    QVERIFY(items);
+    const auto marked = [items] {
+        QStringList lines;
+        for (QTextBlock b = items->document()->begin(); b.isValid(); b = b.next())
+            if (b.begin().fragment().charFormat().background().color() == QColor(0xff, 0xe0, 0x8a))
+                lines << b.text().trimmed();
+        return lines;
+    };
+    QCOMPARE(marked(), QStringList({QStringLiteral("eng_prop_pitch 200"), QStringLiteral("F_rudder_set -12")}));
+    QCOMPARE(items->document()->blockCount(), preview.text().count(QLatin1Char('\n')) + 1);
     preview.frameSent(42);
     QCOMPARE(preview.changedItems(), 0);
+    QCOMPARE(marked(), QStringList());
+    QVERIFY(preview.text().contains(QStringLiteral("ID_msg 43")));
 
     preview.setDatagram(false);
     QVERIFY(preview.hex().contains(QStringLiteral("Preamble (90 bytes)")));

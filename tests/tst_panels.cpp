@@ -27,10 +27,15 @@
 #include "ui/panels/ReportedLabel.h"
 #include "ui/panels/ReportedState.h"
 #include "ui/panels/StationEditor.h"
+#include "ui/panels/SteadyLabel.h"
 #include "ui/panels/UnitCard.h"
 
 #include <QAbstractButton>
 #include <QAbstractItemView>
+#include <QAction>
+#include <QClipboard>
+#include <QGuiApplication>
+#include <QHBoxLayout>
 #include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
@@ -701,6 +706,75 @@ private slots:
         QCOMPARE(*m_reported.value({UnitKind::Radio, 0}, Tx_OP_power), Value::of(0));
         QCOMPARE(m_reported.mismatchFrames({UnitKind::Radio, 2}, Tx_OP_power), 1);
         QCOMPARE(m_reported.mismatchFrames({UnitKind::Radio, 0}, Tx_OP_power), 0);
+    }
+
+    // Not selectable with the mouse (that costs a rich-text layout per new
+    // value): its context menu copies it.
+    void reportedValueCopiedFromItsMenu()
+    {
+        auto panel = shown<FlapsPanel>();
+        auto* rudder = child<ReportedLabel>(panel.get(), QStringLiteral("reported:F_rudder_set"));
+        QVERIFY(rudder);
+        Message status = m_command.message();
+        status.flaps.set(F_rudder_set, -7);
+        m_reported.onStatus(status);
+        QCOMPARE(rudder->text(), QStringLiteral("-7\u00b0"));
+        QCOMPARE(rudder->contextMenuPolicy(), Qt::ActionsContextMenu);
+        QCOMPARE(rudder->actions().size(), 1);
+        QCOMPARE(rudder->actions().at(0)->text(), QStringLiteral("Copy"));
+        QGuiApplication::clipboard()->clear();
+        rudder->actions().at(0)->trigger();
+        QCOMPARE(QGuiApplication::clipboard()->text(), QStringLiteral("-7\u00b0"));
+    }
+
+    // A new text that fits repaints the label alone: its layout is not asked
+    // for room and its neighbour stays put. A longer one grows it, once, and
+    // it is never left clipped.
+    void steadyLabelKeepsItsSize()
+    {
+        struct LayoutRequests : QObject {
+            int count = 0;
+            bool eventFilter(QObject*, QEvent* event) override
+            {
+                count += event->type() == QEvent::LayoutRequest;
+                return false;
+            }
+        } requests;
+        QWidget row;
+        auto* layout = new QHBoxLayout(&row);
+        auto* figure = new SteadyLabel(QStringLiteral("1,234"));
+        auto* neighbour = new QLabel(QStringLiteral("frames"));
+        layout->addWidget(figure);
+        layout->addWidget(neighbour);
+        layout->addStretch(1);
+        row.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&row));
+        QTRY_COMPARE(figure->minimumSize(), figure->maximumSize());  // fixed once painted
+        QTRY_COMPARE(figure->size(), figure->minimumSize());
+        const QSize fitted = figure->size();
+        QVERIFY(fitted.width() >= figure->sizeHint().width());
+        const int neighbourX = neighbour->x();
+        row.installEventFilter(&requests);
+
+        figure->setText(QStringLiteral("7"));
+        QCoreApplication::processEvents();
+        QCoreApplication::processEvents();
+        QCOMPARE(requests.count, 0);
+        QCOMPARE(figure->size(), fitted);
+        QCOMPARE(neighbour->x(), neighbourX);
+
+        figure->setText(QStringLiteral("123,456,789"));
+        QTRY_VERIFY(figure->width() >= figure->sizeHint().width());
+        QVERIFY(figure->width() > fitted.width());
+        QTRY_VERIFY(neighbour->x() > neighbourX);
+        QVERIFY(requests.count > 0);
+
+        // A new font is fitted anew: to the text it shows now.
+        figure->setText(QStringLiteral("7"));
+        QFont big = figure->font();
+        big.setPointSizeF(big.pointSizeF() * 2);
+        figure->setFont(big);
+        QTRY_COMPARE(figure->size(), figure->sizeHint().expandedTo(figure->minimumSizeHint()));
     }
 
     void mismatchHighlightedOnlyWhenItPersists()

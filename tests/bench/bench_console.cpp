@@ -258,13 +258,14 @@ public:
         // Events of other threads (the link's) are theirs.
         if (QThread::currentThread() != thread())
             return QApplication::notify(receiver, event);
+        if (m_on && (event->type() == QEvent::LayoutRequest || event->type() == QEvent::Move || event->type() == QEvent::Paint ||
+                     event->type() == QEvent::Resize))
+            ++m_geometry[QStringLiteral("%1 %2").arg(event->type()).arg(describe(receiver))];
         if (m_depth++ > 0 || !m_on) {
             // Inside a repaint: which widgets it painted, and for how long.
             const bool paint = m_on && event->type() == QEvent::Paint;
             const qint64 paintStart = paint ? threadCpuNanos() : 0;
-            const QString painted = paint ? QStringLiteral("%1 %2").arg(receiver->metaObject()->className(),
-                                                                          receiver->objectName())
-                                          : QString();
+            const QString painted = paint ? describe(receiver) : QString();
             const bool handled = QApplication::notify(receiver, event);
             if (paint)
                 m_paints[painted] += threadCpuNanos() - paintStart;
@@ -311,6 +312,34 @@ public:
         m_longestWhat.clear();
         m_slow.clear();
         m_spikes.clear();
+        m_geometry.clear();
+        m_paints.clear();
+    }
+    QStringList geometry() const
+    {
+        std::vector<std::pair<int, QString>> v;
+        for (auto it = m_geometry.cbegin(); it != m_geometry.cend(); ++it)
+            v.emplace_back(it.value(), it.key());
+        std::sort(v.rbegin(), v.rend());
+        QStringList out;
+        for (std::size_t i = 0; i < std::min<std::size_t>(90, v.size()); ++i)
+            out << QStringLiteral("%1 x %2").arg(v[i].first).arg(v[i].second);
+        return out;
+    }
+    // Paints sent outside the event loop (QWidget::repaint()) are timed as
+    // if inside an event, adding up by widget until the next restart().
+    void timePaintsOutsideEvents(bool on) { m_depth += on ? 1 : -1; }
+    // Paint time by widget, the costliest first.
+    QStringList paintTimes(int divisor) const
+    {
+        std::vector<std::pair<qint64, QString>> paints;
+        for (auto it = m_paints.cbegin(); it != m_paints.cend(); ++it)
+            paints.emplace_back(it.value(), it.key());
+        std::sort(paints.rbegin(), paints.rend());
+        QStringList out;
+        for (const auto& [nanos, what] : paints)
+            out << QStringLiteral("%1 ms %2").arg(double(nanos) / 1e6 / divisor, 0, 'f', 3).arg(what);
+        return out;
     }
     // Events over kSpikeNanos, with the widgets they painted.
     QStringList spikes() const { return m_spikes; }
@@ -330,6 +359,14 @@ public:
     }
 
 private:
+    // A scroll area's viewport by the view it is part of.
+    static QString describe(const QObject* o)
+    {
+        const QString self = QStringLiteral("%1 %2").arg(o->metaObject()->className(), o->objectName());
+        if (o->objectName() != QLatin1String("qt_scrollarea_viewport") || !o->parent())
+            return self;
+        return self + QStringLiteral(" of ") + describe(o->parent());
+    }
     static qint64 threadCpuNanos()
     {
         timespec t{};
@@ -343,6 +380,7 @@ private:
     qint64 m_longest = 0;
     QString m_longestWhat;
     QMap<QString, std::pair<int, qint64>> m_slow;  // events over kSlowEventNanos: how many, the longest
+    QMap<QString, int> m_geometry;
     QMap<QString, qint64> m_paints;                // paint time by widget, in the event being handled
     QStringList m_spikes;
 };
@@ -374,12 +412,17 @@ int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int sec
                     .arg(probe->report(), app.report()));
             for (const QString& spike : app.spikes())
                 say(QStringLiteral("  event over 8 ms: ") + spike);
+            for (const QString& g : app.geometry())
+                if (!g.contains(QLatin1String(" x 12 ")))
+                    say(QStringLiteral("  geometry: ") + g);
             probe = std::make_unique<StallProbe>();
             app.restart();
             QTimer::singleShot(seconds * 1000, &app, [&] {
                 say(QStringLiteral("%1 s of replay at 10x: %2; %3").arg(seconds).arg(probe->report(), app.report()));
                 for (const QString& spike : app.spikes())
                     say(QStringLiteral("  event over 8 ms: ") + spike);
+                for (const QString& g : app.geometry())
+                    say(QStringLiteral("  geometry: ") + g);
                 QCoreApplication::quit();
             });
         });
@@ -389,6 +432,34 @@ int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int sec
     return app.exec();
 }
 
+// The whole window painted again `times` times, as after a change that
+// touches every panel (a replay starting clears every reported value): the
+// longest a full repaint holds the GUI thread, and where its time goes.
+int reportRepaint(ProbedApplication& app, MainWindow& window, int times)
+{
+    QCoreApplication::processEvents();
+    std::vector<double> millis;
+    app.restart();
+    app.timePaintsOutsideEvents(true);
+    for (int i = 0; i < times; ++i) {
+        QElapsedTimer timer;
+        timer.start();
+        window.repaint();
+        millis.push_back(double(timer.nsecsElapsed()) / 1e6);
+    }
+    app.timePaintsOutsideEvents(false);
+    const QStringList paints = app.paintTimes(times);
+    for (qsizetype i = 0; i < std::min<qsizetype>(paints.size(), 30); ++i)
+        say(QStringLiteral("  a repaint: ") + paints[i]);
+    say(QStringLiteral("  %1 widgets painted").arg(paints.size()));
+    std::sort(millis.begin(), millis.end());
+    say(QStringLiteral("whole window repainted %1 times: median %2 ms, longest %3 ms")
+            .arg(times)
+            .arg(millis[millis.size() / 2], 0, 'f', 2)
+            .arg(millis.back(), 0, 'f', 2));
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char* argv[])
@@ -396,7 +467,8 @@ int main(int argc, char* argv[])
     ProbedApplication app(argc, argv);
     const QStringList args = app.arguments().mid(1);
     const QString mode = args.value(0);
-    if (mode != QLatin1String("startup") && mode != QLatin1String("memory") && mode != QLatin1String("stall")) {
+    if (mode != QLatin1String("startup") && mode != QLatin1String("memory") && mode != QLatin1String("stall") &&
+        mode != QLatin1String("repaint")) {
         say(QStringLiteral("usage: bench_console startup | memory live|records|file [N] | stall [N] [SECONDS]"));
         return kUsageError;
     }
@@ -428,6 +500,8 @@ int main(int argc, char* argv[])
     }
     window.show();
     QCoreApplication::processEvents();
+    if (mode == QLatin1String("repaint"))
+        return reportRepaint(app, window, args.value(1, QStringLiteral("200")).toInt());
     if (mode == QLatin1String("memory"))
         return reportMemory(window, args.value(1), args.value(2, QStringLiteral("172800")).toInt());
     return reportStalls(app, window, args.value(1, QStringLiteral("86400")).toInt(),

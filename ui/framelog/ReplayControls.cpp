@@ -1,5 +1,7 @@
 #include "ui/framelog/ReplayControls.h"
 
+#include "ui/panels/SteadyLabel.h"
+
 #include <QComboBox>
 #include <QDateTime>
 #include <QHBoxLayout>
@@ -32,7 +34,7 @@ ReplayControls::ReplayControls(QWidget* parent)
       m_play(new QToolButton),
       m_speed(new QComboBox),
       m_slider(new QSlider(Qt::Horizontal)),
-      m_time(new QLabel)
+      m_time(new SteadyLabel)
 {
     m_play->setToolTip(tr("Pause or resume the replay (Ctrl+P)"));
     for (double s : {0.25, 0.5, 1.0, 2.0, 5.0, 10.0})

@@ -3,6 +3,7 @@
 #include "ui/overview/LinkQualityHistory.h"
 
 #include <QDateTime>
+#include <QEvent>
 #include <QLocale>
 #include <QPainter>
 
@@ -62,12 +63,33 @@ void LinkQualityPlot::setNow(qint64 utcMicros)
     if (drawn == m_drawn)
         return;
     m_drawn = drawn;
+    m_picture = QPixmap();
     update();
+}
+
+void LinkQualityPlot::changeEvent(QEvent* event)
+{
+    QWidget::changeEvent(event);
+    if (event->type() == QEvent::PaletteChange || event->type() == QEvent::FontChange ||
+        event->type() == QEvent::StyleChange)
+        m_picture = QPixmap();
 }
 
 void LinkQualityPlot::paintEvent(QPaintEvent*)
 {
-    QPainter p(this);
+    const qreal ratio = devicePixelRatioF();
+    if (m_picture.isNull() || m_picture.size() != size() * ratio) {
+        m_picture = QPixmap(size() * ratio);
+        m_picture.setDevicePixelRatio(ratio);
+        m_picture.fill(Qt::transparent);
+        QPainter p(&m_picture);
+        draw(p);
+    }
+    QPainter(this).drawPixmap(0, 0, m_picture);
+}
+
+void LinkQualityPlot::draw(QPainter& p) const
+{
     const QFontMetrics fm = fontMetrics();
     const int line = fm.height();
     const auto& minutes = m_history->minutes();

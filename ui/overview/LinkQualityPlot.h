@@ -9,9 +9,12 @@
 #include "ui/overview/LinkQualityHistory.h"
 
 #include <QColor>
+#include <QPixmap>
 #include <QWidget>
 
 #include <cstddef>
+
+class QPainter;
 
 class LinkQualityPlot : public QWidget {
     Q_OBJECT
@@ -28,7 +31,12 @@ public:
     void setNow(qint64 utcMicros);
 
 protected:
+    // The picture is drawn once into a pixmap and copied from it: the page
+    // around the plot is repainted more often than its picture changes, and
+    // drawing it is a millisecond of the GUI thread, copying it a few
+    // microseconds.
     void paintEvent(QPaintEvent* event) override;
+    void changeEvent(QEvent* event) override;
 
 private:
     // What a picture shows: the minutes change only at the ends.
@@ -40,7 +48,10 @@ private:
         friend bool operator==(const Drawn&, const Drawn&) = default;
     };
 
+    void draw(QPainter& p) const;
+
     const LinkQualityHistory* m_history;
+    QPixmap m_picture;  // null when it is to be drawn again
     qint64 m_now = 0;
     Drawn m_drawn;
 };

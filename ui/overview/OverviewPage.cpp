@@ -5,6 +5,7 @@
 #include "ui/panels/ItemText.h"
 #include "ui/panels/ReportedLabel.h"
 #include "ui/panels/ReportedState.h"
+#include "ui/panels/SteadyLabel.h"
 
 #include <QDateTime>
 #include <QGridLayout>
@@ -145,7 +146,7 @@ QWidget* OverviewPage::buildHealth()
         stack->setContentsMargins(0, 0, 0, 0);
         stack->setSpacing(0);
         auto* caption = new QLabel(f.caption);
-        auto* value = new QLabel;
+        auto* value = new SteadyLabel;
         value->setObjectName(QStringLiteral("figure:") + QLatin1String(f.name));
         value->setFont(big);
         value->setTextFormat(Qt::RichText);
@@ -271,7 +272,7 @@ void OverviewPage::rebuildUnits()
                 for (int field = fields ? 0 : -1; field < fields; ++field) {
                     auto* name = new QLabel(ItemText::label(info.id, field));
                     name->setToolTip(field < 0 ? ItemText::toolTip(info.id) : ItemText::fieldToolTip(info.id, field));
-                    auto* commanded = new QLabel;
+                    auto* commanded = new SteadyLabel;
                     commanded->setObjectName(QStringLiteral("commanded:") + ItemText::name(info.id, field));
                     auto* reported = new ReportedLabel(m_command, m_reported, ref, info.id, field);
                     grid->addWidget(name, row, 0);

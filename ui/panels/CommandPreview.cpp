@@ -10,6 +10,9 @@
 #include <QFontDatabase>
 #include <QHash>
 #include <QLabel>
+#include <QTextBlock>
+#include <QTextCursor>
+#include <QTextDocument>
 #include <QTextEdit>
 #include <QVBoxLayout>
 
@@ -67,11 +70,13 @@ QTextEdit* codeView()
     view->setReadOnly(true);
     view->setLineWrapMode(QTextEdit::NoWrap);
     view->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+    view->setUndoRedoEnabled(false);  // nothing to undo in a read-only view, and each change would be kept
     return view;
 }
 
 // Dark on pale yellow whatever the theme's text colour.
 const QString kMarkStyle = QStringLiteral("background-color:#ffe08a; color:black");
+const QColor kMarkBackground(0xff, 0xe0, 0x8a);
 
 // Lines that are not items (section names): the theme's text colour a third
 // of the way to its background, readable in day and night themes alike.
@@ -81,6 +86,15 @@ QString mutedColour(const QPalette& palette)
     const QColor base = palette.color(QPalette::Base);
     auto mix = [](int a, int b) { return (2 * a + b) / 3; };
     return QColor(mix(text.red(), base.red()), mix(text.green(), base.green()), mix(text.blue(), base.blue())).name();
+}
+
+QTextCharFormat changedFormat()
+{
+    QTextCharFormat format;
+    format.setBackground(kMarkBackground);
+    format.setForeground(QColor(Qt::black));
+    format.setFontWeight(QFont::Bold);
+    return format;
 }
 
 }  // namespace
@@ -177,8 +191,10 @@ void CommandPreview::frameSent(quint32 messageId)
 void CommandPreview::changeEvent(QEvent* event)
 {
     QWidget::changeEvent(event);
-    if (event->type() == QEvent::PaletteChange)
+    if (event->type() == QEvent::PaletteChange) {
+        m_shownLines.clear();  // the section lines' colour follows the theme
         invalidate();
+    }
 }
 
 void CommandPreview::resetSent()
@@ -203,21 +219,14 @@ void CommandPreview::refresh()
         for (const KeyedLine& k : keyedLines(rcm::formatMessage(*before)))
             if (!k.key.isEmpty())
                 previous.insert(k.key, k.line);
-    QString html = QStringLiteral("<pre style=\"margin:0\">");
-    const QString muted = mutedColour(m_text->palette());
+    QList<PreviewLine> lines;
     m_changedItems = 0;
     for (const KeyedLine& k : keyedLines(rcm::formatMessage(next))) {
         const bool changed = before && !k.key.isEmpty() && previous.value(k.key) != k.line;
-        if (changed) {
-            ++m_changedItems;
-            html += QStringLiteral("<span style=\"%1\"><b>%2</b></span>\n").arg(kMarkStyle, k.line.toHtmlEscaped());
-        } else if (k.key.isEmpty()) {
-            html += QStringLiteral("<span style=\"color:%1\">%2</span>\n").arg(muted, k.line.toHtmlEscaped());
-        } else {
-            html += k.line.toHtmlEscaped() + QLatin1Char('\n');
-        }
+        m_changedItems += changed;
+        lines.append({k.line, changed ? LineKind::ChangedItem : k.key.isEmpty() ? LineKind::Section : LineKind::Item});
     }
-    m_text->setHtml(html + QStringLiteral("</pre>"));
+    showLines(lines);
 
     // Bytes.
     rcm::Diagnostics errors;
@@ -246,17 +255,52 @@ void CommandPreview::refresh()
 
     const QString framing =
         m_datagram ? tr("%1-byte UDP datagram").arg(bytes.size()) : tr("%1-byte serial frame").arg(bytes.size());
+    // Not the next ID (the items show it): a wrapped label asks the window's
+    // layouts for room again on every new text, and the ID is new in every
+    // frame, ten times a second at 10x.
     if (!before)
-        m_summary->setText(tr("Next frame: ID_msg %1, %2. No frame sent yet.").arg(m_nextId).arg(framing));
+        m_summary->setText(tr("Next frame: %1. No frame sent yet.").arg(framing));
     else if (m_changedItems == 0)
-        m_summary->setText(
-            tr("Next frame: ID_msg %1, %2. Same command as the last frame sent.").arg(m_nextId).arg(framing));
+        m_summary->setText(tr("Next frame: %1. Same command as the last frame sent.").arg(framing));
     else
         m_summary->setText(
-            tr("Next frame: ID_msg %1, %2. <span style=\"%3\"><b>%4</b></span> since the last frame sent.")
-                .arg(m_nextId)
+            tr("Next frame: %1. <span style=\"%2\"><b>%3</b></span> since the last frame sent.")
                 .arg(framing, kMarkStyle,
                      m_changedItems == 1 ? tr("1 item changed") : tr("%1 items changed").arg(m_changedItems)));
+}
+
+void CommandPreview::showLines(const QList<PreviewLine>& lines)
+{
+    QTextCharFormat section;
+    section.setForeground(QColor(mutedColour(m_text->palette())));
+    const QTextCharFormat changed = changedFormat();
+    const auto format = [&](LineKind kind) {
+        return kind == LineKind::ChangedItem ? changed : kind == LineKind::Section ? section : QTextCharFormat();
+    };
+    QTextDocument* document = m_text->document();
+    const bool anew = lines.size() != m_shownLines.size() || document->blockCount() != lines.size();
+    if (anew)
+        document->clear();
+    QTextCursor cursor(document);
+    cursor.beginEditBlock();
+    if (anew) {
+        for (qsizetype i = 0; i < lines.size(); ++i) {
+            if (i > 0)
+                cursor.insertBlock();
+            cursor.insertText(lines[i].text, format(lines[i].kind));
+        }
+    } else {
+        QTextBlock block = document->begin();
+        for (qsizetype i = 0; i < lines.size(); ++i, block = block.next()) {
+            if (lines[i] == m_shownLines[i])
+                continue;
+            cursor.setPosition(block.position());
+            cursor.setPosition(block.position() + block.length() - 1, QTextCursor::KeepAnchor);
+            cursor.insertText(lines[i].text, format(lines[i].kind));
+        }
+    }
+    cursor.endEditBlock();
+    m_shownLines = lines;
 }
 
 void CommandPreview::refreshHex()

@@ -50,6 +50,18 @@ private:
     void invalidate();
     void refresh();
     void refreshHex();
+    // One line of the items view, as shown.
+    enum class LineKind { Item, ChangedItem, Section };
+    struct PreviewLine {
+        QString text;
+        LineKind kind;
+        bool operator==(const PreviewLine&) const = default;
+    };
+    // Rewrites only the lines that differ from those shown (a frame changes
+    // the ID, the time and what is marked: a few of some hundred lines), so
+    // that the view lays out those lines alone; all of them when the lines
+    // are others.
+    void showLines(const QList<PreviewLine>& lines);
     // For the accessors: what they read is up to date whether shown or not.
     void ensureFresh() const;
 
@@ -64,6 +76,7 @@ private:
     QByteArray m_bytes;          // the next frame; empty when it cannot be encoded
     QByteArray m_previousBytes;  // the last frame sent, stamped as the next
     QString m_encodeErrors;      // why the next frame cannot be encoded, as HTML list items
+    QList<PreviewLine> m_shownLines;
     QLabel* m_summary;
     QTabWidget* m_tabs;
     QTextEdit* m_text;

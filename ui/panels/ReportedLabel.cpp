@@ -4,6 +4,10 @@
 #include "ui/panels/ItemText.h"
 #include "ui/panels/ReportedState.h"
 
+#include <QAction>
+#include <QClipboard>
+#include <QGuiApplication>
+
 namespace {
 
 const QString kNothing = QStringLiteral("\u2014");  // an em dash: nothing reported yet
@@ -21,12 +25,19 @@ const QString kStaleMismatchStyle =
 
 ReportedLabel::ReportedLabel(const CommandState* command, const ReportedState* reported, UnitRef ref, rcm::ItemId id,
                              int field, QWidget* parent)
-    : QLabel(parent), m_command(command), m_reported(reported), m_ref(ref), m_id(id), m_field(field)
+    : SteadyLabel(parent), m_command(command), m_reported(reported), m_ref(ref), m_id(id), m_field(field)
 {
     setObjectName(QStringLiteral("reported:") + ItemText::name(id, field));
     setAccessibleName(tr("Reported %1").arg(ItemText::label(id, field)));
     setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("RETRACTED")));
-    setTextInteractionFlags(Qt::TextSelectableByMouse);
+    // Copied from its context menu rather than selected with the mouse: a
+    // selectable label lays its text out as a rich-text document, about half
+    // a millisecond of the GUI thread per new value, and a status frame can
+    // bring forty new values at once.
+    auto* copy = new QAction(tr("Copy"), this);
+    connect(copy, &QAction::triggered, this, [this] { QGuiApplication::clipboard()->setText(text()); });
+    addAction(copy);
+    setContextMenuPolicy(Qt::ActionsContextMenu);
     setProperty("mismatch", false);
     setProperty("stale", false);
     refresh();

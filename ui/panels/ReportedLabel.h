@@ -9,14 +9,13 @@
 #pragma once
 
 #include "codec/message/ItemTable.h"
+#include "ui/panels/SteadyLabel.h"
 #include "ui/panels/UnitRef.h"
-
-#include <QLabel>
 
 class CommandState;
 class ReportedState;
 
-class ReportedLabel : public QLabel {
+class ReportedLabel : public SteadyLabel {
     Q_OBJECT
 
 public:

@@ -1,6 +1,7 @@
 #include "ui/window/StatusBarWidget.h"
 
 #include "codec/receive/Refusal.h"
+#include "ui/panels/SteadyLabel.h"
 
 #include <QDateTime>
 #include <QHBoxLayout>
@@ -14,7 +15,7 @@ namespace {
 
 QLabel* counter(const QString& toolTip)
 {
-    auto* label = new QLabel;
+    auto* label = new SteadyLabel;
     label->setToolTip(toolTip);
     label->setTextFormat(Qt::RichText);
     return label;
@@ -37,7 +38,7 @@ QFrame* separator()
 
 StatusBarWidget::StatusBarWidget(QWidget* parent)
     : QWidget(parent),
-      m_state(new QLabel),
+      m_state(new SteadyLabel),
       m_sent(counter(tr("Frames handed to the link since it started"))),
       m_received(counter(tr("Good frames received from the aircraft"))),
       m_corrected(counter(tr("Bytes Reed-Solomon corrected in the frames received (BLOCK 1 + BLOCK 2)"))),
