@@ -26,7 +26,7 @@ public:
         prepare({QStringLiteral("--udp"), QString::number(m_port)}, extraArguments);
     }
     UasimProcess(TwoStations, const QStringList& extraArguments = {}, const QStringList& keys = {})
-        : ports{freePort(), freePort()}
+        : ports(twoFreePorts())
     {
         QStringList stations;
         const char* ids[] = {"GB_30226", "GB_41251"};
@@ -79,6 +79,16 @@ private:
         QUdpSocket probe;
         probe.bind(QHostAddress::LocalHost, 0);
         return probe.localPort();
+    }
+    // Both bound at once: one after the other, the second could be given the
+    // port the first has just let go of, and uasim's second station would
+    // then find its port taken.
+    static std::array<quint16, 2> twoFreePorts()
+    {
+        QUdpSocket first, second;
+        first.bind(QHostAddress::LocalHost, 0);
+        second.bind(QHostAddress::LocalHost, 0);
+        return {first.localPort(), second.localPort()};
     }
     void prepare(const QStringList& link, const QStringList& extraArguments)
     {

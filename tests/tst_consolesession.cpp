@@ -268,6 +268,21 @@ void TestConsoleSession::replaysALogIndexedOffTheGuiThread()
     QTRY_COMPARE_WITH_TIMEOUT(session.statistics().framesReceived, quint64(20), kTimeoutMs);
     QCOMPARE(session.statistics().framesSent, quint64(0));
     QVERIFY(!QFileInfo::exists(logDirectory(QStringLiteral("replay"))));
+
+    // What a view builds from the index is built off the GUI thread too,
+    // with the whole index, before replayIndexed().
+    std::atomic<int> recordsSeen = -1;
+    std::atomic<bool> onGuiThread = true;
+    indexed.clear();
+    QObject::connect(&session, &ConsoleSession::replayIndexed, &session,
+                     [&] { QCOMPARE(recordsSeen.load(), 20); });
+    session.openReplay(path, QString(), [&](const FrameLogReader& reader) {
+        recordsSeen = reader.count();
+        onGuiThread = QThread::currentThread() == qApp->thread();
+    });
+    QTRY_COMPARE_WITH_TIMEOUT(indexed.count(), 1, kTimeoutMs);
+    QCOMPARE(recordsSeen.load(), 20);
+    QVERIFY(!onGuiThread);
 }
 
 // A keyed session's log: with its key the replay reads every status frame

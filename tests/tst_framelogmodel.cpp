@@ -11,6 +11,7 @@
 #include "codec/receive/LoggedFrameReading.h"
 #include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLog.h"
+#include "link/framelog/FrameLogReader.h"
 #include "link/session/LinkController.h"
 #include "link/transport/UdpLink.h"
 #include "ui/framelog/FrameLogFilterModel.h"
@@ -23,6 +24,7 @@
 #include <QTableView>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QThreadPool>
 
 #include <map>
 
@@ -145,6 +147,7 @@ class TestFrameLogModel : public QObject {
 private slots:
     void initTestCase();
     void opensTheWholeLog();
+    void showsRowsPreparedElsewhere();
     void textIsMadeOnDemand();
     void appendsAreInsertedOncePerPass();
     void filterCountsByDirectionAndStatus();
@@ -190,6 +193,36 @@ void TestFrameLogModel::opensTheWholeLog()
     QCOMPARE(model.direction(0), FrameDirection::Sent);
     QCOMPARE(model.status(kFrames - 1), kindOf(kFrames - 1).status);
     QCOMPARE(model.utcMicros(kFrames - 1), kT0 + qint64(kFrames - 1) * 500'000);
+}
+
+// Rows built from an index in another thread are the rows showLog() would
+// build; rows built from another index are not taken for this one's.
+void TestFrameLogModel::showsRowsPreparedElsewhere()
+{
+    const auto indexed = [this] {
+        auto reader = std::make_unique<FrameLogReader>();
+        reader->open(m_path);
+        return reader;
+    };
+    FrameLogModel built;
+    built.showLog(indexed(), m_path);
+    std::unique_ptr<FrameLogReader> reader = indexed();
+    std::shared_ptr<FrameLogModel::PreparedRows> rows;
+    QThreadPool::globalInstance()->start([&] { rows = FrameLogModel::prepareRows(*reader); });
+    QVERIFY(QThreadPool::globalInstance()->waitForDone(10000));
+    FrameLogModel prepared;
+    prepared.showLog(std::move(reader), m_path, rows);
+    QCOMPARE(prepared.rowCount(), kFrames);
+    for (int row = 0; row < kFrames; ++row)
+        for (int column = 0; column < FrameLogModel::kColumnCount; ++column)
+            QCOMPARE(prepared.data(prepared.index(row, column)), built.data(built.index(row, column)));
+
+    std::unique_ptr<FrameLogReader> other = indexed();
+    const auto otherRows = FrameLogModel::prepareRows(*other);
+    FrameLogModel mismatched;
+    mismatched.showLog(indexed(), m_path, otherRows);  // built from `other`: built anew
+    QCOMPARE(mismatched.rowCount(), kFrames);
+    QCOMPARE(mismatched.data(mismatched.index(kFrames - 1, 1)), built.data(built.index(kFrames - 1, 1)));
 }
 
 void TestFrameLogModel::textIsMadeOnDemand()

@@ -677,7 +677,7 @@ private slots:
         QTemporaryDir dir;
         test::UasimProcess uasim(test::kTwoStations, {QStringLiteral("--log"), dir.filePath(QStringLiteral("uasim.pcapng"))});
         QVERIFY(uasim.start());
-        QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
+        QTRY_VERIFY2_WITH_TIMEOUT(uasim.listening(), uasim.stderrText().constData(), kPatienceMs);
         QVERIFY2(uasim.said("uasim: stations: GB_30226 in control (not yet taken up), GB_41251 backup; failover after "
                             "5 s\n"),
                  uasim.stderrText().constData());
@@ -754,7 +754,7 @@ private slots:
     {
         test::UasimProcess uasim(test::kTwoStations);
         QVERIFY(uasim.start());
-        QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
+        QTRY_VERIFY2_WITH_TIMEOUT(uasim.listening(), uasim.stderrText().constData(), kPatienceMs);
         StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
         primary.command(kGb30226, kGb41251);
         backup.command(kGb30226, kGb41251);  // the backup, observing
@@ -798,7 +798,7 @@ private slots:
     {
         test::UasimProcess uasim(test::kTwoStations, {QStringLiteral("--failover"), QStringLiteral("2")});
         QVERIFY(uasim.start());
-        QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
+        QTRY_VERIFY2_WITH_TIMEOUT(uasim.listening(), uasim.stderrText().constData(), kPatienceMs);
         QVERIFY(uasim.said("; failover after 2 s\n"));
         StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
         primary.command(kGb30226, kGb41251);
@@ -828,7 +828,7 @@ private slots:
         const QString keyA = makeKey(dir, "a.key"), keyB = makeKey(dir, "b.key");
         test::UasimProcess uasim(test::kTwoStations, {}, {keyA, keyB});
         QVERIFY(uasim.start());
-        QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatienceMs);
+        QTRY_VERIFY2_WITH_TIMEOUT(uasim.listening(), uasim.stderrText().constData(), kPatienceMs);
         QVERIFY(uasim.said("GB_30226: secure link: encrypted and authenticated, key fingerprint "));
         QVERIFY(uasim.said("GB_41251: secure link: encrypted and authenticated, key fingerprint "));
 

@@ -7,6 +7,7 @@
 #include <QDateTime>
 #include <QDir>
 #include <QFileInfo>
+#include <QTimer>
 #include <QtConcurrent/QtConcurrentRun>
 
 // What the off-thread part of starting a link opened, for this thread to
@@ -145,7 +146,8 @@ void ConsoleSession::rehearsalFailed(const QString& reason)
     emit failed(tr("Rehearsal: %1").arg(reason));
 }
 
-void ConsoleSession::openReplay(const QString& path, const QString& keyPath)
+void ConsoleSession::openReplay(const QString& path, const QString& keyPath,
+                                std::function<void(const FrameLogReader&)> alsoOffThread)
 {
     stop();
     m_preparing = Kind::Replay;
@@ -155,7 +157,7 @@ void ConsoleSession::openReplay(const QString& path, const QString& keyPath)
     auto complete = std::make_shared<bool>(false);
     auto opened = std::make_shared<Opened>();
     offThread(
-        [path, keyPath, reader, complete, opened] {
+        [path, keyPath, reader, complete, opened, alsoOffThread = std::move(alsoOffThread)] {
             if (!keyPath.isEmpty()) {
                 opened->key = openKey(keyPath, &opened->keyError, false);
                 if (!opened->key)
@@ -164,6 +166,8 @@ void ConsoleSession::openReplay(const QString& path, const QString& keyPath)
                 opened->logKey = rcm::LogKey::open(QDir::fromNativeSeparators(keyPath).toStdString(), error);
             }
             *complete = (*reader)->open(path);
+            if (alsoOffThread && (*reader)->count() > 0)
+                alsoOffThread(**reader);
         },
         [this, path, reader, complete, opened] {
             if (!opened->keyError.isEmpty()) {
@@ -185,10 +189,11 @@ void ConsoleSession::openReplay(const QString& path, const QString& keyPath)
                 emit warning(tr("The frame log is damaged part-way; replaying what comes before: %1").arg(damage));
             // In a pass of the event loop of its own, so that showing a
             // day's index and starting the link are two short stalls,
-            // not one long one.
-            QMetaObject::invokeMethod(
-                this, [this, path, request = m_request, opened] { startReplay(path, request, opened); },
-                Qt::QueuedConnection);
+            // not one long one. A timer, not a queued call: Qt delivers a
+            // call queued now in the same sweep of posted events as the
+            // repaint of the index, before any input or timer in between.
+            QTimer::singleShot(1, this,
+                               [this, path, request = m_request, opened] { startReplay(path, request, opened); });
         });
 }
 

@@ -96,6 +96,11 @@ public:
     QString frameLogDirectory() const { return m_frameLogDirectory; }
     bool isReplayPaused() const { return m_replayPaused; }
 
+    // openReplay(), and `alsoOffThread` runs with the index in the thread
+    // that built it, before replayIndexed(): what a view builds from a day's
+    // index (its rows) is then not built on the GUI thread either.
+    void openReplay(const QString& path, const QString& keyPath,
+                    std::function<void(const FrameLogReader&)> alsoOffThread);
     // The index of the log opened for replay, for a log view, after
     // replayIndexed(): handed over once, null after that.
     std::unique_ptr<FrameLogReader> takeReplayIndex() { return std::move(m_replayIndex); }
@@ -120,7 +125,7 @@ public slots:
     // Stops the running link, indexes the log off the GUI thread, then plays
     // it; with `keyPath`, a keyed session's log, deciphered with that key
     // (opened off the GUI thread too, its replay state left alone).
-    void openReplay(const QString& path, const QString& keyPath = QString());
+    void openReplay(const QString& path, const QString& keyPath = QString()) { openReplay(path, keyPath, {}); }
     // Stops whatever runs or is being started; uasim too.
     void stop();
 

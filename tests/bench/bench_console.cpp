@@ -8,7 +8,13 @@
 //                                  MODE is live, records or file (see reportMemory)
 //   bench_console stall [N] [S]    the GUI thread's longest stall while a synthetic log
 //                                  of N frames (default 86,400) is opened for replay,
-//                                  then while it replays at 10x for S seconds (default 60)
+//                                  then while it replays at 10x for S seconds (default 60);
+//                                  with BENCH_TRACE=1 in the environment it also lists, for
+//                                  the opening, every GUI event over 0.5 ms and every probe
+//                                  gap over 4 ms in time order, and the layout requests,
+//                                  moves, resizes and paints per widget
+//   bench_console repaint [N]      the whole window repainted N times (default 200): the
+//                                  median and longest, and the paint time per widget
 #include "codec/message/Airframe.h"
 #include "codec/message/DigitPairs.h"
 #include "codec/message/MessageEncoder.h"
@@ -18,6 +24,7 @@
 
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QEventLoop>
 #include <QFile>
 #include <QMap>
 #include <QTemporaryDir>
@@ -210,6 +217,10 @@ public:
             const qint64 now = m_clock.nsecsElapsed();
             if (m_last >= 0) {
                 m_gaps.push_back(now - m_last);
+                if (now - m_last > 4'000'000)
+                    m_longGaps << QStringLiteral("%1 ms: probe gap of %2 ms")
+                                      .arg(double(m_last) / 1e6, 0, 'f', 2)
+                                      .arg(double(now - m_last) / 1e6, 0, 'f', 2);
                 if (now - m_last > m_longest) {
                     m_longest = now - m_last;
                     m_longestAt = m_last;
@@ -237,7 +248,10 @@ public:
             .arg(over);
     }
 
+    QStringList longGaps() const { return m_longGaps; }
+
 private:
+    QStringList m_longGaps;
     QTimer m_timer;
     QElapsedTimer m_clock;
     qint64 m_last = -1;
@@ -283,6 +297,11 @@ public:
             m_longest = spent;
             m_longestWhat = what;
         }
+        if (m_trace && spent > 500'000)
+            m_traced << QStringLiteral("%1 ms: %2 for %3 ms")
+                            .arg(double(m_clock.nsecsElapsed()) / 1e6, 0, 'f', 2)
+                            .arg(what)
+                            .arg(double(spent) / 1e6, 0, 'f', 2);
         if (spent > kSpikeNanos) {
             // What a spike painted: the costliest widgets first.
             std::vector<std::pair<qint64, QString>> paints;
@@ -290,7 +309,7 @@ public:
                 paints.emplace_back(it.value(), it.key());
             std::sort(paints.rbegin(), paints.rend());
             QStringList parts;
-            for (std::size_t i = 0; i < std::min<std::size_t>(6, paints.size()); ++i)
+            for (std::size_t i = 0; i < std::min<std::size_t>(qEnvironmentVariableIsSet("BENCH_TRACE") ? 40 : 6, paints.size()); ++i)
                 parts << QStringLiteral("%1 %2 ms").arg(paints[i].second).arg(double(paints[i].first) / 1e6, 0, 'f', 2);
             m_spikes << QStringLiteral("%1 ms, %2, %3 widgets painted: %4")
                             .arg(double(spent) / 1e6, 0, 'f', 2)
@@ -341,6 +360,13 @@ public:
             out << QStringLiteral("%1 ms %2").arg(double(nanos) / 1e6 / divisor, 0, 'f', 3).arg(what);
         return out;
     }
+    // Every event over half a millisecond, in order, with the time it ended.
+    void trace(bool on)
+    {
+        m_trace = on;
+        m_clock.start();
+    }
+    QStringList traced() const { return m_traced; }
     // Events over kSpikeNanos, with the widgets they painted.
     QStringList spikes() const { return m_spikes; }
     QString report() const
@@ -375,6 +401,9 @@ private:
     }
     static constexpr qint64 kSlowEventNanos = 4'000'000;
     static constexpr qint64 kSpikeNanos = 8'000'000;
+    bool m_trace = false;
+    QElapsedTimer m_clock;
+    QStringList m_traced;
     int m_depth = 0;
     bool m_on = false;
     qint64 m_longest = 0;
@@ -393,7 +422,13 @@ int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int sec
     const QString path = dir.filePath(QStringLiteral("session.pcapng"));
     if (!writeSyntheticLog(path, frames))
         return 1;
-    QCoreApplication::processEvents();  // the first layout and paint are startup, not replay
+    // The first layouts and paints are startup, not replay: a second of the
+    // event loop to finish them.
+    {
+        QEventLoop settle;
+        QTimer::singleShot(1000, &settle, &QEventLoop::quit);
+        settle.exec();
+    }
     ConsoleSession* session = window.session();
     std::unique_ptr<StallProbe> probe = std::make_unique<StallProbe>();
     app.restart();
@@ -412,9 +447,16 @@ int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int sec
                     .arg(probe->report(), app.report()));
             for (const QString& spike : app.spikes())
                 say(QStringLiteral("  event over 8 ms: ") + spike);
-            for (const QString& g : app.geometry())
-                if (!g.contains(QLatin1String(" x 12 ")))
-                    say(QStringLiteral("  geometry: ") + g);
+            if (qEnvironmentVariableIsSet("BENCH_TRACE")) {
+                for (const QString& g : app.geometry())
+                    if (!g.contains(QLatin1String(" x 12 ")))
+                        say(QStringLiteral("  geometry: ") + g);
+                for (const QString& t : app.traced())
+                    say(QStringLiteral("  event at ") + t);
+                for (const QString& t : probe->longGaps())
+                    say(QStringLiteral("  gap at ") + t);
+                app.trace(false);
+            }
             probe = std::make_unique<StallProbe>();
             app.restart();
             QTimer::singleShot(seconds * 1000, &app, [&] {
@@ -428,6 +470,7 @@ int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int sec
         });
     });
     window.setReplaySpeed(10.0);
+    app.trace(qEnvironmentVariableIsSet("BENCH_TRACE"));
     window.openFrameLog(path);
     return app.exec();
 }

@@ -247,14 +247,18 @@ bool FrameLogModel::openLog(const QString& path, QString* error)
     return true;
 }
 
-void FrameLogModel::showLog(std::unique_ptr<FrameLogReader> reader, const QString& path)
+class FrameLogModel::PreparedRows {
+public:
+    const FrameLogReader* reader = nullptr;  // built from
+    std::vector<Row> rows;
+};
+
+std::shared_ptr<FrameLogModel::PreparedRows> FrameLogModel::prepareRows(const FrameLogReader& reader)
 {
-    beginResetModel();
-    m_pending.clear();
-    m_liveBytes.clear();
-    m_rows.clear();
-    m_rows.reserve(std::size_t(reader->count()));
-    const QVector<FrameIndexEntry>& index = reader->index();
+    auto prepared = std::make_shared<PreparedRows>();
+    prepared->reader = &reader;
+    prepared->rows.reserve(std::size_t(reader.count()));
+    const QVector<FrameIndexEntry>& index = reader.index();
     for (qsizetype i = 0; i < index.size(); ++i) {
         const FrameIndexEntry& e = index[i];
         Row row;
@@ -263,8 +267,20 @@ void FrameLogModel::showLog(std::unique_ptr<FrameLogReader> reader, const QStrin
         row.length = e.length;
         row.from = Source::OpenedLog;
         row.corrected1 = row.corrected2 = kNotKnown;
-        m_rows.push_back(row);
+        prepared->rows.push_back(row);
     }
+    return prepared;
+}
+
+void FrameLogModel::showLog(std::unique_ptr<FrameLogReader> reader, const QString& path,
+                            std::shared_ptr<PreparedRows> rows)
+{
+    if (!rows || rows->reader != reader.get() || rows->rows.size() != std::size_t(reader->count()))
+        rows = prepareRows(*reader);
+    beginResetModel();
+    m_pending.clear();
+    m_liveBytes.clear();
+    m_rows = std::move(rows->rows);
     m_reader = std::move(reader);
     m_logPath = path;
     m_sessionLogPath.clear();

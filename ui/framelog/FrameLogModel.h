@@ -53,8 +53,14 @@ public:
     // reader's reason is returned in `error`; false when nothing was readable.
     bool openLog(const QString& path, QString* error = nullptr);
     // The same for a log another thread has indexed already (reader->open()
-    // found records), so that a day's log costs the GUI thread its rows only.
-    void showLog(std::unique_ptr<FrameLogReader> reader, const QString& path);
+    // found records), so that a day's log costs the GUI thread its rows only;
+    // with `rows` built from that reader by prepareRows() in that other
+    // thread, not even those (86,400 rows: milliseconds, mostly the first
+    // touch of their memory).
+    class PreparedRows;
+    static std::shared_ptr<PreparedRows> prepareRows(const FrameLogReader& reader);
+    void showLog(std::unique_ptr<FrameLogReader> reader, const QString& path,
+                 std::shared_ptr<PreparedRows> rows = {});
     // Removes every row (and closes the log file, if one was open).
     void clear();
     QString logPath() const { return m_logPath; }

@@ -596,14 +596,19 @@ void MainWindow::startRehearsalWith(const QString& uasimProgram)
 
 void MainWindow::openFrameLog(const QString& path, const QString& keyPath)
 {
-    m_session->openReplay(path, keyPath);
+    // The log view's rows are built where the log is indexed.
+    auto rows = std::make_shared<std::shared_ptr<FrameLogModel::PreparedRows>>();
+    m_preparedRows = rows;
+    m_session->openReplay(path, keyPath,
+                          [rows](const FrameLogReader& index) { *rows = FrameLogModel::prepareRows(index); });
     updateLinkControls();
 }
 
 void MainWindow::replayIndexed(const QString& path)
 {
     m_logModel->setLogKey(m_session->logKey());
-    m_logModel->showLog(m_session->takeReplayIndex(), path);
+    const auto prepared = std::exchange(m_preparedRows, {});
+    m_logModel->showLog(m_session->takeReplayIndex(), path, prepared ? *prepared : nullptr);
     const int rows = m_logModel->rowCount();
     m_logModel->setPlayedRows(0);
     m_replayControls->setRange(rows ? m_logModel->utcMicros(0) : 0, rows ? m_logModel->utcMicros(rows - 1) : 0);

@@ -13,6 +13,7 @@
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkSettings.h"
 #include "link/session/LinkStatistics.h"
+#include "ui/framelog/FrameLogModel.h"
 #include "ui/window/Theme.h"
 
 #include <QMainWindow>
@@ -190,6 +191,8 @@ private:
     ReportedState* m_reported;
     FlightPlanUpload* m_upload;
     FrameLogModel* m_logModel;
+    // The rows of the log being opened for replay, filled in the pool.
+    std::shared_ptr<std::shared_ptr<FrameLogModel::PreparedRows>> m_preparedRows;
     ConsoleSession* m_session;
     ConsoleAlerts* m_alerts;
     VoiceChannel* m_voice = nullptr;  // voice beside the commands, when the operator turns it on
