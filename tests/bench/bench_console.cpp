@@ -288,6 +288,7 @@ public:
         }
         m_paints.clear();
         const qint64 start = threadCpuNanos();
+        const qint64 wallStart = m_trace ? m_clock.nsecsElapsed() : 0;
         const int type = event->type();  // the event may be gone afterwards
         const QString what = QStringLiteral("%1 to a %2").arg(type).arg(receiver->metaObject()->className());
         const bool handled = QApplication::notify(receiver, event);
@@ -297,11 +298,12 @@ public:
             m_longest = spent;
             m_longestWhat = what;
         }
-        if (m_trace && spent > 500'000)
-            m_traced << QStringLiteral("%1 ms: %2 for %3 ms")
+        if (m_trace && spent > 20'000)
+            m_traced << QStringLiteral("%1 ms: %2 for %3 ms (wall %4 ms)")
                             .arg(double(m_clock.nsecsElapsed()) / 1e6, 0, 'f', 2)
                             .arg(what)
-                            .arg(double(spent) / 1e6, 0, 'f', 2);
+                            .arg(double(spent) / 1e6, 0, 'f', 2)
+                            .arg(double(m_clock.nsecsElapsed() - wallStart) / 1e6, 0, 'f', 2);
         if (spent > kSpikeNanos) {
             // What a spike painted: the costliest widgets first.
             std::vector<std::pair<qint64, QString>> paints;
@@ -364,6 +366,7 @@ public:
     void trace(bool on)
     {
         m_trace = on;
+        m_traced.clear();
         m_clock.start();
     }
     QStringList traced() const { return m_traced; }
@@ -455,16 +458,22 @@ int reportStalls(ProbedApplication& app, MainWindow& window, int frames, int sec
                     say(QStringLiteral("  event at ") + t);
                 for (const QString& t : probe->longGaps())
                     say(QStringLiteral("  gap at ") + t);
-                app.trace(false);
             }
             probe = std::make_unique<StallProbe>();
             app.restart();
+            app.trace(qEnvironmentVariableIsSet("BENCH_TRACE"));
             QTimer::singleShot(seconds * 1000, &app, [&] {
                 say(QStringLiteral("%1 s of replay at 10x: %2; %3").arg(seconds).arg(probe->report(), app.report()));
                 for (const QString& spike : app.spikes())
                     say(QStringLiteral("  event over 8 ms: ") + spike);
                 for (const QString& g : app.geometry())
                     say(QStringLiteral("  geometry: ") + g);
+                if (qEnvironmentVariableIsSet("BENCH_TRACE")) {
+                    for (const QString& t : app.traced())
+                        say(QStringLiteral("  event at ") + t);
+                    for (const QString& t : probe->longGaps())
+                        say(QStringLiteral("  gap at ") + t);
+                }
                 QCoreApplication::quit();
             });
         });

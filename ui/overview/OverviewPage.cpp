@@ -278,7 +278,7 @@ void OverviewPage::rebuildUnits()
                     grid->addWidget(name, row, 0);
                     grid->addWidget(commanded, row, 1);
                     grid->addWidget(reported, row, 2);
-                    m_rows.push_back({ref, info.id, field, commanded, reported});
+                    m_rows.push_back({ref, info.id, field, commanded, reported, std::nullopt, false});
                     ++row;
                 }
             }
@@ -296,6 +296,11 @@ void OverviewPage::refreshCommanded()
 {
     for (Row& row : m_rows) {
         const rcm::Value* v = m_command->value(row.ref, row.id);
+        const std::optional<rcm::Value> now = v ? std::optional(*v) : std::nullopt;
+        if (row.shownOnce && now == row.shown)
+            continue;
+        row.shown = now;
+        row.shownOnce = true;
         row.commanded->setText(!v ? QStringLiteral("\u2014")
                                : row.field < 0 ? ItemText::value(row.id, *v)
                                                : ItemText::fieldValue(row.id, row.field, *v));

@@ -13,6 +13,7 @@
 // own time.
 
 #include "codec/message/ItemTable.h"
+#include "codec/message/Message.h"
 #include "link/session/LinkStatistics.h"
 #include "ui/overview/LinkQualityHistory.h"
 #include "ui/panels/UnitRef.h"
@@ -21,6 +22,7 @@
 #include <QWidget>
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 class CommandState;
@@ -73,6 +75,10 @@ private:
         int field;
         QLabel* commanded;
         ReportedLabel* reported;
+        // What `commanded` shows: every change of the command refreshes
+        // every row, and most rows' values have not changed.
+        std::optional<rcm::Value> shown;
+        bool shownOnce = false;
     };
     QWidget* buildHealth();
     void rebuildUnits();

@@ -55,19 +55,26 @@ void ReportedLabel::refresh()
     const rcm::Value* reported = m_reported->value(m_ref, m_id);
     const auto age = reported ? m_reported->staleAge() : std::nullopt;
     const int seconds = age ? static_cast<int>(age->count()) : 0;
-    setText(age ? tr("%1 (stale, %2 s)").arg(text(reported)).arg(seconds) : text(reported));
-
     const int frames = m_reported->mismatchFrames(m_ref, m_id, m_field);
     const bool mismatch =
         frames > ReportedState::kTransientFrames || m_reported->mismatchWhileStale(m_ref, m_id, m_field);
     const bool stale = age.has_value();
+    const rcm::Value* commandedValue = m_command->value(m_ref, m_id);
+    const Facts facts{reported ? std::optional(*reported) : std::nullopt,
+                      commandedValue ? std::optional(*commandedValue) : std::nullopt,
+                      stale ? std::optional(seconds) : std::nullopt, frames, mismatch};
+    if (facts == m_shown)
+        return;
+    m_shown = facts;
+    setText(age ? tr("%1 (stale, %2 s)").arg(text(reported)).arg(seconds) : text(reported));
+
     if (mismatch != property("mismatch").toBool() || stale != property("stale").toBool()) {
         setProperty("mismatch", mismatch);
         setProperty("stale", stale);
         setStyleSheet(mismatch ? (stale ? kStaleMismatchStyle : kMismatchStyle) : stale ? kStaleStyle : QString());
     }
     const QString what = ItemText::label(m_id, m_field);
-    const QString commanded = text(m_command->value(m_ref, m_id));
+    const QString commanded = text(commandedValue);
     if (mismatch && stale)
         setToolTip(
             tr("%1: commanded %2, last reported %3 %n s ago; no status frame since to confirm it", nullptr, seconds)

@@ -9,8 +9,11 @@
 #pragma once
 
 #include "codec/message/ItemTable.h"
+#include "codec/message/Message.h"
 #include "ui/panels/SteadyLabel.h"
 #include "ui/panels/UnitRef.h"
+
+#include <optional>
 
 class CommandState;
 class ReportedState;
@@ -27,6 +30,19 @@ public:
 
 private:
     void refresh();
+
+    // What the label shows was made from these; a refresh that finds them
+    // unchanged does nothing (a status frame refreshes every label, and
+    // formatting a hundred values and tool tips is a millisecond).
+    struct Facts {
+        std::optional<rcm::Value> reported;
+        std::optional<rcm::Value> commanded;
+        std::optional<int> staleSeconds;
+        int mismatchFrames = 0;
+        bool mismatch = false;
+        friend bool operator==(const Facts&, const Facts&) = default;
+    };
+    std::optional<Facts> m_shown;
 
     const CommandState* m_command;
     const ReportedState* m_reported;
