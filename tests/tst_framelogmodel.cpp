@@ -20,6 +20,7 @@
 
 #include <QApplication>
 #include <QDateTime>
+#include <QScrollBar>
 #include <QSignalSpy>
 #include <QTableView>
 #include <QTemporaryDir>
@@ -153,6 +154,7 @@ private slots:
     void filterCountsByDirectionAndStatus();
     void filterFollowsAppends();
     void viewDecodesOnlyWhatItShows();
+    void viewLaysOutALogAtOnce();
     void keyedRowsNeedTheKey();
     void liveRowsMatchTheSessionLog();
     void liveRowsWithoutALogKeepTheirBytes();
@@ -400,6 +402,26 @@ void TestFrameLogModel::viewDecodesOnlyWhatItShows()
     QVERIFY(view.hexText().contains(QStringLiteral("BLOCK 2 parity (32 bytes)")));
     view.showSourceRow(3);
     QVERIFY(view.detailText().contains(QStringLiteral("beyond correction")));
+}
+
+// A log opened into a shown view is laid out in the same pass (not on the
+// view's own timer, where it would be painted together with whatever comes
+// next), and its scroll bar, always there, does not narrow the view.
+void TestFrameLogModel::viewLaysOutALogAtOnce()
+{
+    FrameLogModel model;
+    FrameLogView view(&model);
+    view.resize(1000, 700);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    QCoreApplication::processEvents();
+    QScrollBar* bar = view.table()->verticalScrollBar();
+    QVERIFY(bar->isVisible());  // before there is anything to scroll
+    const int viewportWidth = view.table()->viewport()->width();
+    QCOMPARE(bar->maximum(), 0);
+    QVERIFY(model.openLog(m_path));
+    QVERIFY2(bar->maximum() > kFrames - 100, qPrintable(QString::number(bar->maximum())));  // no event loop yet
+    QCOMPARE(view.table()->viewport()->width(), viewportWidth);
 }
 
 // A keyed link's frames: without the key a row has no ID and its detail says

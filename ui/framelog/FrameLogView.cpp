@@ -136,6 +136,10 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
     bar->addWidget(m_count);
 
     m_table->setModel(m_filter);
+    // A view lays out a new model on a timer of its own; done at once, the
+    // first screen of a log opened for replay is painted with the log, not
+    // together with everything else that changes when the replay starts.
+    connect(m_filter, &QAbstractItemModel::modelReset, m_table, &QTableView::doItemsLayout);
     m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
     m_table->setSelectionMode(QAbstractItemView::SingleSelection);
     m_table->setAlternatingRowColors(true);
@@ -143,6 +147,10 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
     m_table->setShowGrid(false);
     m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
     m_table->verticalHeader()->hide();
+    // Always there: a scroll bar that appears when a log fills the view (a
+    // replay opened, a live session's first minute) narrows the view, and
+    // the whole view and its header are painted again in that pass.
+    m_table->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOn);
     // Fixed row heights and column widths: a view that measured its rows
     // would ask for the text of all 200,000 of them.
     m_table->verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
