@@ -31,6 +31,7 @@
 #include "link/plan/PlanFile.h"
 #include "link/plan/QgcPlanFile.h"
 #include "ui/window/StatusBarWidget.h"
+#include "ui/window/StatusFigure.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/alerts/ErrorBanner.h"
 #include "ui/alerts/LinkAlarm.h"
@@ -44,6 +45,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QDateTime>
+#include <QLabel>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QTimer>
@@ -125,6 +127,7 @@ private slots:
     void previewMarksChangedItems();
     void previewFollowsOncePerPass();
     void linkLostAlarm();
+    void statusFiguresNameTheirValues();
     void linkSettingsAreKept();
     void replaysAFrameLog();
     void replayShowsTheLogsCommandReadOnly();
@@ -468,6 +471,39 @@ void TestMainWindow::previewFollowsOncePerPass()
     QCOMPARE(hex->toPlainText(), hexBefore);  // its tab is not shown
     preview.findChild<QTabWidget*>()->setCurrentWidget(hex);
     QVERIFY(hex->toPlainText() != hexBefore);
+}
+
+// Each figure is its name and its value as plain text, the value red when
+// frames were beyond correction and the window's own colour when none were.
+void TestMainWindow::statusFiguresNameTheirValues()
+{
+    StatusBarWidget status;
+    LinkStatistics s;
+    s.state = LinkState::Connected;
+    s.framesSent = 1234;
+    s.framesReceived = 1230;
+    s.correctedBytesBlock1 = 40;
+    s.correctedBytesBlock2 = 2;
+    s.refused[std::size_t(rcm::Refusal::Uncorrectable)] = 3;
+    status.setStatistics(s);
+    QStringList texts;
+    StatusFigure* uncorrectable = nullptr;
+    for (StatusFigure* figure : status.findChildren<StatusFigure*>()) {
+        texts << figure->text();
+        if (figure->text().startsWith(QStringLiteral("Uncorrectable")))
+            uncorrectable = figure;
+    }
+    for (const char* expected : {"Sent 1,234", "Received 1,230", "Corrected bytes 42", "Uncorrectable 3"})
+        QVERIFY2(texts.contains(QLatin1String(expected)), qPrintable(texts.join(QStringLiteral(" | "))));
+    QVERIFY(uncorrectable);
+    auto* value = uncorrectable->findChildren<QLabel*>().constLast();
+    QCOMPARE(value->text(), QStringLiteral("3"));
+    QCOMPARE(value->textFormat(), Qt::PlainText);
+    QCOMPARE(value->palette().color(QPalette::WindowText), QColor(0xb0, 0x1c, 0x1c));
+    s.refused[std::size_t(rcm::Refusal::Uncorrectable)] = 0;
+    status.setStatistics(s);
+    QCOMPARE(uncorrectable->text(), QStringLiteral("Uncorrectable 0"));
+    QCOMPARE(value->palette().color(QPalette::WindowText), status.palette().color(QPalette::WindowText));
 }
 
 void TestMainWindow::linkLostAlarm()

@@ -186,13 +186,17 @@ private slots:
         page.setStatistics(s);
         QCOMPARE(page.figure(QStringLiteral("state")), QStringLiteral("LINK LOST"));
         auto* state = page.findChild<QLabel*>(QStringLiteral("figure:state"));
-        QVERIFY(state->text().contains(QStringLiteral("#b71c1c")));
+        QCOMPARE(state->palette().color(QPalette::WindowText), QColor(0xb7, 0x1c, 0x1c));
         // At night: a light red that reads on the dark window.
         QPalette night = page.palette();
         night.setColor(QPalette::Window, QColor(0x20, 0x20, 0x20));
         night.setColor(QPalette::WindowText, QColor(0xe0, 0xe0, 0xe0));
         page.setPalette(night);
-        QVERIFY(state->text().contains(QStringLiteral("#ef9a9a")));
+        QCOMPARE(state->palette().color(QPalette::WindowText), QColor(0xef, 0x9a, 0x9a));
+        // Closed: the page's own colour again.
+        s.state = LinkState::Closed;
+        page.setStatistics(s);
+        QCOMPARE(state->palette().color(QPalette::WindowText), QColor(0xe0, 0xe0, 0xe0));
     }
 
     // A replay says so, shows the log's time, and feeds no link-quality minutes.

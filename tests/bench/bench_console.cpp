@@ -27,6 +27,7 @@
 #include <QEventLoop>
 #include <QFile>
 #include <QMap>
+#include <QPaintEvent>
 #include <QTemporaryDir>
 #include <QThread>
 #include <QTimer>
@@ -279,7 +280,11 @@ public:
             // Inside a repaint: which widgets it painted, and for how long.
             const bool paint = m_on && event->type() == QEvent::Paint;
             const qint64 paintStart = paint ? threadCpuNanos() : 0;
-            const QString painted = paint ? describe(receiver) : QString();
+            QString painted = paint ? describe(receiver) : QString();
+            if (paint && painted.contains(QStringLiteral("QTableView")) && qEnvironmentVariableIsSet("BENCH_REGION")) {
+                const QRegion reg = static_cast<QPaintEvent*>(event)->region();
+                painted += QStringLiteral(" [%1 rects, %2x%3]").arg(reg.rectCount()).arg(reg.boundingRect().width()).arg(reg.boundingRect().height());
+            }
             const bool handled = QApplication::notify(receiver, event);
             if (paint)
                 m_paints[painted] += threadCpuNanos() - paintStart;
@@ -304,7 +309,7 @@ public:
                             .arg(what)
                             .arg(double(spent) / 1e6, 0, 'f', 2)
                             .arg(double(m_clock.nsecsElapsed() - wallStart) / 1e6, 0, 'f', 2);
-        if (spent > kSpikeNanos) {
+        if (spent > spikeNanos()) {
             // What a spike painted: the costliest widgets first.
             std::vector<std::pair<qint64, QString>> paints;
             for (auto it = m_paints.cbegin(); it != m_paints.cend(); ++it)
@@ -370,7 +375,7 @@ public:
         m_clock.start();
     }
     QStringList traced() const { return m_traced; }
-    // Events over kSpikeNanos, with the widgets they painted.
+    // Events over spikeNanos(), with the widgets they painted.
     QStringList spikes() const { return m_spikes; }
     QString report() const
     {
@@ -403,7 +408,11 @@ private:
         return qint64(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
     }
     static constexpr qint64 kSlowEventNanos = 4'000'000;
-    static constexpr qint64 kSpikeNanos = 8'000'000;
+    static qint64 spikeNanos()
+    {
+        static const qint64 nanos = qint64(qEnvironmentVariable("BENCH_SPIKE_MS", QStringLiteral("8")).toDouble() * 1e6);
+        return nanos;
+    }
     bool m_trace = false;
     QElapsedTimer m_clock;
     QStringList m_traced;

@@ -16,7 +16,6 @@
 #include <QResizeEvent>
 #include <QScrollArea>
 #include <QStyle>
-#include <QTextDocumentFragment>
 #include <QVBoxLayout>
 
 namespace {
@@ -149,7 +148,7 @@ QWidget* OverviewPage::buildHealth()
         auto* value = new SteadyLabel;
         value->setObjectName(QStringLiteral("figure:") + QLatin1String(f.name));
         value->setFont(big);
-        value->setTextFormat(Qt::RichText);
+        value->setTextFormat(Qt::PlainText);  // a new text each frame: no document to parse and lay out
         figureBox->setToolTip(f.toolTip);
         stack->addWidget(caption);
         stack->addWidget(value);
@@ -170,7 +169,7 @@ QString OverviewPage::figure(const QString& name) const
 {
     for (const auto& [n, label] : m_figures)
         if (n == name)
-            return QTextDocumentFragment::fromHtml(label->text()).toPlainText();
+            return label->text();
     return {};
 }
 
@@ -209,16 +208,25 @@ void OverviewPage::updateFigures()
 {
     const QLocale locale;
     const LinkStatistics& s = m_statistics;
-    const auto set = [this](const char* name, const QString& html) {
-        for (auto& [n, label] : m_figures)
+    const auto label = [this](const char* name) -> QLabel* {
+        for (auto& [n, figure] : m_figures)
             if (n == QLatin1String(name))
-                label->setText(html);
+                return figure;
+        return nullptr;
     };
+    const auto set = [&label](const char* name, const QString& text) { label(name)->setText(text); };
     const bool dark = palette().color(QPalette::Window).lightness() < 128;
     const QString colour = stateColour(s.state, m_replay, dark);
     const QString state = m_replay ? tr("Replay") : stateName(s.state);
-    set("state", colour.isEmpty() ? state.toHtmlEscaped()
-                                  : QStringLiteral("<span style=\"color:%1\">%2</span>").arg(colour, state.toHtmlEscaped()));
+    set("state", state);
+    if (colour != m_stateColour) {
+        m_stateColour = colour;
+        // An empty palette resolves nothing of its own: the page's colours.
+        QPalette palette;
+        if (!colour.isEmpty())
+            palette.setColor(QPalette::WindowText, QColor(colour));
+        label("state")->setPalette(palette);
+    }
     set("sent", locale.toString(s.framesSent));
     set("received", locale.toString(s.framesReceived));
     set("corrected", locale.toString(s.correctedBytesBlock1 + s.correctedBytesBlock2));
@@ -234,7 +242,7 @@ void OverviewPage::updateFigures()
         const qint64 micros = s.lastGoodFrameAgeMicros(m_clock());
         age = micros < 0 ? QStringLiteral("\u2014") : tr("%1 s ago").arg(locale.toString(double(micros) / 1e6, 'f', 1));
     }
-    set("age", age.toHtmlEscaped());
+    set("age", age);
 }
 
 void OverviewPage::rebuildUnits()

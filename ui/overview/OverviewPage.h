@@ -95,6 +95,7 @@ private:
     LinkQualityHistory m_history;
     bool m_replay = false;
     qint64 m_replayTime = 0;
+    QString m_stateColour;  // the link state figure's colour, "#1b5e20"; empty: the page's own
     QTimer m_timer;
 
     std::vector<std::pair<QString, QLabel*>> m_figures;

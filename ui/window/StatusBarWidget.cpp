@@ -2,6 +2,7 @@
 
 #include "codec/receive/Refusal.h"
 #include "ui/panels/SteadyLabel.h"
+#include "ui/window/StatusFigure.h"
 
 #include <QDateTime>
 #include <QHBoxLayout>
@@ -39,11 +40,13 @@ QFrame* separator()
 StatusBarWidget::StatusBarWidget(QWidget* parent)
     : QWidget(parent),
       m_state(new SteadyLabel),
-      m_sent(counter(tr("Frames handed to the link since it started"))),
-      m_received(counter(tr("Good frames received from the aircraft"))),
-      m_corrected(counter(tr("Bytes Reed-Solomon corrected in the frames received (BLOCK 1 + BLOCK 2)"))),
-      m_uncorrectable(counter(tr("Frames received with a codeword beyond correction"))),
-      m_age(counter(tr("Time since the last good frame from the aircraft"))),
+      m_sent(new StatusFigure(tr("Sent"), tr("Frames handed to the link since it started"))),
+      m_received(new StatusFigure(tr("Received"), tr("Good frames received from the aircraft"))),
+      m_corrected(new StatusFigure(tr("Corrected bytes"),
+                                   tr("Bytes Reed-Solomon corrected in the frames received (BLOCK 1 + BLOCK 2)"))),
+      m_uncorrectable(
+          new StatusFigure(tr("Uncorrectable"), tr("Frames received with a codeword beyond correction"))),
+      m_age(new StatusFigure(tr("Last frame"), tr("Time since the last good frame from the aircraft"))),
       m_security(counter(QString())),
       m_rejectedSeparator(separator()),
       m_rejected(counter(tr("Frames the receive path refused, by reason (docs/protocol.md section 8):\n"
@@ -57,7 +60,7 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
                             "plaintext: an unencrypted frame on a keyed link"))),
       m_lost(new QLabel(tr("LINK LOST"))),
       m_transportSeparator(separator()),
-      m_transport(counter(tr("The satellite phone's call: what the modem does, and for how long")))
+      m_transport(new StatusFigure(m_transportLabel, m_transportToolTip))
 {
     m_state->setTextFormat(Qt::RichText);
     m_state->setMinimumWidth(
@@ -71,9 +74,10 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     layout->setContentsMargins(6, 0, 6, 0);
     layout->setSpacing(12);
     layout->addWidget(m_state);
-    for (QLabel* label : {m_sent, m_received, m_corrected, m_uncorrectable, m_age, m_security}) {
+    for (QWidget* figure : std::initializer_list<QWidget*>{m_sent, m_received, m_corrected, m_uncorrectable, m_age,
+                                                            m_security}) {
         layout->addWidget(separator());
-        layout->addWidget(label);
+        layout->addWidget(figure);
     }
     layout->addWidget(m_rejectedSeparator);
     layout->addWidget(m_rejected);
@@ -101,6 +105,7 @@ QString StatusBarWidget::ageText() const
 {
     return m_age->text();
 }
+
 
 QString StatusBarWidget::securityText() const
 {
@@ -152,8 +157,9 @@ void StatusBarWidget::setTransportStatus(const QString& status)
 
 void StatusBarWidget::updateTransport()
 {
+    m_transport->setName(m_transportLabel);
     if (!m_transportStatus.isEmpty())
-        m_transport->setText(field(m_transportLabel, transportText().toHtmlEscaped()));
+        m_transport->setValue(transportText());
 }
 
 void StatusBarWidget::setTransportLabel(const QString& label, const QString& toolTip)
@@ -255,15 +261,12 @@ void StatusBarWidget::setStatistics(const LinkStatistics& statistics)
     const bool stateChanged = statistics.state != m_statistics.state;
     m_statistics = statistics;
     const QLocale locale;
-    m_sent->setText(field(tr("Sent"), locale.toString(statistics.framesSent)));
-    m_received->setText(field(tr("Received"), locale.toString(statistics.framesReceived)));
-    m_corrected->setText(field(tr("Corrected bytes"),
-                               locale.toString(statistics.correctedBytesBlock1 + statistics.correctedBytesBlock2)));
+    m_sent->setValue(locale.toString(statistics.framesSent));
+    m_received->setValue(locale.toString(statistics.framesReceived));
+    m_corrected->setValue(locale.toString(statistics.correctedBytesBlock1 + statistics.correctedBytesBlock2));
     const quint64 uncorrectable = statistics.refusedFor(rcm::Refusal::Uncorrectable);
-    const QString bad = locale.toString(uncorrectable);
-    m_uncorrectable->setText(field(
-        tr("Uncorrectable"),
-        uncorrectable ? QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(bad) : bad));
+    m_uncorrectable->setValue(locale.toString(uncorrectable));
+    m_uncorrectable->setValueColour(uncorrectable ? QColor(0xb0, 0x1c, 0x1c) : QColor());
     updateSecurity();
     if (stateChanged || statistics.state == LinkState::Closed)
         setState(statistics.state);
@@ -277,7 +280,8 @@ void StatusBarWidget::updateAge()
         const QString time = m_replayTime ? QDateTime::fromMSecsSinceEpoch(m_replayTime / 1000, Qt::UTC)
                                                 .toString(QStringLiteral("yyyy-MM-dd HH:mm:ss 'UTC'"))
                                           : QStringLiteral("\u2014");
-        m_age->setText(field(tr("Log time"), time));
+        m_age->setName(tr("Log time"));
+        m_age->setValue(time);
         return;
     }
     const qint64 age = m_statistics.lastGoodFrameAgeMicros(QDateTime::currentDateTimeUtc().toMSecsSinceEpoch() * 1000);
@@ -290,7 +294,8 @@ void StatusBarWidget::updateAge()
         text = tr("%1 min ago").arg(age / 60'000'000);
     else
         text = tr("%1 h ago").arg(age / 3'600'000'000);
-    m_age->setText(field(tr("Last frame"), text));
+    m_age->setName(tr("Last frame"));
+    m_age->setValue(text);
 }
 
 void StatusBarWidget::setAlarm(bool on)

@@ -16,6 +16,7 @@
 #include <QWidget>
 
 class QLabel;
+class StatusFigure;
 
 class StatusBarWidget : public QWidget {
     Q_OBJECT
@@ -77,15 +78,15 @@ private:
     QTimer m_ageTimer;
     QTimer m_blinkTimer;
     QLabel* m_state;
-    QLabel* m_sent;
-    QLabel* m_received;
-    QLabel* m_corrected;
-    QLabel* m_uncorrectable;
-    QLabel* m_age;
+    StatusFigure* m_sent;
+    StatusFigure* m_received;
+    StatusFigure* m_corrected;
+    StatusFigure* m_uncorrectable;
+    StatusFigure* m_age;
     QLabel* m_security;
     QWidget* m_rejectedSeparator;
     QLabel* m_rejected;
     QLabel* m_lost;
     QWidget* m_transportSeparator;
-    QLabel* m_transport;
+    StatusFigure* m_transport;
 };
