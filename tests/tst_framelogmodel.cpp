@@ -14,12 +14,18 @@
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/LinkController.h"
 #include "link/transport/UdpLink.h"
+#include "ui/framelog/FrameLogDelegate.h"
 #include "ui/framelog/FrameLogFilterModel.h"
 #include "ui/framelog/FrameLogModel.h"
 #include "ui/framelog/FrameLogView.h"
+#include "ui/framelog/SteadyScrollBar.h"
 
 #include <QApplication>
 #include <QDateTime>
+#include <QImage>
+#include <QPainter>
+#include <QStandardItemModel>
+#include <QStyledItemDelegate>
 #include <QScrollBar>
 #include <QSignalSpy>
 #include <QTableView>
@@ -155,6 +161,8 @@ private slots:
     void filterFollowsAppends();
     void viewDecodesOnlyWhatItShows();
     void viewLaysOutALogAtOnce();
+    void delegateDrawsTheModelsText();
+    void scrollBarRepaintsWhenItsSliderMoves();
     void keyedRowsNeedTheKey();
     void liveRowsMatchTheSessionLog();
     void liveRowsWithoutALogKeepTheirBytes();
@@ -379,6 +387,27 @@ void TestFrameLogModel::filterFollowsAppends()
     QCOMPARE(filter.rowCount(), expected);
     QCOMPARE(inserted.count(), 1);
     QCOMPARE(filter.sourceRow(0), 3);
+
+    // Everything chosen: each row is its source row, appends and changes included.
+    filter.setStatuses(FrameLogFilterModel::kAllStatuses);
+    QCOMPARE(filter.rowCount(), 500);
+    inserted.clear();
+    for (int i = 500; i < 510; ++i)
+        model.appendRecord(frame(i));
+    QTRY_COMPARE(filter.rowCount(), 510);
+    QCOMPARE(inserted.count(), 1);
+    QCOMPARE(inserted.at(0).at(1).toInt(), 500);
+    QCOMPARE(inserted.at(0).at(2).toInt(), 509);
+    QCOMPARE(filter.sourceRow(505), 505);
+    QCOMPARE(filter.mapToSource(filter.index(505, 2)), model.index(505, 2));
+    QCOMPARE(filter.mapFromSource(model.index(509, 1)), filter.index(509, 1));
+    QCOMPARE(filter.rowAtOrAfter(600), 510);
+    QSignalSpy changed(&filter, &QAbstractItemModel::dataChanged);
+    model.setPlayedRows(0);
+    model.setPlayedRows(7);
+    QCOMPARE(changed.count(), 2);
+    QCOMPARE(changed.at(1).at(0).toModelIndex().row(), 0);  // the old last played row is no longer bold
+    QCOMPARE(changed.at(1).at(1).toModelIndex().row(), 7);
 }
 
 void TestFrameLogModel::viewDecodesOnlyWhatItShows()
@@ -542,6 +571,143 @@ void TestFrameLogModel::liveRowsWithoutALogKeepTheirBytes()
             QCOMPARE(r.bytes, QByteArray(100, '\x55'));
     }
     QCOMPARE(sent, farReceived.size());
+}
+
+namespace {
+
+// Where a cell's text was drawn: the box of the pixels not of the background.
+QRect inkOf(const QImage& image, QRgb background)
+{
+    QRect ink;
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x)
+            if (image.pixel(x, y) != background)
+                ink |= QRect(x, y, 1, 1);
+    return ink;
+}
+
+QImage paintCell(const QStyledItemDelegate& delegate, const QModelIndex& index, QSize size, QStyle::State state)
+{
+    QImage image(size, QImage::Format_ARGB32);
+    image.fill(Qt::white);
+    QStyleOptionViewItem option;
+    option.rect = QRect(QPoint(0, 0), size);
+    option.state = QStyle::State_Enabled | QStyle::State_Active | state;
+    // As a table view sets them.
+    option.displayAlignment = Qt::AlignLeft | Qt::AlignVCenter;
+    option.showDecorationSelected = true;
+    option.palette = QApplication::palette();
+    option.palette.setColor(QPalette::Base, Qt::white);
+    option.font = QApplication::font();
+    option.fontMetrics = QFontMetrics(option.font);
+    QPainter painter(&image);
+    delegate.paint(&painter, option, index);
+    painter.end();
+    return image;
+}
+
+}  // namespace
+
+// The log's own delegate draws a cell's text where Qt's would, in the
+// model's colour, font and alignment, and lays each text out once.
+void TestFrameLogModel::delegateDrawsTheModelsText()
+{
+    QStandardItemModel model(1, 3);
+    model.setItem(0, 0, new QStandardItem(QStringLiteral("\u2190 received")));
+    model.item(0, 0)->setForeground(QColor(0xb0, 0x1c, 0x1c));
+    model.setItem(0, 1, new QStandardItem(QStringLiteral("150005")));
+    model.item(0, 1)->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+    model.setItem(0, 2, new QStandardItem(QStringLiteral("uncorrectable")));
+    QFont bold = QApplication::font();
+    bold.setBold(true);
+    model.item(0, 2)->setFont(bold);
+    FrameLogDelegate ours;
+    QStyledItemDelegate qts;
+    const QSize cell(160, 24);
+    const QRgb white = qRgb(255, 255, 255);
+    for (int column = 0; column < 3; ++column) {
+        const QModelIndex index = model.index(0, column);
+        const QRect drawn = inkOf(paintCell(ours, index, cell, {}), white);
+        const QRect expected = inkOf(paintCell(qts, index, cell, {}), white);
+        QVERIFY2(!drawn.isEmpty(), qPrintable(index.data().toString()));
+        // The same place to a pixel: only how the glyphs are positioned differs.
+        for (const auto& [a, b] : {std::pair{drawn.left(), expected.left()}, {drawn.right(), expected.right()},
+                                   {drawn.top(), expected.top()}, {drawn.bottom(), expected.bottom()}})
+            QVERIFY2(std::abs(a - b) <= 1, qPrintable(QStringLiteral("%1: drawn at %2, Qt draws at %3")
+                                                          .arg(index.data().toString())
+                                                          .arg(QStringLiteral("%1,%2 %3,%4")
+                                                                   .arg(drawn.left())
+                                                                   .arg(drawn.top())
+                                                                   .arg(drawn.right())
+                                                                   .arg(drawn.bottom()))
+                                                          .arg(QStringLiteral("%1,%2 %3,%4")
+                                                                   .arg(expected.left())
+                                                                   .arg(expected.top())
+                                                                   .arg(expected.right())
+                                                                   .arg(expected.bottom()))));
+    }
+    // In the model's colour: the darkest pixel of the red text is red.
+    const QImage red = paintCell(ours, model.index(0, 0), cell, {});
+    int darkest = 255 * 3;
+    QRgb ink = white;
+    for (int y = 0; y < red.height(); ++y)
+        for (int x = 0; x < red.width(); ++x)
+            if (const QRgb p = red.pixel(x, y); qRed(p) + qGreen(p) + qBlue(p) < darkest) {
+                darkest = qRed(p) + qGreen(p) + qBlue(p);
+                ink = p;
+            }
+    QVERIFY2(qRed(ink) > 2 * qGreen(ink) && qRed(ink) > 2 * qBlue(ink), qPrintable(QColor(ink).name()));
+    // Selected: the selection's text colour on the selection.
+    const QImage selected = paintCell(ours, model.index(0, 1), cell, QStyle::State_Selected);
+    QCOMPARE(selected.pixel(2, 2), QApplication::palette().color(QPalette::Active, QPalette::Highlight).rgb());
+    // Each text laid out once, bold apart; painted again, nothing new.
+    QCOMPARE(ours.laidOutTexts(), 2);
+    paintCell(ours, model.index(0, 0), cell, {});
+    paintCell(ours, model.index(0, 1), cell, {});
+    QCOMPARE(ours.laidOutTexts(), 2);
+    // Too narrow a column: elided, within the cell.
+    const QRect narrow = inkOf(paintCell(ours, model.index(0, 0), QSize(40, 24), {}), white);
+    QVERIFY(narrow.right() < 40);
+}
+
+// A day's log scrolled one row moves the slider by less than a pixel: the
+// bar is not painted again until the slider moves or an end is reached.
+void TestFrameLogModel::scrollBarRepaintsWhenItsSliderMoves()
+{
+    struct Paints : QObject {
+        int count = 0;
+        bool eventFilter(QObject*, QEvent* event) override
+        {
+            count += event->type() == QEvent::Paint;
+            return false;
+        }
+    } paints;
+    SteadyScrollBar bar(Qt::Vertical);
+    bar.setRange(0, 86'400);
+    bar.setPageStep(20);
+    bar.resize(16, 400);
+    bar.installEventFilter(&paints);
+    bar.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&bar));
+    QTRY_VERIFY(paints.count > 0);
+    bar.setValue(100);  // off the top end, whose arrow is drawn apart
+    QCoreApplication::processEvents();
+    const int shown = paints.count;
+
+    for (int value = 101; value <= 110; ++value) {
+        bar.setValue(value);
+        QCoreApplication::processEvents();
+    }
+    QCOMPARE(paints.count, shown);
+    bar.setValue(43'200);
+    QCoreApplication::processEvents();
+    QCOMPARE(paints.count, shown + 1);
+    bar.setValue(86'400);  // the end: its arrow changes
+    QCoreApplication::processEvents();
+    QCOMPARE(paints.count, shown + 2);
+    bar.setValue(86'399);  // and changes back, a row before it
+    QCoreApplication::processEvents();
+    QCOMPARE(paints.count, shown + 3);
 }
 
 QTEST_MAIN(TestFrameLogModel)

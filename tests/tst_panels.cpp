@@ -27,6 +27,7 @@
 #include "ui/panels/ReportedLabel.h"
 #include "ui/panels/ReportedState.h"
 #include "ui/panels/StationEditor.h"
+#include "ui/panels/SteadyGroupBox.h"
 #include "ui/panels/SteadyLabel.h"
 #include "ui/panels/UnitCard.h"
 
@@ -35,7 +36,9 @@
 #include <QAction>
 #include <QClipboard>
 #include <QGuiApplication>
+#include <QGroupBox>
 #include <QHBoxLayout>
+#include <QImage>
 #include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
@@ -730,6 +733,51 @@ private slots:
     // A new text that fits repaints the label alone: its layout is not asked
     // for room and its neighbour stays put. A longer one grows it, once, and
     // it is never left clipped.
+    // A steady group box looks like a QGroupBox, and a value changing inside
+    // it does not draw its frame again; a new size or title does.
+    void steadyGroupBoxDrawsItsFrameOnce()
+    {
+        const auto card = [](QGroupBox* box, const QString& value) {
+            auto* layout = new QHBoxLayout(box);
+            auto* label = new QLabel(value);
+            layout->addWidget(label);
+            box->resize(240, 90);
+            return label;
+        };
+        SteadyGroupBox steady(QStringLiteral("Engine 1"));
+        QGroupBox plain(QStringLiteral("Engine 1"));
+        QLabel* value = card(&steady, QStringLiteral("1,200 rpm"));
+        card(&plain, QStringLiteral("1,200 rpm"));
+        const QImage drawn = steady.grab().toImage().convertToFormat(QImage::Format_ARGB32);
+        const QImage expected = plain.grab().toImage().convertToFormat(QImage::Format_ARGB32);
+        QCOMPARE(drawn.size(), expected.size());
+        int worst = 0;
+        for (int y = 0; y < drawn.height(); ++y)
+            for (int x = 0; x < drawn.width(); ++x) {
+                const QRgb a = drawn.pixel(x, y), b = expected.pixel(x, y);
+                worst = std::max({worst, std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)),
+                                  std::abs(qBlue(a) - qBlue(b)), std::abs(qAlpha(a) - qAlpha(b))});
+            }
+        QVERIFY2(worst <= 2, qPrintable(QString::number(worst)));  // compositing rounds, no more
+        QCOMPARE(steady.framesDrawn(), 1);
+
+        steady.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&steady));
+        QTRY_VERIFY(steady.framesDrawn() >= 1);
+        const int drawnOnShow = steady.framesDrawn();
+        for (const char* text : {"1,210 rpm", "1,220 rpm", "900 rpm"}) {
+            value->setText(QLatin1String(text));
+            steady.repaint();
+        }
+        QCOMPARE(steady.framesDrawn(), drawnOnShow);
+        steady.resize(260, 90);
+        steady.repaint();
+        QCOMPARE(steady.framesDrawn(), drawnOnShow + 1);
+        steady.setTitle(QStringLiteral("Engine 2"));
+        steady.repaint();
+        QCOMPARE(steady.framesDrawn(), drawnOnShow + 2);
+    }
+
     void steadyLabelKeepsItsSize()
     {
         struct LayoutRequests : QObject {

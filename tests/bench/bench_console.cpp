@@ -12,7 +12,11 @@
 //                                  with BENCH_TRACE=1 in the environment it also lists, for
 //                                  the opening, every GUI event over 0.5 ms and every probe
 //                                  gap over 4 ms in time order, and the layout requests,
-//                                  moves, resizes and paints per widget
+//                                  moves, resizes and paints per widget; BENCH_SPIKE_MS=N
+//                                  lists what every event over N ms painted (default 8),
+//                                  BENCH_PARENTS=1 names each painted widget's nearest
+//                                  named ancestor, BENCH_REGION=1 the log view's painted
+//                                  region
 //   bench_console repaint [N]      the whole window repainted N times (default 200): the
 //                                  median and longest, and the paint time per widget
 #include "codec/message/Airframe.h"
@@ -26,6 +30,7 @@
 #include <QElapsedTimer>
 #include <QEventLoop>
 #include <QFile>
+#include <QLabel>
 #include <QMap>
 #include <QPaintEvent>
 #include <QTemporaryDir>
@@ -396,7 +401,14 @@ private:
     // A scroll area's viewport by the view it is part of.
     static QString describe(const QObject* o)
     {
-        const QString self = QStringLiteral("%1 %2").arg(o->metaObject()->className(), o->objectName());
+        QString self = QStringLiteral("%1 %2").arg(o->metaObject()->className(), o->objectName());
+        // An unnamed label by what it says.
+        if (const auto* label = qobject_cast<const QLabel*>(o); label && o->objectName().isEmpty())
+            self += QStringLiteral("\"%1\"").arg(label->text().left(24));
+        if (qEnvironmentVariableIsSet("BENCH_PARENTS")) {
+            for (const QObject* p = o->parent(); p; p = p->parent())
+                if (!p->objectName().isEmpty()) { self += QStringLiteral(" in ") + p->objectName(); break; }
+        }
         if (o->objectName() != QLatin1String("qt_scrollarea_viewport") || !o->parent())
             return self;
         return self + QStringLiteral(" of ") + describe(o->parent());

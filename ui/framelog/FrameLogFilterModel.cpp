@@ -57,23 +57,34 @@ bool FrameLogFilterModel::accepts(int sourceRow) const
 void FrameLogFilterModel::rebuild()
 {
     m_rows.clear();
-    if (!m_source)
+    m_showsAll = (m_directions & kAllDirections) == kAllDirections && (m_statuses & kAllStatuses) == kAllStatuses;
+    const int n = m_source ? m_source->rowCount() : 0;
+    if (m_showsAll) {
+        m_rows.shrink_to_fit();
+        m_shown = n;
         return;
-    const int n = m_source->rowCount();
-    const bool all = (m_directions & kAllDirections) == kAllDirections && (m_statuses & kAllStatuses) == kAllStatuses;
-    m_rows.reserve(std::size_t(all ? n : n / 2));
+    }
+    m_rows.reserve(std::size_t(n / 2));
     for (int row = 0; row < n; ++row)
-        if (all || accepts(row))
+        if (accepts(row))
             m_rows.push_back(row);
-    // A filter that shows little should not keep the capacity of one that showed all.
+    // A filter that shows little should not keep the capacity of one that showed more.
     if (m_rows.capacity() > 2 * m_rows.size() + 1024)
         m_rows.shrink_to_fit();
+    m_shown = int(m_rows.size());
 }
 
 void FrameLogFilterModel::sourceRowsInserted(const QModelIndex& parent, int first, int last)
 {
     if (parent.isValid())
         return;
+    if (m_showsAll) {
+        Q_ASSERT_X(first == m_shown, "FrameLogFilterModel", "the source only appends");
+        beginInsertRows({}, first, last);
+        m_shown = last + 1;
+        endInsertRows();
+        return;
+    }
     Q_ASSERT_X(m_rows.empty() || m_rows.back() < first, "FrameLogFilterModel", "the source only appends");
     std::vector<int> added;
     for (int row = first; row <= last; ++row)
@@ -84,6 +95,7 @@ void FrameLogFilterModel::sourceRowsInserted(const QModelIndex& parent, int firs
     const int at = int(m_rows.size());
     beginInsertRows({}, at, at + int(added.size()) - 1);
     m_rows.insert(m_rows.end(), added.begin(), added.end());
+    m_shown = int(m_rows.size());
     endInsertRows();
 }
 
@@ -91,8 +103,8 @@ void FrameLogFilterModel::sourceDataChanged(const QModelIndex& topLeft, const QM
                                             const QList<int>& roles)
 {
     const int from = rowAtOrAfter(topLeft.row());
-    const auto end = std::upper_bound(m_rows.begin(), m_rows.end(), bottomRight.row());
-    const int to = int(end - m_rows.begin()) - 1;
+    const int to = m_showsAll ? std::min(bottomRight.row(), m_shown - 1)
+                              : int(std::upper_bound(m_rows.begin(), m_rows.end(), bottomRight.row()) - m_rows.begin()) - 1;
     if (from > to)
         return;
     emit dataChanged(index(from, topLeft.column()), index(to, bottomRight.column()), roles);
@@ -100,12 +112,14 @@ void FrameLogFilterModel::sourceDataChanged(const QModelIndex& topLeft, const QM
 
 int FrameLogFilterModel::rowAtOrAfter(int sourceRow) const
 {
+    if (m_showsAll)
+        return std::clamp(sourceRow, 0, m_shown);
     return int(std::lower_bound(m_rows.begin(), m_rows.end(), sourceRow) - m_rows.begin());
 }
 
 QModelIndex FrameLogFilterModel::index(int row, int column, const QModelIndex& parent) const
 {
-    if (parent.isValid() || row < 0 || row >= int(m_rows.size()) || column < 0 || column >= columnCount())
+    if (parent.isValid() || row < 0 || row >= m_shown || column < 0 || column >= columnCount())
         return {};
     return createIndex(row, column);
 }
@@ -117,7 +131,7 @@ QModelIndex FrameLogFilterModel::parent(const QModelIndex&) const
 
 int FrameLogFilterModel::rowCount(const QModelIndex& parent) const
 {
-    return parent.isValid() ? 0 : int(m_rows.size());
+    return parent.isValid() ? 0 : m_shown;
 }
 
 int FrameLogFilterModel::columnCount(const QModelIndex& parent) const
@@ -127,9 +141,9 @@ int FrameLogFilterModel::columnCount(const QModelIndex& parent) const
 
 QModelIndex FrameLogFilterModel::mapToSource(const QModelIndex& proxyIndex) const
 {
-    if (!m_source || !proxyIndex.isValid() || proxyIndex.row() >= int(m_rows.size()))
+    if (!m_source || !proxyIndex.isValid() || proxyIndex.row() >= m_shown)
         return {};
-    return m_source->index(m_rows[std::size_t(proxyIndex.row())], proxyIndex.column());
+    return m_source->index(sourceRow(proxyIndex.row()), proxyIndex.column());
 }
 
 QModelIndex FrameLogFilterModel::mapFromSource(const QModelIndex& sourceIndex) const
@@ -137,7 +151,7 @@ QModelIndex FrameLogFilterModel::mapFromSource(const QModelIndex& sourceIndex) c
     if (!m_source || !sourceIndex.isValid())
         return {};
     const int row = rowAtOrAfter(sourceIndex.row());
-    if (row >= int(m_rows.size()) || m_rows[std::size_t(row)] != sourceIndex.row())
+    if (row >= m_shown || sourceRow(row) != sourceIndex.row())
         return {};
     return createIndex(row, sourceIndex.column());
 }

@@ -4,7 +4,10 @@
 // without copying them: the filter keeps one vector of the source rows that
 // pass (4 bytes a row), rebuilt when the choice changes and extended when the
 // source appends. The source only ever appends or resets, which keeps every
-// mapping a binary search.
+// mapping a binary search. When every direction and status is chosen (as it
+// is unless the operator chose otherwise) there is no vector: a row is its
+// source row, and a log opened for replay is shown without going through its
+// rows on the GUI thread.
 
 #include "link/framelog/FrameLog.h"
 
@@ -43,7 +46,7 @@ public:
     QModelIndex mapFromSource(const QModelIndex& sourceIndex) const override;
 
     // The source row of a proxy row.
-    int sourceRow(int row) const { return m_rows[std::size_t(row)]; }
+    int sourceRow(int row) const { return m_showsAll ? row : m_rows[std::size_t(row)]; }
     // The proxy row showing source row `sourceRow`, or the first one after
     // it when it is filtered out; rowCount() when there is none.
     int rowAtOrAfter(int sourceRow) const;
@@ -55,7 +58,9 @@ private:
     void sourceDataChanged(const QModelIndex& topLeft, const QModelIndex& bottomRight, const QList<int>& roles);
 
     FrameLogModel* m_source = nullptr;
-    std::vector<int> m_rows;  // source rows shown, ascending
+    std::vector<int> m_rows;  // source rows shown, ascending; empty when all are
+    bool m_showsAll = true;   // every direction and status chosen
+    int m_shown = 0;          // rows shown
     unsigned m_directions = kAllDirections;
     unsigned m_statuses = kAllStatuses;
 };

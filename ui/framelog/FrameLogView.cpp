@@ -4,9 +4,11 @@
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/TextFormat.h"
 #include "codec/receive/LoggedFrameReading.h"
+#include "ui/framelog/FrameLogDelegate.h"
 #include "ui/framelog/FrameLogFilterModel.h"
 #include "ui/framelog/FrameLogModel.h"
 #include "ui/framelog/HexDump.h"
+#include "ui/framelog/SteadyScrollBar.h"
 
 #include <QCheckBox>
 #include <QComboBox>
@@ -136,6 +138,7 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
     bar->addWidget(m_count);
 
     m_table->setModel(m_filter);
+    m_table->setItemDelegate(new FrameLogDelegate(m_table));
     // A view lays out a new model on a timer of its own; done at once, the
     // first screen of a log opened for replay is painted with the log, not
     // together with everything else that changes when the replay starts.
@@ -151,6 +154,7 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
     // replay opened, a live session's first minute) narrows the view, and
     // the whole view and its header are painted again in that pass.
     m_table->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOn);
+    m_table->setVerticalScrollBar(new SteadyScrollBar(Qt::Vertical));
     // Fixed row heights and column widths: a view that measured its rows
     // would ask for the text of all 200,000 of them.
     m_table->verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);

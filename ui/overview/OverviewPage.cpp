@@ -5,6 +5,7 @@
 #include "ui/panels/ItemText.h"
 #include "ui/panels/ReportedLabel.h"
 #include "ui/panels/ReportedState.h"
+#include "ui/panels/SteadyGroupBox.h"
 #include "ui/panels/SteadyLabel.h"
 
 #include <QDateTime>
@@ -260,7 +261,7 @@ void OverviewPage::rebuildUnits()
             continue;  // who talks to whom, not what the aircraft does: the Header panel has it
         for (int index = 0; index < m_command->unitCount(kind); ++index) {
             const UnitRef ref{kind, index};
-            auto* card = new QGroupBox(unitTitle(*m_command, ref));
+            auto* card = new SteadyGroupBox(unitTitle(*m_command, ref));
             card->setObjectName(QStringLiteral("overview:") + card->title());
             auto* grid = new QGridLayout(card);
             grid->setContentsMargins(6, 4, 6, 4);

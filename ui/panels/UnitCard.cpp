@@ -18,7 +18,7 @@ enum Column { LabelColumn, ControlColumn, ReportedColumn, SpareColumn };
 }  // namespace
 
 UnitCard::UnitCard(CommandState* command, ReportedState* reported, UnitRef ref, const QString& title, QWidget* parent)
-    : QGroupBox(title, parent), m_command(command), m_reported(reported), m_ref(ref), m_grid(new QGridLayout(this))
+    : SteadyGroupBox(title, parent), m_command(command), m_reported(reported), m_ref(ref), m_grid(new QGridLayout(this))
 {
     if (const rcm::Unit* unit = command->unit(ref))
         setObjectName(QString::fromStdString(rcm::describeUnit(*unit)));

@@ -6,9 +6,8 @@
 #pragma once
 
 #include "codec/message/ItemTable.h"
+#include "ui/panels/SteadyGroupBox.h"
 #include "ui/panels/UnitRef.h"
-
-#include <QGroupBox>
 
 class CommandState;
 class FieldButtonGroup;
@@ -19,7 +18,7 @@ class ReportedLabel;
 class ReportedState;
 class StationEditor;
 
-class UnitCard : public QGroupBox {
+class UnitCard : public SteadyGroupBox {
     Q_OBJECT
 
 public:
