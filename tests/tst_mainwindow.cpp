@@ -23,6 +23,7 @@
 #include "ui/plan/FlightPlanUpload.h"
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
+#include "ui/framelog/ReplayControls.h"
 #include "link/session/LinkSettings.h"
 #include "link/simulation/SatelliteModemThread.h"
 #include "ui/window/LinkSettingsWidget.h"
@@ -130,6 +131,7 @@ private slots:
     void statusFiguresNameTheirValues();
     void linkSettingsAreKept();
     void replaysAFrameLog();
+    void replayOfAMissingLogSaysWhy();
     void replayShowsTheLogsCommandReadOnly();
     void rehearsalAgainstUasim();
     void keyedUploadUses199ByteSections();
@@ -595,8 +597,12 @@ void TestMainWindow::replaysAFrameLog()
     QSignalSpy finished(&window, &MainWindow::replayFinished);
     window.setReplaySpeed(10.0);
     window.openFrameLog(path);
+    // The replay's controls at once, saying what happens while the log is indexed.
+    QVERIFY(!window.replayControls()->isHidden());
+    QCOMPARE(window.replayControls()->timeText(), QStringLiteral("Opening the log\u2026"));
     // Indexed off the GUI thread, then shown whole.
     QTRY_COMPARE_WITH_TIMEOUT(window.frameLog()->rowCount(), 20, kLinkTimeoutMs);
+    QCOMPARE(window.replayControls()->timeText().right(11), QStringLiteral(" / 00:00:09"));  // ten seconds of frames
     QCOMPARE(window.frameLog()->logPath(), path);
     QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
     QTRY_COMPARE_WITH_TIMEOUT(window.statistics().framesReceived, quint64(20), kLinkTimeoutMs);
@@ -614,6 +620,19 @@ void TestMainWindow::replaysAFrameLog()
     QVERIFY(!window.linkStatus()->alarmActive());
     window.disconnectLink();
     QVERIFY(!window.isLinkRunning());
+}
+
+// A log that cannot be opened says why, and takes its replay controls away.
+void TestMainWindow::replayOfAMissingLogSaysWhy()
+{
+    MainWindow window(options());
+    window.openFrameLog(m_dir.filePath(QStringLiteral("no such log.pcapng")));
+    QVERIFY(!window.replayControls()->isHidden());
+    QTRY_VERIFY_WITH_TIMEOUT(window.replayControls()->isHidden(), kLinkTimeoutMs);
+    QVERIFY2(window.alerts()->errorBanner()->currentText().startsWith(QStringLiteral("Cannot open the frame log: ")),
+             qPrintable(window.alerts()->errorBanner()->currentText()));
+    QVERIFY(!window.isLinkRunning());
+    QCOMPARE(window.frameLog()->rowCount(), 0);
 }
 
 void TestMainWindow::replayShowsTheLogsCommandReadOnly()

@@ -71,6 +71,18 @@ ReplayControls::ReplayControls(QWidget* parent)
     setRange(0, 0);
 }
 
+void ReplayControls::showOpening()
+{
+    setRange(0, 0);
+    m_time->setText(tr("Opening the log\u2026"));
+    m_time->setToolTip(QString());
+}
+
+QString ReplayControls::timeText() const
+{
+    return m_time->text();
+}
+
 void ReplayControls::setRange(qint64 startMicros, qint64 endMicros)
 {
     m_start = startMicros;

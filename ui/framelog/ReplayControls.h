@@ -17,12 +17,16 @@ class ReplayControls : public QWidget {
 public:
     explicit ReplayControls(QWidget* parent = nullptr);
 
+    // A log being opened: no span yet, and a time that says so.
+    void showOpening();
     // The log's time span, in UTC microseconds; resets the position.
     void setRange(qint64 startMicros, qint64 endMicros);
     void setPosition(qint64 utcMicros);
     void setPaused(bool paused);
     void setFinished(bool finished);
     double speed() const;
+    // "00:12:34 / 24:00:00", as shown.
+    QString timeText() const;
     // Shows `speed` (one of the choices) without asking for it again.
     void setSpeed(double speed);
 

@@ -99,12 +99,22 @@ QDockWidget* dock(const QString& title, const QString& name, QWidget* content, Q
     QFont heading = d->font();
     heading.setBold(true);
     d->setFont(heading);
+    // The content paints its own background, so that a change inside it (a
+    // count, the log scrolling) repaints the content alone: the dock's title
+    // bar asks the style for its two buttons' icons on every paint.
+    content->setAutoFillBackground(true);
     d->setWidget(content);
     d->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable | QDockWidget::DockWidgetClosable);
     return d;
 }
 
 const QString kTitle = QStringLiteral("RCM ground control station");
+
+// Beside the panels' tabs while a log replays.
+QString replayNoteText()
+{
+    return MainWindow::tr("Replay: the log's commands, read only");
+}
 
 // Makes the widgets inside `area` read only while it is installed on the
 // application: clicks and keys never reach them, so that a replay's panels
@@ -234,7 +244,7 @@ void MainWindow::buildPanels()
         const int index = m_panels->addTab(p.panel == m_overview ? p.panel : scrolled(p.panel), p.title);
         m_panels->setTabToolTip(index, tr("%1 (Alt+%2)").arg(p.title).arg(index + 1));
     }
-    m_replayNote = new QLabel(tr("Replay: the log's commands, read only"));
+    m_replayNote = new QLabel(replayNoteText());
     m_replayNote->setContentsMargins(8, 0, 8, 0);
     m_replayNote->hide();
     m_panels->setCornerWidget(m_replayNote, Qt::TopRightCorner);
@@ -601,6 +611,16 @@ void MainWindow::openFrameLog(const QString& path, const QString& keyPath)
     m_preparedRows = rows;
     m_session->openReplay(path, keyPath,
                           [rows](const FrameLogReader& index) { *rows = FrameLogModel::prepareRows(index); });
+    // Shown now, saying the log is being opened (a long log takes seconds):
+    // their new layouts are then done and painted before the log comes, not
+    // together with it or with the replay's start.
+    m_replayControls->showOpening();
+    m_replayControls->setPaused(false);
+    m_replayControls->show();
+    if (!m_observation) {
+        m_replayNote->setText(replayNoteText());
+        m_replayNote->show();
+    }
     updateLinkControls();
 }
 
@@ -662,6 +682,9 @@ void MainWindow::linkStarted(const LinkController* controller)
     endObservation();
     m_status->setTransportLabel(tr("Call"), tr("The satellite phone's call: what the modem does, and for how long"));
     bindLinkEvents(controller, !replay);
+    // Also when a live link replaced a log being opened.
+    m_replayControls->setVisible(replay);
+    m_replayNote->setVisible(replay);
     if (const ReplayLink* r = m_session->replay()) {
         beginReplay(r);
         connect(r, &ReplayLink::positionChanged, this, [this](qint64 utc, int next) {
@@ -826,7 +849,7 @@ void MainWindow::endObservation()
     m_observation->stop();
     m_observation->deleteLater();
     m_observation = nullptr;
-    m_replayNote->setText(tr("Replay: the log's commands, read only"));
+    m_replayNote->setText(replayNoteText());
     endReplay();
     m_status->setLinkDescription(QString());
     m_status->setStatistics(LinkStatistics());
@@ -908,6 +931,12 @@ void MainWindow::endReplay()
 
 void MainWindow::actionFailed(const QString& reason)
 {
+    if (!m_session->replay()) {
+        // A log that could not be opened.
+        m_replayControls->hide();
+        if (!m_observation)
+            m_replayNote->hide();
+    }
     m_linkNote->setText(reason);
     // Key files are refused here too ("the key file is refused: ..."): said as the key's.
     showError(reason, reason.contains(QStringLiteral("key file")) ? EventSource::Key : EventSource::Link);

@@ -75,6 +75,7 @@ public:
     ReportedState* reported() const { return m_reported; }
     QTabWidget* panels() const { return m_panels; }
     FrameLogModel* frameLog() const { return m_logModel; }
+    const ReplayControls* replayControls() const { return m_replayControls; }
     FlightPlanWidget* flightPlan() const { return m_flightPlan; }
     StatusBarWidget* linkStatus() const { return m_status; }
     LinkSettingsWidget* linkSettings() const { return m_linkSettings; }
