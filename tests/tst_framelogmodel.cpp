@@ -660,11 +660,19 @@ void TestFrameLogModel::delegateDrawsTheModelsText()
     // Selected: the selection's text colour on the selection.
     const QImage selected = paintCell(ours, model.index(0, 1), cell, QStyle::State_Selected);
     QCOMPARE(selected.pixel(2, 2), QApplication::palette().color(QPalette::Active, QPalette::Highlight).rgb());
-    // Each text laid out once, bold apart; painted again, nothing new.
-    QCOMPARE(ours.laidOutTexts(), 2);
+    // Each text laid out once (the bold one in its own font); painted again, nothing new.
+    QCOMPARE(ours.laidOutTexts(), 3);
     paintCell(ours, model.index(0, 0), cell, {});
     paintCell(ours, model.index(0, 1), cell, {});
-    QCOMPARE(ours.laidOutTexts(), 2);
+    paintCell(ours, model.index(0, 2), cell, {});
+    QCOMPARE(ours.laidOutTexts(), 3);
+    // A day's row numbers: kept up to the bound, the least recently drawn given up.
+    QStandardItemModel numbers(3000, 1);
+    for (int row = 0; row < 3000; ++row) {
+        numbers.setItem(row, 0, new QStandardItem(QString::number(row + 1)));
+        paintCell(ours, numbers.index(row, 0), cell, {});
+    }
+    QCOMPARE(ours.laidOutTexts(), 2048 + 1);  // and the bold one
     // Too narrow a column: elided, within the cell.
     const QRect narrow = inkOf(paintCell(ours, model.index(0, 0), QSize(40, 24), {}), white);
     QVERIFY(narrow.right() < 40);

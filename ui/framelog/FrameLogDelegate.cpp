@@ -8,19 +8,18 @@ const QStaticText& FrameLogDelegate::laidOut(const QString& text, const QFont& f
 {
     const bool bold = font.bold();
     QFont& kept = bold ? m_boldFont : m_font;
-    QHash<QString, QStaticText>& texts = bold ? m_bold : m_texts;
-    if (font != kept || texts.size() >= kMostTexts) {
+    QCache<QString, QStaticText>& texts = bold ? m_bold : m_texts;
+    if (font != kept) {
         texts.clear();
         kept = font;
     }
-    auto it = texts.find(text);
-    if (it == texts.end()) {
-        QStaticText laid(text);
-        laid.setTextFormat(Qt::PlainText);
-        laid.prepare(QTransform(), font);
-        it = texts.insert(text, laid);
-    }
-    return *it;
+    if (QStaticText* known = texts.object(text))
+        return *known;
+    auto* laid = new QStaticText(text);
+    laid->setTextFormat(Qt::PlainText);
+    laid->prepare(QTransform(), font);
+    texts.insert(text, laid);
+    return *laid;
 }
 
 void FrameLogDelegate::paint(QPainter* painter, const QStyleOptionViewItem& option, const QModelIndex& index) const

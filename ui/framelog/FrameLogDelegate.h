@@ -7,12 +7,13 @@
 // it is played and as the next one is. Most of the log's texts repeat ("sent",
 // "decoded", "none"), and every one is painted several times, so this
 // delegate keeps each text laid out (QStaticText) for the font it was drawn
-// in, up to a bound. The background, selection and focus frame are still the
+// in: the most recently drawn few thousand, the least recently drawn given up
+// one at a time (all at once, they took milliseconds to free). The background, selection and focus frame are still the
 // style's; the text is the model's, in its colour, font and alignment, elided
 // on the right when its column is too narrow.
 
 #include <QFont>
-#include <QHash>
+#include <QCache>
 #include <QStaticText>
 #include <QStyledItemDelegate>
 
@@ -25,15 +26,15 @@ public:
     void paint(QPainter* painter, const QStyleOptionViewItem& option, const QModelIndex& index) const override;
 
     // Texts kept laid out, for tests.
-    int laidOutTexts() const { return int(m_texts.size()); }
+    int laidOutTexts() const { return int(m_texts.size() + m_bold.size()); }
 
 private:
-    static constexpr int kMostTexts = 2048;  // a few screens of rows; then it starts again
+    static constexpr int kMostTexts = 2048;  // many screens of rows
 
     const QStaticText& laidOut(const QString& text, const QFont& font) const;
 
     mutable QFont m_font;                          // the texts' font
     mutable QFont m_boldFont;                      // the bold texts' font (the last row played)
-    mutable QHash<QString, QStaticText> m_texts;   // in m_font
-    mutable QHash<QString, QStaticText> m_bold;    // in m_boldFont
+    mutable QCache<QString, QStaticText> m_texts{kMostTexts};  // in m_font
+    mutable QCache<QString, QStaticText> m_bold{kMostTexts};   // in m_boldFont
 };
