@@ -45,9 +45,11 @@
 #include <QStyle>
 #include <QStyleOptionFrame>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSignalSpy>
 #include <QSpinBox>
 #include <QTest>
+#include <QVBoxLayout>
 
 #include <chrono>
 #include <map>
@@ -778,6 +780,37 @@ private slots:
         QCOMPARE(steady.framesDrawn(), drawnOnShow + 2);
     }
 
+    // A label scrolled out of view is never painted; fitted when shown, a
+    // new text of it still asks nothing of the layouts above it.
+    void steadyLabelFittedOutOfView()
+    {
+        struct LayoutRequests : QObject {
+            int count = 0;
+            bool eventFilter(QObject*, QEvent* event) override
+            {
+                count += event->type() == QEvent::LayoutRequest;
+                return false;
+            }
+        } requests;
+        QScrollArea area;
+        auto* page = new QWidget;
+        auto* column = new QVBoxLayout(page);
+        column->addSpacing(2000);
+        auto* figure = new SteadyLabel(QStringLiteral("1,234"));
+        column->addWidget(figure);
+        area.setWidget(page);
+        area.resize(300, 200);
+        area.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&area));
+        QTRY_COMPARE(figure->minimumSize(), figure->maximumSize());
+        QVERIFY(figure->visibleRegion().isEmpty());  // never painted
+        QCoreApplication::processEvents();
+        page->installEventFilter(&requests);
+        figure->setText(QStringLiteral("7"));
+        QCoreApplication::processEvents();
+        QCOMPARE(requests.count, 0);
+    }
+
     void steadyLabelKeepsItsSize()
     {
         struct LayoutRequests : QObject {
@@ -802,6 +835,7 @@ private slots:
         const QSize fitted = figure->size();
         QVERIFY(fitted.width() >= figure->sizeHint().width());
         const int neighbourX = neighbour->x();
+        QCoreApplication::processEvents();  // the layout request of the fit itself
         row.installEventFilter(&requests);
 
         figure->setText(QStringLiteral("7"));

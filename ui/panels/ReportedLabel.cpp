@@ -8,6 +8,8 @@
 #include <QClipboard>
 #include <QGuiApplication>
 
+#include <algorithm>
+
 namespace {
 
 const QString kNothing = QStringLiteral("\u2014");  // an em dash: nothing reported yet
@@ -29,7 +31,11 @@ ReportedLabel::ReportedLabel(const CommandState* command, const ReportedState* r
 {
     setObjectName(QStringLiteral("reported:") + ItemText::name(id, field));
     setAccessibleName(tr("Reported %1").arg(ItemText::label(id, field)));
-    setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("RETRACTED")));
+    // Room for the value commanded now, too: the first status frame mostly
+    // reports what was commanded, and a dozen labels growing at once lays
+    // out their cards again and repaints them whole.
+    setMinimumWidth(std::max(fontMetrics().horizontalAdvance(QStringLiteral("RETRACTED")),
+                             fontMetrics().horizontalAdvance(valueText(command->value(ref, id)))));
     // Copied from its context menu rather than selected with the mouse: a
     // selectable label lays its text out as a rich-text document, about half
     // a millisecond of the GUI thread per new value, and a status frame can
@@ -45,13 +51,16 @@ ReportedLabel::ReportedLabel(const CommandState* command, const ReportedState* r
     connect(command, &CommandState::changed, this, &ReportedLabel::refresh);
 }
 
+QString ReportedLabel::valueText(const rcm::Value* value) const
+{
+    if (!value)
+        return kNothing;
+    return m_field < 0 ? ItemText::value(m_id, *value) : ItemText::fieldValue(m_id, m_field, *value);
+}
+
 void ReportedLabel::refresh()
 {
-    auto text = [this](const rcm::Value* v) {
-        if (!v)
-            return kNothing;
-        return m_field < 0 ? ItemText::value(m_id, *v) : ItemText::fieldValue(m_id, m_field, *v);
-    };
+    const auto text = [this](const rcm::Value* v) { return valueText(v); };
     const rcm::Value* reported = m_reported->value(m_ref, m_id);
     const auto age = reported ? m_reported->staleAge() : std::nullopt;
     const int seconds = age ? static_cast<int>(age->count()) : 0;

@@ -30,6 +30,8 @@ public:
 
 private:
     void refresh();
+    // A value as shown: the item's, or its field's; "—" for none.
+    QString valueText(const rcm::Value* value) const;
 
     // What the label shows was made from these; a refresh that finds them
     // unchanged does nothing (a status frame refreshes every label, and

@@ -6,15 +6,28 @@ SteadyLabel::SteadyLabel(QWidget* parent) : QLabel(parent) {}
 
 SteadyLabel::SteadyLabel(const QString& text, QWidget* parent) : QLabel(text, parent) {}
 
+void SteadyLabel::showEvent(QShowEvent* event)
+{
+    QLabel::showEvent(event);
+    if (!m_fitted)
+        queueFit();
+}
+
 void SteadyLabel::paintEvent(QPaintEvent* event)
 {
     // A new text is first seen here: QLabel::setText is not virtual. The size
     // is changed after the paint, never inside it.
-    if (!m_fitQueued && (!m_fitted || text() != m_fittedText)) {
-        m_fitQueued = true;
-        QMetaObject::invokeMethod(this, &SteadyLabel::fit, Qt::QueuedConnection);
-    }
+    if (!m_fitted || text() != m_fittedText)
+        queueFit();
     QLabel::paintEvent(event);
+}
+
+void SteadyLabel::queueFit()
+{
+    if (m_fitQueued)
+        return;
+    m_fitQueued = true;
+    QMetaObject::invokeMethod(this, &SteadyLabel::fit, Qt::QueuedConnection);
 }
 
 void SteadyLabel::changeEvent(QEvent* event)

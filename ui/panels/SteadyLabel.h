@@ -8,8 +8,10 @@
 // it has grown to as a fixed size, so a new text repaints the label alone. It
 // grows when a text does not fit (one pass of the event loop later, once per
 // new widest text), never shrinks for a shorter text, and is fitted anew when
-// its font or style changes. A minimum width set before it is first shown is
-// kept as its least width. Not for word-wrapped text.
+// its font or style changes. It is first fitted when shown, painted or not
+// (a label scrolled out of view would otherwise ask for room with every new
+// text). A minimum width set before it is first shown is kept as its least
+// width. Not for word-wrapped text.
 
 #include <QLabel>
 
@@ -21,10 +23,12 @@ public:
     explicit SteadyLabel(const QString& text, QWidget* parent = nullptr);
 
 protected:
+    void showEvent(QShowEvent* event) override;
     void paintEvent(QPaintEvent* event) override;
     void changeEvent(QEvent* event) override;
 
 private:
+    void queueFit();
     void fit();
 
     QSize m_least;         // the minimum size set before the first fit
