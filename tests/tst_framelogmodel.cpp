@@ -5,6 +5,7 @@
 // rows of a real link session (UDP on loopback) matching its log file record
 // for record, with no frame's bytes held in memory while the file has them.
 
+#include "EventCounter.h"
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -682,40 +683,32 @@ void TestFrameLogModel::delegateDrawsTheModelsText()
 // bar is not painted again until the slider moves or an end is reached.
 void TestFrameLogModel::scrollBarRepaintsWhenItsSliderMoves()
 {
-    struct Paints : QObject {
-        int count = 0;
-        bool eventFilter(QObject*, QEvent* event) override
-        {
-            count += event->type() == QEvent::Paint;
-            return false;
-        }
-    } paints;
     SteadyScrollBar bar(Qt::Vertical);
     bar.setRange(0, 86'400);
     bar.setPageStep(20);
     bar.resize(16, 400);
-    bar.installEventFilter(&paints);
+    EventCounter paints(&bar, QEvent::Paint);
     bar.show();
     QVERIFY(QTest::qWaitForWindowExposed(&bar));
-    QTRY_VERIFY(paints.count > 0);
+    QTRY_VERIFY(paints.count() > 0);
     bar.setValue(100);  // off the top end, whose arrow is drawn apart
     QCoreApplication::processEvents();
-    const int shown = paints.count;
+    const int shown = paints.count();
 
     for (int value = 101; value <= 110; ++value) {
         bar.setValue(value);
         QCoreApplication::processEvents();
     }
-    QCOMPARE(paints.count, shown);
+    QCOMPARE(paints.count(), shown);
     bar.setValue(43'200);
     QCoreApplication::processEvents();
-    QCOMPARE(paints.count, shown + 1);
+    QCOMPARE(paints.count(), shown + 1);
     bar.setValue(86'400);  // the end: its arrow changes
     QCoreApplication::processEvents();
-    QCOMPARE(paints.count, shown + 2);
+    QCOMPARE(paints.count(), shown + 2);
     bar.setValue(86'399);  // and changes back, a row before it
     QCoreApplication::processEvents();
-    QCOMPARE(paints.count, shown + 3);
+    QCOMPARE(paints.count(), shown + 3);
 }
 
 QTEST_MAIN(TestFrameLogModel)

@@ -5,6 +5,7 @@
 // would read. Status frames come from SimulatedAircraft or are made by hand;
 // no test waits on a clock.
 
+#include "EventCounter.h"
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -784,14 +785,6 @@ private slots:
     // new text of it still asks nothing of the layouts above it.
     void steadyLabelFittedOutOfView()
     {
-        struct LayoutRequests : QObject {
-            int count = 0;
-            bool eventFilter(QObject*, QEvent* event) override
-            {
-                count += event->type() == QEvent::LayoutRequest;
-                return false;
-            }
-        } requests;
         QScrollArea area;
         auto* page = new QWidget;
         auto* column = new QVBoxLayout(page);
@@ -805,22 +798,14 @@ private slots:
         QTRY_COMPARE(figure->minimumSize(), figure->maximumSize());
         QVERIFY(figure->visibleRegion().isEmpty());  // never painted
         QCoreApplication::processEvents();
-        page->installEventFilter(&requests);
+        EventCounter requests(page, QEvent::LayoutRequest);
         figure->setText(QStringLiteral("7"));
         QCoreApplication::processEvents();
-        QCOMPARE(requests.count, 0);
+        QCOMPARE(requests.count(), 0);
     }
 
     void steadyLabelKeepsItsSize()
     {
-        struct LayoutRequests : QObject {
-            int count = 0;
-            bool eventFilter(QObject*, QEvent* event) override
-            {
-                count += event->type() == QEvent::LayoutRequest;
-                return false;
-            }
-        } requests;
         QWidget row;
         auto* layout = new QHBoxLayout(&row);
         auto* figure = new SteadyLabel(QStringLiteral("1,234"));
@@ -836,12 +821,12 @@ private slots:
         QVERIFY(fitted.width() >= figure->sizeHint().width());
         const int neighbourX = neighbour->x();
         QCoreApplication::processEvents();  // the layout request of the fit itself
-        row.installEventFilter(&requests);
+        EventCounter requests(&row, QEvent::LayoutRequest);
 
         figure->setText(QStringLiteral("7"));
         QCoreApplication::processEvents();
         QCoreApplication::processEvents();
-        QCOMPARE(requests.count, 0);
+        QCOMPARE(requests.count(), 0);
         QCOMPARE(figure->size(), fitted);
         QCOMPARE(neighbour->x(), neighbourX);
 
@@ -849,7 +834,7 @@ private slots:
         QTRY_VERIFY(figure->width() >= figure->sizeHint().width());
         QVERIFY(figure->width() > fitted.width());
         QTRY_VERIFY(neighbour->x() > neighbourX);
-        QVERIFY(requests.count > 0);
+        QVERIFY(requests.count() > 0);
 
         // A new font is fitted anew: to the text it shows now.
         figure->setText(QStringLiteral("7"));
