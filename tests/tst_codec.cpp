@@ -11,6 +11,7 @@
 #include <QtTest>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <set>
@@ -373,6 +374,21 @@ void TestCodec::encoderRefusesOutOfRange_data()
     QTest::newRow("reserved bits") << 0x80 << qint64(0x51) << qint64(0)
                                    << "radio VHF1 receiver_control: field reserved bits: reserved bits are not 0";
     QTest::newRow("format 256") << 0x07 << qint64(256) << qint64(1) << "first format ID 256 is above the maximum 255 by 1";
+    // The distance to the range need not fit in an int64.
+    const qint64 lowest = std::numeric_limits<qint64>::min();
+    const qint64 highest = std::numeric_limits<qint64>::max();
+    QTest::newRow("ID_msg -2^63") << 0x03 << lowest << qint64(0)
+                                  << "HEADER ID_msg: -9223372036854775808 is below the minimum 0 by 9223372036854775808";
+    QTest::newRow("flap 2^63-1") << 0x45 << highest << qint64(0)
+                                 << "flaps F_elev_set: 9223372036854775807 is above the maximum 127 by 9223372036854775680";
+    QTest::newRow("compass -2^63") << 0xC1 << lowest << qint64(0)
+                                   << "camera NIK 1 cam_mag_compass: -92233720368547758.08 is below the minimum 0.00 by "
+                                      "92233720368547758.08";
+    QTest::newRow("elevation -2^63") << 0xC2 << lowest << qint64(0)
+                                     << "camera NIK 1 cam_elev: -92233720368547758.08 is below the minimum -327.67 by "
+                                        "92233720368547430.41";
+    QTest::newRow("unit -2^63") << 0x09 << qint64(44) << lowest
+                                << "unit number -9223372036854775808 is below the minimum 0 by 9223372036854775808";
 }
 
 void TestCodec::encoderRefusesOutOfRange()

@@ -922,11 +922,17 @@ void TestTextFormat::badInput_data()
         << "ID_msg \"" + big + "\""
         << "line 1 column 8: ID_msg: expected an integer from 0 to 16777215 (decimal or 0x hex), got quoted text \"" +
                QByteArray(39, 'A') + "... (10485762 bytes)";
-    // A long UTF-8 name is cut between characters, not inside one.
+    // Bytes of 0x80 and above are written \xHH, UTF-8 or not, so that
+    // whatever was typed reaches a terminal or a log as plain ASCII.
     QTest::newRow("long UTF-8 name") << QByteArray("A") + QByteArray("\xC3\xA9").repeated(30) + " 1"
-                                     << "line 1 column 1: A" + QByteArray("\xC3\xA9").repeated(19) +
-                                            "... (61 bytes): unknown item 'A" + QByteArray("\xC3\xA9").repeated(19) +
-                                            "... (61 bytes)'";
+                                     << "line 1 column 1: A" + QByteArray("\\xC3\\xA9").repeated(19) +
+                                            "\\xC3... (61 bytes): unknown item 'A" +
+                                            QByteArray("\\xC3\\xA9").repeated(19) + "\\xC3... (61 bytes)'";
+    QTest::newRow("byte 0xFF in a name") << QByteArray("ID_m\xFFsg 1")
+                                         << QByteArray("line 1 column 1: ID_m\\xFFsg: unknown item 'ID_m\\xFFsg'");
+    QTest::newRow("byte 0x80 after a closing quote")
+        << QByteArray("cam_ID \"NIK\"\x80 1")
+        << QByteArray("line 1 column 13: expected a space after the closing \", got '\\x80'");
 }
 
 void TestTextFormat::badInput()
@@ -952,7 +958,8 @@ void TestTextFormat::byteOrderMarkIsSkipped()
                         "0x hex), got 'x'\n"));
     // Only at the very start: elsewhere it is an unknown name as written.
     r = parseMessage("ID_msg 1\n\xEF\xBB\xBFID_msg 2\n");
-    QCOMPARE(q(dump(r.errors)), QByteArray("line 2 column 1: \xEF\xBB\xBFID_msg: unknown item '\xEF\xBB\xBFID_msg'\n"));
+    QCOMPARE(q(dump(r.errors)),
+             QByteArray("line 2 column 1: \\xEF\\xBB\\xBFID_msg: unknown item '\\xEF\\xBB\\xBFID_msg'\n"));
 }
 
 void TestTextFormat::errorsAreCapped()

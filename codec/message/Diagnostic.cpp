@@ -24,14 +24,11 @@ std::string Diagnostic::toString() const
 std::string echoInput(std::string_view input)
 {
     static constexpr char kHex[] = "0123456789ABCDEF";
-    std::size_t shown = std::min(input.size(), kEchoLimit);
-    // Never half a UTF-8 character: back off over continuation bytes.
-    while (shown < input.size() && shown > 0 && (static_cast<unsigned char>(input[shown]) & 0xC0) == 0x80)
-        --shown;
+    const std::size_t shown = std::min(input.size(), kEchoLimit);
     std::string out;
     for (const char ch : input.substr(0, shown)) {
         const auto c = static_cast<unsigned char>(ch);
-        if (c < 0x20 || c == 0x7F) {
+        if (c < 0x20 || c >= 0x7F) {
             out += "\\x";
             out += kHex[c >> 4];
             out += kHex[c & 0xF];

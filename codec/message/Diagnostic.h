@@ -39,8 +39,10 @@ struct Diagnostic {
 
 using Diagnostics = std::vector<Diagnostic>;
 
-// Bytes of input as a message quotes them: control bytes written \xHH (so a
-// NUL cannot end the message) and at most kEchoLimit bytes, the rest counted:
+// Bytes of input as a message quotes them: printable ASCII as it is, every
+// other byte written \xHH (so a NUL cannot end the message, and a byte of
+// 0x80 or above, a piece of UTF-8 or not, cannot reach a terminal or a log
+// raw), and at most kEchoLimit bytes, the rest counted:
 // "AAAA... (10485760 bytes)".
 inline constexpr std::size_t kEchoLimit = 40;
 std::string echoInput(std::string_view input);

@@ -477,10 +477,12 @@ NumberRead readScaled(std::string_view s, int scale, std::int64_t& out, bool& to
 // ItemInfo for checkValue to read.
 std::string rangeReason(std::int64_t v, std::int64_t min, std::int64_t max)
 {
+    // Differences in unsigned arithmetic: -2^63 is 2^63 below 0, more than an int64 holds.
+    const auto u = [](std::int64_t x) { return static_cast<std::uint64_t>(x); };
     if (v < min)
-        return std::to_string(v) + " is below the minimum " + std::to_string(min) + " by " + std::to_string(min - v);
+        return std::to_string(v) + " is below the minimum " + std::to_string(min) + " by " + std::to_string(u(min) - u(v));
     if (v > max)
-        return std::to_string(v) + " is above the maximum " + std::to_string(max) + " by " + std::to_string(v - max);
+        return std::to_string(v) + " is above the maximum " + std::to_string(max) + " by " + std::to_string(u(v) - u(max));
     return {};
 }
 
@@ -618,7 +620,7 @@ private:
                 }
                 if (j < line.size() && !isSpace(line[j]) && line[j] != '#') {
                     error(DiagKind::Syntax, static_cast<int>(j) + 1, "",
-                          "expected a space after the closing \", got '" + std::string(1, line[j]) + "'");
+                          "expected a space after the closing \", got " + quote(line.substr(j, 1)));
                     return false;
                 }
             } else {
@@ -1329,7 +1331,7 @@ std::optional<StationId> parseStation(std::string_view text, std::string* error)
         return StationId{static_cast<std::uint16_t>(value->number), static_cast<std::uint16_t>(value->second)};
     if (error) {
         if (!oneToken)
-            *error = "expected a station COUNTRY_UNIT such as GB_133, got '" + std::string(text) + "'";
+            *error = "expected a station COUNTRY_UNIT such as GB_133, got " + quote(text);
         else
             *error = parsed.errors.empty() ? std::string("not a station") : parsed.errors.front().message;
     }

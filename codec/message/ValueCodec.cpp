@@ -8,16 +8,22 @@
 namespace rcm {
 namespace {
 
+// How far `v` lies outside [min, max], as a magnitude: the difference of
+// two int64 values need not fit in an int64 (-2^63 is 2^63 below 0).
+std::uint64_t distanceOutside(std::int64_t v, std::int64_t min, std::int64_t max)
+{
+    return v < min ? static_cast<std::uint64_t>(min) - static_cast<std::uint64_t>(v)
+                   : static_cast<std::uint64_t>(v) - static_cast<std::uint64_t>(max);
+}
+
 std::string rangeError(const ItemInfo& item, std::int64_t v, std::int64_t min, std::int64_t max, const char* what = nullptr)
 {
+    if (v >= min && v <= max)
+        return {};
     std::string subject = what ? std::string(what) + " " : std::string();
-    if (v < min)
-        return subject + formatScaled(item, v) + " is below the minimum " + formatScaled(item, min) + " by " +
-               formatScaled(item, min - v);
-    if (v > max)
-        return subject + formatScaled(item, v) + " is above the maximum " + formatScaled(item, max) + " by " +
-               formatScaled(item, v - max);
-    return {};
+    const bool below = v < min;
+    return subject + formatScaled(item, v) + (below ? " is below the minimum " : " is above the maximum ") +
+           formatScaled(item, below ? min : max) + " by " + formatScaledMagnitude(item, distanceOutside(v, min, max));
 }
 
 std::string plainRange(std::int64_t v, std::int64_t min, std::int64_t max, const char* what)
@@ -26,7 +32,7 @@ std::string plainRange(std::int64_t v, std::int64_t min, std::int64_t max, const
         return {};
     const bool below = v < min;
     return std::string(what) + " " + std::to_string(v) + (below ? " is below the minimum " : " is above the maximum ") +
-           std::to_string(below ? min : max) + " by " + std::to_string(below ? min - v : v - max);
+           std::to_string(below ? min : max) + " by " + std::to_string(distanceOutside(v, min, max));
 }
 
 bool printableAscii(const std::string& s)
@@ -46,16 +52,23 @@ int daysInMonth(int yy, int mm)
 
 }  // namespace
 
-std::string formatScaled(const ItemInfo& item, std::int64_t number)
+std::string formatScaledMagnitude(const ItemInfo& item, std::uint64_t magnitude, bool negative)
 {
     if (item.scale != 100)
-        return std::to_string(number);
-    const bool negative = number < 0;
-    const std::uint64_t mag = negative ? static_cast<std::uint64_t>(-number) : static_cast<std::uint64_t>(number);
+        return (negative ? "-" : "") + std::to_string(magnitude);
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%s%llu.%02llu", negative ? "-" : "", static_cast<unsigned long long>(mag / 100),
-                  static_cast<unsigned long long>(mag % 100));
+    std::snprintf(buf, sizeof buf, "%s%llu.%02llu", negative ? "-" : "", static_cast<unsigned long long>(magnitude / 100),
+                  static_cast<unsigned long long>(magnitude % 100));
     return buf;
+}
+
+std::string formatScaled(const ItemInfo& item, std::int64_t number)
+{
+    // 0 - x in unsigned arithmetic: -number overflows for -2^63.
+    const bool negative = number < 0;
+    const std::uint64_t magnitude =
+        negative ? std::uint64_t{0} - static_cast<std::uint64_t>(number) : static_cast<std::uint64_t>(number);
+    return formatScaledMagnitude(item, magnitude, negative);
 }
 
 void checkFields(const ItemInfo& item, std::uint8_t byte, std::vector<FieldProblem>& out)

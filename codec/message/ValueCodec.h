@@ -21,6 +21,9 @@ Value unpackValue(const ItemInfo& item, const std::uint8_t* in);
 
 // A number in the item's text units: "-54.64" for hundredths, "120" otherwise.
 std::string formatScaled(const ItemInfo& item, std::int64_t number);
+// The same for a magnitude that may not fit in an int64 (how far -2^63 lies
+// below a minimum of 0), with its sign.
+std::string formatScaledMagnitude(const ItemInfo& item, std::uint64_t magnitude, bool negative = false);
 
 // For Fields items: the diagnostics of each corrupt field and of set reserved
 // bits, as (field label or "reserved bits", reason) pairs appended to `out`.
