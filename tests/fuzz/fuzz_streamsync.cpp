@@ -175,7 +175,12 @@ Run runOnce(const Bytes& bytes, std::mt19937_64* cut)
                             : static_cast<std::int64_t>(f.raw.size()) == static_cast<std::int64_t>(kFrameSize) + f.offset,
               "raw size against offset");
         check(run.offsets.empty() || f.offset > run.offsets.back(), "frames out of order");
-        check(f.preambleBitErrors >= 0 && f.preambleBitErrors <= StreamSync::kMaxWindowBitErrors, "window distance");
+        // Up to 6 bits anywhere; up to 16 only where a frame was due, 600
+        // bytes after one reported before.
+        check(f.preambleBitErrors >= 0 && f.preambleBitErrors <= StreamSync::kMaxDueWindowBitErrors, "window distance");
+        check(f.preambleBitErrors <= StreamSync::kMaxWindowBitErrors ||
+                  std::binary_search(run.offsets.begin(), run.offsets.end(), f.offset - static_cast<std::int64_t>(kFrameSize)),
+              "window distance beyond 6 bits where no frame was due");
         const std::int64_t start = std::max<std::int64_t>(f.offset, 0);
         const std::int64_t end = f.offset + static_cast<std::int64_t>(kFrameSize);
         check(end <= static_cast<std::int64_t>(bytes.size()), "frame past the end of the stream");
