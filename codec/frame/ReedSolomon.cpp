@@ -81,6 +81,202 @@ struct Register {
 
 }  // namespace
 
+namespace {
+
+// GF(2^8) of the CCSDS code in the conventional basis: field polynomial
+// x^8+x^7+x^2+x+1, alpha = x; roots of the generator alpha^(11 (112 + i)),
+// i = 0 .. 31. Log/antilog tables as libfec keeps them (kA0: log of 0).
+constexpr int kA0 = 255;
+constexpr int kFirstRoot = 112;
+constexpr int kPrimitive = 11;
+constexpr int kInversePrimitive = 116;  // 11 * 116 = 1 modulo 255
+constexpr int kRoots = static_cast<int>(kParitySize);
+
+struct Field {
+    std::array<std::uint8_t, 256> alphaTo{};
+    std::array<std::uint8_t, 256> indexOf{};
+    // times[i][v]: v times the generator's root i; the syndromes' Horner steps.
+    std::array<std::array<std::uint8_t, 256>, kParitySize> times{};
+    Field()
+    {
+        unsigned x = 1;
+        for (int i = 0; i < 255; ++i) {
+            alphaTo[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(x);
+            indexOf[x] = static_cast<std::uint8_t>(i);
+            x <<= 1;
+            if (x & 0x100)
+                x ^= 0x187;
+        }
+        alphaTo[255] = 0;
+        indexOf[0] = kA0;
+        for (int i = 0; i < static_cast<int>(kParitySize); ++i) {
+            const int rootLog = ((kFirstRoot + i) * kPrimitive) % 255;
+            for (int v = 1; v < 256; ++v)
+                times[static_cast<std::size_t>(i)][static_cast<std::size_t>(v)] =
+                    alphaTo[static_cast<std::size_t>((indexOf[static_cast<std::size_t>(v)] + rootLog) % 255)];
+        }
+    }
+};
+
+const Field& field()
+{
+    static const Field instance;
+    return instance;
+}
+
+// x modulo 255 for x >= 0, as libfec computes it: no division.
+inline int modnn(int x)
+{
+    while (x >= 255) {
+        x -= 255;
+        x = (x >> 8) + (x & 255);
+    }
+    return x;
+}
+
+// libfec's decode_rs (decode_rs.h, no erasures) from the remainder of the
+// word modulo the generator instead of from the word itself: the syndromes
+// are the remainder's values at the generator's roots, 32 coefficients
+// instead of 255. `remainder[k]` is the coefficient of x^(31-k), conventional
+// basis; `word` is corrected in place, dual basis. The same steps as libfec's
+// (Berlekamp-Massey, Chien search, Forney), so the same result; `maxErrors`
+// stops before the Chien search when the error locator already says more.
+int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int maxErrors)
+{
+    const Field& gf = field();
+    const auto& alphaTo = gf.alphaTo;
+    const auto& indexOf = gf.indexOf;
+    int s[kRoots];
+    bool nonzero = false;
+    for (int i = 0; i < kRoots; ++i) {
+        const auto& times = gf.times[static_cast<std::size_t>(i)];
+        unsigned v = 0;
+        for (int k = 0; k < kRoots; ++k)
+            v = times[v] ^ remainder[k];
+        nonzero = nonzero || v != 0;
+        s[i] = indexOf[v];
+    }
+    if (!nonzero)
+        return 0;
+
+    std::uint8_t lambda[kRoots + 1] = {1};
+    int b[kRoots + 1];
+    int t[kRoots + 1];
+    for (int i = 0; i <= kRoots; ++i)
+        b[i] = indexOf[lambda[i]];
+    int el = 0;
+    for (int r = 1; r <= kRoots; ++r) {
+        unsigned discr = 0;
+        for (int i = 0; i < r; ++i)
+            if (lambda[i] != 0 && s[r - i - 1] != kA0)
+                discr ^= alphaTo[static_cast<std::size_t>(modnn(indexOf[lambda[i]] + s[r - i - 1]))];
+        const int discrLog = indexOf[discr];
+        if (discrLog == kA0) {
+            std::memmove(&b[1], b, kRoots * sizeof b[0]);
+            b[0] = kA0;
+            continue;
+        }
+        t[0] = lambda[0];
+        for (int i = 0; i < kRoots; ++i)
+            t[i + 1] = b[i] != kA0 ? lambda[i + 1] ^ alphaTo[static_cast<std::size_t>(modnn(discrLog + b[i]))]
+                                   : lambda[i + 1];
+        if (2 * el <= r - 1) {
+            el = r - el;
+            for (int i = 0; i <= kRoots; ++i)
+                b[i] = lambda[i] == 0 ? kA0 : modnn(indexOf[lambda[i]] - discrLog + 255);
+        } else {
+            std::memmove(&b[1], b, kRoots * sizeof b[0]);
+            b[0] = kA0;
+        }
+        for (int i = 0; i <= kRoots; ++i)
+            lambda[i] = static_cast<std::uint8_t>(t[i]);
+    }
+
+    int lambdaLog[kRoots + 1];
+    int degLambda = 0;
+    for (int i = 0; i <= kRoots; ++i) {
+        lambdaLog[i] = indexOf[lambda[i]];
+        if (lambdaLog[i] != kA0)
+            degLambda = i;
+    }
+    if (degLambda > maxErrors)
+        return -1;
+
+    int reg[kRoots + 1];
+    std::memcpy(&reg[1], &lambdaLog[1], kRoots * sizeof reg[0]);
+    int root[kRoots];
+    int loc[kRoots];
+    int count = 0;
+    for (int i = 1, k = kInversePrimitive - 1; i <= 255; ++i, k = modnn(k + kInversePrimitive)) {
+        unsigned q = 1;
+        for (int j = degLambda; j > 0; --j) {
+            if (reg[j] != kA0) {
+                const int next = reg[j] + j;
+                reg[j] = next >= 255 ? next - 255 : next;
+                q ^= alphaTo[static_cast<std::size_t>(reg[j])];
+            }
+        }
+        if (q != 0)
+            continue;
+        root[count] = i;
+        loc[count] = k;
+        if (++count == degLambda)
+            break;
+    }
+    if (degLambda != count)
+        return -1;
+
+    const int degOmega = degLambda - 1;
+    int omega[kRoots + 1];
+    for (int i = 0; i <= degOmega; ++i) {
+        unsigned tmp = 0;
+        for (int j = i; j >= 0; --j)
+            if (s[i - j] != kA0 && lambdaLog[j] != kA0)
+                tmp ^= alphaTo[static_cast<std::size_t>(modnn(s[i - j] + lambdaLog[j]))];
+        omega[i] = indexOf[tmp];
+    }
+    const ParityTable& tab = table();
+    for (int j = count - 1; j >= 0; --j) {
+        unsigned num1 = 0;
+        for (int i = degOmega; i >= 0; --i)
+            if (omega[i] != kA0)
+                num1 ^= alphaTo[static_cast<std::size_t>(modnn(omega[i] + i * root[j]))];
+        const unsigned num2 = alphaTo[static_cast<std::size_t>(modnn(root[j] * (kFirstRoot - 1) + 255))];
+        unsigned den = 0;
+        for (int i = std::min(degLambda, kRoots - 1) & ~1; i >= 0; i -= 2)
+            if (lambdaLog[i + 1] != kA0)
+                den ^= alphaTo[static_cast<std::size_t>(modnn(lambdaLog[i + 1] + i * root[j]))];
+        if (num1 != 0) {
+            const unsigned error =
+                alphaTo[static_cast<std::size_t>(modnn(indexOf[num1] + indexOf[num2] + 255 - indexOf[den]))];
+            std::uint8_t& byte = word[loc[j]];
+            byte = tab.convToDual[static_cast<std::uint8_t>(tab.dualToConv[byte] ^ error)];
+        }
+    }
+    return count;
+}
+
+// The remainder of a word (dual basis) modulo the generator, conventional
+// basis, coefficient of x^31 first; false when it is 0 (a codeword).
+bool remainderOf(const std::uint8_t* word, std::uint8_t* remainder)
+{
+    const ParityTable& tab = table();
+    Register reg;
+    for (std::size_t i = 0; i < kDataSize; ++i)
+        reg.feed(tab, word[i]);
+    const std::uint64_t regs[4] = {reg.r0, reg.r1, reg.r2, reg.r3};
+    std::uint8_t any = 0;
+    for (int w = 0; w < 4; ++w)
+        for (int b = 0; b < 8; ++b) {
+            const std::size_t k = static_cast<std::size_t>(w * 8 + b);
+            remainder[k] = static_cast<std::uint8_t>(regs[w] >> (56 - 8 * b)) ^ tab.dualToConv[word[kDataSize + k]];
+            any |= remainder[k];
+        }
+    return any != 0;
+}
+
+}  // namespace
+
 // The table-driven register, several times faster than libfec's
 // encode_rs_ccsds (which tst_codec compares it with): a trial decoder
 // encodes thousands of candidate predictions for one frame.
@@ -135,7 +331,39 @@ int correct(std::uint8_t* codeword)
 
 int decode(std::uint8_t* codeword)
 {
-    return isCodeword(codeword) ? 0 : correct(codeword);
+    return decodeWithin(codeword, kRoots);
+}
+
+int decodeWithin(std::uint8_t* codeword, int maxErrors)
+{
+    std::uint8_t remainder[kParitySize];
+    if (!remainderOf(codeword, remainder))
+        return 0;
+    std::uint8_t word[kCodewordSize];
+    std::memcpy(word, codeword, kCodewordSize);
+    const int corrected = correctFromRemainder(word, remainder, maxErrors);
+    if (corrected > 0)
+        std::memcpy(codeword, word, kCodewordSize);
+    return corrected;
+}
+
+int decodeWithParity(std::uint8_t* word, const std::uint8_t* codewordParity, int maxErrors)
+{
+    const ParityTable& tab = table();
+    std::uint8_t remainder[kParitySize];
+    std::uint8_t any = 0;
+    for (std::size_t k = 0; k < kParitySize; ++k) {
+        remainder[k] = tab.dualToConv[word[kDataSize + k]] ^ tab.dualToConv[codewordParity[k]];
+        any |= remainder[k];
+    }
+    if (!any)
+        return 0;
+    std::uint8_t copy[kCodewordSize];
+    std::memcpy(copy, word, kCodewordSize);
+    const int corrected = correctFromRemainder(copy, remainder, maxErrors);
+    if (corrected > 0)
+        std::memcpy(word, copy, kCodewordSize);
+    return corrected;
 }
 
 int decodeLibfec(std::uint8_t* codeword)

@@ -10,7 +10,6 @@ int decodeWithPrediction(const std::uint8_t* received, const std::uint8_t* predi
 {
     const int parityDiffers = parityDistance(received, predicted);
     std::memcpy(out, predicted, kDataSize);
-    std::memcpy(out + kDataSize, received + kDataSize, kParitySize);
     // The trial word is within parityDiffers of `predicted`, a codeword; at
     // <= 16 no other codeword can be as close, so the decoder would return it.
     if (parityDiffers <= kMaxCorrectable) {
@@ -19,7 +18,9 @@ int decodeWithPrediction(const std::uint8_t* received, const std::uint8_t* predi
         std::memcpy(out + kDataSize, predicted + kDataSize, kParitySize);
         return parityDiffers;
     }
-    const int corrected = decode(out);
+    // The trial word's remainder is the difference of the two parities.
+    std::memcpy(out + kDataSize, received + kDataSize, kParitySize);
+    const int corrected = decodeWithParity(out, predicted + kDataSize, margin);
     return corrected >= 0 && corrected <= margin ? corrected : -1;
 }
 
