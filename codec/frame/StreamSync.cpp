@@ -19,6 +19,18 @@ constexpr std::size_t kBufferSize = 8192;
 // whose same codeword fails by one byte.
 constexpr int kFailedCodewordBits = rs::kMaxCorrectable + 1;
 constexpr int kMaxPartialWindowBitErrors = 3;
+constexpr int kMaxSlippedMarkBitErrors = 2;
+constexpr int kMinSlippedFill = 6;
+// A reading that decodes but is not exact may be a rotation of a real frame
+// whose start no window shows (its mark lost to a slip, bytes inserted
+// between the mark and codeword 1, an alias inside padding): RS codes are
+// cyclic, so the real codewords are the decoded ones rotated back. Every
+// start within a codeword's length either side is compared with them,
+// without decoding; one is taken only when both codewords are there with
+// no byte to correct and the frame is exact. A rotation of a real frame
+// always needs a correction in each codeword (the bytes wrapped around are
+// another codeword's or the next preamble's), so none can pass for it.
+constexpr std::int64_t kRotationSearch = static_cast<std::int64_t>(kCodewordSize) - 1;
 
 constexpr std::array<std::uint8_t, 16> kWindow = {0x55, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55,
                                                   0x55, 0x55, 0x55, 0x55, 0x55, 0x55, 0x0F, 0x0F};
@@ -100,6 +112,36 @@ void rsDecode(const std::uint8_t* codewords, const Decoded* near, std::int64_t j
     }
 }
 
+// The codewords read j bytes from where `near` decoded both, when both are
+// near's rotated by j within `maxChanged` bytes: what the decoder would
+// return there, had without decoding. False otherwise.
+bool rotated(const std::uint8_t* codewords, const Decoded& near, std::int64_t j, Decoded& d, int maxChanged)
+{
+    constexpr std::int64_t n = kCodewordSize;
+    const std::size_t from = static_cast<std::size_t>((j % n + n) % n);
+    // Compared in place first: most starts differ within a few bytes.
+    for (int b = 0; b < 2; ++b) {
+        if (near.corrected[b] < 0)
+            return false;
+        const std::uint8_t* received = codewords + b * kCodewordSize;
+        const std::uint8_t* cw = near.cw[b];
+        const std::size_t split = kCodewordSize - from;
+        int changed = 0;
+        for (std::size_t i = 0; i < split && changed <= maxChanged; ++i)
+            changed += cw[from + i] != received[i];
+        for (std::size_t i = split; i < kCodewordSize && changed <= maxChanged; ++i)
+            changed += cw[i - split] != received[i];
+        if (changed > maxChanged)
+            return false;
+        d.corrected[b] = changed;
+    }
+    for (int b = 0; b < 2; ++b) {
+        std::memcpy(d.cw[b], near.cw[b] + from, kCodewordSize - from);
+        std::memcpy(d.cw[b] + (kCodewordSize - from), near.cw[b], from);
+    }
+    return true;
+}
+
 // The trial's score: the bit errors this reading of the stream has to
 // assume. Bits, not bytes: a reading one byte off "corrects" a whole byte
 // per codeword (about 4 bits each) where a true reading at a low bit error
@@ -161,6 +203,8 @@ void StreamSync::reset()
     failEnd_ = 0;
     covered_ = 0;
     hasPending_ = false;
+    emitted_ = false;
+    lastEmitted_ = 0;
     stats_ = Stats{};
 }
 
@@ -203,6 +247,20 @@ bool StreamSync::qualifies(std::uint64_t c, int distance) const
 {
     if (distance <= kMaxWindowBitErrors)
         return true;
+    // A preamble whose last bytes took a slip (bytes inserted into the fill)
+    // or a burst: the mark itself within 2 bits of 0F 0F, and at least 6 of
+    // the 14 fill bytes before it exactly 55. By chance in random bytes
+    // about once in 10^13 places.
+    const std::uint8_t* w = at(c - kWindowSize);
+    if (std::popcount(static_cast<unsigned>(w[14] ^ kPreambleMark)) +
+            std::popcount(static_cast<unsigned>(w[15] ^ kPreambleMark)) <=
+        kMaxSlippedMarkBitErrors) {
+        int fill = 0;
+        for (std::size_t i = 0; i < kWindowSize - 2; ++i)
+            fill += w[i] == kPreambleFillByte;
+        if (fill >= kMinSlippedFill)
+            return true;
+    }
     if (c != due_ || distance > kMaxDueWindowBitErrors)
         return false;
     // Inside the preamble fill every window is 8 bits from the tail (its
@@ -222,9 +280,10 @@ int StreamSync::distance(std::uint64_t c) const
 
 std::uint64_t StreamSync::keepFrom() const
 {
-    // Every later frame starts at or after a candidate not yet examined, or
-    // is the failed frame still waiting to be reported.
-    std::uint64_t keep = preambleStart(scan_);
+    // Every later frame starts at or after a candidate not yet examined (or
+    // up to kRotationSearch bytes before one), or is the failed frame still
+    // waiting to be reported.
+    std::uint64_t keep = preambleStart(scan_ > kRotationSearch ? scan_ - kRotationSearch : 0);
     if (hasPending_)
         keep = std::min(keep, preambleStart(pendingC_));
     return std::clamp(keep, base_, base_ + len_);
@@ -298,7 +357,11 @@ bool StreamSync::tryExpected(std::uint64_t c)
     DecodedBlocks blocks;
     std::memcpy(blocks.block1.data(), cw, kBlockSize);
     std::memcpy(blocks.block2.data(), cw + kCodewordSize, kBlockSize);
-    confirm(c, 0, blocks);
+    // A constant or foreign frame where one was due may hide the real one a
+    // few bytes on: only an exact frame ends the search.
+    if (exact_ && !exact_(blocks))
+        return false;
+    confirm(c, 0, blocks, true);
     return true;
 }
 
@@ -334,6 +397,7 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
     // acceptor every reading counts as exact.
     Trial trials[3];
     Decoded decoded[2];  // [0]: the closest window's, to predict the others near it
+    Decoded bestDecoded;
     int best = -1;
     int exact = -1;
     DecodedBlocks firstBlocks;
@@ -371,17 +435,49 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
         }
         if (!confirms(t, t.c < failEnd_))
             continue;
-        if (best < 0 || better(t, trials[best]))
+        if (best < 0 || better(t, trials[best])) {
             best = slot;
+            bestDecoded = d;
+        }
         if ((exact < 0 || better(t, trials[exact])) && (!exact_ || exact_(t.blocks)))
             exact = slot;
+    }
+    if (best >= 0 && exact < 0 && exact_ && trials[best].blocks.ok()) {
+        // A reading that decodes into what is not a frame: perhaps a
+        // rotation of the real one.
+        const std::uint64_t from = trials[best].c;
+        for (std::int64_t j = 1; j <= kRotationSearch && exact < 0; ++j) {
+            for (const std::int64_t signedJ : {-j, j}) {
+                if (signedJ < 0 && static_cast<std::uint64_t>(-signedJ) > from)
+                    continue;
+                const std::uint64_t c = from + static_cast<std::uint64_t>(signedJ);
+                if (c < base_ + kPreambleSize || c + kDatagramSize > end || (emitted_ && c <= lastEmitted_))
+                    continue;
+                Decoded d;
+                if (!rotated(at(c), bestDecoded, signedJ, d, 0))
+                    continue;
+                Trial& t = trials[best == 0 ? 1 : 0];
+                score(at(c), d, t);
+                t.c = c;
+                t.distance = distance(c);
+                t.score += t.distance;
+                if (exact_(t.blocks)) {
+                    exact = best == 0 ? 1 : 0;
+                    break;
+                }
+            }
+        }
     }
     if (best >= 0) {
         const Trial& taken = trials[exact >= 0 ? exact : best];
         if (taken.distance >= bar)
             return false;
-        confirm(taken.c, taken.distance, taken.blocks);
-        return true;
+        // A reading that is not exact, inside a frame already found not to
+        // be, is no news: it is dropped like a failure there.
+        if (exact >= 0 || taken.c >= failEnd_) {
+            confirm(taken.c, taken.distance, taken.blocks, exact >= 0);
+            return true;
+        }
     }
 
     // Reported where the next frame was due, if it was a candidate: at a
@@ -412,7 +508,7 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
     return true;
 }
 
-void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks)
+void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks, bool exact)
 {
     if (hasPending_) {
         if (c >= pendingC_ + kPreambleSize)
@@ -421,6 +517,17 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
             hasPending_ = false;  // a false start inside this frame's preamble
     }
     emitFrame(c, distance, blocks);
+    if (!exact) {
+        // Refused (a frame cut short, one read a few bytes off, a fake): a
+        // real frame may start anywhere after it, so scanning goes on from
+        // the next byte; inside it only an exact reading is taken. The lock
+        // is kept only where this frame was due.
+        if (c == due_)
+            due_ = c + kFrameSize;
+        scan_ = c + 1;
+        failEnd_ = std::max(failEnd_, c + kDatagramSize);
+        return;
+    }
     due_ = c + kFrameSize;
     if (blocks.corrected.block2 >= 0 || blocks.corrected.block1 < 0) {
         scan_ = c + kDatagramSize;
@@ -441,6 +548,8 @@ void StreamSync::reportPending()
 
 void StreamSync::emitFrame(std::uint64_t c, int distance, const DecodedBlocks& blocks)
 {
+    emitted_ = true;
+    lastEmitted_ = c;
     const std::uint64_t start = preambleStart(c);
     const std::uint64_t end = c + kDatagramSize;
     accountSkippedUpTo(start);

@@ -82,7 +82,7 @@ public:
     // and the frame after it, plus the preamble of a failed frame whose
     // report waits to see whether it was only a false start inside a real
     // preamble.
-    static constexpr std::size_t kMaxCarried = 2 * kPreambleSize + kFrameSize;
+    static constexpr std::size_t kMaxCarried = 2 * kPreambleSize + kFrameSize + kCodewordSize;
 
     struct Stats {
         std::uint64_t bytesIn = 0;
@@ -116,7 +116,7 @@ private:
     void process(bool final);
     bool tryExpected(std::uint64_t c);
     bool decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::uint64_t end);
-    void confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks);
+    void confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks, bool exact);
     void emitFrame(std::uint64_t c, int distance, const DecodedBlocks& blocks);
     void reportPending();
     void accountSkippedUpTo(std::uint64_t offset);
@@ -136,6 +136,8 @@ private:
     std::uint64_t due_ = 0;      // where the next frame is due after the last reported, good or not
     std::uint64_t failEnd_ = 0;  // failing candidates before this are dropped silently
     std::uint64_t covered_ = 0;  // bytes before this are in an emitted frame or counted as skipped
+    bool emitted_ = false;       // a frame was reported since the last reset
+    std::uint64_t lastEmitted_ = 0;  // its codeword 1's offset
     bool hasPending_ = false;    // a failed frame waiting to be reported
     std::uint64_t pendingC_ = 0;
     int pendingDistance_ = 0;
