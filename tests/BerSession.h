@@ -160,15 +160,13 @@ inline BerSessionResult runBerSession(const BerSessionOptions& o)
             throw std::runtime_error("secure endpoint: " + error);
     }
 
-    TrialDecoder trial;
     FrameReceiver::Options ro;
     ro.clock = [&nowMicros] { return nowMicros; };
     if (o.secure) {
         ro.keys.codecs = {aircraft->receiver.get()};
         ro.keys.guard = aircraft->guard.get();
     }
-    if (o.predictions)
-        ro.retry = TrialDecoder::retryFor(trial);
+    ro.predictions = o.predictions;
 
     BerSessionResult result;
     std::map<std::uint32_t, Message> sent;  // by ID_msg, counted frames only
@@ -232,7 +230,8 @@ inline BerSessionResult runBerSession(const BerSessionOptions& o)
         receiver.feed(bytes);
     }
     receiver.flush();
-    result.trials = trial.stats();
+    if (receiver.predictions())
+        result.trials = receiver.predictions()->stats();
     return result;
 }
 

@@ -14,8 +14,10 @@
 #include "codec/frame/Frame.h"
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/message/MessagePrediction.h"
 #include "codec/receive/FrameReceiver.h"
 #include "codec/receive/TrialDecoder.h"
+#include "codec/secure/SecureCodec.h"
 
 #include <algorithm>
 #include <array>
@@ -35,10 +37,12 @@ using Bytes = std::vector<std::uint8_t>;
 
 class CommandSession {
 public:
-    static constexpr std::uint64_t kUploadEvery = 600;  // frames between flight plan uploads
-    static constexpr std::uint64_t kUploadStart = 100;  // its first frame within each 600
-    static constexpr std::size_t kPlanBytes = 800;      // 4 sections of 215 with the descriptor
-    static constexpr int kPasses = 3;
+    std::uint64_t uploadEvery = 600;  // frames between flight plan uploads
+    std::uint64_t uploadStart = 100;  // its first frame within each uploadEvery
+    std::size_t planBytes = 800;      // 4 sections of 215 with the descriptor
+    int passes = 3;
+    // Keyed: every frame enciphered with it (sections of 199 bytes); not owned.
+    const secure::SecureCodec* codec = nullptr;
 
     // Starts near the ID_msg wrap and a day before midnight, so a long run crosses both.
     std::uint32_t firstId = 16'700'000;
@@ -73,11 +77,11 @@ public:
         m.flaps.set(ItemId::F_rudder_set, 0);
         for (int f = 0; f < 4; ++f)
             m.settings.setFieldCode(ItemId::lights, f, (mix(i / 61 + 11) >> f & 1) ? 0b10 : 0b01);
-        const std::uint64_t j = i % kUploadEvery;
-        if (j >= kUploadStart) {
-            const FlightPlanUploader plan = uploader(i / kUploadEvery);
-            const std::uint64_t k = j - kUploadStart;
-            if (k < kPasses * plan.sections().size())
+        const std::uint64_t j = i % uploadEvery;
+        if (j >= uploadStart) {
+            const FlightPlanUploader plan = uploader(i / uploadEvery);
+            const std::uint64_t k = j - uploadStart;
+            if (k < static_cast<std::uint64_t>(passes) * plan.sections().size())
                 m.flightPlan = plan.sections()[k % plan.sections().size()];
         }
         return m;
@@ -86,7 +90,13 @@ public:
     FrameBytes frameAt(std::uint64_t i) const
     {
         Diagnostics errors;
-        const std::optional<FrameBytes> f = encodeFrame(messageAt(i), errors);
+        std::optional<FrameBytes> f;
+        if (codec) {
+            if (const std::optional<EncodedBlocks> b = codec->encode(messageAt(i), errors))
+                f = makeFrame(b->block1, b->block2);
+        } else {
+            f = encodeFrame(messageAt(i), errors);
+        }
         if (!f)
             throw std::logic_error("CommandSession: frame " + std::to_string(i) + " does not encode");
         return *f;
@@ -115,10 +125,11 @@ private:
 
     FlightPlanUploader uploader(std::uint64_t n) const
     {
-        std::vector<std::uint8_t> plan(kPlanBytes);
+        std::vector<std::uint8_t> plan(planBytes);
         for (std::size_t b = 0; b < plan.size(); ++b)
-            plan[b] = static_cast<std::uint8_t>(mix(n * kPlanBytes + b));
-        return FlightPlanUploader(static_cast<std::uint32_t>(n + 1), plan, FlightPlanSection::kMaxData, kPasses);
+            plan[b] = static_cast<std::uint8_t>(mix(n * planBytes + b));
+        return FlightPlanUploader(static_cast<std::uint32_t>(n + 1), plan,
+                                  codec ? secure::kMaxFlightPlanData : FlightPlanSection::kMaxData, passes);
     }
 };
 
@@ -228,9 +239,11 @@ struct RowResult {
     std::uint64_t correct = 0;
     std::uint64_t fromPrediction = 0;  // of the delivered, read with a prediction
     std::uint64_t wrong = 0;
+    std::uint64_t stale = 0;  // delivered again, or after a newer frame
     std::uint64_t lost = 0;  // sent and not delivered
     std::array<std::uint64_t, kRefusalCount> refused{};
     std::string firstWrong;  // what the first wrong frame was, for the report
+    std::string firstStale;
 };
 
 // Streams `frames` frames of `session` through `channel` into a live
@@ -242,11 +255,9 @@ inline RowResult runRow(const CommandSession& session, const Channel& channel, s
     RowResult row;
     std::int64_t nowMicros = 0;
     std::uint64_t sent = 0;
-    TrialDecoder trials;
     FrameReceiver::Options options;
     options.clock = [&] { return nowMicros; };
-    if (how == Receive::WithPredictions)
-        options.retry = TrialDecoder::retryFor(trials);
+    options.predictions = how == Receive::WithPredictions;
     FrameReceiver receiver(options, [&](const ReceivedFrame& f) {
         if (!f.delivered())
             return;
@@ -280,11 +291,9 @@ inline RowResult runRow(const CommandSession& session, const Channel& channel, s
 inline RowResult runRandomBytes(std::uint64_t megabytes, std::uint64_t seed, Receive how = Receive::WithPredictions)
 {
     RowResult row;
-    TrialDecoder trials;
     FrameReceiver::Options options;
     options.mode = FrameReceiver::Mode::Recording;
-    if (how == Receive::WithPredictions)
-        options.retry = TrialDecoder::retryFor(trials);
+    options.predictions = how == Receive::WithPredictions;
     FrameReceiver receiver(options, [&](const ReceivedFrame& f) {
         if (f.delivered() && ++row.wrong == 1)
             row.firstWrong = "at stream offset " + std::to_string(f.offset);

@@ -1,6 +1,7 @@
 // FrameReceiver: no wrong frame delivered through any damage the soak
 // (tests/bench/soak_receive.cpp) applies, here at 10^4 frames a row; every
 // frame within RS's reach delivered; and each refusal with its reason.
+#include "codec/message/FlightPlanTransfer.h"
 #include "codec/receive/FrameReceiver.h"
 #include "codec/secure/SecureCodec.h"
 #include "tests/ReceiveChannel.h"
@@ -122,6 +123,7 @@ private slots:
     void senderRestartConfirmedByNextFrame();
     void recordingIgnoresClock();
     void flightPlanSections();
+    void planDescriptorBindsItsSections();
     void keyedLink();
     void wrongSizeDatagram();
 };
@@ -399,31 +401,93 @@ void TestReceive::recordingIgnoresClock()
     QCOMPARE(live.frames[0].refusal, std::optional<Refusal>(Refusal::TimeWindow));
 }
 
+// Sections of a plan of 6 sections of 12 bytes (the last 5): 10 + 55 plan
+// bytes. Section 0 starts with the descriptor.
+FlightPlanSection sixSectionPlan(std::uint32_t plan, std::uint16_t section)
+{
+    FlightPlanSection s;
+    s.planId = plan;
+    s.sectionId = section;
+    s.data.assign(section == 5 ? 5 : 12, std::uint8_t(0x30 + section));
+    if (section == 0) {
+        const FlightPlanDescriptor d{6, 55, 0x12345678};
+        d.write(std::span<std::uint8_t, FlightPlanDescriptor::kSize>(s.data.data(), FlightPlanDescriptor::kSize));
+    }
+    return s;
+}
+
 void TestReceive::flightPlanSections()
 {
     Collected c;
     std::uint32_t id = 1;
-    const auto send = [&](std::uint32_t plan, std::uint16_t section, std::uint32_t step = 1) {
+    const auto sendSection = [&](const FlightPlanSection& s, std::uint32_t step = 1) {
         id += step;
         Message m = command(id, id);
-        m.flightPlan.planId = plan;
-        m.flightPlan.sectionId = section;
-        m.flightPlan.data = {1, 2, 3};
+        m.flightPlan = s;
         c.receiver.receive(datagramOf(m));
         return c.frames.back().refusal;
     };
+    const auto send = [&](std::uint32_t plan, std::uint16_t section, std::uint32_t step = 1) {
+        return sendSection(sixSectionPlan(plan, section), step);
+    };
     QVERIFY(!send(0xA, 2));  // the first frame from a sender: joins a pass in progress
     QVERIFY(!send(0xA, 3));
-    QVERIFY(!send(0xA, 0));  // the next pass
+    QVERIFY(!send(0xA, 4));
+    QVERIFY(!send(0xA, 0, 2));  // the next pass, section 5 lost
     QCOMPARE(send(0xA, 5), std::optional<Refusal>(Refusal::PlanSection));
-    QVERIFY(!send(0xA, 4, 3));  // four messages after section 0: sections 1..4 may have been sent
+    QCOMPARE(c.frames.back().detail, std::string("flight plan 10 section 5 does not follow section 0 1 messages later"));
+    QCOMPARE(send(0xA, 0), std::optional<Refusal>(Refusal::PlanSection));  // the same section again
+    QVERIFY(!send(0xA, 3, 1));  // three messages after section 0: sections 1 .. 3 may have been sent
     QCOMPARE(send(0xB, 1), std::optional<Refusal>(Refusal::PlanSection));
     QCOMPARE(c.frames.back().detail,
              std::string("flight plan 11 section 1 does not follow any plan being sent 1 messages later"));
     QVERIFY(!send(0xB, 0));  // a new plan starts at 0
     QVERIFY(!send(0xC, 1, 2));  // ... which may have been lost
     QVERIFY(!send(0xC, kAcknowledgementSectionId));  // link control fits anywhere
-    QVERIFY(!send(0xC, 2));
+    QVERIFY(!send(0xC, 2));  // two messages after section 1
+    QVERIFY(!sendSection({}));  // a frame may carry no section
+    QVERIFY(!send(0xC, 3, 3));  // the sender took a pause, and starts again where it was
+    QVERIFY(!send(0xC, 0, 5));  // ... or at the start: frames between carried none
+}
+
+void TestReceive::planDescriptorBindsItsSections()
+{
+    Collected c;
+    std::uint32_t id = 1;
+    const auto send = [&](FlightPlanSection s) {
+        ++id;
+        Message m = command(id, id);
+        m.flightPlan = std::move(s);
+        c.receiver.receive(datagramOf(m));
+        return c.frames.back().refusal;
+    };
+    QVERIFY(!send(sixSectionPlan(0xA, 0)));
+    QVERIFY(!send(sixSectionPlan(0xA, 1)));
+    FlightPlanSection longer = sixSectionPlan(0xA, 2);
+    longer.data.push_back(0);
+    QCOMPARE(send(longer), std::optional<Refusal>(Refusal::PlanSection));
+    QCOMPARE(c.frames.back().detail,
+             std::string("flight plan 10 section 2 carries 13 bytes; its plan's descriptor makes it 12"));
+    QVERIFY(!send(sixSectionPlan(0xA, 2)));
+    QVERIFY(!send(sixSectionPlan(0xA, 3)));
+    QVERIFY(!send(sixSectionPlan(0xA, 4)));
+    FlightPlanSection shortLast = sixSectionPlan(0xA, 5);
+    shortLast.data.pop_back();
+    QCOMPARE(send(shortLast), std::optional<Refusal>(Refusal::PlanSection));
+    QVERIFY(!send(sixSectionPlan(0xA, 5)));
+    FlightPlanSection beyond = sixSectionPlan(0xA, 6);
+    QCOMPARE(send(beyond), std::optional<Refusal>(Refusal::PlanSection));
+    QCOMPARE(c.frames.back().detail, std::string("flight plan 10 section 6: the plan has 6 sections"));
+    QVERIFY(!send(sixSectionPlan(0xA, 0)));  // the next pass
+
+    // A section 0 whose descriptor its own size contradicts: 6 sections of
+    // 12 bytes cannot hold 10 + 100 bytes.
+    FlightPlanSection wrong = sixSectionPlan(0xD, 0);
+    FlightPlanDescriptor{6, 100, 0}.write(
+        std::span<std::uint8_t, FlightPlanDescriptor::kSize>(wrong.data.data(), FlightPlanDescriptor::kSize));
+    QCOMPARE(send(wrong), std::optional<Refusal>(Refusal::PlanSection));
+    QCOMPARE(c.frames.back().detail,
+             std::string("flight plan 13 section 0: its descriptor does not fit a section of 12 bytes"));
 }
 
 void TestReceive::keyedLink()

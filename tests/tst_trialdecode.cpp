@@ -65,6 +65,65 @@ private slots:
         }
     }
 
+    // The decoder's own steps from the remainder give libfec's result, byte
+    // for byte and count for count, for clean words, words within reach,
+    // words just beyond it and random words.
+    void decodeMatchesLibfec()
+    {
+        std::mt19937_64 rng(12);
+        int decoded = 0, failed = 0;
+        for (int i = 0; i < 20000; ++i) {
+            Codeword c = randomCodeword(rng);
+            const int errors = i < 1000 ? 255 : static_cast<int>(rng() % 41);
+            for (int e = 0; e < errors; ++e)
+                c[rng() % rs::kCodewordSize] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+            Codeword ours = c, theirs = c;
+            const int n = rs::decode(ours.data());
+            int m = rs::decodeLibfec(theirs.data());
+            if (m < 0) {
+                m = -1;
+                theirs = c;
+            }
+            QCOMPARE(n, m);
+            QCOMPARE(ours, theirs);
+            Codeword within = c;
+            const int limit = static_cast<int>(rng() % 17);
+            const int w = rs::decodeWithin(within.data(), limit);
+            QCOMPARE(w, n <= limit ? n : -1);
+            QCOMPARE(within, n <= limit ? ours : c);
+            (n >= 0 ? decoded : failed)++;
+        }
+        QVERIFY(decoded > 5000 && failed > 5000);
+    }
+
+    // A trial gives what libfec gives for the trial word, within the margin.
+    void trialMatchesLibfec()
+    {
+        std::mt19937_64 rng(13);
+        for (int i = 0; i < 20000; ++i) {
+            const Codeword sent = randomCodeword(rng);
+            Codeword predicted = sent;
+            const int wrong = static_cast<int>(rng() % 20);
+            for (int e = 0; e < wrong; ++e)
+                predicted[rng() % rs::kDataSize] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+            rs::encode(predicted.data(), predicted.data() + rs::kDataSize);
+            Codeword received = sent;
+            const int noise = static_cast<int>(rng() % 12);
+            for (int e = 0; e < noise; ++e)
+                received[rng() % rs::kCodewordSize] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+            Codeword trial = predicted;
+            std::copy(received.begin() + rs::kDataSize, received.end(), trial.begin() + rs::kDataSize);
+            int expected = rs::decodeLibfec(trial.data());
+            if (expected > rs::kTrialMargin)
+                expected = -1;
+            Codeword out{};
+            const int got = rs::decodeWithPrediction(received.data(), predicted.data(), out.data());
+            QCOMPARE(got < 0 ? -1 : got, expected < 0 ? -1 : expected);
+            if (got >= 0)
+                QCOMPARE(out, trial);
+        }
+    }
+
     void predictionEqualToSent()
     {
         std::mt19937_64 rng(1);

@@ -3,6 +3,7 @@
 #include "codec/message/DigitPairs.h"
 
 #include <chrono>
+#include <vector>
 
 namespace rcm {
 
@@ -33,6 +34,69 @@ Message advanceMessage(const Message& last, std::uint32_t seconds)
         }
     }
     return next;
+}
+
+namespace {
+
+bool aircraftKeeps(ItemId id)
+{
+    return id == ItemId::ID_msg || id == ItemId::ID_UA_source || id == ItemId::time_UTC || id == ItemId::date_UTC;
+}
+
+// The unit of `status` that `commanded` (a unit of a command) speaks of.
+Unit* counterpart(Message& status, const Unit& commanded)
+{
+    if (Unit* single = status.single(commanded.kind()))
+        return single->empty() && commanded.kind() != UnitKind::Header ? nullptr : single;  // a part it lacks
+    std::vector<Unit>* units = status.repeated(commanded.kind());
+    if (!units || commanded.empty())
+        return nullptr;
+    const ItemValue& key = commanded.items().front();
+    for (Unit& u : *units)
+        if (const Value* v = u.find(key.id); v && *v == key.value)
+            return &u;
+    return nullptr;
+}
+
+// Applies the command's i-th unit when bit i of `mask` is set; bit i of the
+// result says whether it changed anything.
+std::uint64_t apply(Message& status, const Message& command, std::uint64_t mask)
+{
+    std::uint64_t changed = 0;
+    int index = 0;
+    command.forEachUnit([&](const Unit& commanded) {
+        const int i = index++;
+        if (i >= 64 || !(mask >> i & 1) || commanded.empty())
+            return;
+        Unit* target = counterpart(status, commanded);
+        if (!target)
+            return;
+        for (const ItemValue& item : commanded.items()) {
+            if (commanded.kind() == UnitKind::Header && aircraftKeeps(item.id))
+                continue;
+            const Value* now = target->find(item.id);
+            if (now && *now == item.value)
+                continue;
+            target->set(item.id, item.value);
+            changed |= std::uint64_t{1} << i;
+        }
+    });
+    return changed;
+}
+
+}  // namespace
+
+Message withCommanded(const Message& status, const Message& command, std::uint64_t unitMask)
+{
+    Message out = status;
+    apply(out, command, unitMask);
+    return out;
+}
+
+std::uint64_t commandedChanges(const Message& status, const Message& command)
+{
+    Message scratch = status;
+    return apply(scratch, command, ~std::uint64_t{0});
 }
 
 }  // namespace rcm

@@ -1,7 +1,10 @@
 #include "codec/receive/FrameReceiver.h"
 
 #include "codec/message/FlightPlanTransfer.h"
+#include "codec/message/ItemTable.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/message/ValueCodec.h"
+#include "codec/receive/TrialDecoder.h"
 #include "codec/secure/SecureCodec.h"
 
 #include <algorithm>
@@ -55,10 +58,10 @@ std::uint32_t senderKey(const Message& m)
     return v ? static_cast<std::uint32_t>((v->number << 16) | v->second) : 0;
 }
 
-std::string codewordsDetail(const DecodedBlocks& b)
+std::string codewordsDetail(const DecodedBlocks& b, bool block2Read)
 {
     return std::string("block 1 ") + (b.corrected.block1 < 0 ? "beyond correction" : "good") + ", block 2 " +
-           (b.corrected.block2 < 0 ? "beyond correction" : "good");
+           (!block2Read ? "not read" : b.corrected.block2 < 0 ? "beyond correction" : "good");
 }
 
 // Ciphertext looks random: about one byte in 256 is 55, where a plain
@@ -119,54 +122,225 @@ std::optional<std::int64_t> stampOf(const Message& m)
                                 static_cast<std::uint32_t>(m.header.number(ItemId::date_UTC)));
 }
 
+std::string planName(const FlightPlanSection& s)
+{
+    return "flight plan " + std::to_string(s.planId) + " section " + std::to_string(s.sectionId);
+}
+
+// The data bytes section `id` of a plan with this descriptor carries, or
+// nothing when the descriptor cannot describe a plan cut into sections.
+std::optional<std::uint64_t> sectionBytes(const PlanProgress& p, std::uint16_t id)
+{
+    if (p.sectionCount == 1)
+        return p.streamBytes;
+    if (id + 1u < p.sectionCount)
+        return p.sectionSize;
+    return p.streamBytes - std::uint64_t{p.sectionSize} * (p.sectionCount - 1u);
+}
+
+// Does section `s`, `step` messages after the last accepted frame `h`, go on
+// with what `h` showed of the plan being sent (docs/protocol.md section 3:
+// sections 0 .. N-1, one per frame, in passes)?
+Verdict planFits(const SenderHistory& h, std::uint32_t id, std::uint32_t step, const FlightPlanSection& s)
+{
+    if (s.empty() || s.sectionId >= kFirstControlSectionId)
+        return {};
+    const PlanProgress& p = h.plan;
+    if (p.planId == 0 || s.planId != p.planId) {
+        // A new plan starts at section 0; the first step - 1 frames of it may have been lost.
+        if (s.sectionId < step)
+            return {};
+        return refuse(Refusal::PlanSection, planName(s) + " does not follow any plan being sent " +
+                                                std::to_string(step) + " messages later");
+    }
+    // Counted from the frame that carried the last section: frames between
+    // may have carried none.
+    const std::uint32_t planStep = (id - p.sectionMessageId) & kIdMask;
+    if (p.sectionCount != 0 && s.sectionId == 0) {
+        // Section 0 with another descriptor starts that plan ID again.
+        const std::optional<FlightPlanDescriptor> d = FlightPlanDescriptor::read(s.data);
+        if (d && (d->sectionCount != p.sectionCount || d->crc != p.crc ||
+                  FlightPlanDescriptor::kSize + std::uint64_t{d->totalBytes} != p.streamBytes ||
+                  (p.sectionCount > 1 && s.data.size() != p.sectionSize)))
+            return {};
+    }
+    if (p.sectionCount != 0) {
+        const std::uint32_t n = p.sectionCount;
+        if (s.sectionId >= n)
+            return refuse(Refusal::PlanSection, planName(s) + ": the plan has " + std::to_string(n) + " sections");
+        if (const std::optional<std::uint64_t> bytes = sectionBytes(p, s.sectionId); bytes && *bytes != s.data.size())
+            return refuse(Refusal::PlanSection, planName(s) + " carries " + std::to_string(s.data.size()) +
+                                                    " bytes; its plan's descriptor makes it " + std::to_string(*bytes));
+        const std::uint32_t ahead = (s.sectionId + n - p.section) % n;
+        if ((ahead >= 1 && ahead <= planStep) || (ahead == 0 && planStep >= n))
+            return {};
+    } else if ((s.sectionId > p.section && s.sectionId <= std::uint32_t{p.section} + planStep) || s.sectionId < planStep) {
+        return {};
+    }
+    return refuse(Refusal::PlanSection, planName(s) + " does not follow section " + std::to_string(p.section) + " " +
+                                            std::to_string(planStep) + " messages later");
+}
+
 // Does a frame (ID `id`, stamp `seconds`, section `s`) follow `h`?
-Verdict follows(const SenderHistory& h, std::uint32_t id, std::int64_t seconds, const FlightPlanSection& s)
+// `outage`: live, the seconds since the receiver accepted `h` (a sender that
+// was cut off, a satellite phone redialling, may have sent nothing and kept
+// its counter meanwhile); 0 for a recording.
+Verdict follows(const SenderHistory& h, std::uint32_t id, std::int64_t seconds, const FlightPlanSection& s,
+                std::int64_t outage)
 {
     const std::uint32_t step = (id - h.messageId) & kIdMask;
     if (step == 0 || step >= rcm::kMessageIdModulus / 2)
         return refuse(Refusal::Replayed, "ID_msg " + std::to_string(id) + " is not ahead of the last accepted " +
                                              std::to_string(h.messageId));
-    if (step > kMaxMessageIdStep)
+    const std::int64_t maxStep = std::max<std::int64_t>(kMaxMessageIdStep, outage + kTimeStepSlackSeconds);
+    if (step > maxStep)
         return refuse(Refusal::MessageIdStep, "ID_msg " + std::to_string(id) + " is " + std::to_string(step) +
-                                                  " ahead of the last accepted; at most " +
-                                                  std::to_string(kMaxMessageIdStep));
+                                                  " ahead of the last accepted; at most " + std::to_string(maxStep));
     const std::int64_t elapsed = seconds - h.stampSeconds;
-    if (elapsed < 0 || elapsed > std::int64_t{step} + kTimeStepSlackSeconds)
+    if (elapsed < 0 || elapsed > std::max<std::int64_t>(step, outage) + kTimeStepSlackSeconds)
         return refuse(Refusal::TimeStep, "time_UTC is " + std::to_string(elapsed) + " s after the last accepted, " +
-                                             std::to_string(step) + " messages later");
-    if (s.empty() || s.sectionId >= kFirstControlSectionId)
-        return {};
-    // A new plan starts at section 0; a plan being sent goes on, or wraps
-    // to section 0 for its next pass; lost frames may have carried some.
-    const bool fits = s.sectionId < step || (s.planId == h.planId && s.sectionId <= std::uint32_t{h.section} + step);
-    if (!fits)
-        return refuse(Refusal::PlanSection, "flight plan " + std::to_string(s.planId) + " section " +
-                                                std::to_string(s.sectionId) + " does not follow " +
-                                                (s.planId == h.planId ? "section " + std::to_string(h.section)
-                                                                      : std::string("any plan being sent")) +
-                                                " " + std::to_string(step) + " messages later");
-    return {};
+                                             std::to_string(step) + " messages later" +
+                                             (outage > step ? " and " + std::to_string(outage) + " s" : std::string()));
+    return planFits(h, id, step, s);
 }
 
-SenderHistory historyOf(const DecodedBlocks& blocks, const Message& m, std::int64_t seconds, const SenderHistory* before)
+// Section 0 carries the plan's descriptor: what every later section of the
+// plan must fit. A descriptor that its own section contradicts is refused.
+Verdict descriptorFits(const FlightPlanSection& s)
+{
+    if (s.empty() || s.sectionId != 0 || s.planId == 0)
+        return {};
+    const std::optional<FlightPlanDescriptor> d = FlightPlanDescriptor::read(s.data);
+    const std::uint64_t stream = d ? FlightPlanDescriptor::kSize + std::uint64_t{d->totalBytes} : 0;
+    const std::uint64_t size = s.data.size();
+    const bool fits = d && d->sectionCount >= 1 && d->sectionCount <= kMaxFlightPlanSections &&
+                      (d->sectionCount == 1 ? size == stream
+                                            : (d->sectionCount - 1u) * size < stream && stream <= d->sectionCount * size);
+    if (fits)
+        return {};
+    return refuse(Refusal::PlanSection, planName(s) + ": its descriptor does not fit a section of " +
+                                            std::to_string(size) + " bytes");
+}
+
+SenderHistory historyOf(const DecodedBlocks& blocks, const Message& m, std::int64_t seconds, std::int64_t nowMicros,
+                        const SenderHistory* before)
 {
     SenderHistory h;
     h.blocks = blocks;
     h.message = m;
     h.messageId = static_cast<std::uint32_t>(m.header.number(ItemId::ID_msg));
     h.stampSeconds = seconds;
+    h.receivedMicros = nowMicros;
+    h.accepted = before ? before->accepted + 1 : 1;
+    if (before)
+        h.plan = before->plan;
     const FlightPlanSection& s = m.flightPlan;
     if (!s.empty() && s.sectionId < kFirstControlSectionId) {
-        h.planId = s.planId;
-        h.section = s.sectionId;
-    } else if (before) {
-        h.planId = before->planId;
-        h.section = before->section;
+        if (s.planId != h.plan.planId)
+            h.plan = PlanProgress{};
+        h.plan.planId = s.planId;
+        h.plan.section = s.sectionId;
+        h.plan.sectionMessageId = h.messageId;
+        if (s.sectionId == 0) {
+            if (const std::optional<FlightPlanDescriptor> d = FlightPlanDescriptor::read(s.data)) {
+                h.plan.sectionCount = d->sectionCount;
+                h.plan.streamBytes = FlightPlanDescriptor::kSize + std::uint64_t{d->totalBytes};
+                h.plan.sectionSize = static_cast<std::uint16_t>(s.data.size());
+                h.plan.crc = d->crc;
+            }
+        }
     }
     return h;
 }
 
+// Where the value bytes of one header item stand in an exact BLOCK 1.
+struct ValueAt {
+    std::size_t offset = 0;
+    std::size_t size = 0;
+};
+
+std::optional<ValueAt> valueOf(const Block& b, ItemId want)
+{
+    std::size_t p = 0;
+    while (p < kBlockSize && b[p] == kPad55)
+        ++p;
+    while (p < kBlockSize) {
+        const ItemInfo* info = findItem(b[p]);
+        if (!info)
+            return std::nullopt;
+        if (info->id == want)
+            return ValueAt{p + 1, info->size};
+        p += 1 + info->size;
+    }
+    return std::nullopt;
+}
+
+std::uint32_t bigEndian(const std::uint8_t* p, std::size_t n)
+{
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < n; ++i)
+        v = (v << 8) | p[i];
+    return v;
+}
+
 }  // namespace
+
+// A frame sent a second after another differs from it in ID_msg and
+// time_UTC (and at midnight date_UTC) alone, as long as no command changed:
+// such a frame is exact exactly when the last one was and its new header
+// values are valid, and reads as the last one with those three values.
+// Keeping the last exact plain frame saves decoding, encoding and comparing
+// every frame of a long recording again.
+struct FrameReceiver::Exactness {
+    DecodedBlocks blocks;
+    Message message;
+    std::array<ValueAt, 3> values;  // ID_msg, time_UTC, date_UTC, in block order
+    bool held = false;
+
+    void keep(const DecodedBlocks& b, const Message& m)
+    {
+        held = false;
+        const ItemId ids[3] = {ItemId::ID_msg, ItemId::time_UTC, ItemId::date_UTC};
+        for (int i = 0; i < 3; ++i) {
+            const std::optional<ValueAt> v = valueOf(b.block1, ids[i]);
+            if (!v)
+                return;
+            values[static_cast<std::size_t>(i)] = *v;
+        }
+        blocks = b;
+        message = m;
+        held = true;
+    }
+
+    // The message `b` holds when it differs from the kept frame only in the
+    // three values, and they are valid; nothing otherwise.
+    bool read(const DecodedBlocks& b, Message& out) const
+    {
+        if (!held || std::memcmp(b.block2.data(), blocks.block2.data(), kBlockSize) != 0)
+            return false;
+        std::array<ValueAt, 3> sorted = values;
+        std::sort(sorted.begin(), sorted.end(), [](const ValueAt& x, const ValueAt& y) { return x.offset < y.offset; });
+        std::size_t from = 0;
+        for (const ValueAt& v : sorted) {
+            if (std::memcmp(b.block1.data() + from, blocks.block1.data() + from, v.offset - from) != 0)
+                return false;
+            from = v.offset + v.size;
+        }
+        if (std::memcmp(b.block1.data() + from, blocks.block1.data() + from, kBlockSize - from) != 0)
+            return false;
+        const std::uint32_t id = bigEndian(b.block1.data() + values[0].offset, values[0].size);
+        const std::uint32_t time = bigEndian(b.block1.data() + values[1].offset, values[1].size);
+        const std::uint32_t date = bigEndian(b.block1.data() + values[2].offset, values[2].size);
+        if (!checkValue(itemInfo(ItemId::time_UTC), Value::of(time)).empty() ||
+            !checkValue(itemInfo(ItemId::date_UTC), Value::of(date)).empty())
+            return false;
+        out = message;
+        out.header.set(ItemId::ID_msg, id);
+        out.header.set(ItemId::time_UTC, time);
+        out.header.set(ItemId::date_UTC, date);
+        return true;
+    }
+};
 
 std::string_view refusalName(Refusal r)
 {
@@ -210,10 +384,13 @@ FrameReceiver::FrameReceiver(Options options, Handler handler)
           frame.preambleBitErrors = s.preambleBitErrors;
           judge(frame, s.raw.last<kDatagramSize>());
       },
-             [this](const DecodedBlocks& blocks) { return exact(blocks); })
+             [this](const DecodedBlocks& blocks) { return exact(blocks); }),
+      m_exactCache(std::make_unique<Exactness>())
 {
     if (!m_options.clock)
         m_options.clock = systemUtcMicros;
+    if (m_options.predictions)
+        m_trial = std::make_unique<TrialDecoder>(m_options.prediction, !m_options.keys.codecs.empty());
 }
 
 FrameReceiver::~FrameReceiver() = default;
@@ -223,8 +400,14 @@ bool FrameReceiver::exact(const DecodedBlocks& blocks) const
     if (!blocks.ok())
         return false;
     if (m_options.keys.codecs.empty()) {
+        Message m;
+        if (m_exactCache->read(blocks, m))
+            return true;
         DecodeResult r;
-        return !exactPlain(blocks, r).refusal;
+        if (exactPlain(blocks, r).refusal)
+            return false;
+        m_exactCache->keep(blocks, r.message);
+        return true;
     }
     return std::any_of(m_options.keys.codecs.begin(), m_options.keys.codecs.end(),
                        [&](const secure::SecureCodec* c) { return c->decryptBlocks(blocks).authentic; });
@@ -234,6 +417,14 @@ void FrameReceiver::feed(std::span<const std::uint8_t> bytes) { m_sync.feed(byte
 
 void FrameReceiver::flush() { m_sync.flush(); }
 
+void FrameReceiver::expect(const Message& sent)
+{
+    if (m_trial)
+        m_trial->expect(sent);
+}
+
+std::uint64_t FrameReceiver::framesOfInput() const { return m_sync.stats().bytesIn / kFrameSize + m_datagrams; }
+
 void FrameReceiver::reset()
 {
     m_sync.reset();
@@ -241,10 +432,17 @@ void FrameReceiver::reset()
     m_senders.clear();
     m_candidates.clear();
     m_last = nullptr;
+    m_serial = 0;
+    m_forgottenStamp.reset();
+    m_datagrams = 0;
+    *m_exactCache = Exactness{};
+    if (m_trial)
+        m_trial = std::make_unique<TrialDecoder>(m_options.prediction, !m_options.keys.codecs.empty());
 }
 
 void FrameReceiver::receive(std::span<const std::uint8_t> bytes, std::int64_t offset)
 {
+    ++m_datagrams;
     ReceivedFrame frame;
     frame.offset = offset;
     frame.raw = bytes;
@@ -257,8 +455,24 @@ void FrameReceiver::receive(std::span<const std::uint8_t> bytes, std::int64_t of
         return;
     }
     const std::span<const std::uint8_t, kDatagramSize> codewords = bytes.last<kDatagramSize>();
-    frame.blocks = decodeCodewords(codewords);
+    // Codeword 2 is decoded only once codeword 1 is read (plainly, or by a
+    // prediction): a frame whose BLOCK 1 cannot be read is refused whatever
+    // BLOCK 2 holds, and a flood of random datagrams costs one decode each.
+    std::uint8_t cw[kCodewordSize];
+    std::memcpy(cw, codewords.data(), kCodewordSize);
+    frame.blocks.corrected.block1 = rs::decode(cw);
+    std::memcpy(frame.blocks.block1.data(), frame.blocks.corrected.block1 >= 0 ? cw : codewords.data(), kBlockSize);
+    std::memcpy(frame.blocks.block2.data(), codewords.data() + kCodewordSize, kBlockSize);
+    frame.blocks.corrected.block2 = -1;
+    m_block2Read = frame.blocks.corrected.block1 >= 0;
+    if (m_block2Read) {
+        std::memcpy(cw, codewords.data() + kCodewordSize, kCodewordSize);
+        frame.blocks.corrected.block2 = rs::decode(cw);
+        if (frame.blocks.corrected.block2 >= 0)
+            std::memcpy(frame.blocks.block2.data(), cw, kBlockSize);
+    }
     judge(frame, codewords);
+    m_block2Read = true;
 }
 
 void FrameReceiver::judge(ReceivedFrame& frame, std::span<const std::uint8_t, kDatagramSize> codewords)
@@ -267,8 +481,12 @@ void FrameReceiver::judge(ReceivedFrame& frame, std::span<const std::uint8_t, kD
     // Predictions can only mend bytes: not a frame that was read right and
     // refused for what it says (plaintext, not plausible).
     const auto mendable = [](Refusal r) { return r != Refusal::Plaintext && r < Refusal::Replayed; };
-    if (!accept(frame, plain, true) && m_options.retry && mendable(*frame.refusal)) {
-        for (const DecodedBlocks& candidate : m_options.retry(codewords, plain, *this)) {
+    if (!accept(frame, plain, true) && m_trial && mendable(*frame.refusal)) {
+        const std::int64_t now = m_options.mode == Mode::Live ? m_options.clock() : 0;
+        const TrialDecoder::Candidates tried = m_trial->candidates(codewords, plain, m_block2Read, *this, now);
+        m_stats.predictionUnits += tried.units;
+        m_stats.predictionsCut += tried.cut;
+        for (const DecodedBlocks& candidate : tried.blocks) {
             ReceivedFrame trial = frame;
             trial.refusal.reset();
             trial.detail.clear();
@@ -286,8 +504,34 @@ void FrameReceiver::judge(ReceivedFrame& frame, std::span<const std::uint8_t, kD
         ++m_stats.delivered;
         m_stats.fromPrediction += frame.fromPrediction;
     }
+    if (m_trial)
+        m_trial->observe(codewords, frame, frame.delivered() ? m_last : nullptr);
     if (m_handler)
         m_handler(frame);
+}
+
+SenderHistory& FrameReceiver::keepHistory(std::uint32_t key, SenderHistory h)
+{
+    h.serial = ++m_serial;
+    auto [it, inserted] = m_senders.insert_or_assign(key, std::move(h));
+    if (m_senders.size() > kMaxSenders) {
+        // The sender with the fewest frames accepted goes (the longest
+        // unheard of those): a flood of one-frame senders replaces its own
+        // kind, not the aircraft heard every second.
+        auto victim = m_senders.end();
+        for (auto s = m_senders.begin(); s != m_senders.end(); ++s) {
+            if (s == it)
+                continue;
+            if (victim == m_senders.end() || s->second.accepted < victim->second.accepted ||
+                (s->second.accepted == victim->second.accepted && s->second.serial < victim->second.serial))
+                victim = s;
+        }
+        m_forgottenStamp = std::max(m_forgottenStamp.value_or(victim->second.stampSeconds), victim->second.stampSeconds);
+        m_candidates.erase(victim->first);
+        m_senders.erase(victim);
+        ++m_stats.sendersForgotten;
+    }
+    return it->second;
 }
 
 bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bool remember)
@@ -310,7 +554,7 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
             frame.decoded = decodeBlocks(blocks);
         frame.decoded.corrected.block1 = blocks.corrected.block1;
         frame.decoded.corrected.block2 = blocks.corrected.block2;
-        return no(refuse(Refusal::Uncorrectable, codewordsDetail(blocks)));
+        return no(refuse(Refusal::Uncorrectable, codewordsDetail(blocks, m_block2Read || blocks.corrected.block1 >= 0)));
     }
 
     // Exact: authentic on a keyed link (which checks more than the plain
@@ -338,8 +582,10 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
             return no(plaintext ? refuse(Refusal::Plaintext, "an unencrypted message on a keyed link")
                                 : refuse(Refusal::Forged, why));
         }
-    } else if (Verdict v = exactPlain(blocks, r); v.refusal) {
-        return no(std::move(v));
+    } else if (!m_exactCache->read(blocks, r.message)) {
+        if (Verdict v = exactPlain(blocks, r); v.refusal)
+            return no(std::move(v));
+        m_exactCache->keep(blocks, r.message);
     }
     r.corrected.block1 = blocks.corrected.block1;
     r.corrected.block2 = blocks.corrected.block2;
@@ -348,32 +594,49 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
     const std::optional<std::int64_t> seconds = stampOf(r.message);
     if (!seconds)
         return no(refuse(Refusal::InvalidField, "time_UTC/date_UTC is not a valid time"));
-    if (m_options.mode == Mode::Live) {
-        const std::int64_t skew = *seconds - m_options.clock() / 1'000'000;
+    const bool live = m_options.mode == Mode::Live;
+    const std::int64_t nowMicros = live ? m_options.clock() : 0;
+    if (live) {
+        const std::int64_t skew = *seconds - nowMicros / 1'000'000;
         if (skew > m_options.clockWindowSeconds || skew < -m_options.clockWindowSeconds)
             return no(refuse(Refusal::TimeWindow, "time_UTC/date_UTC is " + std::to_string(skew < 0 ? -skew : skew) +
                                                       " s " + (skew < 0 ? "behind" : "ahead of") +
                                                       " the receiver's clock; the window is " +
                                                       std::to_string(m_options.clockWindowSeconds) + " s"));
     }
+    if (Verdict v = descriptorFits(r.message.flightPlan); v.refusal)
+        return no(std::move(v));
     const std::uint32_t key = senderKey(r.message);
     const std::uint32_t id = static_cast<std::uint32_t>(r.message.header.number(ItemId::ID_msg));
     const auto known = m_senders.find(key);
     const SenderHistory* before = known == m_senders.end() ? nullptr : &known->second;
+    const auto outage = [&](const SenderHistory& h) -> std::int64_t {
+        return live ? std::max<std::int64_t>(0, (nowMicros - h.receivedMicros + 999'999) / 1'000'000) : 0;
+    };
     if (before) {
-        Verdict v = follows(*before, id, *seconds, r.message.flightPlan);
+        Verdict v = follows(*before, id, *seconds, r.message.flightPlan, outage(*before));
         if (v.refusal) {
-            // A sender restarted, or was out of reach for long: a frame that
-            // follows the last one refused this way confirms both.
+            // A sender restarted, or was out of reach for long: recognised by
+            // a stamp later than the last accepted one, which no frame sent
+            // before it can have, and confirmed by a next frame that follows.
+            // A plan section out of place is no sign of either.
+            const bool restart = *v.refusal == Refusal::Replayed || *v.refusal == Refusal::MessageIdStep ||
+                                 *v.refusal == Refusal::TimeStep;
+            if (!restart || *seconds <= before->stampSeconds)
+                return no(std::move(v));
             const auto candidate = m_candidates.find(key);
             if (candidate == m_candidates.end() ||
-                follows(candidate->second, id, *seconds, r.message.flightPlan).refusal) {
+                follows(candidate->second, id, *seconds, r.message.flightPlan, outage(candidate->second)).refusal) {
                 if (remember)
-                    m_candidates[key] = historyOf(blocks, r.message, *seconds, nullptr);
+                    m_candidates[key] = historyOf(blocks, r.message, *seconds, nowMicros, nullptr);
                 return no(std::move(v));
             }
             before = &candidate->second;
         }
+    } else if (m_forgottenStamp && *seconds < *m_forgottenStamp - m_options.clockWindowSeconds) {
+        // A sender not (or no longer) known, older than one forgotten: it
+        // may be that sender's frames again.
+        return no(refuse(Refusal::Replayed, "time_UTC/date_UTC is older than the frames of senders no longer followed"));
     }
     if (m_options.keys.guard) {
         std::string detail;
@@ -382,9 +645,9 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
         m_options.keys.guard->accept(stamp, &frame.warning);
     }
 
-    SenderHistory h = historyOf(blocks, r.message, *seconds, before);
+    SenderHistory h = historyOf(blocks, r.message, *seconds, nowMicros, before);
     m_candidates.erase(key);
-    m_last = &(m_senders[key] = std::move(h));
+    m_last = &keepHistory(key, std::move(h));
     return true;
 }
 

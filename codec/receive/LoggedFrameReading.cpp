@@ -28,6 +28,7 @@ LoggedFrameReading judged(std::span<const std::uint8_t> bytes, const std::vector
     FrameReceiver::Options options;
     options.mode = FrameReceiver::Mode::Recording;
     options.keys.codecs = codecs;
+    options.predictions = false;  // one frame alone: nothing to predict it from
     FrameReceiver receiver(options, [&](const ReceivedFrame& f) {
         reading.outcome = f.delivered() ? LoggedFrameReading::Outcome::Read : LoggedFrameReading::Outcome::Refused;
         reading.blocks = f.blocks;

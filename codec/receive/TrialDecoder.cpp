@@ -1,15 +1,34 @@
 #include "codec/receive/TrialDecoder.h"
 
 #include "codec/frame/ReedSolomon.h"
+#include "codec/message/FlightPlanTransfer.h"
+#include "codec/message/ItemTable.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/message/MessagePrediction.h"
-#include "codec/secure/SecureCodec.h"
 
+#include <algorithm>
 #include <cstring>
 #include <optional>
 
 namespace rcm {
 namespace {
+
+constexpr std::uint32_t kIdMask = rcm::kMessageIdModulus - 1;
+
+// What the budget charges, in units of about a microsecond of one core of
+// the reference machine (docs/performance.md).
+constexpr std::uint64_t kTrialUnits = 3;      // rs::decodeWithPrediction
+constexpr std::uint64_t kDecodeUnits = 8;     // rs::decode of a word beyond correction
+constexpr std::uint64_t kEncodeUnits = 5;     // encodeBlocks
+constexpr std::uint64_t kCodewordUnits = 1;   // rs::encode
+constexpr std::uint64_t kEncipherUnits = 2;   // one block through HCTR2
+constexpr std::uint64_t kCompareUnits = 1;    // a parity distance, a pass over the recent copies
+
+constexpr std::size_t kRecentFrames = 4;       // plain link: frames whose agreeing bytes are taken
+constexpr std::size_t kMaxSections = 128;      // plan sections kept for later passes
+constexpr std::size_t kMaxBlock2Copies = 64;   // codewords 2 kept to combine
+constexpr std::size_t kMaxCombined = 8;        // copies of one section combined at most
+constexpr std::size_t kSimilarBytes = 96;      // of 223: two copies of one section agree in far more
 
 using Codeword = std::array<std::uint8_t, kCodewordSize>;
 
@@ -21,20 +40,79 @@ Codeword codewordOf(const Block& data)
     return c;
 }
 
+Codeword copyOf(const std::uint8_t* bytes)
+{
+    Codeword c;
+    std::memcpy(c.data(), bytes, kCodewordSize);
+    return c;
+}
+
 std::optional<EncodedBlocks> encodeAsSent(const Message& m, bool keyed)
 {
     Diagnostics errors;
     return encodeBlocks(m, errors, keyed ? secure::encodeOptions() : EncodeOptions{});
 }
 
-// `last` with ID_msg `idStep` and time_UTC `timeStep` seconds on: a sender's
-// clock and its counter need not tick together.
-Message advanced(const Message& last, std::uint32_t idStep, std::uint32_t timeStep)
+// BLOCK 2 (plaintext) carrying `section`, as a sender encodes it.
+std::optional<Block> block2Of(const FlightPlanSection& section, bool keyed)
 {
-    Message m = advanceMessage(last, timeStep);
-    if (const Value* id = last.header.find(ItemId::ID_msg))
-        m.header.set(ItemId::ID_msg, (id->number + idStep) % rcm::kMessageIdModulus);
-    return m;
+    Message m;
+    m.flightPlan = section;
+    const std::optional<EncodedBlocks> enc = encodeAsSent(m, keyed);
+    return enc ? std::optional<Block>(enc->block2) : std::nullopt;
+}
+
+// Where ID_msg, time_UTC and date_UTC's value bytes stand in an encoded BLOCK 1.
+struct HeaderPlaces {
+    std::size_t id = 0, time = 0, date = 0;
+    bool found = false;
+};
+
+HeaderPlaces headerPlacesOf(const Block& b)
+{
+    HeaderPlaces h;
+    int seen = 0;
+    std::size_t p = 0;
+    while (p < kBlockSize && b[p] == kPad55)
+        ++p;
+    while (p < kBlockSize) {
+        const ItemInfo* info = findItem(b[p]);
+        if (!info)
+            break;
+        if (info->id == ItemId::ID_msg)
+            h.id = p + 1, ++seen;
+        else if (info->id == ItemId::time_UTC)
+            h.time = p + 1, ++seen;
+        else if (info->id == ItemId::date_UTC)
+            h.date = p + 1, ++seen;
+        p += 1 + info->size;
+    }
+    h.found = seen == 3;
+    return h;
+}
+
+void put24(Block& b, std::size_t at, std::uint32_t v)
+{
+    b[at] = static_cast<std::uint8_t>(v >> 16);
+    b[at + 1] = static_cast<std::uint8_t>(v >> 8);
+    b[at + 2] = static_cast<std::uint8_t>(v);
+}
+
+// `base` (whose header says `stamp`) as its sender sends it n seconds on with
+// its clock t seconds on: a sender's clock and its counter need not tick together.
+std::optional<std::pair<Block, secure::HeaderStamp>> advanced(const Block& base, const HeaderPlaces& at,
+                                                              const secure::HeaderStamp& stamp, std::uint32_t n,
+                                                              std::uint32_t t)
+{
+    secure::HeaderStamp s = stamp;
+    s.messageId = (stamp.messageId + n) & kIdMask;
+    if (!advanceTimeAndDate(s.timeUtc, s.dateUtc, t))
+        return std::nullopt;
+    Block b = base;
+    put24(b, at.id, s.messageId);
+    put24(b, at.time, s.timeUtc);
+    put24(b, at.date, s.dateUtc);
+    return std::make_pair(b, s);
 }
 
 secure::HeaderStamp stampOf(const Message& m)
@@ -64,25 +142,25 @@ std::vector<std::size_t> commandValueBytes(const Block& plain)
     return at;
 }
 
-// Keeps the first prediction (of several that fit) with the fewest corrections.
-struct Best {
-    int corrected = -1;
-    Block block{};
-    secure::HeaderStamp stamp;
-    void offer(int c, const std::uint8_t* data, const secure::HeaderStamp& s = {})
-    {
-        if (c < 0 || (corrected >= 0 && c >= corrected))
-            return;
-        corrected = c;
-        std::memcpy(block.data(), data, kBlockSize);
-        stamp = s;
+// Gaps 1 .. max, the likeliest first.
+std::vector<std::uint32_t> gapOrder(std::uint32_t max, std::uint32_t estimate)
+{
+    estimate = std::clamp<std::uint32_t>(estimate, 1, std::max<std::uint32_t>(max, 1));
+    std::vector<std::uint32_t> order;
+    order.reserve(max);
+    for (std::uint32_t d = 0; order.size() < max; ++d) {
+        if (estimate + d <= max)
+            order.push_back(estimate + d);
+        if (d != 0 && estimate > d)
+            order.push_back(estimate - d);
     }
-};
+    return order;
+}
 
 // What BLOCK 1 of `d` says, as a history to predict the next frame from;
 // BLOCK 2 as in `before`.
 std::optional<SenderHistory> block1History(const DecodedBlocks& d, const secure::SecureCodec* codec,
-                                           const SenderHistory& before)
+                                           const SenderHistory& before, std::int64_t nowMicros)
 {
     SenderHistory h = before;
     Diagnostics diagnostics;
@@ -99,98 +177,519 @@ std::optional<SenderHistory> block1History(const DecodedBlocks& d, const secure:
         if (!diagnostics.empty())
             return std::nullopt;
     }
+    h.blocks.block1 = d.block1;
     h.message.flightPlan = before.message.flightPlan;
     h.messageId = static_cast<std::uint32_t>(h.message.header.number(ItemId::ID_msg));
+    if (nowMicros != 0)
+        h.receivedMicros = nowMicros;
     return h;
 }
 
 }  // namespace
 
-std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t, kDatagramSize> received,
-                                                    const DecodedBlocks& plain, const FrameReceiver& receiver)
+// The work of one call, paid from the budget.
+struct TrialDecoder::Work {
+    std::uint64_t& units;
+    std::uint64_t spent = 0;
+    bool cut = false;
+    bool take(std::uint64_t n)
+    {
+        if (cut || units < n) {
+            cut = true;
+            return false;
+        }
+        units -= n;
+        spent += n;
+        return true;
+    }
+};
+
+struct TrialDecoder::Found {
+    Block block{};  // BLOCK 1 as sent (enciphered on a keyed link)
+    int corrected = -1;
+    secure::HeaderStamp stamp;
+};
+
+TrialDecoder::TrialDecoder(PredictionOptions options, bool keyed)
+    : m_options(options), m_keyed(keyed), m_units(options.maxUnits)
 {
+}
+
+TrialDecoder::~TrialDecoder() = default;
+
+void TrialDecoder::expect(const Message& sent)
+{
+    if (m_expected && *m_expected == withCommanded(*m_expected, sent))
+        return;  // nothing this end commands has changed
+    m_expected = sent;
+    ++m_expectedVersion;
+}
+
+void TrialDecoder::refill(const FrameReceiver& receiver, std::int64_t nowMicros)
+{
+    std::uint64_t add = 0;
+    if (receiver.options().mode == FrameReceiver::Mode::Live) {
+        if (m_refilledMicros == 0 || nowMicros < m_refilledMicros) {
+            m_refilledMicros = nowMicros;
+        } else {
+            const std::int64_t ms = (nowMicros - m_refilledMicros) / 1000;
+            add = static_cast<std::uint64_t>(std::min<std::int64_t>(ms, 3'600'000)) * m_options.unitsPerSecond / 1000;
+            m_refilledMicros += ms * 1000;
+        }
+    } else {
+        const std::uint64_t frames = receiver.framesOfInput();
+        add = std::min<std::uint64_t>(frames - m_refilledFrames, 3600) * m_options.unitsPerSecond;
+        m_refilledFrames = frames;
+    }
+    m_units = std::min(m_options.maxUnits, m_units + add);
+}
+
+TrialDecoder::SenderPredictions& TrialDecoder::predictionsFor(const SenderHistory& h, const secure::SecureCodec* codec,
+                                                              bool keyed, Work& work)
+{
+    for (SenderPredictions& p : m_predictions)
+        if (p.serial == h.serial && p.codec == codec) {
+            p.used = ++m_tick;
+            return p;
+        }
+    SenderPredictions* slot = nullptr;
+    if (m_predictions.size() < 2 * m_options.maxSenders + 2) {
+        slot = &m_predictions.emplace_back();
+    } else {
+        slot = &*std::min_element(m_predictions.begin(), m_predictions.end(),
+                                  [](const SenderPredictions& a, const SenderPredictions& b) { return a.used < b.used; });
+        *slot = SenderPredictions{};
+    }
+    slot->serial = h.serial;
+    slot->codec = codec;
+    slot->used = ++m_tick;
+
+    // The sender's frame as sent: on the plain link the block delivered; on
+    // a keyed link the plaintext, encoded again.
+    Block base = h.blocks.block1;
+    if (keyed) {
+        if (!work.take(kEncodeUnits))
+            return *slot;
+        const std::optional<EncodedBlocks> enc = encodeAsSent(h.message, true);
+        if (!enc)
+            return *slot;
+        base = enc->block1;
+    }
+    const HeaderPlaces at = headerPlacesOf(base);
+    if (!at.found)
+        return *slot;
+    const secure::HeaderStamp stamp = stampOf(h.message);
+    for (std::uint32_t n = 1; n <= m_options.maxGapSeconds; ++n) {
+        const std::uint32_t times[3] = {n, n - 1, n + 1};
+        for (std::uint32_t t : std::span(times, keyed ? 3 : 1)) {
+            auto next = advanced(base, at, stamp, n, t);
+            if (!next || !work.take(kCodewordUnits + (codec ? kEncipherUnits : 0)))
+                continue;
+            if (codec)
+                codec->encipherBlock1(next->first);
+            slot->advanced.push_back({codewordOf(next->first), next->second, n});
+        }
+    }
+    return *slot;
+}
+
+void TrialDecoder::makeExpected(SenderPredictions& p, const SenderHistory& h, bool keyed, Work& work)
+{
+    if (!m_expected || p.expectedVersion == m_expectedVersion)
+        return;
+    p.expectedVersion = m_expectedVersion;
+    p.expected.clear();
+    const std::uint64_t changes = commandedChanges(h.message, *m_expected);
+    if (changes == 0)
+        return;
+    // All the command's changes; on a keyed link, where the prediction must
+    // be exact, also all but one unit (a part still moving) and one alone.
+    std::vector<std::uint64_t> masks = {changes};
+    if (keyed) {
+        for (int i = 0; i < 64 && masks.size() < 9; ++i) {
+            const std::uint64_t bit = std::uint64_t{1} << i;
+            if (!(changes & bit) || changes == bit)
+                continue;
+            masks.push_back(changes & ~bit);
+            masks.push_back(bit);
+        }
+    }
+    const secure::HeaderStamp stamp = stampOf(h.message);
+    for (std::uint64_t mask : masks) {
+        if (!work.take(kEncodeUnits))
+            return;
+        const std::optional<EncodedBlocks> enc = encodeAsSent(withCommanded(h.message, *m_expected, mask), keyed);
+        if (!enc)
+            continue;
+        const HeaderPlaces at = headerPlacesOf(enc->block1);
+        if (!at.found)
+            continue;
+        for (std::uint32_t n = 1; n <= m_options.maxGapSeconds; ++n) {
+            const std::uint32_t times[3] = {n, n - 1, n + 1};
+            for (std::uint32_t t : std::span(times, keyed ? 3 : 1)) {
+                auto next = advanced(enc->block1, at, stamp, n, t);
+                if (!next || !work.take(kCodewordUnits + (p.codec ? kEncipherUnits : 0)))
+                    continue;
+                if (p.codec)
+                    p.codec->encipherBlock1(next->first);
+                p.expected.push_back({codewordOf(next->first), next->second, n});
+            }
+        }
+    }
+}
+
+std::optional<TrialDecoder::Found> TrialDecoder::findBlock1(const SenderHistory& h, const secure::SecureCodec* codec,
+                                                            bool keyed, const std::uint8_t* r1,
+                                                            std::uint32_t gapEstimate, Work& work)
+{
+    const int margin = m_options.margin;
+    SenderPredictions& p = predictionsFor(h, codec, keyed, work);
+    const std::vector<std::uint32_t> order = gapOrder(m_options.maxGapSeconds, gapEstimate);
+
+    // Tries every prediction of `list` gap by gap, the likeliest first; of
+    // those of one gap that fit (keyed: the time variants), the one needing
+    // fewest corrections.
+    const auto tryList = [&](const std::vector<Predicted>& list) -> std::optional<Found> {
+        for (std::uint32_t n : order) {
+            Found best;
+            for (const Predicted& pred : list) {
+                if (pred.n != n)
+                    continue;
+                if (keyed) {
+                    if (!work.take(kCompareUnits))
+                        return std::nullopt;
+                    const int distance = rs::parityDistance(r1, pred.codeword.data());
+                    if (distance <= margin && (best.corrected < 0 || distance < best.corrected)) {
+                        std::memcpy(best.block.data(), pred.codeword.data(), kBlockSize);
+                        best.corrected = distance;
+                        best.stamp = pred.stamp;
+                    }
+                    continue;
+                }
+                if (!work.take(kTrialUnits))
+                    return std::nullopt;
+                Codeword out;
+                const int c = rs::decodeWithPrediction(r1, pred.codeword.data(), out.data(), margin);
+                if (c >= 0) {
+                    std::memcpy(best.block.data(), out.data(), kBlockSize);
+                    best.corrected = c;
+                    return best;
+                }
+            }
+            if (best.corrected >= 0)
+                return best;
+        }
+        return std::nullopt;
+    };
+
+    if (std::optional<Found> f = tryList(p.advanced)) {
+        ++m_stats.block1FromPrediction;
+        return f;
+    }
+    makeExpected(p, h, keyed, work);
+    if (std::optional<Found> f = tryList(p.expected)) {
+        ++m_stats.block1FromExpected;
+        return f;
+    }
+
+    if (!keyed && !m_recent.empty() && work.take(kCompareUnits)) {
+        // The bytes the frames received last agree on: the most recent pair
+        // of them (this frame first) that holds the same value at a place.
+        // A changed command is in every frame after the change, so two of
+        // them carry it, where the channel's errors rarely agree.
+        std::array<const std::uint8_t*, kRecentFrames + 1> copies{};
+        std::size_t count = 0;
+        copies[count++] = r1;
+        for (const auto& frame : m_recent)
+            copies[count++] = frame[0].data();
+        std::array<int, kBlockSize> agreed;
+        agreed.fill(-1);
+        bool any = false;
+        for (std::size_t i = 0; i < kBlockSize; ++i) {
+            for (std::size_t b = 1; b < count && agreed[i] < 0; ++b)
+                for (std::size_t a = 0; a < b; ++a)
+                    if (copies[a][i] == copies[b][i]) {
+                        agreed[i] = copies[a][i];
+                        break;
+                    }
+            any = any || agreed[i] >= 0;
+        }
+        if (any) {
+            for (const std::vector<Predicted>* list : {&p.advanced, &p.expected}) {
+                for (std::uint32_t n : order) {
+                    for (const Predicted& pred : *list) {
+                        if (pred.n != n)
+                            continue;
+                        Codeword hybrid = pred.codeword;
+                        bool differs = false;
+                        for (std::size_t i = 0; i < kBlockSize; ++i)
+                            if (agreed[i] >= 0 && hybrid[i] != agreed[i]) {
+                                hybrid[i] = static_cast<std::uint8_t>(agreed[i]);
+                                differs = true;
+                            }
+                        if (!differs)
+                            continue;
+                        if (!work.take(kCodewordUnits + kTrialUnits))
+                            return std::nullopt;
+                        rs::encode(hybrid.data(), hybrid.data() + kBlockSize);
+                        Codeword out;
+                        const int c = rs::decodeWithPrediction(r1, hybrid.data(), out.data(), margin);
+                        if (c >= 0) {
+                            Found f;
+                            std::memcpy(f.block.data(), out.data(), kBlockSize);
+                            f.corrected = c;
+                            ++m_stats.block1FromCopies;
+                            return f;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    if (codec && &h == m_lastHistory)
+        if (std::optional<Found> f = searchCommandChange(h, codec, r1, gapEstimate, work)) {
+            ++m_stats.block1FromCommandChange;
+            return f;
+        }
+    return std::nullopt;
+}
+
+std::optional<TrialDecoder::Found> TrialDecoder::searchCommandChange(const SenderHistory& h,
+                                                                     const secure::SecureCodec* codec,
+                                                                     const std::uint8_t* r1, std::uint32_t gapEstimate,
+                                                                     Work& work)
+{
+    if (!work.take(kEncodeUnits))
+        return std::nullopt;
+    const std::optional<EncodedBlocks> enc = encodeAsSent(h.message, true);
+    if (!enc)
+        return std::nullopt;
+    const HeaderPlaces at = headerPlacesOf(enc->block1);
+    if (!at.found)
+        return std::nullopt;
+    const std::vector<std::size_t> places = commandValueBytes(enc->block1);
+    const secure::HeaderStamp stamp = stampOf(h.message);
+    for (std::uint32_t n : gapOrder(m_options.commandChangeGap, gapEstimate)) {
+        auto next = advanced(enc->block1, at, stamp, n, n);
+        if (!next)
+            continue;
+        Found best;
+        for (std::size_t place : places) {
+            for (int v = 0; v < 256; ++v) {
+                if (v == next->first[place])
+                    continue;
+                if (!work.take(kEncipherUnits + kCodewordUnits))
+                    return std::nullopt;
+                Block b = next->first;
+                b[place] = static_cast<std::uint8_t>(v);
+                codec->encipherBlock1(b);
+                const Codeword p = codewordOf(b);
+                const int distance = rs::parityDistance(r1, p.data());
+                if (distance <= m_options.margin && (best.corrected < 0 || distance < best.corrected)) {
+                    best.block = b;
+                    best.corrected = distance;
+                    best.stamp = next->second;
+                }
+            }
+        }
+        if (best.corrected >= 0)
+            return best;
+    }
+    return std::nullopt;
+}
+
+bool TrialDecoder::findBlock2(const SenderHistory& h, const secure::SecureCodec* codec, bool keyed,
+                              const secure::HeaderStamp& stamp, const std::uint8_t* r2, DecodedBlocks& d, Work& work)
+{
+    const int margin = m_options.margin;
+    const auto fits = [&](const Block& plain) {
+        Block b = plain;
+        if (codec) {
+            if (!work.take(kEncipherUnits))
+                return false;
+            codec->encipherBlock2(b, stamp);
+        }
+        if (!work.take(kCodewordUnits + (keyed ? kCompareUnits : kTrialUnits)))
+            return false;
+        const Codeword p = codewordOf(b);
+        if (keyed) {
+            const int distance = rs::parityDistance(r2, p.data());
+            if (distance > margin)
+                return false;
+            d.block2 = b;
+            d.corrected.block2 = distance;
+            return true;
+        }
+        Codeword out;
+        const int c = rs::decodeWithPrediction(r2, p.data(), out.data(), margin);
+        if (c < 0)
+            return false;
+        std::memcpy(d.block2.data(), out.data(), kBlockSize);
+        d.corrected.block2 = c;
+        return true;
+    };
+
+    // An empty section, or the last one again (the acknowledgement an
+    // aircraft repeats).
+    static const std::optional<Block> emptyPlain = block2Of({}, false);
+    if (emptyPlain && fits(*emptyPlain)) {
+        ++m_stats.block2FromPrediction;
+        return true;
+    }
+    const FlightPlanSection& last = h.message.flightPlan;
+    if (!last.empty()) {
+        if (!work.take(kEncodeUnits))
+            return false;
+        if (const std::optional<Block> b = block2Of(last, keyed); b && fits(*b)) {
+            ++m_stats.block2FromPrediction;
+            return true;
+        }
+    }
+
+    // The plan being sent, from an earlier pass: its next sections first.
+    const PlanProgress& plan = h.plan;
+    if (plan.planId != 0) {
+        std::vector<const Section*> held;
+        for (const Section& s : m_sections)
+            if (s.planId == plan.planId)
+                held.push_back(&s);
+        const std::uint32_t cycle = plan.sectionCount ? plan.sectionCount : 0x10000u;
+        const auto ahead = [&](const Section* s) {
+            return (s->sectionId + 2 * cycle - plan.section - 1) % cycle;
+        };
+        std::sort(held.begin(), held.end(), [&](const Section* a, const Section* b) { return ahead(a) < ahead(b); });
+        for (const Section* s : held)
+            if (fits(s->plain)) {
+                ++m_stats.block2FromPlan;
+                return true;
+            }
+    }
+
+    // Plain link: the copies of this section from earlier passes, combined
+    // byte by byte with this one (codeword 2 of a frame lost in each pass).
+    if (!keyed && !m_block2Copies.empty() && work.take(kCompareUnits * 8)) {
+        std::vector<const std::uint8_t*> votes;
+        for (const Codeword& c : m_block2Copies) {
+            std::size_t same = 0;
+            for (std::size_t i = 0; i < kBlockSize; ++i)
+                same += c[i] == r2[i];
+            if (same >= kSimilarBytes)
+                votes.push_back(c.data());
+            if (votes.size() == kMaxCombined)
+                break;
+        }
+        if (votes.size() >= 2 && work.take(kDecodeUnits + kTrialUnits)) {
+            std::reverse(votes.begin(), votes.end());
+            votes.push_back(r2);  // ties go to this frame's byte
+            Codeword vote;
+            rs::majorityBytes(votes.data(), static_cast<int>(votes.size()), vote.data());
+            if (rs::decodeWithin(vote.data(), margin) >= 0) {
+                Codeword out;
+                const int c = rs::decodeWithPrediction(r2, vote.data(), out.data(), margin);
+                if (c >= 0) {
+                    std::memcpy(d.block2.data(), out.data(), kBlockSize);
+                    d.corrected.block2 = c;
+                    ++m_stats.block2FromCopies;
+                    return true;
+                }
+            }
+        }
+    }
+    return false;
+}
+
+bool TrialDecoder::majority(const std::uint8_t* r1, const DecodedBlocks& plain, DecodedBlocks& d, Work& work)
+{
+    d = plain;
+    m_majority.push_front(copyOf(r1));
+    while (m_majority.size() > static_cast<std::size_t>(m_options.majorityFrames))
+        m_majority.pop_back();
+    if (m_majority.size() < 3)
+        return false;
+    if (d.corrected.block1 < 0) {
+        if (!work.take(kCodewordUnits + kTrialUnits))
+            return false;
+        // Oldest first, this frame last: where no value holds a majority, its byte.
+        std::vector<const std::uint8_t*> votes;
+        for (auto it = m_majority.rbegin(); it != m_majority.rend(); ++it)
+            votes.push_back(it->data());
+        Codeword vote;
+        rs::majorityBytes(votes.data(), static_cast<int>(votes.size()), vote.data());
+        Block data;
+        std::memcpy(data.data(), vote.data(), kBlockSize);
+        const Codeword p = codewordOf(data);
+        Codeword decoded;
+        d.corrected.block1 = rs::decodeWithPrediction(r1, p.data(), decoded.data(), m_options.margin);
+        if (d.corrected.block1 < 0)
+            return false;
+        std::memcpy(d.block1.data(), decoded.data(), kBlockSize);
+        ++m_stats.block1FromMajority;
+    }
+    return d.corrected.block2 >= 0;
+}
+
+TrialDecoder::Candidates TrialDecoder::candidates(std::span<const std::uint8_t, kDatagramSize> received,
+                                                  const DecodedBlocks& plain, bool block2Read,
+                                                  const FrameReceiver& receiver, std::int64_t nowMicros)
+{
+    Candidates out;
+    refill(receiver, nowMicros);
+    Work work{m_units};
     ++m_stats.calls;
     const std::uint8_t* r1 = received.data();
     const std::uint8_t* r2 = received.data() + kCodewordSize;
     const std::vector<const secure::SecureCodec*>& codecs = receiver.options().keys.codecs;
     const bool keyed = !codecs.empty();
-    const int margin = m_options.margin;
+    DecodedBlocks start = plain;
 
-    // BLOCK 2 from `d`'s BLOCK 1 (plaintext `m1` when known) and sender `h`.
-    auto block2 = [&](DecodedBlocks& d, const Message& like, const secure::SecureCodec* codec,
-                      const secure::HeaderStamp& stamp) {
-        if (d.corrected.block2 >= 0)
-            return true;
-        FlightPlanSection sections[2] = {FlightPlanSection{}, like.flightPlan};
-        for (const FlightPlanSection& s : sections) {
-            Message m = like;
-            m.flightPlan = s;
-            std::optional<EncodedBlocks> enc = encodeAsSent(m, keyed);
-            if (!enc)
-                continue;
-            if (codec)
-                codec->encipherBlock2(enc->block2, stamp);
-            const Codeword p = codewordOf(enc->block2);
-            Codeword out;
-            const int c = rs::decodeWithPrediction(r2, p.data(), out.data(), margin);
-            if (c >= 0) {
-                std::memcpy(d.block2.data(), out.data(), kBlockSize);
-                d.corrected.block2 = c;
-                ++m_stats.block2FromPrediction;
-                return true;
-            }
-            if (s.empty() && like.flightPlan.empty())
-                break;
-        }
-        return false;
+    // Codeword 2 not decoded yet: it is needed once BLOCK 1 is read.
+    bool block2Tried = block2Read;
+    const auto readBlock2 = [&](DecodedBlocks& d) {
+        if (block2Tried || !work.take(kDecodeUnits))
+            return;
+        block2Tried = true;
+        Codeword c = copyOf(r2);
+        start.corrected.block2 = rs::decode(c.data());
+        if (start.corrected.block2 >= 0)
+            std::memcpy(start.block2.data(), c.data(), kBlockSize);
+        d.block2 = start.block2;
+        d.corrected.block2 = start.corrected.block2;
     };
 
-    std::vector<DecodedBlocks> out;
+    // The senders to predict from: the last accepted first.
     std::vector<const SenderHistory*> histories;
-    if (receiver.lastAccepted())
-        histories.push_back(receiver.lastAccepted());
     for (const auto& [key, h] : receiver.senders())
-        if (&h != receiver.lastAccepted())
-            histories.push_back(&h);
+        histories.push_back(&h);
+    std::sort(histories.begin(), histories.end(),
+              [](const SenderHistory* a, const SenderHistory* b) { return a->serial > b->serial; });
+    if (histories.size() > m_options.maxSenders)
+        histories.resize(m_options.maxSenders);
+    m_lastHistory = histories.empty() ? nullptr : histories.front();
 
     if (histories.empty()) {
         // Nothing accepted yet: on the plain link, consecutive frames repeat
         // most bytes, so a vote over the last few is a prediction.
-        if (keyed || m_options.majorityFrames < 3)
-            return out;
-        m_recent.emplace_back(r1, r1 + kCodewordSize);
-        while (m_recent.size() > static_cast<std::size_t>(m_options.majorityFrames))
-            m_recent.pop_front();
-        if (m_recent.size() < 3)
-            return out;
-        DecodedBlocks d = plain;
-        if (d.corrected.block1 < 0) {
-            std::vector<const std::uint8_t*> votes;
-            for (const auto& cw : m_recent)
-                votes.push_back(cw.data());
-            Codeword vote;
-            rs::majorityBytes(votes.data(), static_cast<int>(votes.size()), vote.data());
-            Block data;
-            std::memcpy(data.data(), vote.data(), kBlockSize);
-            const Codeword p = codewordOf(data);
-            Codeword decoded;
-            d.corrected.block1 = rs::decodeWithPrediction(r1, p.data(), decoded.data(), margin);
-            if (d.corrected.block1 < 0)
-                return out;
-            std::memcpy(d.block1.data(), decoded.data(), kBlockSize);
-            ++m_stats.block1FromMajority;
+        if (!keyed && m_options.majorityFrames >= 3) {
+            DecodedBlocks d;
+            if (majority(r1, start, d, work)) {
+                out.blocks.push_back(d);
+            } else if (d.corrected.block1 >= 0) {
+                readBlock2(d);
+                static const SenderHistory none;
+                if (d.corrected.block2 >= 0 || findBlock2(none, nullptr, false, {}, r2, d, work))
+                    out.blocks.push_back(d);
+            }
         }
-        Message m1;
-        Diagnostics ignored;
-        decodeBlock1(d.block1, m1, ignored);
-        if (block2(d, m1, nullptr, {}))
-            out.push_back(d);
+        out.units = work.spent;
+        out.cut = work.cut;
+        m_stats.cut += work.cut;
         return out;
     }
-    m_recent.clear();
+    m_majority.clear();
     if (m_unaccepted) {
         const SenderHistory* last = histories.front();
-        const std::uint32_t ahead = (m_unaccepted->messageId - last->messageId) & (rcm::kMessageIdModulus - 1);
+        const std::uint32_t ahead = (m_unaccepted->messageId - last->messageId) & kIdMask;
         if (ahead >= 1 && ahead <= m_options.maxGapSeconds)
             histories.insert(histories.begin(), &*m_unaccepted);
         else
@@ -202,83 +701,97 @@ std::vector<DecodedBlocks> TrialDecoder::candidates(std::span<const std::uint8_t
     if (!keyed)
         tryCodecs.push_back(nullptr);
     for (const SenderHistory* h : histories) {
+        const bool live = receiver.options().mode == FrameReceiver::Mode::Live;
+        const std::int64_t sinceMicros = live ? nowMicros - h->receivedMicros : 0;
+        const std::uint32_t gapEstimate =
+            live ? static_cast<std::uint32_t>(std::clamp<std::int64_t>((sinceMicros + 500'000) / 1'000'000, 1,
+                                                                        m_options.maxGapSeconds))
+                 : static_cast<std::uint32_t>(std::min<std::uint64_t>(m_framesSinceDelivery + 1, m_options.maxGapSeconds));
         for (const secure::SecureCodec* codec : tryCodecs) {
-            DecodedBlocks d = plain;
+            if (work.cut)
+                break;
+            DecodedBlocks d = start;
             secure::HeaderStamp stamp;
             if (d.corrected.block1 >= 0 && codec) {
-                const secure::Authenticated a = codec->decryptBlocks(d);
+                DecodedBlocks only = d;
+                only.corrected.block2 = -1;
+                if (!work.take(kEncipherUnits))
+                    break;
+                const secure::Authenticated a = codec->decryptBlocks(only);
                 if (!a.authentic)
                     continue;
                 stamp = a.stamp;
             }
             if (d.corrected.block1 < 0) {
-                Best best;
-                for (std::uint32_t n = 1; n <= m_options.maxGapSeconds && best.corrected < 0; ++n) {
-                    if (!codec) {
-                        std::optional<EncodedBlocks> enc = encodeAsSent(advanceMessage(h->message, n), false);
-                        if (!enc)
-                            continue;
-                        const Codeword p = codewordOf(enc->block1);
-                        Codeword decoded;
-                        best.offer(rs::decodeWithPrediction(r1, p.data(), decoded.data(), margin), decoded.data());
-                        continue;
-                    }
-                    for (std::uint32_t t : {n, n - 1, n + 1}) {
-                        const Message m = advanced(h->message, n, t);
-                        std::optional<EncodedBlocks> enc = encodeAsSent(m, true);
-                        if (!enc)
-                            continue;
-                        codec->encipherBlock1(enc->block1);
-                        const Codeword p = codewordOf(enc->block1);
-                        const int distance = rs::parityDistance(r1, p.data());
-                        best.offer(distance <= margin ? distance : -1, p.data(), stampOf(m));
-                    }
-                }
-                if (best.corrected >= 0) {
-                    ++m_stats.block1FromPrediction;
-                } else if (codec) {
-                    for (std::uint32_t n = 1; n <= m_options.commandChangeGap && best.corrected < 0; ++n) {
-                        const Message m = advanced(h->message, n, n);
-                        std::optional<EncodedBlocks> enc = encodeAsSent(m, true);
-                        if (!enc)
-                            continue;
-                        for (std::size_t at : commandValueBytes(enc->block1)) {
-                            for (int v = 0; v < 256; ++v) {
-                                if (v == enc->block1[at])
-                                    continue;
-                                Block b = enc->block1;
-                                b[at] = static_cast<std::uint8_t>(v);
-                                codec->encipherBlock1(b);
-                                const Codeword p = codewordOf(b);
-                                const int distance = rs::parityDistance(r1, p.data());
-                                best.offer(distance <= margin ? distance : -1, p.data(), stampOf(m));
-                            }
-                        }
-                    }
-                    m_stats.block1FromCommandChange += best.corrected >= 0;
-                }
-                if (best.corrected < 0)
+                const std::optional<Found> f = findBlock1(*h, codec, keyed, r1, gapEstimate, work);
+                if (!f)
                     continue;
-                d.block1 = best.block;
-                d.corrected.block1 = best.corrected;
-                stamp = best.stamp;
+                d.block1 = f->block;
+                d.corrected.block1 = f->corrected;
+                stamp = f->stamp;
             }
-            if (block2(d, h->message, codec, stamp)) {
-                out.push_back(d);
+            if (d.corrected.block2 < 0)
+                readBlock2(d);
+            if (d.corrected.block2 >= 0 || findBlock2(*h, codec, keyed, stamp, r2, d, work)) {
+                out.blocks.push_back(d);
             } else if (!readBlock1) {
-                readBlock1 = block1History(d, codec, *h);
+                readBlock1 = block1History(d, codec, *h, nowMicros);
             }
         }
+        if (work.cut)
+            break;
     }
-    if (readBlock1)
+    if (readBlock1) {
+        readBlock1->serial = (std::uint64_t{1} << 63) | ++m_tick;
         m_unaccepted = std::move(readBlock1);
+    }
+    out.units = work.spent;
+    out.cut = work.cut;
+    m_stats.cut += work.cut;
     return out;
 }
 
-FrameReceiver::Retry TrialDecoder::retryFor(TrialDecoder& decoder)
+void TrialDecoder::observe(std::span<const std::uint8_t, kDatagramSize> received, const ReceivedFrame& frame,
+                           const SenderHistory* accepted)
 {
-    return [&decoder](std::span<const std::uint8_t, kDatagramSize> received, const DecodedBlocks& plain,
-                      const FrameReceiver& receiver) { return decoder.candidates(received, plain, receiver); };
+    const std::uint8_t* r1 = received.data();
+    const std::uint8_t* r2 = received.data() + kCodewordSize;
+    const bool delivered = frame.delivered();
+    m_framesSinceDelivery = delivered ? 0 : m_framesSinceDelivery + 1;
+    if (!m_keyed && frame.refusal != Refusal::WrongSize) {
+        // Codewords as decoded where they were, else as received.
+        std::array<Codeword, 2> copies{frame.blocks.corrected.block1 >= 0 ? codewordOf(frame.blocks.block1) : copyOf(r1),
+                                       frame.blocks.corrected.block2 >= 0 ? codewordOf(frame.blocks.block2) : copyOf(r2)};
+        m_recent.push_front(copies);
+        if (m_recent.size() > kRecentFrames)
+            m_recent.pop_back();
+        if (!delivered && frame.blocks.corrected.block2 < 0) {
+            m_block2Copies.push_front(copyOf(r2));
+            if (m_block2Copies.size() > kMaxBlock2Copies)
+                m_block2Copies.pop_back();
+        }
+    }
+    if (!delivered || !accepted)
+        return;
+    const FlightPlanSection& s = frame.decoded.message.flightPlan;
+    if (s.empty() || s.sectionId >= kFirstControlSectionId)
+        return;
+    Section kept;
+    kept.planId = s.planId;
+    kept.sectionId = s.sectionId;
+    if (m_keyed) {
+        const std::optional<Block> b = block2Of(s, true);
+        if (!b)
+            return;
+        kept.plain = *b;
+    } else {
+        kept.plain = frame.blocks.block2;
+    }
+    std::erase_if(m_sections,
+                  [&](const Section& x) { return x.planId == kept.planId && x.sectionId == kept.sectionId; });
+    m_sections.push_back(kept);
+    if (m_sections.size() > kMaxSections)
+        m_sections.pop_front();
 }
 
 }  // namespace rcm

@@ -1,7 +1,6 @@
 // First: StreamSync, under it, names a member emit(), which Qt's headers
 // define as a macro.
 #include "codec/receive/FrameReceiver.h"
-#include "codec/receive/TrialDecoder.h"
 
 #include "link/session/LinkWorker.h"
 
@@ -52,9 +51,8 @@ std::span<const std::uint8_t> asBytes(const QByteArray& bytes)
 // Live, what arrives is judged against the worker's clock too; a replayed
 // log only for continuity between its own frames.
 rcm::FrameReceiver::Options receiverOptions(const LinkWorker::Options& options, const Link& link,
-                                            std::shared_ptr<Clock> clock, rcm::TrialDecoder& trial)
+                                            std::shared_ptr<Clock> clock)
 {
-    static_assert(rcm::kDatagramSize == 510, "LinkWorker::Options::retry spells the datagram size");
     rcm::FrameReceiver::Options o;
     o.mode = link.transport() == FrameTransport::Replay ? rcm::FrameReceiver::Mode::Recording
                                                         : rcm::FrameReceiver::Mode::Live;
@@ -66,7 +64,6 @@ rcm::FrameReceiver::Options receiverOptions(const LinkWorker::Options& options, 
         if (o.mode == rcm::FrameReceiver::Mode::Live)
             o.keys.guard = options.secure->guard.get();
     }
-    o.retry = options.retry ? options.retry : rcm::TrialDecoder::retryFor(trial);
     return o;
 }
 
@@ -78,8 +75,7 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
       m_log(std::move(log)),
       m_options(std::move(options)),
       m_clock(m_options.clock ? m_options.clock : std::make_shared<SystemClock>()),
-      m_trial(std::make_unique<rcm::TrialDecoder>()),
-      m_receiver(std::make_unique<rcm::FrameReceiver>(receiverOptions(m_options, *m_link, m_clock, *m_trial),
+      m_receiver(std::make_unique<rcm::FrameReceiver>(receiverOptions(m_options, *m_link, m_clock),
                                                       [this](const rcm::ReceivedFrame& frame) { receiveFrame(frame); })),
       m_tickTimer(m_clock->createTimer(this, Qt::PreciseTimer)),
       m_silenceTimer(m_clock->createTimer(this)),
@@ -257,6 +253,9 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
         return;
     m_statistics.addSendDelay(m_clock->utcMicros() - idealTickMicros);
     ++m_statistics.framesSent;
+    // What the far end reports next shows what was just commanded: a
+    // prediction for reading its frames through noise.
+    m_receiver->expect(message);
     m_nextMessageId = (id + 1) % kMessageIdModulus;
     log(FrameDirection::Sent, *bytes, FrameStatus::NotChecked, {}, id);
     emit frameSent(id);

@@ -34,9 +34,7 @@
 
 namespace rcm {
 class FrameReceiver;
-class TrialDecoder;
 struct ReceivedFrame;
-struct DecodedBlocks;
 namespace secure {
 struct SecureEndpoint;
 }  // namespace secure
@@ -78,14 +76,6 @@ public:
         // reason in the statistics, logged (Uncorrectable, or Rejected) with
         // its bytes as received, and reported by frameRejected().
         std::shared_ptr<rcm::secure::SecureEndpoint> secure;
-        // Decoding with what the receiver expects (FrameReceiver::Options::
-        // retry); empty: rcm::TrialDecoder's, which predicts from the last
-        // frame accepted from the sender (status frames at the console,
-        // commands at the aircraft). Called in the link thread.
-        std::function<std::vector<rcm::DecodedBlocks>(std::span<const std::uint8_t, 510> received,
-                                                      const rcm::DecodedBlocks& plain,
-                                                      const rcm::FrameReceiver& receiver)>
-            retry;
         // What stamps the frames and paces the ticks and timeouts; null: the
         // system clock. Tests pass a VirtualClock.
         std::shared_ptr<Clock> clock;
@@ -145,7 +135,6 @@ private:
     // Held by pointer so that this header does not include StreamSync.h
     // (under FrameReceiver.h), whose private emit() clashes with Qt's emit
     // macro in Qt headers.
-    std::unique_ptr<rcm::TrialDecoder> m_trial;  // m_receiver's retry, so before it
     std::unique_ptr<rcm::FrameReceiver> m_receiver;
     // Children, so that moveToThread() takes them along.
     ClockTimer* m_tickTimer;
