@@ -58,15 +58,13 @@ Unit* counterpart(Message& status, const Unit& commanded)
     return nullptr;
 }
 
-// Applies the command's i-th unit when bit i of `mask` is set; bit i of the
-// result says whether it changed anything.
-std::uint64_t apply(Message& status, const Message& command, std::uint64_t mask)
+// Applies the command's changes to `status`, the i-th when bit i of `mask`
+// is set (changes past the 64th always); returns how many there are.
+int apply(Message& status, const Message& command, std::uint64_t mask)
 {
-    std::uint64_t changed = 0;
-    int index = 0;
+    int changes = 0;
     command.forEachUnit([&](const Unit& commanded) {
-        const int i = index++;
-        if (i >= 64 || !(mask >> i & 1) || commanded.empty())
+        if (commanded.empty())
             return;
         Unit* target = counterpart(status, commanded);
         if (!target)
@@ -77,26 +75,28 @@ std::uint64_t apply(Message& status, const Message& command, std::uint64_t mask)
             const Value* now = target->find(item.id);
             if (now && *now == item.value)
                 continue;
+            const int i = changes++;
+            if (i < 64 && !(mask >> i & 1))
+                continue;
             target->set(item.id, item.value);
-            changed |= std::uint64_t{1} << i;
         }
     });
-    return changed;
+    return changes;
 }
 
 }  // namespace
 
-Message withCommanded(const Message& status, const Message& command, std::uint64_t unitMask)
+Message withCommanded(const Message& status, const Message& command, std::uint64_t changeMask)
 {
     Message out = status;
-    apply(out, command, unitMask);
+    apply(out, command, changeMask);
     return out;
 }
 
-std::uint64_t commandedChanges(const Message& status, const Message& command)
+int commandedChanges(const Message& status, const Message& command)
 {
     Message scratch = status;
-    return apply(scratch, command, ~std::uint64_t{0});
+    return apply(scratch, command, 0);
 }
 
 }  // namespace rcm

@@ -21,14 +21,14 @@ Message advanceMessage(const Message& last, std::uint32_t seconds);
 // value (repeated units matched by their key item: eng_ID, system_ID,
 // cam_ID), and the header items the aircraft echoes (all but ID_msg,
 // ID_UA_source, time_UTC and date_UTC) too. Units of the command the status
-// lacks are left out; BLOCK 2 is the status's. Bit i of `unitMask` takes the
-// command's i-th unit in Message::forEachUnit order; clear bits leave that
-// unit as the status has it (a part still moving, say).
-Message withCommanded(const Message& status, const Message& command, std::uint64_t unitMask = ~std::uint64_t{0});
+// lacks are left out; BLOCK 2 is the status's. The changes this makes are
+// counted in Message::forEachUnit order, item by item; bit i of `changeMask`
+// makes the i-th (the first 64), clear bits leave that item as the status
+// has it (a part still moving, say).
+Message withCommanded(const Message& status, const Message& command, std::uint64_t changeMask = ~std::uint64_t{0});
 
-// The units of `command` (forEachUnit order, as withCommanded's mask counts
-// them) that withCommanded would change in `status`.
-std::uint64_t commandedChanges(const Message& status, const Message& command);
+// How many items withCommanded would change in `status`.
+int commandedChanges(const Message& status, const Message& command);
 
 // hhmmss and yymmdd (20yy) advanced by `seconds`; false, leaving them as
 // they were, when they are not a valid time and date.

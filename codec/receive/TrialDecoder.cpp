@@ -29,6 +29,8 @@ constexpr std::size_t kMaxSections = 128;      // plan sections kept for later p
 constexpr std::size_t kMaxBlock2Copies = 64;   // codewords 2 kept to combine
 constexpr std::size_t kMaxCombined = 8;        // copies of one section combined at most
 constexpr std::size_t kSimilarBytes = 96;      // of 223: two copies of one section agree in far more
+constexpr int kMaxExpectedVariants = 6;
+constexpr std::size_t kMaxAcknowledgements = 4; // plans this end sent, whose acknowledgement may come        // keyed: changes of one command left out or taken alone
 
 using Codeword = std::array<std::uint8_t, kCodewordSize>;
 
@@ -219,6 +221,19 @@ TrialDecoder::~TrialDecoder() = default;
 
 void TrialDecoder::expect(const Message& sent)
 {
+    // A plan this end sends: the far end's acknowledgement of it echoes its
+    // descriptor, which section 0 carries.
+    const FlightPlanSection& s = sent.flightPlan;
+    if (s.planId != 0 && s.sectionId == 0) {
+        if (const std::optional<FlightPlanDescriptor> d = FlightPlanDescriptor::read(s.data)) {
+            const FlightPlanSection ack = FlightPlanAcknowledgement{s.planId, *d, {}}.toSection();
+            if (std::find(m_acknowledgements.begin(), m_acknowledgements.end(), ack) == m_acknowledgements.end()) {
+                m_acknowledgements.push_front(ack);
+                if (m_acknowledgements.size() > kMaxAcknowledgements)
+                    m_acknowledgements.pop_back();
+            }
+        }
+    }
     if (m_expected && *m_expected == withCommanded(*m_expected, sent))
         return;  // nothing this end commands has changed
     m_expected = sent;
@@ -299,18 +314,17 @@ void TrialDecoder::makeExpected(SenderPredictions& p, const SenderHistory& h, bo
         return;
     p.expectedVersion = m_expectedVersion;
     p.expected.clear();
-    const std::uint64_t changes = commandedChanges(h.message, *m_expected);
+    const int changes = commandedChanges(h.message, *m_expected);
     if (changes == 0)
         return;
     // All the command's changes; on a keyed link, where the prediction must
-    // be exact, also all but one unit (a part still moving) and one alone.
-    std::vector<std::uint64_t> masks = {changes};
-    if (keyed) {
-        for (int i = 0; i < 64 && masks.size() < 9; ++i) {
+    // be exact, also all but one (a part still moving) and one alone.
+    const std::uint64_t all = ~std::uint64_t{0};
+    std::vector<std::uint64_t> masks = {all};
+    if (keyed && changes > 1) {
+        for (int i = 0; i < changes && i < kMaxExpectedVariants; ++i) {
             const std::uint64_t bit = std::uint64_t{1} << i;
-            if (!(changes & bit) || changes == bit)
-                continue;
-            masks.push_back(changes & ~bit);
+            masks.push_back(all & ~bit);
             masks.push_back(bit);
         }
     }
@@ -460,7 +474,11 @@ std::optional<TrialDecoder::Found> TrialDecoder::searchCommandChange(const Sende
                                                                      const std::uint8_t* r1, std::uint32_t gapEstimate,
                                                                      Work& work)
 {
-    if (!work.take(kEncodeUnits))
+    // The costliest prediction by far: it may spend the budget down to a
+    // quarter only, and starts only above half, so the cheap predictions of
+    // the frames that follow are always paid for.
+    const std::uint64_t floor = m_options.maxUnits / 4;
+    if (m_units < m_options.maxUnits / 2 || !work.take(kEncodeUnits))
         return std::nullopt;
     const std::optional<EncodedBlocks> enc = encodeAsSent(h.message, true);
     if (!enc)
@@ -479,8 +497,10 @@ std::optional<TrialDecoder::Found> TrialDecoder::searchCommandChange(const Sende
             for (int v = 0; v < 256; ++v) {
                 if (v == next->first[place])
                     continue;
-                if (!work.take(kEncipherUnits + kCodewordUnits))
+                if (m_units < floor + kEncipherUnits + kCodewordUnits || !work.take(kEncipherUnits + kCodewordUnits)) {
+                    work.cut = true;
                     return std::nullopt;
+                }
                 Block b = next->first;
                 b[place] = static_cast<std::uint8_t>(v);
                 codec->encipherBlock1(b);
@@ -542,6 +562,16 @@ bool TrialDecoder::findBlock2(const SenderHistory& h, const secure::SecureCodec*
         if (!work.take(kEncodeUnits))
             return false;
         if (const std::optional<Block> b = block2Of(last, keyed); b && fits(*b)) {
+            ++m_stats.block2FromPrediction;
+            return true;
+        }
+    }
+
+    // The acknowledgement of a plan this end sent.
+    for (const FlightPlanSection& ack : m_acknowledgements) {
+        if (ack == last || !work.take(kEncodeUnits))
+            continue;
+        if (const std::optional<Block> b = block2Of(ack, keyed); b && fits(*b)) {
             ++m_stats.block2FromPrediction;
             return true;
         }

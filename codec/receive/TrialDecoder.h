@@ -13,6 +13,7 @@
 //            received (plain link only);
 //   BLOCK 2  an empty section, the last one accepted again (the aircraft
 //            repeats its acknowledgement in every status frame), the
+//            acknowledgement of a plan this end sent (its descriptor), the
 //            sections of the plan being sent delivered in an earlier pass
 //            (passes 2 and 3 repeat pass 1), and on the plain link the copies
 //            of one section from several passes combined byte by byte.
@@ -133,6 +134,7 @@ private:
     std::vector<SenderPredictions> m_predictions;
     std::optional<Message> m_expected;
     std::uint64_t m_expectedVersion = 0;
+    std::deque<FlightPlanSection> m_acknowledgements;  // of the plans this end sent, the latest first
     // Plain link: the last frames' codewords as received (codeword 1 as
     // decoded when it was), most recent first, for the bytes they agree on.
     std::deque<std::array<Codeword, 2>> m_recent;
