@@ -5,6 +5,7 @@
 #include "codec/message/TextFormat.h"
 
 #include "RunProgram.h"
+#include "ReceiveChannel.h"
 
 #include <QtTest>
 
@@ -45,6 +46,7 @@ private slots:
     void decodeStreamAmidGarbage();
     void decodeFrameBeginningBeforeTheStream();
     void decodeReportsUncorrectable();
+    void decodeReadsWithPredictions();
     void decodeFindsNothing();
     void decodeSummary();
     void decodeRefusesWhatIsNotExact();
@@ -212,15 +214,40 @@ void TestRcm::decodeFrameBeginningBeforeTheStream()
 
 void TestRcm::decodeReportsUncorrectable()
 {
+    // 20 bad bytes in the first frame's BLOCK 1: beyond Reed-Solomon, and
+    // with no frame before it, nothing to predict it from.
     QByteArray bytes = vector("seed-example.bin") + vector("well-equipped.bin");
-    for (int i = 0; i < 20; ++i)  // 20 bad bytes in the second frame's BLOCK 2
-        bytes[600 + 345 + i * 12] = static_cast<char>(bytes[600 + 345 + i * 12] ^ 0x5A);
+    for (int i = 0; i < 20; ++i)
+        bytes[90 + i * 12] = static_cast<char>(bytes[90 + i * 12] ^ 0x5A);
     const Run r = runRcm({"decode"}, bytes);
     QCOMPARE(r.exitCode, 1);
     QCOMPARE(r.out.count("# frame "), 1);
-    QVERIFY(r.out.startsWith("# frame 1 at byte offset 0\n"));
-    QCOMPARE(r.err, QByteArray("rcm: frame 2 at byte offset 600: refused as uncorrectable: block 1 good, block 2 "
-                               "beyond correction\n"));
+    QVERIFY(r.out.startsWith("# frame 2 at byte offset 600\n"));
+    QCOMPARE(r.err, QByteArray("rcm: frame 1 at byte offset 0: refused as uncorrectable: block 1 beyond correction, "
+                               "block 2 good\n"));
+}
+
+// A recording reads as well as the live link read it: the same receiver,
+// predictions included. Ten frames of a session, then ten more with 24 bad
+// bytes in each codeword, far beyond Reed-Solomon alone.
+void TestRcm::decodeReadsWithPredictions()
+{
+    const rcm::test::CommandSession session;
+    QByteArray bytes;
+    std::mt19937_64 rng(24);
+    for (std::uint64_t i = 0; i < 20; ++i) {
+        rcm::FrameBytes f = session.frameAt(i);
+        if (i >= 10)
+            for (std::size_t cw = 0; cw < 2; ++cw)
+                for (int e = 0; e < 24; ++e)
+                    f[rcm::kPreambleSize + cw * rcm::kCodewordSize + (e * 7 + i) % 223] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+        bytes.append(reinterpret_cast<const char*>(f.data()), qsizetype(f.size()));
+    }
+    const Run r = runRcm({"decode", "--summary"}, bytes);
+    QCOMPARE(r.err, QByteArray());
+    QCOMPARE(r.exitCode, 0);
+    QVERIFY2(r.out.startsWith("frames 20\ndelivered 20\nrefused 0\n"), r.out.constData());
+    QVERIFY2(r.out.contains("\nfrom a prediction 10\n"), r.out.constData());
 }
 
 void TestRcm::decodeFindsNothing()
@@ -238,7 +265,7 @@ void TestRcm::decodeSummary()
     QCOMPARE(r.exitCode, 0);
     QCOMPARE(r.err, QByteArray());
     QVERIFY2(r.out.startsWith("frames 3\ndelivered 3\nrefused 0\ncorrected block1 16\ncorrected block2 16\n"
-                              "bytes read 1800\nbytes skipped 0\nrefused uncorrectable 0\n"),
+                              "from a prediction 0\nbytes read 1800\nbytes skipped 0\nrefused uncorrectable 0\n"),
              r.out.constData());
     // A recording is checked for continuity between its own frames: the
     // well-equipped frame again (stream.bin holds it) is a replay, counted by
@@ -246,7 +273,7 @@ void TestRcm::decodeSummary()
     r = runRcm({"decode", "--summary"}, vector("stream.bin") + vector("well-equipped.errors.bin"));
     QCOMPARE(r.exitCode, 1);
     QCOMPARE(r.out, QByteArray("frames 4\ndelivered 3\nrefused 1\ncorrected block1 0\ncorrected block2 0\n"
-                               "bytes read 3100\nbytes skipped 700\n"
+                               "from a prediction 0\nbytes read 3100\nbytes skipped 700\n"
                                "refused uncorrectable 0\nrefused wrong size 0\nrefused enciphered 0\n"
                                "refused forged 0\nrefused plaintext 0\nrefused not exact: missing header item 0\n"
                                "refused not exact: bad padding 0\nrefused not exact: invalid field 0\n"

@@ -144,6 +144,7 @@ public:
         s += "refused " + std::to_string(st.refusedTotal()) + "\n";
         s += "corrected block1 " + std::to_string(m_corrected1) + "\n";
         s += "corrected block2 " + std::to_string(m_corrected2) + "\n";
+        s += "from a prediction " + std::to_string(st.fromPrediction) + "\n";
         if (!m_options.datagram) {
             s += "bytes read " + std::to_string(receiver.syncStats().bytesIn) + "\n";
             s += "bytes skipped " + std::to_string(receiver.syncStats().bytesSkipped) + "\n";

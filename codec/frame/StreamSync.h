@@ -43,6 +43,7 @@
 
 #include "codec/frame/Frame.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -143,6 +144,7 @@ private:
     int pendingDistance_ = 0;
     DecodedBlocks pendingBlocks_;
     Stats stats_;
+    std::array<std::uint8_t, kCodewordSize> lastClean2_{};  // codeword 2 of the last clean frame due
 };
 
 }  // namespace rcm

@@ -222,34 +222,44 @@ Verdict descriptorFits(const FlightPlanSection& s)
                                             std::to_string(size) + " bytes");
 }
 
-SenderHistory historyOf(const DecodedBlocks& blocks, const Message& m, std::int64_t seconds, std::int64_t nowMicros,
-                        const SenderHistory* before)
+// The history a frame accepted after `before` leaves, written into `h`,
+// which may be *before itself: assigning in place keeps the vectors'
+// storage, which matters when a day's recording is read.
+void fillHistory(SenderHistory& h, const DecodedBlocks& blocks, const Message& m, std::int64_t seconds,
+                 std::int64_t nowMicros, const SenderHistory* before)
 {
-    SenderHistory h;
+    PlanProgress plan = before ? before->plan : PlanProgress{};
+    const std::uint64_t accepted = before ? before->accepted + 1 : 1;
     h.blocks = blocks;
     h.message = m;
     h.messageId = static_cast<std::uint32_t>(m.header.number(ItemId::ID_msg));
     h.stampSeconds = seconds;
     h.receivedMicros = nowMicros;
-    h.accepted = before ? before->accepted + 1 : 1;
-    if (before)
-        h.plan = before->plan;
+    h.accepted = accepted;
     const FlightPlanSection& s = m.flightPlan;
     if (!s.empty() && s.sectionId < kFirstControlSectionId) {
-        if (s.planId != h.plan.planId)
-            h.plan = PlanProgress{};
-        h.plan.planId = s.planId;
-        h.plan.section = s.sectionId;
-        h.plan.sectionMessageId = h.messageId;
+        if (s.planId != plan.planId)
+            plan = PlanProgress{};
+        plan.planId = s.planId;
+        plan.section = s.sectionId;
+        plan.sectionMessageId = h.messageId;
         if (s.sectionId == 0) {
             if (const std::optional<FlightPlanDescriptor> d = FlightPlanDescriptor::read(s.data)) {
-                h.plan.sectionCount = d->sectionCount;
-                h.plan.streamBytes = FlightPlanDescriptor::kSize + std::uint64_t{d->totalBytes};
-                h.plan.sectionSize = static_cast<std::uint16_t>(s.data.size());
-                h.plan.crc = d->crc;
+                plan.sectionCount = d->sectionCount;
+                plan.streamBytes = FlightPlanDescriptor::kSize + std::uint64_t{d->totalBytes};
+                plan.sectionSize = static_cast<std::uint16_t>(s.data.size());
+                plan.crc = d->crc;
             }
         }
     }
+    h.plan = plan;
+}
+
+SenderHistory historyOf(const DecodedBlocks& blocks, const Message& m, std::int64_t seconds, std::int64_t nowMicros,
+                        const SenderHistory* before)
+{
+    SenderHistory h;
+    fillHistory(h, blocks, m, seconds, nowMicros, before);
     return h;
 }
 
@@ -312,33 +322,45 @@ struct FrameReceiver::Exactness {
         held = true;
     }
 
-    // The message `b` holds when it differs from the kept frame only in the
-    // three values, and they are valid; nothing otherwise.
+    // True when `b` differs from the kept frame only in the three values,
+    // and they are valid: then it is exact, and read() reads it.
+    bool matches(const DecodedBlocks& b) const { return values3(b).has_value(); }
+
+    // The message `b` holds when matches(b); false, `out` untouched, otherwise.
     bool read(const DecodedBlocks& b, Message& out) const
     {
-        if (!held || std::memcmp(b.block2.data(), blocks.block2.data(), kBlockSize) != 0)
+        const std::optional<std::array<std::uint32_t, 3>> v = values3(b);
+        if (!v)
             return false;
+        out = message;
+        out.header.set(ItemId::ID_msg, (*v)[0]);
+        out.header.set(ItemId::time_UTC, (*v)[1]);
+        out.header.set(ItemId::date_UTC, (*v)[2]);
+        return true;
+    }
+
+private:
+    std::optional<std::array<std::uint32_t, 3>> values3(const DecodedBlocks& b) const
+    {
+        if (!held || std::memcmp(b.block2.data(), blocks.block2.data(), kBlockSize) != 0)
+            return std::nullopt;
         std::array<ValueAt, 3> sorted = values;
         std::sort(sorted.begin(), sorted.end(), [](const ValueAt& x, const ValueAt& y) { return x.offset < y.offset; });
         std::size_t from = 0;
         for (const ValueAt& v : sorted) {
             if (std::memcmp(b.block1.data() + from, blocks.block1.data() + from, v.offset - from) != 0)
-                return false;
+                return std::nullopt;
             from = v.offset + v.size;
         }
         if (std::memcmp(b.block1.data() + from, blocks.block1.data() + from, kBlockSize - from) != 0)
-            return false;
+            return std::nullopt;
         const std::uint32_t id = bigEndian(b.block1.data() + values[0].offset, values[0].size);
         const std::uint32_t time = bigEndian(b.block1.data() + values[1].offset, values[1].size);
         const std::uint32_t date = bigEndian(b.block1.data() + values[2].offset, values[2].size);
         if (!checkValue(itemInfo(ItemId::time_UTC), Value::of(time)).empty() ||
             !checkValue(itemInfo(ItemId::date_UTC), Value::of(date)).empty())
-            return false;
-        out = message;
-        out.header.set(ItemId::ID_msg, id);
-        out.header.set(ItemId::time_UTC, time);
-        out.header.set(ItemId::date_UTC, date);
-        return true;
+            return std::nullopt;
+        return std::array<std::uint32_t, 3>{id, time, date};
     }
 };
 
@@ -377,7 +399,7 @@ FrameReceiver::FrameReceiver(Options options, Handler handler)
     : m_options(std::move(options)),
       m_handler(std::move(handler)),
       m_sync([this](const SyncedFrame& s) {
-          ReceivedFrame frame;
+          ReceivedFrame& frame = freshFrame();
           frame.offset = s.offset;
           frame.raw = s.raw;
           frame.blocks = s.blocks;
@@ -395,13 +417,32 @@ FrameReceiver::FrameReceiver(Options options, Handler handler)
 
 FrameReceiver::~FrameReceiver() = default;
 
+// One frame object, used again for every frame: its message's storage is
+// kept, so a frame read like the last costs no allocation. Every field but
+// the message is reset here; every path sets the message before it is read.
+ReceivedFrame& FrameReceiver::freshFrame()
+{
+    ReceivedFrame& f = m_frame;
+    f.offset = 0;
+    f.raw = {};
+    f.blocks = DecodedBlocks{};
+    f.preambleBitErrors = 0;
+    f.refusal.reset();
+    f.detail.clear();
+    f.decoded.diagnostics.clear();
+    f.decoded.corrected = Corrections{};
+    f.direction.reset();
+    f.fromPrediction = false;
+    f.warning.clear();
+    return f;
+}
+
 bool FrameReceiver::exact(const DecodedBlocks& blocks) const
 {
     if (!blocks.ok())
         return false;
     if (m_options.keys.codecs.empty()) {
-        Message m;
-        if (m_exactCache->read(blocks, m))
+        if (m_exactCache->matches(blocks))
             return true;
         DecodeResult r;
         if (exactPlain(blocks, r).refusal)
@@ -443,11 +484,12 @@ void FrameReceiver::reset()
 void FrameReceiver::receive(std::span<const std::uint8_t> bytes, std::int64_t offset)
 {
     ++m_datagrams;
-    ReceivedFrame frame;
+    ReceivedFrame& frame = freshFrame();
     frame.offset = offset;
     frame.raw = bytes;
     if (bytes.size() != kDatagramSize && bytes.size() != kFrameSize) {
         frame.refusal = Refusal::WrongSize;
+        frame.decoded.message = Message{};
         frame.detail = std::to_string(bytes.size()) + " bytes; a datagram is 510 and a frame 600";
         ++m_stats.refused[static_cast<std::size_t>(Refusal::WrongSize)];
         if (m_handler)
@@ -583,6 +625,7 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
                                 : refuse(Refusal::Forged, why));
         }
     } else if (!m_exactCache->read(blocks, r.message)) {
+        r = DecodeResult{};
         if (Verdict v = exactPlain(blocks, r); v.refusal)
             return no(std::move(v));
         m_exactCache->keep(blocks, r.message);
@@ -645,7 +688,15 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
         m_options.keys.guard->accept(stamp, &frame.warning);
     }
 
-    SenderHistory h = historyOf(blocks, r.message, *seconds, nowMicros, before);
+    if (known != m_senders.end() && before == &known->second) {
+        // The common case: the sender's next frame, written over its last.
+        fillHistory(known->second, blocks, r.message, *seconds, nowMicros, before);
+        known->second.serial = ++m_serial;
+        m_candidates.erase(key);
+        m_last = &known->second;
+        return true;
+    }
+    SenderHistory h = historyOf(blocks, r.message, *seconds, nowMicros, before);  // `before` may be a candidate
     m_candidates.erase(key);
     m_last = &keepHistory(key, std::move(h));
     return true;

@@ -203,6 +203,7 @@ public:
 
 private:
     struct Exactness;
+    ReceivedFrame& freshFrame();
     void judge(ReceivedFrame& frame, std::span<const std::uint8_t, kDatagramSize> codewords);
     bool accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bool remember);
     SenderHistory& keepHistory(std::uint32_t key, SenderHistory h);
@@ -227,6 +228,7 @@ private:
     // The last plain frame found exact, to judge the next one that differs
     // from it only in the header's counter and clock without decoding again.
     std::unique_ptr<Exactness> m_exactCache;
+    ReceivedFrame m_frame;  // the frame being judged (freshFrame)
 };
 
 }  // namespace rcm

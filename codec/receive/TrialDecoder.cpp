@@ -414,8 +414,8 @@ std::optional<TrialDecoder::Found> TrialDecoder::findBlock1(const SenderHistory&
         std::array<const std::uint8_t*, kRecentFrames + 1> copies{};
         std::size_t count = 0;
         copies[count++] = r1;
-        for (const auto& frame : m_recent)
-            copies[count++] = frame[0].data();
+        for (const Codeword& frame : m_recent)
+            copies[count++] = frame.data();
         std::array<int, kBlockSize> agreed;
         agreed.fill(-1);
         bool any = false;
@@ -789,12 +789,12 @@ void TrialDecoder::observe(std::span<const std::uint8_t, kDatagramSize> received
     const bool delivered = frame.delivered();
     m_framesSinceDelivery = delivered ? 0 : m_framesSinceDelivery + 1;
     if (!m_keyed && frame.refusal != Refusal::WrongSize) {
-        // Codewords as decoded where they were, else as received.
-        std::array<Codeword, 2> copies{frame.blocks.corrected.block1 >= 0 ? codewordOf(frame.blocks.block1) : copyOf(r1),
-                                       frame.blocks.corrected.block2 >= 0 ? codewordOf(frame.blocks.block2) : copyOf(r2)};
-        m_recent.push_front(copies);
-        if (m_recent.size() > kRecentFrames)
+        // Codeword 1 as decoded where it was (as received when that needed
+        // no correction), else as received.
+        const int corrected = frame.blocks.corrected.block1;
+        if (m_recent.size() == kRecentFrames)
             m_recent.pop_back();
+        m_recent.push_front(corrected > 0 ? codewordOf(frame.blocks.block1) : copyOf(r1));
         if (!delivered && frame.blocks.corrected.block2 < 0) {
             m_block2Copies.push_front(copyOf(r2));
             if (m_block2Copies.size() > kMaxBlock2Copies)

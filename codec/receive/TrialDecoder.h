@@ -135,9 +135,9 @@ private:
     std::optional<Message> m_expected;
     std::uint64_t m_expectedVersion = 0;
     std::deque<FlightPlanSection> m_acknowledgements;  // of the plans this end sent, the latest first
-    // Plain link: the last frames' codewords as received (codeword 1 as
-    // decoded when it was), most recent first, for the bytes they agree on.
-    std::deque<std::array<Codeword, 2>> m_recent;
+    // Plain link: the last frames' codewords 1 (as decoded when they were,
+    // else as received), most recent first, for the bytes they agree on.
+    std::deque<Codeword> m_recent;
     std::uint64_t m_framesSinceDelivery = 0;
     // Nothing accepted yet, plain link: the last BLOCK 1 codewords received, for the majority.
     std::deque<Codeword> m_majority;

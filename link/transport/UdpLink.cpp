@@ -99,6 +99,18 @@ void UdpLink::readPending()
             break;
         m_senderAddress = datagram.senderAddress();
         m_senderPort = quint16(datagram.senderPort());
+        if (!m_replyToSender && !m_remoteAddress.isNull() && m_remotePort != 0 &&
+            (m_senderPort != m_remotePort ||
+             !m_senderAddress.isEqual(m_remoteAddress, QHostAddress::TolerantConversion))) {
+            if (m_strangerDatagrams.fetch_add(1) == 0)
+                emit errorOccurred(QStringLiteral("udp: datagrams from %1 dropped unread: only %2 is listened to "
+                                                  "(every further one is counted, not reported)")
+                                       .arg(endpoint(m_senderAddress, m_senderPort),
+                                            endpoint(m_remoteAddress, m_remotePort)));
+            m_senderAddress.clear();
+            m_senderPort = 0;
+            continue;
+        }
         if (m_replyToSender && !m_acceptedSendersOnly)
             acceptSender();
         emit datagramReceived(datagram.data());

@@ -5,6 +5,10 @@
 // boundPort() then tells. In reply-to-sender mode, used by the simulated
 // aircraft, the sender of a datagram becomes the remote end; with a receiver
 // that judges the datagrams (LinkWorker), only of one it accepted.
+// Otherwise, with a remote end set (the console's aircraft), a datagram from
+// any other address or port is dropped before anyone reads it: counted
+// (strangerDatagrams()) and reported once, so that a flood from elsewhere
+// costs a socket read, not a decode.
 
 #include "link/transport/Link.h"
 
@@ -39,6 +43,9 @@ public:
     // adopts nothing rather than the wrong peer.
     void acceptSender();
 
+    // Datagrams dropped for coming from other than the remote end. Any thread.
+    quint64 strangerDatagrams() const { return m_strangerDatagrams.load(); }
+
     // The local port actually bound: the ephemeral one when 0 was asked for;
     // 0 while closed. Any thread.
     quint16 boundPort() const { return m_boundPort.load(); }
@@ -69,6 +76,7 @@ private:
     quint16 m_senderPort = 0;
     QUdpSocket m_socket;
     std::atomic<quint16> m_boundPort{0};
+    std::atomic<quint64> m_strangerDatagrams{0};
     QString m_lastError;  // so a failure repeated every second shows once
     bool m_binding = false;  // open() reports a failed bind itself, with the address
 };
