@@ -58,6 +58,9 @@ private:
 struct AttackResult {
     RowResult row;
     std::uint64_t attacks = 0;       // replayed frames, splices, outages ...
+    // Splices the plain profile cannot tell from a frame: its BLOCK 2 and
+    // the other frame's differ, and the other's is empty or starts a plan.
+    std::uint64_t undetectable = 0;
     std::uint64_t recoverable = 0;   // sync rows: frames libfec reads at their true place
     std::uint64_t falseRefusals = 0; // ... that were not delivered
     std::string firstFalseRefusal;
@@ -130,6 +133,9 @@ inline AttackResult runSplices(const CommandSession& session, std::uint64_t fram
         if (i > 0 && i + 3 < frames && splice(rng)) {
             const std::uint64_t k = 1 + rng() % 3;
             const FrameBytes later = session.frameAt(i + k);
+            const FlightPlanSection own = session.messageAt(i).flightPlan;
+            const FlightPlanSection other = session.messageAt(i + k).flightPlan;
+            result.undetectable += !(own == other) && (other.empty() || (other.sectionId == 0 && other.planId != own.planId));
             std::copy(later.begin() + kPreambleSize + kCodewordSize, later.end(),
                       f.begin() + kPreambleSize + kCodewordSize);
             ++result.attacks;

@@ -4,11 +4,12 @@
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/receive/FrameReceiver.h"
 #include "codec/secure/SecureCodec.h"
-#include "tests/ReceiveChannel.h"
+#include "tests/ReceiveAttacks.h"
 
 #include <QtTest>
 
 #include <initializer_list>
+#include "tests/BerSession.h"
 
 using namespace rcm;
 using namespace rcm::test;
@@ -126,6 +127,18 @@ private slots:
     void planDescriptorBindsItsSections();
     void keyedLink();
     void wrongSizeDatagram();
+    void replayedFramesNeverDelivered_data();
+    void replayedFramesNeverDelivered();
+    void oldFramesThatAgreeAreNoRestart();
+    void splicesRefusedWhereTheProfileTells_data();
+    void splicesRefusedWhereTheProfileTells();
+    void noIntactFrameLostToAnEarlierReading_data();
+    void noIntactFrameLostToAnEarlierReading();
+    void firstFrameAfterAnOutageDelivered();
+    void predictionsPaidFromABudget();
+    void sendersForgottenBeyondTheTable();
+    void ownCommandPredictsTheStatus_data();
+    void ownCommandPredictsTheStatus();
 };
 
 void TestReceive::noWrongFrameDelivered_data()
@@ -551,6 +564,275 @@ void TestReceive::wrongSizeDatagram()
     c.receiver.receive(f, 600);
     QVERIFY(c.frames[1].delivered());
     QCOMPARE(c.frames[1].offset, std::int64_t{600});
+}
+
+void TestReceive::replayedFramesNeverDelivered_data()
+{
+    QTest::addColumn<bool>("live");
+    QTest::newRow("live") << true;
+    QTest::newRow("recording") << false;
+}
+
+// Old frames of the session replayed into it, one to five in a row, half of
+// them from the last 30 s: none is delivered again or after a newer one, and
+// every frame sent once is delivered.
+void TestReceive::replayedFramesNeverDelivered()
+{
+    QFETCH(bool, live);
+    const AttackResult r = runReplay(CommandSession{}, 5000, 0.5, live ? 31 : 32,
+                                     live ? FrameReceiver::Mode::Live : FrameReceiver::Mode::Recording);
+    QVERIFY(r.attacks > 5000);
+    QVERIFY2(r.row.stale == 0, r.row.firstStale.c_str());
+    QVERIFY2(r.row.wrong == 0, r.row.firstWrong.c_str());
+    QCOMPARE(r.row.correct, std::uint64_t{5000});
+    QCOMPARE(r.row.refused[std::size_t(Refusal::Replayed)] + r.row.refused[std::size_t(Refusal::TimeWindow)],
+             r.attacks);
+}
+
+// Two consecutive old frames agree with each other, and used to pass for a
+// sender's restart; a restart is recognised by a later stamp instead.
+void TestReceive::oldFramesThatAgreeAreNoRestart()
+{
+    FrameReceiver::Options o;
+    o.mode = FrameReceiver::Mode::Recording;
+    Collected c(o);
+    for (std::uint32_t id = 5000; id < 5003; ++id)
+        c.receiver.receive(datagramOf(command(id, id - 4900)));  // stamps 100 .. 102 s
+    c.receiver.receive(datagramOf(command(10, 0)));  // replayed: sent earlier
+    c.receiver.receive(datagramOf(command(11, 1)));
+    QCOMPARE(c.frames[3].refusal, std::optional<Refusal>(Refusal::Replayed));
+    QCOMPARE(c.frames[4].refusal, std::optional<Refusal>(Refusal::Replayed));
+    // The sender restarted: its counter from 0, its clock on.
+    c.receiver.receive(datagramOf(command(0, 104)));
+    c.receiver.receive(datagramOf(command(1, 105)));
+    QCOMPARE(c.frames[5].refusal, std::optional<Refusal>(Refusal::Replayed));
+    QVERIFY(c.frames[6].delivered());
+    // ... and the frames of before the restart stay refused.
+    c.receiver.receive(datagramOf(command(5003, 103)));
+    c.receiver.receive(datagramOf(command(5004, 104)));
+    QCOMPARE(c.frames[7].refusal, std::optional<Refusal>(Refusal::MessageIdStep));
+    QCOMPARE(c.frames[8].refusal, std::optional<Refusal>(Refusal::MessageIdStep));
+    QCOMPARE(c.receiver.lastAccepted()->messageId, 1u);
+}
+
+void TestReceive::splicesRefusedWhereTheProfileTells_data()
+{
+    QTest::addColumn<bool>("keyed");
+    QTest::newRow("plain") << false;
+    QTest::newRow("keyed") << true;
+}
+
+// Codeword 1 of one frame, codeword 2 of one 1 .. 3 frames later (3 % of
+// frames), in a session uploading plans back to back. The keyed link binds the blocks
+// (BLOCK 2's tweak holds BLOCK 1's counter and clock): every splice is
+// refused. The plain profile binds nothing; what a splice delivers is only
+// a BLOCK 2 that is empty or starts a plan where the frame's own was another.
+void TestReceive::splicesRefusedWhereTheProfileTells()
+{
+    QFETCH(bool, keyed);
+    secure::SecretKey key;
+    key.mutableBytes()[3] = 9;
+    const secure::SecureCodec codec(key, secure::Direction::GcsToUa);
+    CommandSession session;
+    session.uploadEvery = 40;
+    session.uploadStart = 2;
+    session.planBytes = 1500;
+    if (keyed)
+        session.codec = &codec;
+    const AttackResult r = runSplices(session, 10000, 0.03, 33);
+    qInfo("%llu splices, %llu delivered wrong, %llu the profile cannot tell",
+          static_cast<unsigned long long>(r.attacks), static_cast<unsigned long long>(r.row.wrong),
+          static_cast<unsigned long long>(r.undetectable));
+    QVERIFY(r.attacks > 250);
+    if (keyed) {
+        QCOMPARE(r.row.wrong, std::uint64_t{0});
+        QCOMPARE(r.row.refused[std::size_t(Refusal::Forged)], r.attacks);
+    } else {
+        QVERIFY(r.row.wrong <= r.undetectable);
+        QVERIFY(r.row.refused[std::size_t(Refusal::PlanSection)] > r.attacks / 3);
+    }
+    QCOMPARE(r.row.stale, std::uint64_t{0});
+}
+
+void TestReceive::noIntactFrameLostToAnEarlierReading_data()
+{
+    QTest::addColumn<int>("damage");
+    QTest::newRow("cut then intact") << int(StreamDamage::CutThenIntact);
+    QTest::newRow("overlap") << int(StreamDamage::Overlap);
+    QTest::newRow("garbage between") << int(StreamDamage::GarbageBetween);
+    QTest::newRow("byte slips 1-8") << int(StreamDamage::ByteSlips);
+}
+
+// Every frame that libfec reads at its true place in the damaged stream is
+// delivered, and nothing wrong.
+void TestReceive::noIntactFrameLostToAnEarlierReading()
+{
+    QFETCH(int, damage);
+    const AttackResult r = runStreamDamage(CommandSession{}, StreamDamage(damage), 5000, 40 + std::uint64_t(damage));
+    qInfo("%llu frames libfec reads, %llu delivered in all", static_cast<unsigned long long>(r.recoverable),
+          static_cast<unsigned long long>(r.row.correct));
+    QVERIFY(r.recoverable > 500);
+    QVERIFY2(r.falseRefusals == 0, r.firstFalseRefusal.c_str());
+    QVERIFY2(r.row.wrong == 0, r.row.firstWrong.c_str());
+}
+
+// A sender that falls silent and comes back with its counter where it was
+// (a satellite phone redialling): its first frame is judged against how long
+// the receiver heard nothing.
+void TestReceive::firstFrameAfterAnOutageDelivered()
+{
+    const AttackResult r = runOutages(CommandSession{}, 3000, 0.02, 34);
+    QVERIFY(r.attacks > 30);
+    QCOMPARE(r.falseRefusals, std::uint64_t{0});
+    QCOMPARE(r.row.correct, std::uint64_t{3000});
+    QCOMPARE(r.row.wrong, std::uint64_t{0});
+
+    Collected c;
+    c.receiver.receive(datagramOf(command(100, 0)));
+    c.nowMicros += 16'000'000;  // 16 s without a frame
+    c.receiver.receive(datagramOf(command(103, 16)));
+    QVERIFY(c.frames[1].delivered());
+    c.receiver.receive(datagramOf(command(104, 22)));  // 6 s later, 1 message: too far
+    QCOMPARE(c.frames[2].refusal, std::optional<Refusal>(Refusal::TimeStep));
+    QCOMPARE(c.frames[2].detail, std::string("time_UTC is 6 s after the last accepted, 1 messages later"));
+}
+
+// The predictions' work is paid from a budget that refills with the clock:
+// a flood of datagrams no prediction fits cannot spend more, and a genuine
+// frame among them is still delivered.
+void TestReceive::predictionsPaidFromABudget()
+{
+    secure::SecretKey key;
+    key.mutableBytes()[2] = 5;
+    const secure::SecureCodec codec(key, secure::Direction::GcsToUa);
+    FrameReceiver::Options o;
+    o.keys.codecs = {&codec};
+    o.prediction.unitsPerSecond = 2000;
+    o.prediction.maxUnits = 4000;
+    Collected c(o);
+    const auto keyed = [&](const Message& m) {
+        Diagnostics errors;
+        const std::optional<EncodedBlocks> b = codec.encode(m, errors);
+        return datagramOf(b->block1, b->block2);
+    };
+    c.receiver.receive(keyed(command(10, 0)));
+    QVERIFY(c.frames[0].delivered());
+    std::mt19937_64 rng(5);
+    Bytes junk(kDatagramSize);
+    for (int i = 0; i < 200; ++i) {
+        for (std::uint8_t& b : junk)
+            b = static_cast<std::uint8_t>(rng());
+        c.receiver.receive(junk);
+    }
+    const FrameReceiver::Stats& st = c.receiver.stats();
+    QCOMPARE(st.refused[std::size_t(Refusal::Uncorrectable)], std::uint64_t{200});
+    QVERIFY(st.predictionUnits <= 4000);
+    QVERIFY(st.predictionsCut > 100);
+    c.receiver.receive(keyed(command(11, 1)));
+    QVERIFY(c.frames.back().delivered());
+    // A second later the budget has refilled by 2,000 units, no more.
+    c.nowMicros += 1'000'000;
+    const std::uint64_t before = st.predictionUnits;
+    for (int i = 0; i < 200; ++i) {
+        for (std::uint8_t& b : junk)
+            b = static_cast<std::uint8_t>(rng());
+        c.receiver.receive(junk);
+    }
+    QVERIFY(st.predictionUnits > before);
+    QVERIFY(st.predictionUnits <= before + 2000);
+}
+
+// At most kMaxSenders senders are kept: a flood of one-frame senders
+// replaces its own kind, not the sender heard every second, and a sender
+// forgotten cannot come back with frames older than its last.
+void TestReceive::sendersForgottenBeyondTheTable()
+{
+    FrameReceiver::Options o;
+    o.mode = FrameReceiver::Mode::Recording;
+    Collected c(o);
+    for (std::uint32_t id = 1; id <= 10; ++id)
+        c.receiver.receive(datagramOf(command(id, id)));
+    Message early = command(50, 50);
+    early.header.set(ItemId::ID_UA_source, Value::station({44, 999}));
+    c.receiver.receive(datagramOf(early));
+    for (std::uint16_t s = 0; s < 40; ++s) {
+        Message m = command(1000 + s, 100 + s);
+        m.header.set(ItemId::ID_UA_source, Value::station({44, std::uint16_t(2000 + s)}));
+        c.receiver.receive(datagramOf(m));
+    }
+    QCOMPARE(c.receiver.senders().size(), kMaxSenders);
+    QCOMPARE(c.receiver.stats().sendersForgotten, std::uint64_t{41 - (kMaxSenders - 1)});
+    QVERIFY(c.receiver.senders().count((44u << 16) | 133u));  // the aircraft heard every second stays
+    QVERIFY(!c.receiver.senders().count((44u << 16) | 999u));
+    // Sender 999 again, with its frame of 100 s before the latest forgotten one.
+    c.receiver.receive(datagramOf(early));
+    QCOMPARE(c.frames.back().refusal, std::optional<Refusal>(Refusal::Replayed));
+    QVERIFY(c.receiver.senders().count((44u << 16) | 133u));
+    c.receiver.receive(datagramOf(command(11, 11)));
+    QVERIFY(c.frames.back().delivered());
+}
+
+void TestReceive::ownCommandPredictsTheStatus_data()
+{
+    QTest::addColumn<bool>("keyed");
+    QTest::newRow("plain") << false;
+    QTest::newRow("keyed") << true;
+}
+
+// The console's own command is its prediction of the aircraft's next status:
+// a change of four commands at once (a radio retuned, engine and flaps) is
+// read through 24 byte errors in each codeword, beyond Reed-Solomon alone,
+// 8 of them in the parity (a prediction without the change is 6 bytes off,
+// and 14 is beyond the trial's margin).
+void TestReceive::ownCommandPredictsTheStatus()
+{
+    QFETCH(bool, keyed);
+    secure::SecretKey key;
+    key.mutableBytes()[4] = 77;
+    const secure::SecureCodec codec(key, secure::Direction::UaToGcs);
+    FrameReceiver::Options o;
+    if (keyed)
+        o.keys.codecs = {&codec};
+    Collected c(o);
+    const auto send = [&](Message m, bool damaged) {
+        Diagnostics errors;
+        const std::optional<EncodedBlocks> b = keyed ? codec.encode(m, errors) : encodeBlocks(m, errors);
+        FrameBytes f = makeFrame(b->block1, b->block2);
+        // 16 bad data bytes and 8 bad parity bytes in each codeword.
+        if (damaged)
+            for (std::size_t cw = 0; cw < 2; ++cw)
+                for (std::size_t e = 0; e < 24; ++e)
+                    f[kPreambleSize + cw * kCodewordSize + (e < 16 ? e * 13 + 2 : kBlockSize + (e - 16) * 4)] ^= 0x3C;
+        c.nowMicros = (kNoon + m.header.number(ItemId::ID_msg)) * 1'000'000;
+        c.receiver.feed(f);
+        c.receiver.flush();
+        return c.frames.back();
+    };
+    Message status = test::sessionStartMessage();
+    status.header.set(ItemId::ID_UA_source, Value::station({44, 133}));
+    const auto at = [&](std::uint32_t second) {
+        Message m = advanceMessage(status, 0);
+        m.header.set(ItemId::ID_msg, second);
+        const std::int64_t t = (kNoon + second) % 86400;
+        m.header.set(ItemId::time_UTC, t / 3600 * 10000 + t / 60 % 60 * 100 + t % 60);
+        m.header.set(ItemId::date_UTC, 261231);
+        return m;
+    };
+    QVERIFY(send(at(1), false).delivered());
+    Message command = status;
+    command.radios[0].set(ItemId::Rx_freq, 124250);
+    command.radios[0].set(ItemId::Tx_freq, 124250);
+    command.engines[0].set(ItemId::eng_carb_SET, 200);
+    command.flaps.set(ItemId::F_elev_set, 12);
+    // Before the console says what it commanded, the changed status is lost.
+    status = withCommanded(status, command);
+    QCOMPARE(send(at(2), true).refusal, std::optional<Refusal>(Refusal::Uncorrectable));
+    c.receiver.expect(command);
+    const ReceivedFrame f = send(at(3), true);
+    QVERIFY2(f.delivered(), f.detail.c_str());
+    QVERIFY(f.fromPrediction);
+    QVERIFY(f.decoded.message == at(3));
+    QCOMPARE(f.decoded.message.radios[0].number(ItemId::Rx_freq), 124250);
 }
 
 QTEST_GUILESS_MAIN(TestReceive)

@@ -20,6 +20,8 @@ constexpr std::size_t kBufferSize = 8192;
 constexpr int kFailedCodewordBits = rs::kMaxCorrectable + 1;
 constexpr int kMaxPartialWindowBitErrors = 3;
 constexpr int kMaxSlippedMarkBitErrors = 2;
+// Bytes a frame due may be found early or late by (StreamSync::trySlipped).
+constexpr std::uint64_t kMaxSlip = 8;
 constexpr int kMinSlippedFill = 6;
 // A reading that decodes but is not exact may be a rotation of a real frame
 // whose start no window shows (its mark lost to a slip, bytes inserted
@@ -205,6 +207,7 @@ void StreamSync::reset()
     hasPending_ = false;
     emitted_ = false;
     lastEmitted_ = 0;
+    expectTried_ = false;
     lastClean2_.fill(0);
     stats_ = Stats{};
 }
@@ -235,6 +238,7 @@ void StreamSync::flush()
     len_ = 0;
     scan_ = end + kWindowSize;
     expect_ = 0;
+    expectTried_ = false;
     due_ = 0;
     failEnd_ = 0;
 }
@@ -318,9 +322,21 @@ void StreamSync::process(bool final)
                 if (!final)
                     return;
                 expect_ = 0;
+                expectTried_ = false;
             } else {
+                if (!expectTried_) {
+                    const std::uint64_t c = std::exchange(expect_, 0);
+                    if (tryExpected(c))
+                        continue;  // which expects the next one
+                    expect_ = c;
+                    expectTried_ = true;
+                }
+                // Not where it was due: a few bytes either side, once they are here.
+                if (expect_ + kMaxSlip + kDatagramSize > end && !final)
+                    return;
                 const std::uint64_t c = std::exchange(expect_, 0);
-                if (tryExpected(c))
+                expectTried_ = false;
+                if (trySlipped(c, end))
                     continue;
             }
         }
@@ -372,6 +388,35 @@ bool StreamSync::tryExpected(std::uint64_t c)
         return false;
     confirm(c, 0, blocks, true);
     return true;
+}
+
+bool StreamSync::trySlipped(std::uint64_t c, std::uint64_t end)
+{
+    // The frame due after an exact one, a few bytes early or late (bytes
+    // lost or inserted), whatever its window shows: its mark may be what
+    // was lost. Taken only whole, both codewords clean, and exact; a
+    // rotation of a real frame is never both (its wrapped bytes differ).
+    if (!exact_)
+        return false;
+    for (std::uint64_t j = 1; j <= kMaxSlip; ++j) {
+        for (const std::uint64_t at : {c - j, c + j}) {
+            if (at < base_ + kPreambleSize || at + kDatagramSize > end || (emitted_ && at <= lastEmitted_))
+                continue;
+            const std::uint8_t* cw = this->at(at);
+            bool clean1 = false, clean2 = false;
+            rs::checkCodewords(cw, cw + kCodewordSize, &clean1, &clean2);
+            if (!clean1 || !clean2)
+                continue;
+            DecodedBlocks blocks;
+            std::memcpy(blocks.block1.data(), cw, kBlockSize);
+            std::memcpy(blocks.block2.data(), cw + kCodewordSize, kBlockSize);
+            if (!exact_(blocks))
+                continue;
+            confirm(at, distance(at), blocks, true);
+            return true;
+        }
+    }
+    return false;
 }
 
 bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::uint64_t end)

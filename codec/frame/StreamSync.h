@@ -116,6 +116,7 @@ public:
 private:
     void process(bool final);
     bool tryExpected(std::uint64_t c);
+    bool trySlipped(std::uint64_t c, std::uint64_t end);
     bool decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::uint64_t end);
     void confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks, bool exact);
     void emitFrame(std::uint64_t c, int distance, const DecodedBlocks& blocks);
@@ -134,6 +135,7 @@ private:
     std::size_t len_ = 0;
     std::uint64_t scan_ = kWindowSize;  // next candidate not yet examined
     std::uint64_t expect_ = 0;   // where the next frame is likely to start (0: no guess)
+    bool expectTried_ = false;   // ... and it was not there exactly
     std::uint64_t due_ = 0;      // where the next frame is due after the last reported, good or not
     std::uint64_t failEnd_ = 0;  // failing candidates before this are dropped silently
     std::uint64_t covered_ = 0;  // bytes before this are in an emitted frame or counted as skipped
