@@ -8,6 +8,7 @@
 #include "codec/message/TextFormat.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 
@@ -34,11 +35,13 @@ std::string mutate(std::mt19937_64& rng, std::string s)
 
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+    // A round: one mutated text, one of random bytes, two random block pairs.
+    const int rounds = argc > 1 ? std::atoi(argv[1]) : 100000;
     std::mt19937_64 rng(0xF022);
     std::size_t parsedOk = 0, blocksRead = 0;
-    for (int i = 0; i < 20000; ++i) {
+    for (int i = 0; i < rounds; ++i) {
         const std::string text = mutate(rng, formatMessage(test::randomMessage(rng)));
         const ParseResult r = parseMessage(text);
         if (r.ok()) {
@@ -46,25 +49,24 @@ int main()
             Diagnostics errors;
             (void)encodeFrame(r.message, errors);
         }
-    }
-    for (int i = 0; i < 20000; ++i) {
         std::string junk(rng() % 300, '\0');
         for (char& c : junk)
             c = static_cast<char>(rng() % 256);
         (void)parseMessage(junk);
-    }
-    for (int i = 0; i < 200000; ++i) {
-        DecodedBlocks blocks;
-        for (auto* b : {&blocks.block1, &blocks.block2}) {
-            // Half the time mostly padding, so items deep in the block are reached.
-            const bool sparse = rng() % 2;
-            for (auto& x : *b)
-                x = sparse && rng() % 4 ? 0x55 : static_cast<std::uint8_t>(rng());
+        for (int k = 0; k < 2; ++k) {
+            DecodedBlocks blocks;
+            for (auto* b : {&blocks.block1, &blocks.block2}) {
+                // Half the time mostly padding, so items deep in the block are reached.
+                const bool sparse = rng() % 2;
+                for (auto& x : *b)
+                    x = sparse && rng() % 4 ? 0x55 : static_cast<std::uint8_t>(rng());
+            }
+            const DecodeResult d = decodeBlocks(blocks);
+            blocksRead += d.diagnostics.size();
+            (void)formatMessage(d.message);
         }
-        const DecodeResult r = decodeBlocks(blocks);
-        blocksRead += r.diagnostics.size();
-        (void)formatMessage(r.message);
     }
-    std::printf("fuzz_textformat: %zu mutated texts parsed, %zu block diagnostics; no crash\n", parsedOk, blocksRead);
+    std::printf("fuzz_textformat: %d rounds, %zu mutated texts parsed, %zu block diagnostics; no crash\n", rounds,
+                parsedOk, blocksRead);
     return 0;
 }
