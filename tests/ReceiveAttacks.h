@@ -303,14 +303,20 @@ inline AttackResult runOutages(const CommandSession& session, std::uint64_t fram
     std::uint64_t firstAfter = 0, firstAfterDelivered = 0;
     FrameReceiver::Options options;
     options.clock = [&] { return nowMicros; };
-    std::map<std::uint32_t, std::pair<Message, bool>> expected;  // by ID_msg: what was sent, first after an outage
+    struct Expected {
+        std::uint32_t id;
+        Message message;
+        bool firstAfterOutage;
+    };
+    std::deque<Expected> expected;  // the last few frames sent
     FrameReceiver receiver(options, [&](const ReceivedFrame& f) {
         if (!f.delivered())
             return;
-        const auto it = expected.find(static_cast<std::uint32_t>(f.decoded.message.header.number(ItemId::ID_msg)));
-        if (it != expected.end() && f.decoded.message == it->second.first) {
+        const auto id = static_cast<std::uint32_t>(f.decoded.message.header.number(ItemId::ID_msg));
+        const auto it = std::find_if(expected.begin(), expected.end(), [&](const Expected& e) { return e.id == id; });
+        if (it != expected.end() && f.decoded.message == it->message) {
             ++delivered;
-            firstAfterDelivered += it->second.second;
+            firstAfterDelivered += it->firstAfterOutage;
         } else if (++row.wrong == 1) {
             row.firstWrong = "at stream offset " + std::to_string(f.offset);
         }
@@ -332,9 +338,9 @@ inline AttackResult runOutages(const CommandSession& session, std::uint64_t fram
         const std::int64_t t = session.secondsAt(i) + silence;
         m = advanceMessage(m, static_cast<std::uint32_t>(silence));
         m.header.set(ItemId::ID_msg, session.idAt(i));
-        expected[session.idAt(i)] = {m, first};
+        expected.push_back({session.idAt(i), m, first});
         if (expected.size() > 8)
-            expected.erase(expected.begin());
+            expected.pop_front();
         Diagnostics errors;
         const std::optional<FrameBytes> f = encodeFrame(m, errors);
         nowMicros = t * 1'000'000 + 500'000;

@@ -392,8 +392,8 @@ bool StreamSync::tryExpected(std::uint64_t c)
 
 bool StreamSync::trySlipped(std::uint64_t c, std::uint64_t end)
 {
-    // The frame due after an exact one, a few bytes early or late (bytes
-    // lost or inserted), whatever its window shows: its mark may be what
+    // The frame due, a few bytes early or late (bytes lost or inserted in it
+    // or the frame before), whatever its window shows: its mark may be what
     // was lost. Taken only whole, both codewords clean, and exact; a
     // rotation of a real frame is never both (its wrapped bytes differ).
     if (!exact_)
@@ -555,8 +555,11 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
         pendingDistance_ = pDistance;
         pendingBlocks_ = firstBlocks;
         failEnd_ = p + kDatagramSize;
-        if (p == due_)
+        if (p == due_) {
             due_ = p + kFrameSize;  // lock kept through a frame beyond correction
+            expect_ = due_;
+            expectTried_ = false;
+        }
     }
     scan_ = q + kNeighbourhood;
     return true;
@@ -576,8 +579,11 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
         // real frame may start anywhere after it, so scanning goes on from
         // the next byte; inside it only an exact reading is taken. The lock
         // is kept only where this frame was due.
-        if (c == due_)
+        if (c == due_) {
             due_ = c + kFrameSize;
+            expect_ = due_;  // looked for there, and a few bytes either side
+            expectTried_ = false;
+        }
         scan_ = c + 1;
         failEnd_ = std::max(failEnd_, c + kDatagramSize);
         return;

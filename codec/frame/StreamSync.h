@@ -79,11 +79,12 @@ public:
     // a window this far from the preamble still qualifies.
     static constexpr int kMaxDueWindowBitErrors = 16;
     static constexpr std::size_t kNeighbourhood = kPreambleSize;  // candidates q .. q+89
-    // Upper bound of bufferedBytes() between feed() calls: a neighbourhood
-    // and the frame after it, plus the preamble of a failed frame whose
-    // report waits to see whether it was only a false start inside a real
-    // preamble.
-    static constexpr std::size_t kMaxCarried = 2 * kPreambleSize + kFrameSize + kCodewordSize;
+    // Upper bound of bufferedBytes() between feed() calls: the frame due
+    // after a failed neighbourhood (up to a frame on) with the 8 bytes after
+    // it that its search a few bytes either side needs, the frame before
+    // it, and the codeword and preamble before the scan that a rotation back
+    // may find a frame in.
+    static constexpr std::size_t kMaxCarried = 2 * kFrameSize + kCodewordSize + kPreambleSize;
 
     struct Stats {
         std::uint64_t bytesIn = 0;
