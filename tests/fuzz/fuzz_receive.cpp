@@ -110,8 +110,8 @@ int main(int argc, char** argv)
         // a fraction of the time.
         o.prediction.maxGapSeconds = 4;
         o.prediction.commandChangeGap = 2;
-        o.prediction.maxUnits = 4'000;
-        o.prediction.unitsPerSecond = 1'000;
+        o.prediction.maxUnits = 1'000;
+        o.prediction.unitsPerSecond = 500;
         std::uint64_t sent = first;
         std::optional<std::uint64_t> newest;
         std::uint64_t judged = 0;
