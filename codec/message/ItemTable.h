@@ -62,6 +62,11 @@ inline constexpr std::array<ItemId, 6> kFlapSurfaces{ItemId::F_aileron_LHS_set, 
 inline constexpr std::array<ItemId, 3> kSenseAndAvoidZooms{ItemId::SA_zoom_LHS_cam, ItemId::SA_zoom_FWD_cam,
                                                            ItemId::SA_zoom_RHS_cam};
 
+// Items that command something once (a photograph): sent in one frame, then
+// back to the resting value; never taken from a report, which says what
+// happened, not what to do again.
+inline constexpr std::array<ItemId, 1> kOneShotItems{ItemId::take_one_photo};
+
 // Two-bit field codes by meaning (PROFILE.md section 2); the table names
 // each field's codes by these. A code no field names means data corruption.
 namespace code {
