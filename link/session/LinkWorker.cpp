@@ -179,7 +179,7 @@ void LinkWorker::stop()
     m_statisticsDirty = false;
 }
 
-void LinkWorker::setCommand(const rcm::Message& command)
+void LinkWorker::setCommand(const rcm::Message& command, bool withPlanSections)
 {
     // The items the worker fills in are set to valid placeholders, so only
     // the operator's part is judged.
@@ -193,6 +193,7 @@ void LinkWorker::setCommand(const rcm::Message& command)
         return;
     }
     m_command = command;
+    m_withPlanSections = withPlanSections;
 }
 
 void LinkWorker::armTick()
@@ -232,7 +233,7 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
     if (!m_command)
         return;
     rcm::Message message = *m_command;
-    if (m_options.block2Source) {
+    if (m_options.block2Source && m_withPlanSections) {
         if (std::optional<rcm::FlightPlanSection> section = m_options.block2Source())
             message.flightPlan = std::move(*section);
     }
