@@ -74,7 +74,10 @@ StationControlWidget::StationControlWidget(StationControl* control, QWidget* par
 
     connect(m_station, &QLineEdit::editingFinished, this, &StationControlWidget::readStation);
     connect(m_handOver, &QPushButton::clicked, this, &StationControlWidget::requestHandOver);
-    connect(m_takeControl, &QPushButton::clicked, this, &StationControlWidget::requestTakeControl);
+    connect(m_takeControl, &QPushButton::clicked, this, [this] {
+        if (m_control->canTakeControl())
+            emit takeControlRequested();
+    });
     connect(m_control, &StationControl::roleChanged, this, &StationControlWidget::refresh);
     connect(m_control, &StationControl::headerChanged, this, &StationControlWidget::refresh);
     refresh();
@@ -132,21 +135,6 @@ void StationControlWidget::requestHandOver()
     ask.action = tr("Hand over");
     if (ask.ask(this))
         m_control->handOver();
-}
-
-void StationControlWidget::requestTakeControl()
-{
-    if (!m_control->canTakeControl())
-        return;
-    Confirmation ask;
-    ask.title = tr("Take control");
-    ask.text = tr("Command the aircraft from this console?");
-    ask.informativeText =
-        tr("From the next frame the aircraft acts on this console's panels as they are now. Check them against what "
-           "the aircraft reports (a difference is marked amber) before you take control.");
-    ask.action = tr("Take control");
-    if (ask.ask(this))
-        m_control->takeControl();
 }
 
 void StationControlWidget::refresh()

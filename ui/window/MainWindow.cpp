@@ -7,7 +7,12 @@
 #include "link/framelog/ReplayLink.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
+#include "codec/message/CommandChanges.h"
+#include "codec/message/TextFormat.h"
+#include "ui/control/CommandHoldBar.h"
 #include "ui/control/StationControlWidget.h"
+#include "ui/panels/CommandJournal.h"
+#include "ui/panels/ItemText.h"
 #include "link/broker/BrokerObservation.h"
 #include "link/broker/FleetFeed.h"
 #include "link/broker/MqttClient.h"
@@ -199,6 +204,7 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_session, &ConsoleSession::warning, this,
             [this](const QString& message) { showError(message, EventSource::Link); });
     bindStationControl();
+    bindCommandHold();
     connect(m_session, &ConsoleSession::starting, m_linkNote, &QLabel::setText);
     connect(m_session, &ConsoleSession::starting, this,
             [this](const QString& what) { m_alerts->info(EventSource::Link, what); });
@@ -254,6 +260,8 @@ void MainWindow::buildPanels()
     centreLayout->setContentsMargins(0, 0, 0, 0);
     centreLayout->setSpacing(0);
     centreLayout->addWidget(m_alerts->banners());
+    m_holdBar = new CommandHoldBar(m_session, m_command);
+    centreLayout->addWidget(m_holdBar);
     centreLayout->addWidget(m_panels, 1);
     setCentralWidget(centre);
 }
@@ -407,7 +415,7 @@ void MainWindow::buildMenus()
         a->setCheckable(true);
         a->setData(path);
         m_airframeActions->addAction(a);
-        connect(a, &QAction::triggered, this, [this, path] { loadAirframe(path); });
+        connect(a, &QAction::triggered, this, [this, path] { requestAirframe(path); });
     }
     airframes->addSeparator();
     airframes->addAction(tr("From a &file\u2026"), this, &MainWindow::chooseAirframe);
@@ -542,12 +550,61 @@ bool MainWindow::loadAirframe(const QString& path, QString* error)
             showError(reason);
         return false;
     }
+    const QString was = QString::fromStdString(m_command->airframe().name);
+    const bool live = m_session->isLive();
+    // Another airframe on a live link: nothing goes out until the aircraft's
+    // report is in the panels and the operator resumes.
+    if (live)
+        m_session->holdCommand(CommandHold::Reason::Airframe);
     m_airframePath = path;
-    m_command->setAirframe(*airframe);
-    for (QAction* a : m_airframeActions->actions())
-        a->setChecked(a->data().toString() == path);
+    const std::vector<rcm::Unit> left = m_command->setAirframe(*airframe);
+    checkAirframeAction();
     updateTitle();
+    if (live || !left.empty()) {
+        const QString name = QString::fromStdString(airframe->name);
+        m_alerts->info(EventSource::Console, tr("Airframe %1 (was %2): the command's values carried over unit by unit")
+                                                 .arg(name, was));
+        if (!left.empty())
+            m_alerts->warning(EventSource::Console, tr("Not in airframe %1, so no longer commanded: %2")
+                                                        .arg(name, ItemText::unitNames(left)));
+    }
     return true;
+}
+
+void MainWindow::checkAirframeAction()
+{
+    for (QAction* a : m_airframeActions->actions())
+        a->setChecked(a->data().toString() == m_airframePath);
+}
+
+void MainWindow::requestAirframe(const QString& path)
+{
+    QString reason;
+    const std::optional<rcm::Airframe> airframe = AirframeLoader::load(path, &reason);
+    if (!airframe) {
+        showError(reason);
+        checkAirframeAction();
+        return;
+    }
+    if (m_session->isLive()) {
+        const std::vector<rcm::Unit> left =
+            rcm::unitsMissingFrom(m_command->message(), rcm::restingCommand(*airframe));
+        Confirmation ask;
+        ask.title = tr("Airframe");
+        ask.text = tr("Load the airframe %1 while the link is live?").arg(QString::fromStdString(airframe->name));
+        ask.informativeText =
+            tr("The command's values are carried over unit by unit. The console then holds the command back until "
+               "the aircraft's report is in the panels and you resume commanding.") +
+            (left.empty() ? QString()
+                          : QLatin1Char('\n') + tr("Not in this airframe, so no longer commanded: %1")
+                                                    .arg(ItemText::unitNames(left)));
+        ask.action = tr("Load airframe");
+        if (!ask.ask(this)) {
+            checkAirframeAction();
+            return;
+        }
+    }
+    loadAirframe(path);
 }
 
 bool MainWindow::confirmEndingLink(const QString& action)
@@ -711,7 +768,7 @@ void MainWindow::linkStarted(const LinkController* controller)
     m_status->setLinkDescription(description);
     m_status->setKeyFingerprint(m_session->keyFingerprint());
     m_status->setStatistics(LinkStatistics());
-    m_flightPlan->setLinkReady(!replay);
+    m_flightPlan->setLinkReady(!replay && m_session->commanding());
     // A replay says so, with the log's own time, and raises no link alarm.
     m_alerts->setReplay(replay);
     m_status->setReplay(replay);
@@ -874,6 +931,7 @@ void MainWindow::linkStopped()
     m_alerts->setStatistics(LinkStatistics());  // closed: no alarm
     m_alerts->setReplay(false);
     m_alerts->info(EventSource::Link, tr("Stopped"));
+    m_journal->linkEnded();
     showNotConnected();
     updateTitle();
     updateLinkControls();
@@ -945,18 +1003,26 @@ void MainWindow::actionFailed(const QString& reason)
 
 void MainWindow::commandChanged()
 {
-    m_preview->setCommand(m_command->message());
+    // What the next frame carries: the header alone while the command is held.
+    const bool held = m_session->isLive() && !m_session->commanding();
+    m_preview->setCommand(held ? rcm::heldCommand(m_command->message()) : m_command->message());
     m_session->setCommand(m_command->message());
 }
 
 void MainWindow::messageReceived(const ReceivedMessage& received)
 {
     m_reported->onReceived(received);
+    if (!m_ownCommand)
+        m_journal->statusReceived(received.message);
 }
 
 void MainWindow::frameSent(quint32 messageId)
 {
-    m_command->frameSent();
+    // A frame that held the command back carried no photograph to return from.
+    if (m_session->commanding()) {
+        m_command->frameSent();
+        m_journal->frameSent(messageId);
+    }
     m_preview->frameSent(messageId);
 }
 
@@ -1047,7 +1113,7 @@ void MainWindow::chooseAirframe()
     const QString path =
         QFileDialog::getOpenFileName(this, tr("Open an airframe"), QString(), tr("Airframes (*.json);;All files (*)"));
     if (!path.isEmpty())
-        loadAirframe(path);
+        requestAirframe(path);
 }
 
 void MainWindow::bindStationControl()
@@ -1068,6 +1134,36 @@ void MainWindow::bindStationControl()
         control->applyTo(named);
         m_command->editUnit({rcm::UnitKind::Header, 0}, [&](rcm::Unit& header) { header = named.header; });
     });
+}
+
+void MainWindow::bindCommandHold()
+{
+    m_journal = new CommandJournal(m_command, this);
+    connect(m_journal, &CommandJournal::entry, this, [this](const QString& text, bool warning) {
+        if (warning)
+            m_alerts->warning(EventSource::Command, text);
+        else
+            m_alerts->info(EventSource::Command, text);
+    });
+    StationControl* control = m_session->stationControl();
+    connect(control, &StationControl::headerChanged, m_journal, [this, control] {
+        m_journal->setStation(control->station() ? QString::fromStdString(rcm::formatStation(*control->station()))
+                                                 : QString());
+    });
+    // The report taken into the panels is not the operator's change.
+    connect(m_session, &ConsoleSession::commandAdopted, m_command, &CommandState::replaceMessage);
+    connect(m_session, &ConsoleSession::commandEvent, this, [this](const QString& text) {
+        statusBar()->showMessage(text, 8000);
+        m_alerts->info(EventSource::Command, text);
+    });
+    connect(m_session->commandHold(), &CommandHold::changed, this, [this] {
+        commandChanged();
+        m_flightPlan->setLinkReady(m_session->isLive() && m_session->kind() != ConsoleSession::Kind::Replay &&
+                                   m_session->commanding());
+    });
+    connect(m_stationControl, &StationControlWidget::takeControlRequested, m_holdBar, &CommandHoldBar::requestResume);
+    connect(m_holdBar, &CommandHoldBar::refused, this,
+            [this](const QString& reason) { showError(reason, EventSource::Command); });
 }
 
 void MainWindow::showError(const QString& message, EventSource source)

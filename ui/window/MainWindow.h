@@ -22,6 +22,8 @@
 #include <optional>
 #include <vector>
 
+class CommandHoldBar;
+class CommandJournal;
 class CommandPreview;
 class ConsoleAlerts;
 class OverviewPage;
@@ -87,6 +89,8 @@ public:
     // The event log, its dock, the error banner and the link-loss alarm.
     ConsoleAlerts* alerts() const { return m_alerts; }
     OverviewPage* overview() const { return m_overview; }
+    // The band above the panels while the command is held back.
+    CommandHoldBar* commandHold() const { return m_holdBar; }
     // Statistics of the running link; the default ones when none runs.
     LinkStatistics statistics() const { return m_session->statistics(); }
     bool isLinkRunning() const { return m_session->isRunning(); }
@@ -98,8 +102,12 @@ public:
     // Applies `kind` to the whole application and ticks View > Night theme to match.
     void setTheme(Theme::Kind kind);
 
-    // False, with the reason, when the airframe file cannot be used.
+    // False, with the reason, when the airframe file cannot be used. On a
+    // live link the command is held until the operator resumes; the units
+    // the new airframe lacks are said in the event log.
     bool loadAirframe(const QString& path, QString* error = nullptr);
+    // File > Airframe: asks first while a link is live, then loadAirframe().
+    void requestAirframe(const QString& path);
 
 public slots:
     // Connect, Start rehearsal, Open log for replay and Quit, as the
@@ -155,6 +163,11 @@ private:
     void placeDocks();
     // Control between stations: its alarms and events to the log, its header to the panels.
     void bindStationControl();
+    // The command held back and resumed, adopted from the aircraft's report,
+    // and every change of it in the event log.
+    void bindCommandHold();
+    // The Airframe menu's tick on the airframe loaded.
+    void checkAirframeAction();
     // What a link or an observation says, to the status bar, overview, alerts and log view.
     void bindLinkEvents(const LinkEvents* events, bool logRows);
     void endObservation();
@@ -202,6 +215,8 @@ private:
     OverviewPage* m_overview = nullptr;
     FrameLogView* m_logView = nullptr;
     CommandPreview* m_preview = nullptr;
+    CommandHoldBar* m_holdBar = nullptr;
+    CommandJournal* m_journal = nullptr;
     FlightPlanWidget* m_flightPlan = nullptr;
     LinkSettingsWidget* m_linkSettings = nullptr;
     ReplayControls* m_replayControls = nullptr;
