@@ -7,6 +7,7 @@
 // a broken build.
 
 #include "AnswerBox.h"
+#include "ResumeCommanding.h"
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -753,7 +754,9 @@ void TestMainWindow::rehearsalAgainstUasim()
     }
     QCOMPARE(directions.size(), std::size_t(2));
 
-    // The sample plan goes up in BLOCK 2 and the aircraft acknowledges it.
+    // The sample plan goes up in BLOCK 2 and the aircraft acknowledges it,
+    // once the operator commands.
+    QVERIFY(rcm::test::resumeCommanding(window, kLinkTimeoutMs));
     auto* upload = window.findChild<FlightPlanUpload*>();
     QVERIFY(upload);
     window.flightPlan()->uploadPlan();
@@ -926,6 +929,7 @@ void TestMainWindow::secureRehearsalWithMatchingKeys()
     QCOMPARE(window.statistics().refusedFor(rcm::Refusal::Forged), quint64(0));
 
     // The flight plan goes up in 199-byte sections and uasim acknowledges it.
+    QVERIFY(rcm::test::resumeCommanding(window, kLinkTimeoutMs));
     auto* upload = window.findChild<FlightPlanUpload*>();
     QVERIFY(upload);
     QCOMPARE(upload->sectionSize(), int(rcm::secure::kMaxFlightPlanData));
@@ -1144,9 +1148,16 @@ void TestMainWindow::controlAlarmsReachBannerAndEventLog()
     control->statusReceived(status(primary, backup));
     const EventLogModel* events = window.alerts()->model();
     QCOMPARE(events->event(events->rowCount() - 1).text,
-             QStringLiteral("This station is in control; backup GB_41251"));
+             QStringLiteral("The aircraft names this station in control: check what it reports, then Take control "
+                            "to command it"));
     QCOMPARE(events->event(events->rowCount() - 1).source, EventSource::Control);
-    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_backup)->second, 41251);
+    // Not taken yet: the frames name this station and claim nothing.
+    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_destination)->second, 30226);
+    QVERIFY(!window.command()->message().header.has(rcm::ItemId::ID_GCS_backup));
+    control->takeControl();
+    QCOMPARE(events->event(events->rowCount() - 1).text,
+             QStringLiteral("Taking control: the next frames claim control for this station"));
+    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_backup)->second, 30226);
 
     control->statusReceived(status(backup, primary));
     const QString alarm = QStringLiteral(
@@ -1214,6 +1225,7 @@ void TestMainWindow::satelliteRoundTripIsNoMismatch()
     ReportedState* reported = window.reported();
     const UnitRef flaps{rcm::UnitKind::Flaps, 0};
     QTRY_VERIFY_WITH_TIMEOUT(reported->statusFrames() >= 2, 4 * kLinkTimeoutMs);
+    QVERIFY(rcm::test::resumeCommanding(window, kLinkTimeoutMs));
     ReportedState direct(window.command());
     connect(window.session()->controller(), &LinkController::messageReceived, &direct, &ReportedState::onReceived);
     int mostDirect = 0;

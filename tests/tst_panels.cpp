@@ -195,6 +195,7 @@ private slots:
     void init()
     {
         m_command.setAirframe(Airframe::wellEquipped());
+        m_command.replaceMessage(m_command.resting());  // another airframe carries values over
         m_command.editUnit({UnitKind::Header, 0}, [](Unit& header) { header = Unit(UnitKind::Header); });
         m_reported.clear();
     }
@@ -1015,8 +1016,15 @@ private slots:
         QCOMPARE(child<ReportedLabel>(uhf, QStringLiteral("reported:receiver_control.transmitter"))->text(),
                  QStringLiteral("On"));
 
-        // Back to the big one.
-        m_command.setAirframe(Airframe::wellEquipped());
+        // Back to the big one: engine 1 keeps what it was commanded, units
+        // the small one lacked come at rest, and none of the small one's is
+        // left but its radio UHF7 and camera SNY 4.
+        const std::vector<Unit> left = m_command.setAirframe(Airframe::wellEquipped());
+        QCOMPARE(m_command.message().engines.at(0).number(eng_prop_pitch), 107);
+        QCOMPARE(m_command.message().engines.at(1).number(eng_prop_pitch), 0);
+        QCOMPARE(left.size(), std::size_t(2));
+        QCOMPARE(describeUnit(left[0]), std::string("radio UHF7"));
+        QCOMPARE(describeUnit(left[1]), std::string("camera SNY 4"));
         QCOMPARE(engines->findChildren<UnitCard*>().size(), 3);
         QCOMPARE(radios->findChildren<UnitCard*>().size(), 3);
         QCOMPARE(cameras->findChildren<UnitCard*>().size(), 3);

@@ -11,6 +11,8 @@
 #include "ui/plan/PlanMapView.h"
 #include "ui/window/MainWindow.h"
 
+#include "ResumeCommanding.h"
+
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -521,6 +523,7 @@ void TestPlanWidget::aircraftReportsFenceAndRally()
     QVERIFY(window.flightPlan()->loadPlan(kFencedPlan));
     window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
     QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    QVERIFY(rcm::test::resumeCommanding(window, kLinkTimeoutMs));
     auto* upload = window.findChild<FlightPlanUpload*>();
     QVERIFY(upload);
     QSignalSpy problems(window.flightPlan(), &FlightPlanWidget::problem);

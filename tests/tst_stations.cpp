@@ -264,14 +264,20 @@ private slots:
                                 "reports, then Take control to command it"));
         QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("failover"), kPatience);
 
-        // Given control is not taken: the gear stays down until the operator takes it.
+        // Given control is not taken: the gear stays down until the operator
+        // takes it, and its panels, which held the gear up, now hold the
+        // aircraft's report: taking control changes nothing by itself.
         const qsizetype offered = backup.statuses.size();
         QTRY_VERIFY_WITH_TIMEOUT(backup.statuses.size() >= offered + 3, kPatience);
         QVERIFY(backup.allGear(offered, code::kOut));
-        backup.control()->takeControl();
+        QCOMPARE(reportedGear(*backup.session.command()), code::kOut);
+        QVERIFY(backup.session.resumeCommanding());
+        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_41251"), kPatience);
+        QCOMPARE(backup.role(), Role::InControl);
+        // Then the operator raises the gear.
+        backup.session.setCommand(gearCommand(code::kRetracted));
         QTRY_VERIFY_WITH_TIMEOUT(!backup.statuses.isEmpty() && reportedGear(backup.statuses.last()) == code::kRetracted,
                                  kPatience);
-        QCOMPARE(backup.role(), Role::InControl);
 
         // The broker says the primary is gone: its will.
         QTRY_VERIFY_WITH_TIMEOUT(
@@ -292,7 +298,10 @@ private slots:
         primary.start(kPrimary, gearCommand(code::kOut), aircraft.ports[0], primaryKey);
         Station backup(dir.filePath(QStringLiteral("backup-logs")));
         backup.start(kBackup, gearCommand(code::kRetracted), aircraft.ports[1], backupKey);
-        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::InControl, kPatience);
+        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Offered, kPatience);
+        QVERIFY(primary.session.resumeCommanding());  // Take control
+        QCOMPARE(primary.role(), Role::InControl);
+        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_30226"), kPatience);
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
         QVERIFY(primary.control()->canHandOver());
 
@@ -306,7 +315,8 @@ private slots:
                  QStringLiteral("Handed over: GB_41251 is in control, this station is its backup"));
         QVERIFY(reportedGear(backup.statuses.last()) == code::kOut);
 
-        backup.control()->takeControl();
+        QVERIFY(backup.session.resumeCommanding());  // Take control
+        backup.session.setCommand(gearCommand(code::kRetracted));
         QTRY_VERIFY_WITH_TIMEOUT(reportedGear(primary.statuses.last()) == code::kRetracted, kPatience);
         QCOMPARE(backup.role(), Role::InControl);
         QCOMPARE(primary.role(), Role::Backup);
@@ -327,7 +337,8 @@ private slots:
         primary.start(kPrimary, gearCommand(code::kOut), aircraft.ports[0], primaryKey);
         Station backup(dir.filePath(QStringLiteral("backup-logs")));
         backup.start(kBackup, gearCommand(code::kOut), aircraft.ports[1], backupKey);
-        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::InControl, kPatience);
+        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Offered, kPatience);
+        QVERIFY(primary.session.resumeCommanding());  // Take control
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
 
         QSignalSpy primaryAlarms(primary.control(), &StationControl::alarm);
@@ -335,7 +346,7 @@ private slots:
         primary.session.stop();
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Offered, kFailoverBoundMs);
         QCOMPARE(backupAlarms.count(), 1);
-        backup.control()->takeControl();
+        QVERIFY(backup.session.resumeCommanding());  // Take control
         QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_41251"), kPatience);
 
         primary.connectTo(aircraft.ports[0], primaryKey);
