@@ -377,7 +377,36 @@ private slots:
             QKeyEvent repeated(QEvent::KeyPress, Qt::Key_Left, Qt::NoModifier, QString(), true);
             QApplication::sendEvent(slider, &repeated);
         }
+        const auto send = [slider](QEvent::Type type, Qt::Key key, ulong time) {
+            QKeyEvent event(type, key, Qt::NoModifier);
+            event.setTimestamp(time);
+            QApplication::sendEvent(slider, &event);
+        };
+        send(QEvent::KeyRelease, Qt::Key_Left, 900);
         QCOMPARE(changed.count(), 5);
+        // A held key as X11 often delivers it: a real press, then releases and
+        // presses not flagged as repeats, each pair at one time; or presses alone.
+        send(QEvent::KeyPress, Qt::Key_Left, 1000);
+        for (ulong time = 1500; time < 2500; time += 40) {
+            send(QEvent::KeyRelease, Qt::Key_Left, time);
+            send(QEvent::KeyPress, Qt::Key_Left, time);
+        }
+        send(QEvent::KeyRelease, Qt::Key_Left, 2600);
+        QCOMPARE(changed.count(), 6);  // the first press only
+        QCOMPARE(m_command.value(flaps, F_rudder_set)->number, -2);
+        send(QEvent::KeyPress, Qt::Key_Right, 3000);
+        for (ulong time = 3500; time < 4500; time += 40)
+            send(QEvent::KeyPress, Qt::Key_Right, time);
+        send(QEvent::KeyRelease, Qt::Key_Right, 4600);
+        QCOMPARE(changed.count(), 7);
+        QCOMPARE(m_command.value(flaps, F_rudder_set)->number, -1);
+        // Pressed again after the release: a new step.
+        send(QEvent::KeyPress, Qt::Key_Right, 5000);
+        send(QEvent::KeyRelease, Qt::Key_Right, 5100);
+        QCOMPARE(changed.count(), 8);
+        QCOMPARE(m_command.value(flaps, F_rudder_set)->number, 0);
+        QTest::keyClick(slider, Qt::Key_Left);
+        QCOMPARE(changed.count(), 9);
         QCOMPARE(m_command.value(flaps, F_rudder_set)->number, -1);
         QCOMPARE(slider->value(), -1);
         QVERIFY(m_asked.isEmpty());
@@ -709,6 +738,9 @@ private slots:
         for (int i = 0; i < 3; ++i)
             QTest::keyClick(destination->unitEdit(), Qt::Key_Backspace);
         QCOMPARE(destination->unitEdit()->text(), QStringLiteral("30"));
+        QVERIFY(destination->edited());  // a whole station, marked as not sent while typed
+        QVERIFY2(destination->unitEdit()->toolTip().startsWith(QStringLiteral("Not sent yet: Enter sends it")),
+                 qPrintable(destination->unitEdit()->toolTip()));
         QTest::keyClick(destination->unitEdit(), Qt::Key_Tab);
         QTRY_VERIFY(!destination->unitEdit()->hasFocus());
         QVERIFY(!destination->isAncestorOf(QApplication::focusWidget()));

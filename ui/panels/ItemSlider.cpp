@@ -5,6 +5,7 @@
 #include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
 
+#include <QFocusEvent>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QSignalBlocker>
@@ -17,14 +18,12 @@ namespace {
 QString sliderToolTip(rcm::ItemId id)
 {
     const QString step = ItemText::number(id, 1) + ItemText::unitSuffix(id);
-    QString tip = ItemText::toolTip(id) + QLatin1Char('\n') +
-                  ItemSlider::tr(
-                      "Drag the handle: sent once, on release. Left/Right arrow: %1 a key press, "
-                      "sent at once. A click on the track changes nothing.")
-                      .arg(step);
+    QStringList tip{ItemText::toolTip(id), ItemSlider::tr("Drag the handle: sent once, on release."),
+                    ItemSlider::tr("Left/Right arrow: %1 a key press, sent at once.").arg(step),
+                    ItemSlider::tr("A click on the track changes nothing.")};
     if (const QString rule = CommandGate::ruleText(id); !rule.isEmpty())
-        tip += QLatin1Char('\n') + rule;
-    return tip;
+        tip << rule;
+    return tip.join(QLatin1Char('\n'));
 }
 
 }  // namespace
@@ -101,8 +100,9 @@ void ItemSlider::keyPressEvent(QKeyEvent* event)
             if (event->modifiers() & ~Qt::KeypadModifier)
                 break;
             // One step a press: a held key is not a series of deliberate steps.
-            if (!event->isAutoRepeat() && !isSliderDown())
+            if (!repeated(event) && !isSliderDown())
                 QSlider::keyPressEvent(event);
+            m_keyDown = event->key();
             event->accept();
             return;
         default:
@@ -110,6 +110,32 @@ void ItemSlider::keyPressEvent(QKeyEvent* event)
     }
     // PageUp/PageDown, Home/End and the rest are not the slider's.
     event->ignore();
+}
+
+bool ItemSlider::repeated(const QKeyEvent* event) const
+{
+    // Qt's X11 backend flags a repeat only when it finds the next press
+    // already queued at the release; often it is not, and the pair then
+    // looks like a new press, except that both carry the same time.
+    // (Events made by a program may carry no time at all: 0 is no time.)
+    return event->isAutoRepeat() || event->key() == m_keyDown ||
+           (event->key() == m_keyReleased && m_releasedAt != 0 && event->timestamp() == m_releasedAt);
+}
+
+void ItemSlider::keyReleaseEvent(QKeyEvent* event)
+{
+    if (event->key() == m_keyDown && !event->isAutoRepeat()) {
+        m_keyDown = 0;
+        m_keyReleased = event->key();
+        m_releasedAt = event->timestamp();
+    }
+    QSlider::keyReleaseEvent(event);
+}
+
+void ItemSlider::focusOutEvent(QFocusEvent* event)
+{
+    m_keyDown = 0;  // its release goes elsewhere
+    QSlider::focusOutEvent(event);
 }
 
 void ItemSlider::showDragged(int position)

@@ -38,9 +38,12 @@ protected:
     void mousePressEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
     void keyPressEvent(QKeyEvent* event) override;
+    void keyReleaseEvent(QKeyEvent* event) override;
+    void focusOutEvent(QFocusEvent* event) override;
 
 private:
     bool onHandle(QPoint pos) const;
+    bool repeated(const QKeyEvent* event) const;
     void refresh();
     void commit(int value);
     void showDragged(int position);
@@ -49,4 +52,10 @@ private:
     UnitRef m_ref;
     rcm::ItemId m_id;
     std::optional<int> m_dragged;
+    // The arrow key held down, and the last one let go and when: a held key
+    // repeats as presses flagged isAutoRepeat(), or on X11 as presses
+    // without a release, or as releases and presses with one timestamp.
+    int m_keyDown = 0;
+    int m_keyReleased = 0;
+    quint64 m_releasedAt = 0;
 };

@@ -89,10 +89,8 @@ StationEditor::StationEditor(CommandState* command, UnitRef ref, rcm::ItemId id,
         DeliberateInput::protect(field);
         connect(field, &QLineEdit::returnPressed, this, &StationEditor::commit);
         connect(field, &QLineEdit::textEdited, this, [this] {
-            if (!m_notSent.isEmpty()) {
-                m_notSent.clear();
-                setProblem(nullptr, {});
-            }
+            m_notSent.clear();
+            showTyped();
         });
         field->installEventFilter(this);
     }
@@ -212,7 +210,15 @@ void StationEditor::fieldLeft(Qt::FocusReason reason)
         setProblem(t.atFault, t.problem);
         return;
     }
+    showTyped();
+}
+
+void StationEditor::showTyped()
+{
+    const Typed t = typed();
     setProblem(nullptr, {});
+    if (t.atFault)
+        return;  // said when the operator moves on (Tab, Enter), not at every key
     const rcm::Value* v = m_command->value(m_ref, m_id);
     const bool differs = t.value ? !v || *v != *t.value : v != nullptr;
     setProperty("edited", differs);

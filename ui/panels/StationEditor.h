@@ -56,6 +56,8 @@ private:
     void refresh();
     void commit();
     void fieldLeft(Qt::FocusReason reason);
+    // A whole station typed and not sent yet is marked "edited" as it is typed.
+    void showTyped();
     // Typed text left unsent: the command shown again, and said.
     void restoreUnsent();
     QString typedText() const;
