@@ -711,7 +711,10 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
     // Afterwards the console's own command, and its panels take clicks again.
     window.disconnectLink();
     QCOMPARE(command->message(), own);
+    rcm::test::SeenBox retracting;  // retracting a wheel is confirmed first
+    rcm::test::answerNextBox(&retracting, false);
     QTest::mouseClick(retract, Qt::LeftButton);
+    QVERIFY(retracting.shown);
     QVERIFY(command->message() != own);
 }
 

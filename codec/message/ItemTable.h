@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -128,6 +129,24 @@ struct Presentation {
     std::int64_t max = -1;  // below min: the item's own range
 };
 
+// What one action of the operator may change of an item before the console
+// asks first (docs/protocol.md section 2): a change from the value in force
+// by more than `step` (wire units), to either end of the item's range when
+// `extremes`, or of a field to the code named for it. A change in the other
+// direction (gear out, fuel kept, a transmitter off) never asks.
+inline constexpr std::int64_t kAnyStep = std::numeric_limits<std::int64_t>::max();
+struct FieldConfirmation {
+    std::uint8_t code = 0;    // the code that asks; 0 (corrupt in every field): none
+    std::string_view action;  // the button that confirms it: "Retract nose wheel"
+};
+struct LargeChange {
+    std::int64_t step = kAnyStep;               // numbers: the largest change made without asking
+    bool extremes = false;                      // numbers: a change to min or max asks
+    std::string_view action;                    // numbers: the button that confirms it: "Move left aileron"
+    std::array<FieldConfirmation, 4> fields{};  // Fields: per field, most significant first
+    std::string_view note;                      // why it asks, for people; may be empty
+};
+
 struct ItemInfo {
     ItemId id;
     std::string_view name;   // the name in the text format, unique within its unit
@@ -142,6 +161,7 @@ struct ItemInfo {
     std::span<const FieldInfo> fields;  // Fields kind only, most significant first
     bool key = false;        // starts a repeated unit
     std::optional<Presentation> presentation{};  // nothing: unit and scale as above
+    LargeChange largeChange{};                   // by default no change asks
 };
 
 // All items in canonical order: the order an encoder emits them in.

@@ -23,6 +23,7 @@
 #include "ui/overview/OverviewPage.h"
 #include "link/simulation/AirframeLoader.h"
 #include "ui/panels/CameraPanel.h"
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandPreview.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/EnginePanel.h"
@@ -188,6 +189,8 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_command, &CommandState::changed, this, &MainWindow::commandChanged);
     connect(m_command, &CommandState::rejected, this,
             [this](const QString& reason) { statusBar()->showMessage(tr("Not commanded: %1").arg(reason), 8000); });
+    connect(CommandGate::of(m_command), &CommandGate::notSent, this,
+            [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     connect(m_command, &CommandState::airframeChanged, this, [this] {
         m_reported->clear();
         updateTitle();
