@@ -52,4 +52,8 @@ signals:
     // For people: what the transport itself is doing, when it has more to
     // say than opened and closed (a modem dialling, connected, redialling).
     void statusChanged(const QString& status);
+    // A satellite phone's network service, as it last said it: signal bars
+    // 0..5 (-1 not known), registered or not, and both in words
+    // ("registered, signal 3 of 5"). Only modems say it.
+    void serviceChanged(int signalBars, bool registered, const QString& text);
 };

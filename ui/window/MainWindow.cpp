@@ -737,6 +737,7 @@ void MainWindow::bindLinkEvents(const LinkEvents* events, bool logRows)
     // A modem's call: dialling, connected, redialling, hung up. Its failures
     // come as errors too (once an outage), and are logged once, as errors.
     m_status->setTransportStatus(QString());
+    m_status->setModemService(-1, false, QString());
     m_reported->setLinkDelay(m_session->kind() == ConsoleSession::Kind::Live ? m_linkSettings->settings().oneWayDelay()
                                                                               : std::chrono::milliseconds(0));
     connect(events, &LinkEvents::errorOccurred, this, [this](const QString& error) { m_lastLinkError = error; });
@@ -744,6 +745,15 @@ void MainWindow::bindLinkEvents(const LinkEvents* events, bool logRows)
         m_status->setTransportStatus(status);
         if (status != m_lastLinkError)
             m_alerts->info(EventSource::Link, status);
+    });
+    // The phone's registration and signal: bars in the status bar, and each
+    // change of registration in the event log.
+    connect(events, &LinkEvents::modemServiceChanged, this, [this](int bars, bool registered, const QString& text) {
+        const bool wasRegistered = m_status->modemServiceText().isEmpty() ? !registered : m_modemRegistered;
+        m_status->setModemService(bars, registered, text);
+        if (registered != wasRegistered)
+            m_alerts->info(EventSource::Link, tr("The satellite phone: %1").arg(text));
+        m_modemRegistered = registered;
     });
     // A live session's frames become rows as the link logs them; a replay's
     // rows are its log file, opened already.

@@ -2,6 +2,7 @@
 
 #include "codec/receive/Refusal.h"
 #include "ui/panels/SteadyLabel.h"
+#include "ui/window/SignalBars.h"
 #include "ui/window/StatusFigure.h"
 
 #include <QDateTime>
@@ -60,11 +61,14 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
                             "plaintext: an unencrypted frame on a keyed link"))),
       m_lost(new QLabel(tr("LINK LOST"))),
       m_transportSeparator(separator()),
-      m_transport(new StatusFigure(m_transportLabel, m_transportToolTip))
+      m_transport(new StatusFigure(m_transportLabel, m_transportToolTip)),
+      m_signal(new SignalBars)
 {
     m_state->setTextFormat(Qt::RichText);
-    m_state->setMinimumWidth(
-        fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535")));
+    const int stateWidth =
+        fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535"));
+    m_state->setMinimumWidth(stateWidth);
+    m_state->setMaximumWidth(stateWidth + fontMetrics().horizontalAdvance(QStringLiteral("MMMM")));
     m_lost->setToolTip(tr("No good frame from the aircraft within the silence timeout"));
     m_lost->setAlignment(Qt::AlignCenter);
     m_lost->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("  LINK LOST  ")) + 16);
@@ -82,9 +86,11 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     layout->addWidget(m_rejectedSeparator);
     layout->addWidget(m_rejected);
     layout->addWidget(m_transportSeparator);
+    layout->addWidget(m_signal);
     layout->addWidget(m_transport);
     m_transportSeparator->hide();
     m_transport->hide();
+    m_signal->hide();
     layout->addStretch(1);
     layout->addWidget(m_lost);
 
@@ -147,19 +153,36 @@ void StatusBarWidget::setTransportStatus(const QString& status)
 {
     m_transportStatus = status;
     m_transportSince = QDateTime::currentMSecsSinceEpoch();
-    m_transportSeparator->setVisible(!status.isEmpty());
+    m_transportSeparator->setVisible(!status.isEmpty() || !m_signal->text().isEmpty());
     m_transport->setVisible(!status.isEmpty());
-    m_transport->setToolTip(status.isEmpty() ? QString() : m_transportToolTip);
     if (!status.isEmpty())
         m_ageTimer.start();
     updateTransport();
 }
 
+QString StatusBarWidget::modemServiceText() const
+{
+    return m_signal->isVisibleTo(this) ? m_signal->text() : QString();
+}
+
+void StatusBarWidget::setModemService(int signalBars, bool registered, const QString& text)
+{
+    m_signal->setService(signalBars, registered, text);
+    m_signal->setVisible(!text.isEmpty());
+    m_transportSeparator->setVisible(!text.isEmpty() || !m_transportStatus.isEmpty());
+}
+
 void StatusBarWidget::updateTransport()
 {
     m_transport->setName(m_transportLabel);
-    if (!m_transportStatus.isEmpty())
-        m_transport->setValue(transportText());
+    if (m_transportStatus.isEmpty())
+        return;
+    // A long status (why the phone is not dialled) is the banner's and the
+    // event log's to say whole: here it is elided, whole in the tool tip.
+    const QString text = transportText();
+    const int room = fontMetrics().horizontalAdvance(QStringLiteral("connected at 19200 bit/s after 14 s, 12:03:45"));
+    m_transport->setValue(fontMetrics().elidedText(text, Qt::ElideMiddle, room));
+    m_transport->setToolTip(m_transportToolTip + QStringLiteral("\n") + m_transportStatus);
 }
 
 void StatusBarWidget::setTransportLabel(const QString& label, const QString& toolTip)
@@ -245,8 +268,18 @@ void StatusBarWidget::setState(LinkState state)
         colour = QStringLiteral("#1565c0");
     }
     QString text = QStringLiteral("<span style=\"color:%1\">\u25cf</span> <b>%2</b>").arg(colour, name);
-    if (!m_description.isEmpty() && state != LinkState::Closed)
-        text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(m_description.toHtmlEscaped());
+    if (!m_description.isEmpty() && state != LinkState::Closed) {
+        // Elided to the label's room, so that a long port path and a modem's
+        // number never push the figures beside it under one another at
+        // 1366 px; the whole of it is the tool tip.
+        QFont bold = font();
+        bold.setBold(true);
+        const int room = m_state->maximumWidth() - QFontMetrics(bold).horizontalAdvance(QStringLiteral("\u25cf ") + name) -
+                         fontMetrics().horizontalAdvance(QStringLiteral("  "));
+        const QString shown = fontMetrics().elidedText(m_description, Qt::ElideMiddle, std::max(room, 0));
+        text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(shown.toHtmlEscaped());
+    }
+    m_state->setToolTip(state == LinkState::Closed ? QString() : m_description);
     m_state->setText(text);
     setAlarm(state == LinkState::Lost && !m_replay);
     if (state == LinkState::Closed)
