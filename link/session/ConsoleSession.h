@@ -48,8 +48,10 @@ public:
     Q_ENUM(Kind)
 
     // Wraps each transport before it goes to the worker (the console's voice
-    // beside the commands); unset, the transport goes as it is.
-    using LinkWrapper = std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)>;
+    // beside the commands, under the link's key when it has one: null for
+    // the plain link); unset, the transport goes as it is.
+    using LinkWrapper =
+        std::function<std::unique_ptr<Link>(std::unique_ptr<Link>, const rcm::secure::SecureEndpoint* key)>;
     // Completes the worker's options for each link, the secure endpoint set
     // already (the flight plan upload's BLOCK 2 hooks, sized for that link).
     using OptionsFilter = std::function<LinkWorker::Options(LinkWorker::Options)>;
@@ -112,6 +114,8 @@ public:
     // status frames of a live link, applied to every command sent. Set its
     // station to follow control; hand over and take control through it.
     StationControl* stationControl() const { return m_control; }
+    // What starts uasim for a rehearsal, to set it up (its voice) before startRehearsal().
+    RehearsalLauncher* rehearsalLauncher() const { return m_rehearsal; }
 
 public slots:
     // Opens the key file (if the settings name one) off the GUI thread, then

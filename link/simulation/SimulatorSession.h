@@ -31,6 +31,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 class Clock;
@@ -41,6 +42,9 @@ class LinkWorker;
 struct ReceivedMessage;
 class SimulatedAircraft;
 class VoiceEncoderSource;
+namespace rcm::secure {
+struct SecureEndpoint;
+}
 
 class SimulatorSession : public QObject {
     Q_OBJECT
@@ -76,6 +80,7 @@ public:
         // Voice beside the commands when not null: what the aircraft says.
         std::shared_ptr<VoiceEncoderSource> voiceSource;
         QString voiceOutFile;  // a WAV file for the voice heard; empty: dropped
+        bool voiceEcho = false;  // what is heard is said back (a radio check), as voiceSource
     };
     // Where the session's lines for the operator go.
     using Say = std::function<void(const QString& line)>;
@@ -105,7 +110,8 @@ private:
         QString lastError;  // the link's last error, not said again by the status that repeats it
     };
 
-    std::unique_ptr<Link> openLink(const Station* station, Channel& channel);
+    std::unique_ptr<Link> openLink(const Station* station, Channel& channel, const rcm::secure::SecureEndpoint* key);
+    static void echo(VoiceEncoderSource& source, std::span<const std::int16_t> pcm);
     bool openChannel(const Station* station);
     void connectChannel(Channel& channel);
     void commandReceived(Channel& channel, const ReceivedMessage& received);

@@ -31,6 +31,9 @@ public:
     // The transport is bringing its line up (a modem dialling, redialling or
     // waiting for a call): silence now is not the far end's.
     virtual bool isConnecting() const { return false; }
+    // The transport knows where to send: false for a UDP link that replies
+    // to its sender and has heard none yet (what it would send is lost).
+    virtual bool canSend() const { return isOpen(); }
 
 public slots:
     // Both are idempotent. open() reports failure through errorOccurred().
