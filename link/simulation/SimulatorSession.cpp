@@ -113,15 +113,31 @@ SimulatorSession::SimulatorSession(Settings settings, Say say, QObject* parent)
 SimulatorSession::~SimulatorSession() = default;
 
 // What the radio heard goes back as it came, a radio check: speech is said
-// again, silence ends the talk.
+// again, silence ends the talk. The first 100 ms of a talk are held before
+// any goes, so that the echo, paced by the line as the speech came, never
+// runs dry in the middle of it and splits it.
 void SimulatorSession::echo(VoiceEncoderSource& source, std::span<const std::int16_t> pcm)
 {
+    constexpr std::size_t kHeld = 5 * voice::kFrameSamples;
     for (std::size_t at = 0; at < pcm.size(); at += voice::kFrameSamples) {
         const auto slot = pcm.subspan(at, std::min(voice::kFrameSamples, pcm.size() - at));
-        if (std::all_of(slot.begin(), slot.end(), [](std::int16_t s) { return s == 0; }))
-            source.endTalk();
-        else
+        if (std::all_of(slot.begin(), slot.end(), [](std::int16_t s) { return s == 0; })) {
+            if (!m_echoHeld.empty())
+                source.pushPcm(m_echoHeld);
+            if (m_echoTalking || !m_echoHeld.empty())
+                source.endTalk();
+            m_echoHeld.clear();
+            m_echoTalking = false;
+        } else if (m_echoTalking) {
             source.pushPcm(slot);
+        } else {
+            m_echoHeld.insert(m_echoHeld.end(), slot.begin(), slot.end());
+            if (m_echoHeld.size() >= kHeld) {
+                source.pushPcm(m_echoHeld);
+                m_echoHeld.clear();
+                m_echoTalking = true;
+            }
+        }
     }
 }
 

@@ -111,7 +111,7 @@ private:
     };
 
     std::unique_ptr<Link> openLink(const Station* station, Channel& channel, const rcm::secure::SecureEndpoint* key);
-    static void echo(VoiceEncoderSource& source, std::span<const std::int16_t> pcm);
+    void echo(VoiceEncoderSource& source, std::span<const std::int16_t> pcm);
     bool openChannel(const Station* station);
     void connectChannel(Channel& channel);
     void commandReceived(Channel& channel, const ReceivedMessage& received);
@@ -125,6 +125,8 @@ private:
     Settings m_settings;
     Say m_say;
     rcm::WavFile m_voiceRecord;
+    std::vector<std::int16_t> m_echoHeld;  // --voice-echo: the start of a talk, held
+    bool m_echoTalking = false;
     std::unique_ptr<SimulatedAircraft> m_aircraft;
     rcm::ControlArbiter m_arbiter;
     // The session's time: the workers' frames and ticks, the arbiter's, the control timer's.
