@@ -99,6 +99,22 @@ std::vector<VoiceFrame> openAll(SecureVoiceOpener& opener, const Bytes& bytes, s
     return frames;
 }
 
+// 2,000 frames of random bytes with the sync byte and right parity.
+Bytes random2000()
+{
+    std::mt19937 rng(29);
+    Bytes all;
+    for (int i = 0; i < 2000; ++i) {
+        Bytes random(kSecureFrameBytes);
+        for (auto& b : random)
+            b = static_cast<std::uint8_t>(rng());
+        random[0] = kSecureSyncByte;
+        addParity(random);
+        all.insert(all.end(), random.begin(), random.end());
+    }
+    return all;
+}
+
 bool sameContent(const VoiceFrame& a, const VoiceFrame& b)
 {
     return a.kind == b.kind && (a.kind == FrameKind::Idle || a.payload == b.payload);
@@ -234,20 +250,26 @@ void TestSecureVoice::everyChangedBitIsRefused()
         ++tried;
     }
     // Random frames with the sync and right parity.
-    std::mt19937 rng(29);
     SecureVoiceOpener opener(keys(), [] { return kNow; });
     Bytes plain;
-    for (int i = 0; i < 2000; ++i) {
-        Bytes random(kSecureFrameBytes);
-        for (auto& b : random)
-            b = static_cast<std::uint8_t>(rng());
-        random[0] = kSecureSyncByte;
-        addParity(random);
-        opener.open(random, plain);
-    }
+    opener.open(random2000(), plain);
     QVERIFY(plain.empty());
     QCOMPARE(opener.stats().forged, std::uint64_t(2000));
     QCOMPARE(opener.stats().accepted, std::uint64_t(0));
+    // A flood costs at most the budget of window searches a second (the
+    // clock stands still here): the rest are refused unchecked.
+    QCOMPARE(opener.stats().unchecked, std::uint64_t(2000 - SecureVoiceOpener::kMaxSearchesPerSecond));
+    // And the genuine stream still opens: in step, a frame needs no search.
+    const Bytes genuine = sealAll(frames, keys());
+    opener.open(genuine, plain);
+    QCOMPARE(opener.stats().accepted, std::uint64_t(0));  // its first frame needed a search: over the budget
+    std::int64_t later = kNow + 1000000;
+    SecureVoiceOpener next(keys(), [&later] { return later; });
+    next.open(random2000(), plain);
+    later += 1000000;  // a second on: the budget is there again
+    plain.clear();
+    next.open(genuine, plain);
+    QCOMPARE(next.stats().accepted, std::uint64_t(genuine.size() / kSecureFrameBytes));
     QCOMPARE(tried, std::uint64_t(21 * 8));
 }
 

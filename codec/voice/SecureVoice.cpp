@@ -2,7 +2,8 @@
 
 #include <openssl/crypto.h>
 #include <openssl/evp.h>
-#include <openssl/hmac.h>
+#include <openssl/core_names.h>
+#include <openssl/params.h>
 
 #include <algorithm>
 #include <cstring>
@@ -39,15 +40,28 @@ void putCounter(std::uint64_t counter, std::uint8_t* out)
 // for a counter and tag.
 class SecureVoiceCipher {
 public:
-    explicit SecureVoiceCipher(const secure::VoiceKeys& keys) : m_mac(keys.mac), m_ctx(EVP_CIPHER_CTX_new())
+    explicit SecureVoiceCipher(const secure::VoiceKeys& keys) : m_ctx(EVP_CIPHER_CTX_new())
     {
         if (!m_ctx || EVP_EncryptInit_ex(m_ctx, EVP_aes_256_ctr(), nullptr, keys.cipher.bytes().data(), nullptr) != 1)
             throw std::runtime_error("OpenSSL cannot make AES-256-CTR for the voice");
+        // HMAC keyed once; each tag re-initialises it with that key (a
+        // fetch and a key schedule per tag would cost four times as much).
+        m_macAlgorithm = EVP_MAC_fetch(nullptr, "HMAC", nullptr);
+        m_mac = m_macAlgorithm ? EVP_MAC_CTX_new(m_macAlgorithm) : nullptr;
+        char digest[] = "SHA256";
+        const OSSL_PARAM params[] = {OSSL_PARAM_construct_utf8_string("digest", digest, 0), OSSL_PARAM_construct_end()};
+        if (!m_mac || EVP_MAC_init(m_mac, keys.mac.bytes().data(), keys.mac.bytes().size(), params) != 1)
+            throw std::runtime_error("OpenSSL cannot make HMAC-SHA256 for the voice");
     }
-    ~SecureVoiceCipher() { EVP_CIPHER_CTX_free(m_ctx); }  // wipes the key schedule
+    ~SecureVoiceCipher()
+    {
+        EVP_CIPHER_CTX_free(m_ctx);  // wipes the key schedule
+        EVP_MAC_CTX_free(m_mac);     // and the HMAC key
+        EVP_MAC_free(m_macAlgorithm);
+    }
 
     // `header1` is byte 1 with its flags in the clear.
-    Tag tag(std::uint64_t counter, std::uint8_t header0, std::uint8_t header1, const Payload& payload) const
+    Tag tag(std::uint64_t counter, std::uint8_t header0, std::uint8_t header1, const Payload& payload)
     {
         std::array<std::uint8_t, 8 + kHeaderBytes + kPayloadBytes> message;
         putCounter(counter, message.data());
@@ -55,10 +69,9 @@ public:
         message[9] = header1;
         std::memcpy(message.data() + 10, payload.data(), kPayloadBytes);
         std::array<std::uint8_t, EVP_MAX_MD_SIZE> mac;
-        unsigned int length = 0;
-        if (!HMAC(EVP_sha256(), m_mac.bytes().data(), int(m_mac.bytes().size()), message.data(), message.size(),
-                  mac.data(), &length) ||
-            length < kTagBytes)
+        std::size_t length = 0;
+        if (EVP_MAC_init(m_mac, nullptr, 0, nullptr) != 1 || EVP_MAC_update(m_mac, message.data(), message.size()) != 1 ||
+            EVP_MAC_final(m_mac, mac.data(), &length, mac.size()) != 1 || length < kTagBytes)
             throw std::runtime_error("OpenSSL HMAC-SHA256 failed");
         Tag t;
         std::memcpy(t.data(), mac.data(), kTagBytes);
@@ -81,8 +94,9 @@ public:
     }
 
 private:
-    secure::SecretKey m_mac;
     EVP_CIPHER_CTX* m_ctx;
+    EVP_MAC* m_macAlgorithm = nullptr;
+    EVP_MAC_CTX* m_mac = nullptr;
 };
 
 std::uint64_t counterAt(std::int64_t utcMicros)
@@ -189,6 +203,21 @@ SecureVoiceOpener::Verdict SecureVoiceOpener::tryFrame(std::uint64_t offset, Sec
             ++m_stats.correctedFrames;
         return Verdict::Accepted;
     }
+    // Every counter of the window costs a tag: at most so many such
+    // searches a second, so that a flood of forgeries cannot make the
+    // receiver fall behind (it refuses them unchecked instead).
+    const std::int64_t second = m_clock() / 1000000;
+    if (second != m_searchSecond) {
+        m_searchSecond = second;
+        m_searches = 0;
+    }
+    if (m_searches >= kMaxSearchesPerSecond) {
+        if (corrected > 0)
+            return Verdict::Garbled;
+        ++m_stats.unchecked;
+        return Verdict::Forged;
+    }
+    ++m_searches;
     for (std::uint64_t c = first; c <= latest; c += kCounterModulus) {
         if (m_hasLast && c == withLow(m_lastCounter + 1))
             continue;  // tried

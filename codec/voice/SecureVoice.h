@@ -101,6 +101,7 @@ public:
         std::uint64_t forged = 0;    // sync and parity right, no tag right: refused
         std::uint64_t replayed = 0;  // authentic, but not after the last accepted: refused
         std::uint64_t garbled = 0;   // parity corrected a byte and no tag was right: errors, most likely
+        std::uint64_t unchecked = 0;  // of the forged: refused without the window's search, over its budget
         std::uint64_t lostFrames = 0;
         std::uint64_t correctedFrames = 0;
         std::uint64_t resyncs = 0;
@@ -108,6 +109,9 @@ public:
 
     // Two frame slots in a row that fail put the opener out of step.
     static constexpr int kMaxMisses = 2;
+    // A frame that is not the next in step is tried at every counter of the
+    // window (about 24 tags): at most this many such frames a second.
+    static constexpr int kMaxSearchesPerSecond = 50;
 
     SecureVoiceOpener(const secure::VoiceKeys& keys, UtcMicros clock,
                       std::int64_t windowSeconds = secure::kDefaultWindowSeconds);
@@ -141,6 +145,8 @@ private:
     std::uint64_t m_expect = 0;
     int m_misses = 0;
     std::uint64_t m_scan = 0;
+    std::int64_t m_searchSecond = 0;
+    int m_searches = 0;  // window searches in m_searchSecond
     Stats m_stats;
 };
 
