@@ -6,6 +6,7 @@
 #include "ui/window/StatusFigure.h"
 
 #include <QDateTime>
+#include <QEvent>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLocale>
@@ -68,7 +69,9 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     const int stateWidth =
         fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535"));
     m_state->setMinimumWidth(stateWidth);
-    m_state->setMaximumWidth(stateWidth + fontMetrics().horizontalAdvance(QStringLiteral("MMMM")));
+    // The state takes the room the figures leave, whatever its text's length.
+    m_state->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    m_state->installEventFilter(this);
     m_lost->setToolTip(tr("No good frame from the aircraft within the silence timeout"));
     m_lost->setAlignment(Qt::AlignCenter);
     m_lost->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("  LINK LOST  ")) + 16);
@@ -77,7 +80,7 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(6, 0, 6, 0);
     layout->setSpacing(12);
-    layout->addWidget(m_state);
+    layout->addWidget(m_state, 1);
     for (QWidget* figure : std::initializer_list<QWidget*>{m_sent, m_received, m_corrected, m_uncorrectable, m_age,
                                                             m_security}) {
         layout->addWidget(separator());
@@ -91,7 +94,6 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     m_transportSeparator->hide();
     m_transport->hide();
     m_signal->hide();
-    layout->addStretch(1);
     layout->addWidget(m_lost);
 
     m_ageTimer.setInterval(250);
@@ -267,26 +269,46 @@ void StatusBarWidget::setState(LinkState state)
         name = tr("Replay");
         colour = QStringLiteral("#1565c0");
     }
-    QString text = QStringLiteral("<span style=\"color:%1\">\u25cf</span> <b>%2</b>").arg(colour, name);
-    if (!m_description.isEmpty() && state != LinkState::Closed) {
-        // Elided to the label's room, so that a long port path and a modem's
-        // number never push the figures beside it under one another at
-        // 1366 px; the whole of it is the tool tip.
-        QFont bold = font();
-        bold.setBold(true);
-        const int room = m_state->maximumWidth() - QFontMetrics(bold).horizontalAdvance(QStringLiteral("\u25cf ") + name) -
-                         fontMetrics().horizontalAdvance(QStringLiteral("  "));
-        const QString shown = fontMetrics().elidedText(m_description, Qt::ElideMiddle, std::max(room, 0));
-        text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(shown.toHtmlEscaped());
-    }
+    m_stateName = name;
+    m_stateColour = colour;
     m_state->setToolTip(state == LinkState::Closed ? QString() : m_description);
-    m_state->setText(text);
+    renderState();
     setAlarm(state == LinkState::Lost && !m_replay);
     if (state == LinkState::Closed)
         m_ageTimer.stop();
     else if (!m_ageTimer.isActive())
         m_ageTimer.start();
     updateAge();
+}
+
+// The description is elided to the room the label has, so that a long port
+// path and a modem's number never push the figures beside it under one
+// another (at 1366 px, in a call); the whole of it is the tool tip. A label
+// not shown yet has no room to speak of: it says it all.
+void StatusBarWidget::renderState()
+{
+    QString text = QStringLiteral("<span style=\"color:%1\">\u25cf</span> <b>%2</b>").arg(m_stateColour, m_stateName);
+    if (!m_description.isEmpty() && m_statistics.state != LinkState::Closed) {
+        QString shown = m_description;
+        if (m_state->isVisible()) {
+            QFont bold = font();
+            bold.setBold(true);
+            const int room = m_state->width() -
+                             QFontMetrics(bold).horizontalAdvance(QStringLiteral("\u25cf ") + m_stateName) -
+                             fontMetrics().horizontalAdvance(QStringLiteral("   "));
+            shown = fontMetrics().elidedText(m_description, Qt::ElideMiddle, std::max(room, 0));
+        }
+        text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(shown.toHtmlEscaped());
+    }
+    if (text != m_state->text())
+        m_state->setText(text);
+}
+
+bool StatusBarWidget::eventFilter(QObject* watched, QEvent* event)
+{
+    if (watched == m_state && (event->type() == QEvent::Resize || event->type() == QEvent::Show))
+        renderState();
+    return QWidget::eventFilter(watched, event);
 }
 
 void StatusBarWidget::setStatistics(const LinkStatistics& statistics)

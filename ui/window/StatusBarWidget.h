@@ -63,7 +63,11 @@ signals:
     // True when the link is lost, false when it is back or was closed.
     void alarm(bool on);
 
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
+
 private:
+    void renderState();
     void updateAge();
     void updateTransport();
     void updateSecurity();
@@ -72,6 +76,8 @@ private:
 
     LinkStatistics m_statistics;
     QString m_description;
+    QString m_stateName;
+    QString m_stateColour;
     QString m_fingerprint;
     QString m_transportStatus;
     QString m_transportLabel = tr("Call");
