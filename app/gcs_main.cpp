@@ -1,7 +1,7 @@
-// gcs: the operator console; `gcs --help` lists its options. Start-up, memory
-// and GUI stall measurements: tests/bench/bench_console.cpp.
+// gcs: the operator console (`gcs --help`); start-up, memory and GUI stalls: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
+#include "link/transport/ModemProfile.h"
 #include "ui/control/StationCommandLine.h"
 #include "ui/plan/PlanCommandLine.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
@@ -24,7 +24,6 @@ int main(int argc, char* argv[])
     QApplication app(argc, argv);
     QCoreApplication::setOrganizationName(QStringLiteral("rcm"));
     QCoreApplication::setApplicationName(QStringLiteral("gcs"));
-
     QCommandLineParser parser;
     parser.setApplicationDescription(
         QStringLiteral("The operator console of the RCM ground control station: commands an unmanned aircraft with\n"
@@ -51,6 +50,8 @@ int main(int argc, char* argv[])
                                   QStringLiteral("The serial port is a satellite phone's modem: dial this number, "
                                                  "redial a dropped call, hang up on quit (docs/modem.md)."),
                                   QStringLiteral("number"));
+    const QCommandLineOption profile(QStringLiteral("modem-profile"), QStringLiteral("With --dial: the phone "
+        "(docs/modem.md), one of %1; default generic.").arg(modem::profileNames().join(", ")), QStringLiteral("name"));
     const QCommandLineOption replay(QStringLiteral("replay"), QStringLiteral("Replay a frame log."),
                                     QStringLiteral("log.pcapng"));
     const QCommandLineOption airframe(QStringLiteral("airframe"),
@@ -75,14 +76,13 @@ int main(int argc, char* argv[])
     const QCommandLineOption page(QStringLiteral("page"), QStringLiteral("The tab shown, 1 to 9 (Alt+1 ..)."),
                                   QStringLiteral("n"), QStringLiteral("1"));
     parser.addOptions(
-        {rehearsal, udpRemote, serial, baud, dial, replay, airframe, key, screenshot, size, after, night, page});
+        {rehearsal, udpRemote, serial, baud, dial, profile, replay, airframe, key, screenshot, size, after, night, page});
     const RehearsalCommandLine rehearse(parser);
     const PlanCommandLine planOptions(parser);
     const StationCommandLine stationOptions(parser);
     parser.process(app);
     if (rehearse.requested())
         return rehearse.run();
-
     const auto usage = [&](const QString& message) {
         say(message);
         std::fprintf(stderr, "%s", qPrintable(parser.helpText()));
@@ -113,7 +113,9 @@ int main(int argc, char* argv[])
         return usage(QStringLiteral("--dial goes with --serial DEVICE: the phone's modem is on a serial port"));
     if (link && parser.isSet(dial))
         link->dialNumber = parser.value(dial);
-
+    error = QStringLiteral("it goes with --dial NUMBER");
+    if (parser.isSet(profile) && !(link && link->dialsModem() && link->setModemProfile(parser.value(profile), &error)))
+        return usage(QStringLiteral("--modem-profile: %1").arg(error));
     MainWindow::Options options;
     // Pictures use the defaults, not the last session's layout.
     options.restoreSettings = !parser.isSet(screenshot);

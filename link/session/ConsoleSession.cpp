@@ -286,7 +286,7 @@ void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, cons
     if (m_filterOptions)
         options = m_filterOptions(std::move(options));
     if (m_wrapLink)
-        link = m_wrapLink(std::move(link));
+        link = m_wrapLink(std::move(link), options.secure.get());
     m_controller = std::make_unique<LinkController>(std::move(link), std::move(opened.log), std::move(options));
     if (kind == Kind::Rehearsal)
         // Frames came back: from now on an exit of uasim is a failure, not a port clash.

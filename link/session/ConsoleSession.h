@@ -49,8 +49,10 @@ public:
     Q_ENUM(Kind)
 
     // Wraps each transport before it goes to the worker (the console's voice
-    // beside the commands); unset, the transport goes as it is.
-    using LinkWrapper = std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)>;
+    // beside the commands, under the link's key when it has one: null for
+    // the plain link); unset, the transport goes as it is.
+    using LinkWrapper =
+        std::function<std::unique_ptr<Link>(std::unique_ptr<Link>, const rcm::secure::SecureEndpoint* key)>;
     // Completes the worker's options for each link, the secure endpoint set
     // already (the flight plan upload's BLOCK 2 hooks, sized for that link).
     using OptionsFilter = std::function<LinkWorker::Options(LinkWorker::Options)>;
@@ -120,6 +122,8 @@ public:
     bool commanding() const { return !m_hold->holding(); }
     // The command as the console holds it (its panels'), sent or held.
     const std::optional<rcm::Message>& command() const { return m_command; }
+    // What starts uasim for a rehearsal, to set it up (its voice) before startRehearsal().
+    RehearsalLauncher* rehearsalLauncher() const { return m_rehearsal; }
 
 public slots:
     // Opens the key file (if the settings name one) off the GUI thread, then

@@ -119,6 +119,7 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
     });
     connect(m_link.get(), &Link::errorOccurred, this, &LinkWorker::errorOccurred);
     connect(m_link.get(), &Link::statusChanged, this, &LinkEvents::transportStatusChanged);
+    connect(m_link.get(), &Link::serviceChanged, this, &LinkEvents::modemServiceChanged);
 
     if (m_log)
         m_log->setErrorHandler([this](const QString& error) { reportError(QStringLiteral("frame log: ") + error); });

@@ -198,7 +198,9 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     // Every link carries the voice beside the commands (when it is on) and
     // the flight plan upload; the uploader takes the section size of the
     // link: 199 bytes when keyed.
-    m_session->setLinkWrapper([this](std::unique_ptr<Link> link) { return m_voice->attach(std::move(link)); });
+    m_session->setLinkWrapper([this](std::unique_ptr<Link> link, const rcm::secure::SecureEndpoint* key) {
+        return m_voice->attach(std::move(link), key);
+    });
     m_session->setOptionsFilter([this](LinkWorker::Options o) { return m_upload->linkOptions(std::move(o)); });
     connect(m_session, &ConsoleSession::linkStarted, this, &MainWindow::linkStarted);
     connect(m_session, &ConsoleSession::linkStopped, this, &MainWindow::linkStopped);
@@ -331,6 +333,18 @@ void MainWindow::buildDocks()
     QDockWidget* log = dock(tr("Frame log"), QStringLiteral("frameLogDock"), m_logView, this);
     QDockWidget* plan = dock(tr("Flight plan"), QStringLiteral("flightPlanDock"), m_flightPlan, this);
     m_voice = new VoiceChannel(this);
+    // Not the banner, as for refused frames: a forger could send fifty a
+    // second. At most a line a second, with the totals.
+    connect(m_voice, &VoiceChannel::voiceIgnored, this, [this] {
+        m_alerts->info(EventSource::Link, tr("The aircraft sends voice, set aside: voice is off in this console "
+                                             "(\"Voice on the link\" in the Voice pane, then connect again)"));
+    });
+    connect(m_voice, &VoiceChannel::voiceRefused, this, [this](quint64 forged, quint64 replayed) {
+        m_alerts->warning(EventSource::Link, tr("Voice refused, never played: %1 forged (no valid tag), %2 replayed "
+                                                "(authentic but not new), since the link started")
+                                                 .arg(forged)
+                                                 .arg(replayed));
+    });
     QDockWidget* voice = dock(tr("Voice"), QStringLiteral("voiceDock"), new PushToTalkWidget(m_voice), this);
     QDockWidget* events = dock(tr("Events"), QStringLiteral("eventsDock"), m_alerts->eventView(), this);
     for (QDockWidget* d : {link, voice, log, plan, preview, events})
@@ -660,6 +674,8 @@ void MainWindow::startRehearsal()
 
 void MainWindow::startRehearsalWith(const QString& uasimProgram)
 {
+    // uasim with voice when the console has it, saying back what it hears.
+    m_session->rehearsalLauncher()->setVoice(m_voice->isEnabled());
     m_session->startRehearsal(m_command->airframe(), m_linkSettings->settings().keyPath, uasimProgram);
     updateLinkControls();
 }
@@ -797,6 +813,7 @@ void MainWindow::bindLinkEvents(const LinkEvents* events, bool logRows)
     // A modem's call: dialling, connected, redialling, hung up. Its failures
     // come as errors too (once an outage), and are logged once, as errors.
     m_status->setTransportStatus(QString());
+    m_status->setModemService(-1, false, QString());
     m_reported->setLinkDelay(m_session->kind() == ConsoleSession::Kind::Live ? m_linkSettings->settings().oneWayDelay()
                                                                               : std::chrono::milliseconds(0));
     connect(events, &LinkEvents::errorOccurred, this, [this](const QString& error) { m_lastLinkError = error; });
@@ -804,6 +821,15 @@ void MainWindow::bindLinkEvents(const LinkEvents* events, bool logRows)
         m_status->setTransportStatus(status);
         if (status != m_lastLinkError)
             m_alerts->info(EventSource::Link, status);
+    });
+    // The phone's registration and signal: bars in the status bar, and each
+    // change of registration in the event log.
+    connect(events, &LinkEvents::modemServiceChanged, this, [this](int bars, bool registered, const QString& text) {
+        const bool wasRegistered = m_status->modemServiceText().isEmpty() ? !registered : m_modemRegistered;
+        m_status->setModemService(bars, registered, text);
+        if (registered != wasRegistered)
+            m_alerts->info(EventSource::Link, tr("The satellite phone: %1").arg(text));
+        m_modemRegistered = registered;
     });
     // A live session's frames become rows as the link logs them; a replay's
     // rows are its log file, opened already.

@@ -251,4 +251,5 @@ private:
     QObject* m_replayReadOnly = nullptr;  // an application event filter
     QLabel* m_replayNote = nullptr;
     QString m_lastLinkError;  // the link's last error, not logged again when its status repeats it
+    bool m_modemRegistered = false;  // the satellite phone's registration, as last said
 };
