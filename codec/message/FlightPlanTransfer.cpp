@@ -36,6 +36,15 @@ void writeU32(std::uint8_t* p, std::uint32_t v)
 
 }  // namespace
 
+std::string planIdText(std::uint32_t planId)
+{
+    static constexpr char kDigits[] = "0123456789ABCDEF";
+    std::string text = "0x00000000";
+    for (int i = 0; i < 8; ++i)
+        text[std::size_t(9 - i)] = kDigits[(planId >> (4 * i)) & 0xF];
+    return text;
+}
+
 std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc)
 {
     crc = ~crc;
@@ -200,7 +209,7 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
     using Kind = Result::Kind;
     const auto fail = [this](std::string what) {
         Result r = progress(Kind::Error);
-        r.error = "flight plan " + std::to_string(m_planId) + ": " + std::move(what);
+        r.error = "flight plan " + planIdText(m_planId) + ": " + std::move(what);
         return r;
     };
 
