@@ -324,7 +324,7 @@ void TestMainWindow::importsTheSamplePlan()
     const MissionItem& takeoff = plan.items[0];
     QCOMPARE(takeoff.seq, quint16(0));
     QCOMPARE(takeoff.command, quint16(22));
-    QCOMPARE(takeoff.commandName(), QStringLiteral("NAV_TAKEOFF"));
+    QCOMPARE(takeoff.commandName(), QStringLiteral("TAKEOFF"));
     QCOMPARE(takeoff.frame, quint8(3));
     QCOMPARE(takeoff.params[0], 15.0);
     QVERIFY(std::isnan(takeoff.params[3]));  // null in the plan
@@ -338,15 +338,15 @@ void TestMainWindow::importsTheSamplePlan()
     QCOMPARE(speed.params[1], 25.0);
 
     const MissionItem& loiter = plan.items[5];
-    QCOMPARE(loiter.commandName(), QStringLiteral("NAV_LOITER_TIME"));
+    QCOMPARE(loiter.commandName(), QStringLiteral("LOITER_TIME"));
     QCOMPARE(loiter.params[0], 60.0);
     QCOMPARE(*loiter.altitude, 150.0);
-    QCOMPARE(plan.items[8].commandName(), QStringLiteral("NAV_RETURN_TO_LAUNCH"));
+    QCOMPARE(plan.items[8].commandName(), QStringLiteral("RETURN_TO_LAUNCH"));
     QCOMPARE(*plan.homeLatitude, 52.2076813);
     QCOMPARE(*plan.homeAltitude, 14.2);
 
     // The table shows what was read.
-    QCOMPARE(widget->table()->item(0, FlightPlanWidget::CommandColumn)->text(), QStringLiteral("NAV_TAKEOFF"));
+    QCOMPARE(widget->table()->item(0, FlightPlanWidget::CommandColumn)->text(), QStringLiteral("TAKEOFF"));
     QCOMPARE(widget->table()->item(1, FlightPlanWidget::LatitudeColumn)->text(), QStringLiteral("52.2151260"));
     QCOMPARE(widget->table()->item(1, FlightPlanWidget::AltitudeColumn)->text(), QStringLiteral("120.0"));
     QCOMPARE(widget->table()->item(2, FlightPlanWidget::LatitudeColumn)->text(), QStringLiteral("\u2014"));
@@ -401,8 +401,9 @@ void TestMainWindow::refusesPlansItCannotSend()
     };
     QCOMPARE(error(R"({"fileType": "Plan", "mission": {"items": [{"type": "ComplexItem",
              "complexItemType": "survey"}]}})"),
-             QStringLiteral("p.plan: mission item 1 is a survey (a ComplexItem); only simple items can be sent, so "
-                            "convert it to waypoints in QGroundControl first"));
+             QStringLiteral("p.plan: mission item 1 (a survey) has no \"TransectStyleComplexItem\" with the waypoints "
+                            "QGroundControl saved: it is in QGroundControl 3.3's layout; open the plan in a later "
+                            "QGroundControl and save it again"));
     QCOMPARE(error(R"({"fileType": "Fence"})"),
              QStringLiteral("p.plan: not a QGroundControl plan (its \"fileType\" is not \"Plan\")"));
     QCOMPARE(error(R"({"fileType": "Plan", "mission": {"items": [{"type": "SimpleItem", "command": 16,

@@ -377,21 +377,21 @@ void TestPlanWidget::fenceForbidsAWaypoint()
     widget.moveItem(4, {52.2110, 0.1565});
     widget.moveItem(3, {52.2300, 0.1468});
     QCOMPARE(widget.plan()->fenceViolations(),
-             (QStringList{QStringLiteral("mission item 3 is outside every inclusion area"),
-                          QStringLiteral("mission item 4 is inside exclusion circle 1")}));
+             (QStringList{QStringLiteral("mission item 4 is outside every inclusion area"),
+                          QStringLiteral("mission item 5 is inside exclusion circle 1")}));
     QStringList asked;
     widget.setConfirm([&](const QString& text, const QString&) {
         asked << text;
         return false;
     });
     widget.uploadPlan();
-    QCOMPARE(asked, QStringList{QStringLiteral("The plan's own fence forbids where it goes: mission item 3 is outside "
-                                               "every inclusion area; mission item 4 is inside exclusion circle 1. "
+    QCOMPARE(asked, QStringList{QStringLiteral("The plan's own fence forbids where it goes: mission item 4 is outside "
+                                               "every inclusion area; mission item 5 is inside exclusion circle 1. "
                                                "Upload it anyway?")});
     QCOMPARE(upload.progress().state, FlightPlanUpload::State::Idle);
     const auto labels = widget.findChildren<QLabel*>();
     QVERIFY(std::any_of(labels.begin(), labels.end(), [](const QLabel* l) {
-        return l->text().contains(QStringLiteral("Fence: mission item 3 is outside every inclusion area"));
+        return l->text().contains(QStringLiteral("Fence: mission item 4 is outside every inclusion area"));
     }));
 
     // 0 N 0 E is "no position" (Mission Planner writes it for DO_LAND_START): not on the map, not a violation.
