@@ -274,7 +274,8 @@ private slots:
         MissionPlan one;
         one.items = {waypoint(0, 16, 47.0, 8.0, 100)};
         view.setPlan(&one);
-        QCOMPARE(view.zoom(), PlanMapView::kMaxFitZoom);
+        // One point: 50 m each way (kMinFitExtent) in the 228 px left of 300 beside the margins.
+        QCOMPARE(view.zoom(), std::log2(228 / (PlanMapView::kMinFitExtent / WebMercator::metresPerPixel(47.0, 0))));
         const QPointF pos = view.posOf(itemPoint(one, 0));
         QVERIFY(std::abs(pos.x() - 200) < 1e-6 && std::abs(pos.y() - 150) < 1e-6);
         // A new, empty plan: the view stays where the operator looks.
@@ -287,6 +288,43 @@ private slots:
         QCOMPARE(view.centre(), centre);
         view.fitToPlan();
         QCOMPARE(view.zoom(), zoom);
+    }
+
+    // A 100 m by 60 m survey fills the view: its width takes the whole room
+    // between the margins (kMaxFitZoom of 17 left it 132 px wide).
+    void fitFillsTheViewWithASmallPlan()
+    {
+        PlanMapView view;
+        view.resize(600, 400);
+        MissionPlan survey;
+        survey.items = {waypoint(0, 16, 52.21, 0.12, 50), waypoint(1, 16, 52.21, 0.121466, 50),
+                        waypoint(2, 16, 52.21054, 0.121466, 50), waypoint(3, 16, 52.21054, 0.12, 50)};
+        view.setPlan(&survey);
+        const double width = view.posOf({52.21, 0.121466}).x() - view.posOf({52.21, 0.12}).x();
+        const double height = view.posOf({52.21, 0.12}).y() - view.posOf({52.21054, 0.12}).y();
+        QVERIFY2(std::abs(width - (600 - 72)) < 1e-6, qPrintable(QString::number(width)));
+        QVERIFY2(height > 300 && height < 400 - 72, qPrintable(QString::number(height)));
+        QVERIFY(view.zoom() < PlanMapView::kMaxZoom);
+    }
+
+    // Mission Planner's home at 0, 0 is no home: the view fits the waypoints,
+    // not the world between them and the Gulf of Guinea.
+    void homeAtZeroIsNotFitted()
+    {
+        MissionPlan plan;
+        plan.items = {waypoint(0, 16, 52.2151260, 0.1302118, 120), waypoint(1, 16, 52.2236903, 0.1468470, 120)};
+        PlanMapView homeless;
+        homeless.resize(600, 400);
+        homeless.setPlan(&plan);
+        plan.homeLatitude = 0;
+        plan.homeLongitude = 0;
+        plan.homeAltitude = 0;
+        PlanMapView view;
+        view.resize(600, 400);
+        view.setPlan(&plan);
+        QCOMPARE(view.zoom(), homeless.zoom());
+        QCOMPARE(view.centre(), homeless.centre());
+        QVERIFY(view.zoom() > 12);
     }
 
     void clickSelectsAMarker()

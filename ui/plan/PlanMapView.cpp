@@ -246,13 +246,12 @@ void PlanMapView::fitToPlan()
         return;
     const double availableWidth = std::max(1.0, width() - 2 * kFitMargin);
     const double availableHeight = std::max(1.0, height() - 2 * kFitMargin);
-    double zoom = kMaxFitZoom;
-    if (bounds.width() > 0 || bounds.height() > 0) {
-        const double scale = std::min(bounds.width() > 0 ? availableWidth / bounds.width() : INFINITY,
-                                      bounds.height() > 0 ? availableHeight / bounds.height() : INFINITY);
-        zoom = std::min(kMaxFitZoom, std::log2(scale));
-    }
-    setView(zoom, bounds.center());
+    // The least extent in zoom-0 pixels where the plan is.
+    const double least =
+        kMinFitExtent / WebMercator::metresPerPixel(WebMercator::toGeo(bounds.center(), 0).latitude, 0);
+    const double scale =
+        std::min(availableWidth / std::max(bounds.width(), least), availableHeight / std::max(bounds.height(), least));
+    setView(std::log2(scale), bounds.center());
     m_fitted = true;
 }
 
@@ -328,8 +327,10 @@ void PlanMapView::rebuildGeometry()
         m_geometry.items.append(world);
         include(world);
     }
-    if (m_plan->homeLatitude && m_plan->homeLongitude) {
-        m_geometry.home = zoomZeroWorld({*m_plan->homeLatitude, *m_plan->homeLongitude});
+    // A home at 0, 0 is none (MissionPlan::home()): no marker in the Gulf of
+    // Guinea, and no fit to the whole world.
+    if (const auto home = m_plan->home()) {
+        m_geometry.home = zoomZeroWorld(*home);
         include(*m_geometry.home);
     }
     for (const FencePolygon& polygon : m_plan->fencePolygons) {
@@ -619,7 +620,7 @@ void PlanMapView::paintMission(QPainter& p)
         const QPointF pos = markerPos(index);
         if (!visible.contains(pos))
             return;
-        const QString label = QString::number(m_plan->items[index].seq);
+        const QString label = QString::number(m_plan->items[index].seq + 1);  // as the table numbers them
         if (selected) {
             p.setPen(QPen(kHomeColour, 2));
             p.setBrush(Qt::NoBrush);
@@ -652,7 +653,8 @@ void PlanMapView::paintMission(QPainter& p)
         // Where it was, faint, until the owner moves it.
         p.setOpacity(0.35);
         const QPointF was = toWidget(*m_geometry.items[dragged]);
-        drawMarker(p, was, QString::number(m_plan->items[dragged].seq), kPathColour, Qt::white, MarkerShape::Circle);
+        drawMarker(p, was, QString::number(m_plan->items[dragged].seq + 1), kPathColour, Qt::white,
+                   MarkerShape::Circle);
         p.setOpacity(1);
     }
     if (m_selected >= 0 && m_geometry.items.value(m_selected) && m_selected != dragged)
