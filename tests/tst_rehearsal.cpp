@@ -671,11 +671,14 @@ void TestRehearsal::reportPlotHasTimeAndFaults()
              (QStringList{QStringLiteral("0"), QStringLiteral("10 s"), QStringLiteral("20 s"), QStringLiteral("30 s"),
                           QStringLiteral("40 s"), QStringLiteral("50 s"), QStringLiteral("60 s"),
                           QStringLiteral("70 s"), QStringLiteral("80 s"), QStringLiteral("90 s")}));
-    // 30 s to 50 s of 90 on 750 px from x = 40: 290 to 456.7.
-    QVERIFY2(html.contains(QStringLiteral("<rect class=\"fault\" x=\"290.0\" y=\"10\" width=\"166.7\" height=\"170.0\" "
+    // 30 s to 50 s of 90 on 730 px from x = 40: 283.3 to 445.6; shaded, and named under the axis.
+    QVERIFY2(html.contains(QStringLiteral("<rect class=\"fault\" x=\"283.3\" y=\"10\" width=\"162.2\" height=\"170\" "
                                           "fill=\"#f0a030\" fill-opacity=\"0.25\"><title>fault outage 20 (30.0 s to "
                                           "50.0 s)</title></rect>")),
              qPrintable(html));
+    QVERIFY(
+        html.contains(QStringLiteral("<text x=\"286.3\" y=\"235.0\" font-size=\"11\">fault outage 20 (30.0 s to "
+                                     "50.0 s)</text>")));
     QVERIFY(html.contains(
         QStringLiteral("<tr><th>Step</th><th>Expectation</th><th>Result</th><th>What was seen</th></tr>")));
     QVERIFY(!html.contains(QStringLiteral("Measured")));

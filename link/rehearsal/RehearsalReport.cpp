@@ -48,30 +48,48 @@ QString tickLabel(double t, double step)
 }
 
 // Link quality for each direction, 0-100 % against scenario time: a time
-// axis with ticks, the faults' periods shaded, the link-loss alarms marked
-// (red when no step expected them).
+// axis with ticks, the faults' periods shaded (and named, one row each,
+// under the axis), the link-loss alarms marked (red when no step expected
+// them).
 QString qualityPlot(const RehearsalReport& report)
 {
-    constexpr int width = 800, height = 230, left = 40, right = 10, top = 10, bottom = 50;
+    constexpr int width = 800, left = 40, right = 30, top = 10, plotHeight = 170, faultRow = 16;
+    const double plotBottom = top + plotHeight;
+    const double faultsTop = plotBottom + 44;
+    const int height = int(faultsTop) + faultRow * int(report.faults.size()) + 4;
     const double duration = std::max(report.duration, 1.0);
     const auto x = [&](double t) { return left + (width - left - right) * std::clamp(t, 0.0, duration) / duration; };
-    const auto y = [&](double q) { return top + (height - bottom - top) * (1.0 - q); };
-    const double plotBottom = y(0);
+    const auto y = [&](double q) { return top + plotHeight * (1.0 - q); };
     QString svg = QStringLiteral(
                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%1\" height=\"%2\" "
                       "role=\"img\" aria-label=\"link quality against scenario time\">\n")
                       .arg(width)
                       .arg(height);
-    for (const RehearsalReport::FaultPeriod& f : report.faults)
+    for (std::size_t i = 0; i < report.faults.size(); ++i) {
+        const RehearsalReport::FaultPeriod& f = report.faults[i];
+        const QString title =
+            QStringLiteral("%1 (%2 s to %3 s)").arg(f.text.toHtmlEscaped(), seconds(f.start), seconds(f.end));
+        const double span = std::max(1.0, x(f.end) - x(f.start));
         svg += QStringLiteral(
                    "<rect class=\"fault\" x=\"%1\" y=\"%2\" width=\"%3\" height=\"%4\" fill=\"#f0a030\" "
-                   "fill-opacity=\"0.25\"><title>%5 (%6 s to %7 s)</title></rect>\n")
+                   "fill-opacity=\"0.25\"><title>%5</title></rect>\n")
                    .arg(x(f.start), 0, 'f', 1)
                    .arg(top)
-                   .arg(std::max(1.0, x(f.end) - x(f.start)), 0, 'f', 1)
-                   .arg(plotBottom - top, 0, 'f', 1)
-                   .arg(f.text.toHtmlEscaped())
-                   .arg(seconds(f.start), seconds(f.end));
+                   .arg(span, 0, 'f', 1)
+                   .arg(plotHeight)
+                   .arg(title);
+        const double rowTop = faultsTop + faultRow * double(i);
+        svg += QStringLiteral(
+                   "<rect x=\"%1\" y=\"%2\" width=\"%3\" height=\"%4\" fill=\"#f0a030\" fill-opacity=\"0.6\"/>"
+                   "<text x=\"%5\" y=\"%6\" font-size=\"11\">%7</text>\n")
+                   .arg(x(f.start), 0, 'f', 1)
+                   .arg(rowTop + 2, 0, 'f', 1)
+                   .arg(span, 0, 'f', 1)
+                   .arg(faultRow - 4)
+                   .arg(x(f.start) + 3, 0, 'f', 1)
+                   .arg(rowTop + 11, 0, 'f', 1)
+                   .arg(title);
+    }
     for (int percent : {0, 50, 100})
         svg += QStringLiteral(
                    "<line x1=\"%1\" x2=\"%2\" y1=\"%3\" y2=\"%3\" stroke=\"#ccc\"/>"
@@ -98,7 +116,7 @@ QString qualityPlot(const RehearsalReport& report)
                .arg(width - right)
                .arg(plotBottom, 0, 'f', 1)
                .arg((left + width - right) / 2)
-               .arg(height - 6);
+               .arg(plotBottom + 34, 0, 'f', 1);
     const auto line = [&](auto member, const char* colour, const char* name) {
         QString points;
         for (const auto& s : report.quality)
