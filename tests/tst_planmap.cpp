@@ -307,6 +307,19 @@ private slots:
         QVERIFY(view.zoom() < PlanMapView::kMaxZoom);
     }
 
+    // A map squeezed to 100 px high keeps the plan as large as it can: 15 px
+    // margins (a marker and a little), not 36 px that left it 28 px.
+    void fitOnASmallMap()
+    {
+        PlanMapView view;
+        view.resize(400, 100);
+        MissionPlan square;
+        square.items = {waypoint(0, 16, 52.20, 0.12, 50), waypoint(1, 16, 52.21, 0.12, 50)};
+        view.setPlan(&square);
+        const double height = view.posOf({52.20, 0.12}).y() - view.posOf({52.21, 0.12}).y();
+        QVERIFY2(std::abs(height - (100 - 2 * 15)) < 1e-6, qPrintable(QString::number(height)));
+    }
+
     // Mission Planner's home at 0, 0 is no home: the view fits the waypoints,
     // not the world between them and the Gulf of Guinea.
     void homeAtZeroIsNotFitted()

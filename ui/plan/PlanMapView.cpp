@@ -244,8 +244,11 @@ void PlanMapView::fitToPlan()
     const QRectF& bounds = m_geometry.bounds;
     if (!m_geometry.hasBounds)
         return;
-    const double availableWidth = std::max(1.0, width() - 2 * kFitMargin);
-    const double availableHeight = std::max(1.0, height() - 2 * kFitMargin);
+    // On a small map the full margin would leave the plan a few pixels: at
+    // most 15 % of each side, and never less than a marker needs.
+    const auto margin = [](int size) { return std::clamp(0.15 * size, kMarkerRadius + 4, kFitMargin); };
+    const double availableWidth = std::max(1.0, width() - 2 * margin(width()));
+    const double availableHeight = std::max(1.0, height() - 2 * margin(height()));
     // The least extent in zoom-0 pixels where the plan is.
     const double least =
         kMinFitExtent / WebMercator::metresPerPixel(WebMercator::toGeo(bounds.center(), 0).latitude, 0);
