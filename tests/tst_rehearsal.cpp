@@ -71,6 +71,7 @@ private slots:
     void withinBesideExpect();
     void unexpectedAlarmFailsTheRun();
     void reportPlotHasTimeAndFaults();
+    void oneSectionIsOneSection();
 };
 
 void TestRehearsal::issueExampleParses()
@@ -695,6 +696,39 @@ void TestRehearsal::reportPlotHasTimeAndFaults()
     QCOMPARE(minutes, (QStringList{QStringLiteral("0"), QStringLiteral("10 min"), QStringLiteral("20 min"),
                                    QStringLiteral("30 min"), QStringLiteral("40 min"), QStringLiteral("50 min"),
                                    QStringLiteral("60 min")}));
+}
+
+// A plan of one item goes in one section: "1 section", in the step and in
+// the aircraft's word that it has it.
+void TestRehearsal::oneSectionIsOneSection()
+{
+    QTemporaryDir dir;
+    QFile plan(dir.filePath(QStringLiteral("one.waypoints")));
+    QVERIFY(plan.open(QIODevice::WriteOnly));
+    plan.write("QGC WPL 110\n1\t0\t3\t16\t0\t0\t0\t0\t52.2151260\t0.1302118\t120\t1\n");
+    plan.close();
+    ScenarioError error;
+    const auto s =
+        Scenario::fromJson(R"({"speed": 60, "duration": 10, "steps": [
+        {"at": 1, "upload": "one.waypoints"},
+        {"at": 1, "expect": {"plan": "acknowledged"}, "within": 5}]})",
+                           dir.filePath(QStringLiteral("one.json")), RehearsalCommandLine::planLoader(), &error);
+    QVERIFY2(s, qPrintable(error.text()));
+    ScenarioRunner runner(*s, QString());
+    runner.runToEnd();
+    QVERIFY(runner.report().passed());
+    QStringList said;
+    for (const auto& t : runner.report().timeline)
+        said << t.text;
+    QVERIFY2(said.contains(QStringLiteral("step 1 at 1 s: upload one.waypoints (flight plan 0x52450001, 1 section)")),
+             qPrintable(said.join(QLatin1Char('\n'))));
+    QVERIFY2(std::any_of(said.begin(), said.end(),
+                         [](const QString& t) {
+                             return t.endsWith(QStringLiteral(
+                                 "flight plan 0x52450001 complete: 50 bytes in 1 section: 1 mission item, no fence, "
+                                 "no rally points"));
+                         }),
+             qPrintable(said.join(QLatin1Char('\n'))));
 }
 
 QTEST_MAIN(TestRehearsal)
