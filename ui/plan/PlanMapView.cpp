@@ -22,6 +22,9 @@ constexpr double kMarkerRadius = 11;
 // Pixels around the plan's outermost points after a fit: room for a marker
 // and its number, and for the buttons' corner.
 constexpr double kFitMargin = 36;
+// Pixels below the lowest marker's centre that keep it clear of the scale
+// bar (35 px from the bottom) and the attribution.
+constexpr double kScaleBarRoom = 35 + kMarkerRadius + 2;
 // A wheel notch zooms by half a step: two notches double the scale.
 constexpr double kWheelZoomPerNotch = 0.5;
 // Tiles are scaled from the nearest whole zoom; beyond this many zoom
@@ -245,16 +248,22 @@ void PlanMapView::fitToPlan()
     if (!m_geometry.hasBounds)
         return;
     // On a small map the full margin would leave the plan a few pixels: at
-    // most 15 % of each side, and never less than a marker needs.
+    // most 15 % of each side, and never less than a marker needs; at the
+    // bottom, clear of the scale bar, up to a quarter of the height.
     const auto margin = [](int size) { return std::clamp(0.15 * size, kMarkerRadius + 4, kFitMargin); };
-    const double availableWidth = std::max(1.0, width() - 2 * margin(width()));
-    const double availableHeight = std::max(1.0, height() - 2 * margin(height()));
+    const double side = margin(width());
+    const double top = margin(height());
+    const double bottom = std::max(top, std::min(kScaleBarRoom, 0.25 * height()));
+    const double availableWidth = std::max(1.0, width() - 2 * side);
+    const double availableHeight = std::max(1.0, height() - top - bottom);
     // The least extent in zoom-0 pixels where the plan is.
     const double least =
         kMinFitExtent / WebMercator::metresPerPixel(WebMercator::toGeo(bounds.center(), 0).latitude, 0);
     const double scale =
         std::min(availableWidth / std::max(bounds.width(), least), availableHeight / std::max(bounds.height(), least));
-    setView(std::log2(scale), bounds.center());
+    const double zoom = std::clamp(std::log2(scale), kMinZoom, kMaxZoom);
+    // The plan in the middle of the room between the margins.
+    setView(zoom, bounds.center() + QPointF(0, (bottom - top) / 2 / std::exp2(zoom)));
     m_fitted = true;
 }
 
