@@ -126,7 +126,9 @@ int main(int argc, char* argv[])
     if (parser.isSet(night))
         window.setTheme(Theme::Kind::Night);
     window.showPanel(parser.value(page).toInt() - 1);
-    if (!planOptions.apply(*window.flightPlan(), &error) || !stationOptions.apply(window, &error))
+    if (!planOptions.apply(*window.flightPlan(), &error))  // the file is wrong, not the options: no help
+        return say(QStringLiteral("--plan: ") + error), kUsageError;
+    if (!stationOptions.apply(window, &error))
         return usage(error);
     if (parser.isSet(screenshot))
         window.screenshotAndQuit(parser.value(screenshot), windowSize, parser.value(after).toInt());

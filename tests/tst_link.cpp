@@ -682,7 +682,7 @@ void TestLink::silenceReportsLostOnceThenRegained()
     QCOMPARE(regained.count(), 0);
     QCOMPARE(rejected.count(), 1);
     QCOMPARE(rejected.at(0).at(0).toString(),
-             QStringLiteral("implausible: time step: time_UTC is 14 s after the last accepted, 1 messages later"));
+             QStringLiteral("implausible: time step: time_UTC is 14 s after the last accepted, 1 message later"));
     QCOMPARE(f.console->statistics().refusedFor(rcm::Refusal::TimeStep), quint64(1));
     QCOMPARE(f.console->statistics().refusedTotal(), quint64(1));
     f.run(999ms);

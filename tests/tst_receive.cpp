@@ -338,7 +338,7 @@ void TestReceive::plausibility()
     QCOMPARE(send(command(102, 0)).refusal, std::optional<Refusal>(Refusal::TimeStep));  // before the last
     f = send(command(102, 5));  // 4 s after the last, one message later: at most 1 + 2 s
     QCOMPARE(f.refusal, std::optional<Refusal>(Refusal::TimeStep));
-    QCOMPARE(f.detail, std::string("time_UTC is 4 s after the last accepted, 1 messages later"));
+    QCOMPARE(f.detail, std::string("time_UTC is 4 s after the last accepted, 1 message later"));
 
     c.nowMicros += 40'000'000;  // the receiver's clock 40 s on: outside the 30 s window
     f = send(command(102, 2));
@@ -419,7 +419,7 @@ void TestReceive::flightPlanSections()
     QVERIFY(!send(0xA, 4, 3));  // four messages after section 0: sections 1..4 may have been sent
     QCOMPARE(send(0xB, 1), std::optional<Refusal>(Refusal::PlanSection));
     QCOMPARE(c.frames.back().detail,
-             std::string("flight plan 11 section 1 does not follow any plan being sent 1 messages later"));
+             std::string("flight plan 0x0000000B section 1 does not follow any plan being sent 1 message later"));
     QVERIFY(!send(0xB, 0));  // a new plan starts at 0
     QVERIFY(!send(0xC, 1, 2));  // ... which may have been lost
     QVERIFY(!send(0xC, kAcknowledgementSectionId));  // link control fits anywhere

@@ -731,8 +731,8 @@ private slots:
         backup.worker.stop();
         QVERIFY(uasim.stop(kPatienceMs));
         const QByteArray said = uasim.stderrText();
-        QVERIFY(said.contains("GB_30226: command ") && said.contains("flight plan 160 section"));
-        QVERIFY(!said.contains("flight plan 176"));
+        QVERIFY(said.contains("GB_30226: command ") && said.contains("flight plan 0x000000A0 section"));
+        QVERIFY(!said.contains("flight plan 0x000000B0"));
         QCOMPARE(notInControlSaid(said, "GB_30226"), 0);
         QVERIFY2(notInControlSaid(said, "GB_41251") >= 3, said.constData());
         QVERIFY(!said.contains("handover") && !said.contains("failover:"));

@@ -119,6 +119,12 @@ std::optional<std::int64_t> stampOf(const Message& m)
                                 static_cast<std::uint32_t>(m.header.number(ItemId::date_UTC)));
 }
 
+// "1 message later", "3 messages later".
+std::string messagesLater(std::uint32_t step)
+{
+    return std::to_string(step) + (step == 1 ? " message later" : " messages later");
+}
+
 // Does a frame (ID `id`, stamp `seconds`, section `s`) follow `h`?
 Verdict follows(const SenderHistory& h, std::uint32_t id, std::int64_t seconds, const FlightPlanSection& s)
 {
@@ -132,19 +138,19 @@ Verdict follows(const SenderHistory& h, std::uint32_t id, std::int64_t seconds, 
                                                   std::to_string(kMaxMessageIdStep));
     const std::int64_t elapsed = seconds - h.stampSeconds;
     if (elapsed < 0 || elapsed > std::int64_t{step} + kTimeStepSlackSeconds)
-        return refuse(Refusal::TimeStep, "time_UTC is " + std::to_string(elapsed) + " s after the last accepted, " +
-                                             std::to_string(step) + " messages later");
+        return refuse(Refusal::TimeStep,
+                      "time_UTC is " + std::to_string(elapsed) + " s after the last accepted, " + messagesLater(step));
     if (s.empty() || s.sectionId >= kFirstControlSectionId)
         return {};
     // A new plan starts at section 0; a plan being sent goes on, or wraps
     // to section 0 for its next pass; lost frames may have carried some.
     const bool fits = s.sectionId < step || (s.planId == h.planId && s.sectionId <= std::uint32_t{h.section} + step);
     if (!fits)
-        return refuse(Refusal::PlanSection, "flight plan " + std::to_string(s.planId) + " section " +
+        return refuse(Refusal::PlanSection, "flight plan " + rcm::planIdText(s.planId) + " section " +
                                                 std::to_string(s.sectionId) + " does not follow " +
                                                 (s.planId == h.planId ? "section " + std::to_string(h.section)
                                                                       : std::string("any plan being sent")) +
-                                                " " + std::to_string(step) + " messages later");
+                                                " " + messagesLater(step));
     return {};
 }
 

@@ -5,6 +5,7 @@
 
 #include "link/session/LinkWorker.h"
 
+#include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/DigitPairs.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -289,8 +290,8 @@ std::optional<QByteArray> LinkWorker::encode(rcm::Message& message)
     if (!bytes && !message.flightPlan.empty()) {
         // The command was validated when it was set, so the section is at
         // fault: the frame still goes, without it.
-        const QString reason = QStringLiteral("BLOCK 2 section %1/%2 not sent: %3")
-                                   .arg(message.flightPlan.planId)
+        const QString reason = QStringLiteral("BLOCK 2: flight plan %1 section %2 not sent: %3")
+                                   .arg(QString::fromStdString(rcm::planIdText(message.flightPlan.planId)))
                                    .arg(message.flightPlan.sectionId)
                                    .arg(joinDiagnostics(errors));
         if (reason != m_lastEncodeError) {

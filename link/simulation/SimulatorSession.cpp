@@ -1,5 +1,6 @@
 #include "link/simulation/SimulatorSession.h"
 
+#include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/ItemTable.h"
 #include "codec/message/TextFormat.h"
 #include "codec/secure/SecureCodec.h"
@@ -66,7 +67,7 @@ QString commandSummary(const ReceivedMessage& received, const SimulatedAircraft&
         parts << QStringLiteral("photos taken %1").arg(photos.join(QLatin1Char('/')));
     if (!m.flightPlan.empty())
         parts << QStringLiteral("flight plan %1 section %2 (%3 bytes): %4/%5")
-                     .arg(m.flightPlan.planId)
+                     .arg(QString::fromStdString(rcm::planIdText(m.flightPlan.planId)))
                      .arg(m.flightPlan.sectionId)
                      .arg(m.flightPlan.data.size())
                      .arg(report.flightPlan.received)

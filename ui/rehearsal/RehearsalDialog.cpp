@@ -107,11 +107,9 @@ void RehearsalDialog::runFinished()
     const RehearsalReport& report = m_runner->report();
     QString error;
     const bool written = report.write(m_reportDirectory, &error);
-    QString text =
-        report.passed() ? tr("PASSED: every expectation held (%1).").arg(report.expectations.size()) : tr("FAILED:");
-    for (const auto& e : report.expectations)
-        if (!e.held)
-            text += QLatin1Char('\n') + e.description + QStringLiteral(" (") + e.detail + QLatin1Char(')');
+    QString text = report.passed() ? tr("PASSED: %1.").arg(report.verdict()) : tr("FAILED: %1.").arg(report.verdict());
+    for (const QString& failure : report.failures())
+        text += QLatin1Char('\n') + failure;
     text += QLatin1Char('\n') + (written ? tr("Report in %1").arg(m_reportDirectory) : error);
     m_verdict->setText(text);
     m_openReport->setEnabled(written);

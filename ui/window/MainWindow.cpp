@@ -349,6 +349,12 @@ void MainWindow::buildDocks()
     QDockWidget* events = dock(tr("Events"), QStringLiteral("eventsDock"), m_alerts->eventView(), this);
     for (QDockWidget* d : {link, voice, log, plan, preview, events})
         m_docks.push_back(d);
+    // A plan opened (gcs --plan, File > Open flight plan) is shown.
+    connect(m_flightPlan, &FlightPlanWidget::planOpened, this, [this, plan] {
+        m_planInFront = true;
+        plan->show();
+        plan->raise();
+    });
     placeDocks();
 }
 
@@ -378,7 +384,7 @@ void MainWindow::placeDocks()
     tabifyDockWidget(log, plan);
     // The events in front beside the frame log; the next frame behind them.
     tabifyDockWidget(preview, events);
-    log->raise();
+    (m_planInFront ? plan : log)->raise();
     events->raise();
     // In proportion to the window: the panels keep the larger part of the
     // height, the frame log enough for a dozen rows.

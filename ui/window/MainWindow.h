@@ -244,6 +244,7 @@ private:
     std::vector<QDockWidget*> m_docks;  // in placeDocks()' order
     bool m_layoutRestored = false;
     bool m_layoutPlaced = false;
+    bool m_planInFront = false;  // a plan was opened: the flight plan, not the frame log, in front
     // While a replay plays: the console's own command, kept aside, and the
     // log's time, which the reports' age is counted in.
     std::optional<rcm::Message> m_ownCommand;
