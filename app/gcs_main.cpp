@@ -24,6 +24,7 @@ int main(int argc, char* argv[])
     QApplication app(argc, argv);
     QCoreApplication::setOrganizationName(QStringLiteral("rcm"));
     QCoreApplication::setApplicationName(QStringLiteral("gcs"));
+    QGuiApplication::setDesktopFileName(QStringLiteral(RCM_APP_ID));  // its menu entry and icon (Wayland)
 
     QCommandLineParser parser;
     parser.setApplicationDescription(
