@@ -11,19 +11,17 @@
 
 #include <QApplication>
 #include <QCommandLineParser>
-
 #include <cstdio>
 
-namespace {
-constexpr int kUsageError = 2;
-void say(const QString& line) { std::fprintf(stderr, "gcs: %s\n", qPrintable(line)); }
-}  // namespace
+static constexpr int kUsageError = 2;
+static void say(const QString& line) { std::fprintf(stderr, "gcs: %s\n", qPrintable(line)); }
 
 int main(int argc, char* argv[])
 {
     QApplication app(argc, argv);
     QCoreApplication::setOrganizationName(QStringLiteral("rcm"));
     QCoreApplication::setApplicationName(QStringLiteral("gcs"));
+    QGuiApplication::setDesktopFileName(QStringLiteral(RCM_APP_ID));  // its menu entry and icon (Wayland)
     QCommandLineParser parser;
     parser.setApplicationDescription(
         QStringLiteral("The operator console of the RCM ground control station: commands an unmanned aircraft with\n"

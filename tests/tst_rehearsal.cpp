@@ -65,6 +65,7 @@ private slots:
     void samplesHold();
     void failedStepNamedInBothReports();
     void malformedScenarioExitsTwo();
+    void scenarioByName();
     void dialogShowsTheRun();
     void dialogSaysWhereTheScenarioIsWrong();
     void uasimEndsWithTheConsole();
@@ -489,6 +490,30 @@ void TestRehearsal::malformedScenarioExitsTwo()
         run.err.contains(QStringLiteral("gcs: %1:7:22: step 2: the aircraft has no engine 7\n").arg(path).toUtf8()),
         run.err.constData());
     QVERIFY(!QFile::exists(dir.filePath(QStringLiteral("report.json"))));
+}
+
+// A name that is no file is one of the scenarios that come with gcs, in
+// share/rcm-gcs/scenarios beside its bin folder: /usr/share/rcm-gcs installed,
+// in the build tree a link to resources/ (cmake/Packaging.cmake).
+void TestRehearsal::scenarioByName()
+{
+    QTemporaryDir dir;
+    const QString shipped = QDir::cleanPath(QStringLiteral(RCM_BIN_DIR "/../share/rcm-gcs/scenarios/malformed.json"));
+    QCOMPARE(QFileInfo(shipped).canonicalFilePath(),
+             QFileInfo(kScenarios + QStringLiteral("malformed.json")).canonicalFilePath());
+    const auto run = rcm::test::runProgram(
+        QStringLiteral("gcs"),
+        {QStringLiteral("--rehearse"), QStringLiteral("malformed"), QStringLiteral("--report"), dir.path()});
+    QCOMPARE(run.exitCode, 2);
+    QVERIFY2(
+        run.err.contains(QStringLiteral("gcs: %1:7:22: step 2: the aircraft has no engine 7\n").arg(shipped).toUtf8()),
+        run.err.constData());
+
+    const auto unknown = rcm::test::runProgram(
+        QStringLiteral("gcs"),
+        {QStringLiteral("--rehearse"), QStringLiteral("no-such-scenario"), QStringLiteral("--report"), dir.path()});
+    QCOMPARE(unknown.exitCode, 2);
+    QVERIFY2(unknown.err.contains("gcs: no-such-scenario:0:0: cannot read: "), unknown.err.constData());
 }
 
 void TestRehearsal::dialogShowsTheRun()

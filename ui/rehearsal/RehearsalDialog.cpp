@@ -1,6 +1,7 @@
 #include "ui/rehearsal/RehearsalDialog.h"
 
 #include "link/rehearsal/ScenarioRunner.h"
+#include "link/session/DataFolder.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
 
 #include <QDateTime>
@@ -56,7 +57,8 @@ RehearsalDialog::~RehearsalDialog() = default;
 void RehearsalDialog::chooseAndRun(QWidget* parent)
 {
     const QString path =
-        QFileDialog::getOpenFileName(parent, tr("Rehearse scenario"), QString(), tr("Rehearsal scenarios (*.json)"));
+        QFileDialog::getOpenFileName(parent, tr("Rehearse scenario"), DataFolder::path(QStringLiteral("scenarios")),
+                                     tr("Rehearsal scenarios (*.json)"));
     if (path.isEmpty())
         return;
     const QString stamp = QDateTime::currentDateTimeUtc().toString(QStringLiteral("yyyy-MM-ddTHH-mm-ssZ"));
