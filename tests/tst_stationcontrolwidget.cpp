@@ -13,6 +13,7 @@
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTest>
+#include <QVBoxLayout>
 
 using namespace rcm;
 using Role = StationControl::Role;
@@ -122,6 +123,39 @@ private slots:
         control.takeControl();
         QCOMPARE(control.role(), Role::InControl);
         QVERIFY(!widget.takeControlButton()->isEnabled());
+    }
+
+    // Typed and left without Enter (GB_30 of GB_30226): not applied, the
+    // field shows the station in force again and says so.
+    void stationAppliedOnEnterOnly()
+    {
+        StationControl control;
+        QWidget window;
+        auto* widget = new StationControlWidget(&control, &window);
+        auto* elsewhere = new QLineEdit(&window);
+        auto* layout = new QVBoxLayout(&window);
+        layout->addWidget(widget);
+        layout->addWidget(elsewhere);
+        window.show();
+        window.activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(&window));
+        widget->setStationText(QStringLiteral("GB_30226"));
+        auto* field = widget->findChild<QLineEdit*>();
+        field->setFocus();
+        field->selectAll();
+        QTest::keyClicks(field, QStringLiteral("GB_30"));
+        elsewhere->setFocus();
+        QTRY_VERIFY(!field->hasFocus());
+        QCOMPARE(control.station(), std::optional<StationId>(kPrimary));
+        QCOMPARE(field->text(), QStringLiteral("GB_30226"));
+        QCOMPARE(field->toolTip(),
+                 QStringLiteral("Not applied: 'GB_30' was left without Enter; this station stays GB_30226"));
+
+        field->setFocus();
+        field->selectAll();
+        QTest::keyClicks(field, QStringLiteral("GB_41251"));
+        QTest::keyClick(field, Qt::Key_Return);
+        QCOMPARE(control.station(), std::optional<StationId>(kBackup));
     }
 
     void stationNotEditableWhileALinkRuns()

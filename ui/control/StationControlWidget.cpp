@@ -72,7 +72,22 @@ StationControlWidget::StationControlWidget(StationControl* control, QWidget* par
     layout->addWidget(m_role);
     layout->addLayout(buttons);
 
-    connect(m_station, &QLineEdit::editingFinished, this, &StationControlWidget::readStation);
+    // Applied on Enter only, as every field that changes what the frames
+    // name: a station half typed (GB_30 of GB_30226) and left is not taken.
+    connect(m_station, &QLineEdit::returnPressed, this, &StationControlWidget::readStation);
+    connect(m_station, &QLineEdit::editingFinished, this, [this] {
+        if (m_station->hasFocus())
+            return;  // Enter, handled above
+        const QString applied =
+            m_control->station() ? QString::fromStdString(rcm::formatStation(*m_control->station())) : QString();
+        if (stationText() == applied)
+            return;
+        const QString typed = stationText();
+        m_station->setText(applied);
+        m_station->setStyleSheet(QString());
+        m_station->setToolTip(tr("Not applied: '%1' was left without Enter; this station stays %2")
+                                  .arg(typed, applied.isEmpty() ? tr("none") : applied));
+    });
     connect(m_handOver, &QPushButton::clicked, this, &StationControlWidget::requestHandOver);
     connect(m_takeControl, &QPushButton::clicked, this, [this] {
         if (m_control->canTakeControl())
