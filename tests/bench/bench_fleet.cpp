@@ -23,15 +23,27 @@
 // spread evenly over it): a frame up (a FrameReport of a 600-byte frame,
 // base64), a frame down half a second later (with its decoded text, as a
 // console publishes what it received), its station report and its link
-// statistics (both retained), all QoS 1 as the console publishes them. A
-// frame's utcMicros is stamped when it is handed to the client, as a console
-// stamps it when it goes on the link; its delay is taken when the model tells
-// its views of the row that counts it (the dataChanged() or rowsInserted() of
+// statistics (both retained), all QoS 1 as the console publishes them, each
+// in its station's envelope, signed with its Ed25519 key (the fleet side
+// trusts every station's key and verifies every message). A frame's
+// utcMicros is stamped when it is handed to the client, as a console stamps
+// it when it goes on the link; its delay is taken when the model tells its
+// views of the row that counts it (the dataChanged() or rowsInserted() of
 // the model's once-a-pass flush).
+//
+// Every report is accounted for: each publisher counts what it handed to
+// its client and what the broker acknowledged (PUBACK), by kind, stops on
+// time and waits for the last acknowledgements; the fleet side counts what
+// it received, by kind, and checks each aircraft's frames by their numbers
+// (FrameReport::seq): none missing, none twice. Both sides' counts cover the
+// whole run, not only the window measured.
 #include "codec/message/Airframe.h"
 #include "codec/message/TextFormat.h"
+#include "codec/secure/StationSigningKey.h"
 #include "link/broker/BrokerSettings.h"
 #include "link/broker/BrokerTopics.h"
+#include "link/broker/BrokerTrust.h"
+#include "link/broker/EnvelopeWriter.h"
 #include "link/broker/FleetFeed.h"
 #include "link/broker/MqttClient.h"
 #include "tests/MosquittoProcess.h"
@@ -50,6 +62,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <set>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -141,6 +155,22 @@ QString stationName(int i)
     return QStringLiteral("GB_%1").arg(50000 + i);
 }
 
+// Station i's signing key, the same in every process of the bench: made
+// from its number (a bench's key, not a secret).
+std::shared_ptr<const rcm::secure::StationSigningKey> stationKey(int i)
+{
+    std::array<std::uint8_t, rcm::secure::kKeySize> seed{};
+    seed.fill(0x5a);
+    seed[0] = std::uint8_t(i);
+    seed[1] = std::uint8_t(i >> 8);
+    seed[2] = std::uint8_t(i >> 16);
+    return std::make_shared<const rcm::secure::StationSigningKey>(rcm::secure::SecretKey(seed));
+}
+
+// What an aircraft publishes, by kind, for the accounting.
+enum Kind { kFramesUp, kFramesDown, kStation, kStats, kKinds };
+const char* const kKindNames[kKinds] = {"frames up", "frames down", "station reports", "statistics"};
+
 BrokerSettings brokerAt(quint16 port, const QString& clientId)
 {
     BrokerSettings settings;
@@ -155,6 +185,7 @@ BrokerSettings brokerAt(quint16 port, const QString& clientId)
 // One simulated console: its connection, and what it has said so far.
 struct Console {
     std::unique_ptr<MqttClient> client;
+    std::unique_ptr<EnvelopeWriter> envelopes;
     QString station;
     QString framesTopic;
     QString stationTopic;
@@ -163,6 +194,9 @@ struct Console {
     StatsReport stats;
     qint64 lastDownUtcMicros = 0;
     quint32 messageId = 0;
+    qint64 session = 0;
+    quint64 frameSeq = 0;
+    QHash<int, int> unacknowledged;  // message ID -> Kind
 };
 
 // A frame as SessionPublisher reports it: up, our own send; down, received,
@@ -177,6 +211,8 @@ FrameReport frameReport(const Console& c, bool up, qint64 utcMicros, const QStri
     f.messageId = c.messageId;
     f.bytes = c.frameBytes;
     f.transport = FrameTransport::Serial;
+    f.session = c.session;
+    f.seq = c.frameSeq;
     if (!up) {
         f.corrected = {0, 0};
         f.text = downText;
@@ -209,9 +245,11 @@ int publish(int first, int count, int total, quint16 port, int seconds)
         Console& c = consoles[std::size_t(k)];
         c.client = std::make_unique<MqttClient>(brokerAt(port, QStringLiteral("bench-publisher-%1").arg(i)));
         c.station = stationName(i);
-        c.framesTopic = BrokerTopics::framesTopic(aircraftName(i));
-        c.stationTopic = BrokerTopics::stationTopic(aircraftName(i), stationName(i));
-        c.statsTopic = BrokerTopics::statsTopic(aircraftName(i));
+        c.envelopes = std::make_unique<EnvelopeWriter>(c.station, stationKey(i));
+        c.session = utcMicros();
+        c.framesTopic = BrokerTopics::framesTopic(aircraftName(i), c.station);
+        c.stationTopic = BrokerTopics::stationTopic(aircraftName(i), c.station);
+        c.statsTopic = BrokerTopics::statsTopic(aircraftName(i), c.station);
         c.frameBytes.resize(600);
         for (char& b : c.frameBytes)
             b = char(random.bounded(256));
@@ -258,6 +296,24 @@ int publish(int first, int count, int total, quint16 port, int seconds)
     quint64 published = 0;
     quint64 refused = 0;
     qint64 lateMaxMicros = 0;
+    std::array<quint64, kKinds> handed{};
+    std::array<quint64, kKinds> acknowledged{};
+    for (Console& c : consoles)
+        QObject::connect(c.client.get(), &MqttClient::published, [&c, &acknowledged](int id) {
+            const auto it = c.unacknowledged.constFind(id);
+            if (it == c.unacknowledged.cend())
+                return;
+            ++acknowledged[std::size_t(*it)];
+            c.unacknowledged.erase(it);
+        });
+    const auto send = [](Console& c, const QString& topic, const QByteArray& body, bool retain, int kind) {
+        int id = 0;
+        const bool ok = c.client->publish(topic, c.envelopes->wrap(topic, body), 1, retain, &id,
+                                          BrokerTopics::kMessageExpirySeconds);
+        if (ok)
+            c.unacknowledged.insert(id, kind);
+        return ok;
+    };
     std::size_t next = 0;
     const qint64 begin = (utcMicros() / kSecond + 1) * kSecond;
     qint64 cycleStart = begin;
@@ -270,6 +326,7 @@ int publish(int first, int count, int total, quint16 port, int seconds)
             case Act::FrameUp:
             case Act::FrameDown: {
                 const bool up = due.act == Act::FrameUp;
+                ++c.frameSeq;
                 const FrameReport f = frameReport(c, up, now, downText);
                 if (up) {
                     ++c.messageId;
@@ -278,7 +335,9 @@ int publish(int first, int count, int total, quint16 port, int seconds)
                     c.lastDownUtcMicros = now;
                     ++c.stats.framesReceived;
                 }
-                ok = c.client->publish(c.framesTopic, f.toJson(), BrokerTopics::kFramesQos, false);
+                ok = send(c, c.framesTopic, f.toJson(), false, up ? kFramesUp : kFramesDown);
+                if (ok)
+                    ++handed[up ? kFramesUp : kFramesDown];
                 break;
             }
             case Act::Station: {
@@ -291,13 +350,17 @@ int publish(int first, int count, int total, quint16 port, int seconds)
                 r.utcMicros = now;
                 r.lastFrameUtcMicros = c.lastDownUtcMicros;
                 r.destination = station;
-                ok = c.client->publish(c.stationTopic, r.toJson(), BrokerTopics::kStationQos, true);
+                ok = send(c, c.stationTopic, r.toJson(), true, kStation);
+                if (ok)
+                    ++handed[kStation];
                 break;
             }
             case Act::Stats:
                 c.stats.lastGoodFrameUtcMicros = c.lastDownUtcMicros;
                 c.stats.state = LinkState::Connected;
-                ok = c.client->publish(c.statsTopic, c.stats.toJson(), BrokerTopics::kStatsQos, true);
+                ok = send(c, c.statsTopic, c.stats.toJson(), true, kStats);
+                if (ok)
+                    ++handed[kStats];
                 break;
         }
         ++(ok ? published : refused);
@@ -332,6 +395,24 @@ int publish(int first, int count, int total, quint16 port, int seconds)
     });
     ticker.start();
     QCoreApplication::exec();
+    ticker.stop();
+    // The last acknowledgements, then what was handed and acknowledged, by kind.
+    QElapsedTimer draining;
+    draining.start();
+    const auto waiting = [&] {
+        std::size_t n = 0;
+        for (const Console& c : consoles)
+            n += std::size_t(c.unacknowledged.size());
+        return n;
+    };
+    while (waiting() > 0 && draining.elapsed() < 30'000)
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+    std::printf("totals");
+    for (int k = 0; k < kKinds; ++k)
+        std::printf(" %llu %llu", static_cast<unsigned long long>(handed[std::size_t(k)]),
+                    static_cast<unsigned long long>(acknowledged[std::size_t(k)]));
+    std::printf(" unacknowledged %zu\n", waiting());
+    std::fflush(stdout);
     for (Console& c : consoles)
         c.client->stop();
     return 0;
@@ -349,12 +430,17 @@ struct Snapshot {
     quint64 published = 0;
 };
 
-// What the publishers said last ("second S published P refused R late_max_us L").
+// What the publishers said last ("second S published P refused R late_max_us L"),
+// and at their end ("totals", then handed and acknowledged of each kind).
 struct PublisherLine {
     int second = 0;
     quint64 published = 0;
     quint64 refused = 0;
     qint64 lateMaxMicros = 0;
+    bool done = false;
+    std::array<quint64, kKinds> handed{};
+    std::array<quint64, kKinds> acknowledged{};
+    quint64 unacknowledged = 0;
 };
 
 int runFleet(int n, int seconds, int warmup, bool shown)
@@ -380,6 +466,27 @@ int runFleet(int n, int seconds, int warmup, bool shown)
 
     MqttClient fleetClient(brokerAt(broker.port(), QStringLiteral("bench-fleet")));
     FleetFeed feed(&fleetClient);
+    auto trust = std::make_shared<BrokerTrust>();
+    for (int i = 0; i < n; ++i)
+        trust->trustStation(stationName(i), stationKey(i)->publicKey());
+    feed.setTrust(trust);
+    // Everything the broker delivered, by kind, as the client judged it.
+    std::array<quint64, kKinds> delivered{};
+    quint64 deliveredRefused = 0;
+    qint64 lastDelivery = 0;
+    QObject::connect(&fleetClient, &MqttClient::messageOpened, [&](const OpenedMessage& m) {
+        lastDelivery = utcMicros();
+        if (m.refused() || !m.verified()) {
+            ++deliveredRefused;
+            if (deliveredRefused <= 3)
+                say(QStringLiteral("refused or unverified: ") + m.refusal);
+            return;
+        }
+        if (m.where->kind == BrokerTopics::Kind::Station)
+            ++delivered[kStation];
+        else if (m.where->kind == BrokerTopics::Kind::Stats)
+            ++delivered[kStats];
+    });
     FleetModel model;
     QObject::connect(&feed, &FleetFeed::aircraftUpdated, &model, &FleetModel::update);
     FleetView view(&model);
@@ -397,21 +504,17 @@ int runFleet(int n, int seconds, int warmup, bool shown)
     std::vector<qint64> waiting;
     std::vector<std::int64_t> delays;
     delays.reserve(std::size_t(n) * 2 * std::size_t(seconds) + 1024);
-    // Frames lost on the way: each aircraft's frames carry consecutive
-    // message IDs each way, so a gap is a frame that never arrived.
-    struct Sequence {
-        std::optional<quint32> up;
-        std::optional<quint32> down;
-    };
-    QHash<QString, Sequence> sequences;
-    quint64 framesMissing = 0;
+    // Frames lost on the way: each aircraft's frames are numbered 1, 2, 3 ...
+    // (both ways together), so a number never seen is a frame that never
+    // arrived, and one seen twice came twice.
+    QHash<QString, std::set<quint64>> sequences;
+    std::array<quint64, kKinds> framesReceived{};
+    quint64 framesTwice = 0;
     QObject::connect(&feed, &FleetFeed::frameReported, [&](const QString& aircraft, const FrameReport& frame) {
         ++framesReported;
-        Sequence& seen = sequences[aircraft];
-        std::optional<quint32>& last = frame.direction == FrameDirection::Sent ? seen.up : seen.down;
-        if (measuring && last && frame.messageId && *frame.messageId > *last + 1)
-            framesMissing += *frame.messageId - *last - 1;
-        last = frame.messageId;
+        ++framesReceived[frame.direction == FrameDirection::Sent ? kFramesUp : kFramesDown];
+        if (!sequences[aircraft].insert(frame.seq).second)
+            ++framesTwice;
         if (measuring)
             waiting.push_back(frame.utcMicros);
     });
@@ -446,7 +549,7 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         QProcess* raw = process.get();
         raw->setProgram(QCoreApplication::applicationFilePath());
         raw->setArguments({QStringLiteral("--publish"), QString::number(first), QString::number(count),
-                           QString::number(n), QString::number(broker.port()), QString::number(warmup + seconds + 10)});
+                           QString::number(n), QString::number(broker.port()), QString::number(warmup + seconds + 2)});
         raw->setProcessChannelMode(QProcess::ForwardedErrorChannel);
         PublisherLine& last = lines[std::size_t(p)];
         QObject::connect(raw, &QProcess::readyReadStandardOutput, [raw, &last, &ready] {
@@ -457,6 +560,15 @@ int runFleet(int n, int seconds, int warmup, bool shown)
                     continue;
                 }
                 const QList<QByteArray> f = line.split(' ');
+                if (f.size() == 2 + 2 * kKinds + 1 && f[0] == "totals") {
+                    for (int k = 0; k < kKinds; ++k) {
+                        last.handed[std::size_t(k)] = f[1 + 2 * k].toULongLong();
+                        last.acknowledged[std::size_t(k)] = f[2 + 2 * k].toULongLong();
+                    }
+                    last.unacknowledged = f.last().toULongLong();
+                    last.done = true;
+                    continue;
+                }
                 if (f.size() == 8 && f[0] == "second") {
                     last.second = f[1].toInt();
                     last.published = f[3].toULongLong();
@@ -564,10 +676,9 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         static_cast<unsigned long long>(end.published - start.published),
         double(end.published - start.published) / wall, static_cast<unsigned long long>(refusedByClients),
         double(lateMaxMicros) / 1000.0);
-    std::printf("frames reported to the fleet: %llu, %llu due (%.2f %%); missing from the message ID sequences: %llu\n",
+    std::printf("frames reported to the fleet in the window: %llu, %llu due (%.2f %%)\n",
                 static_cast<unsigned long long>(reported), static_cast<unsigned long long>(expected),
-                expected ? 100.0 * double(reported) / double(expected) : 0.0,
-                static_cast<unsigned long long>(framesMissing));
+                expected ? 100.0 * double(reported) / double(expected) : 0.0);
     std::printf("rows: %d\n\n", model.rowCount());
     std::printf("| process | CPU (%% of one core) | RSS (MiB) |\n|---|---:|---:|\n");
     std::printf("| mosquitto | %.1f | %.1f |\n", percent(start.brokerCpu, end.brokerCpu), brokerRss);
@@ -578,6 +689,56 @@ int runFleet(int n, int seconds, int warmup, bool shown)
     std::printf("| of which its GUI thread | %.1f | |\n\n", percent(start.fleetGuiCpu, end.fleetGuiCpu));
     std::printf("frame to row: n=%zu  median %.1f ms  p99 %.1f ms  max %.1f ms\n", delays.size(), at(0.5), at(0.99),
                 delays.empty() ? 0.0 : double(delays.back()) / 1000.0);
+
+    // Every report of the whole run: the publishers stop on time and wait
+    // for their last acknowledgements; then the fleet side waits until
+    // nothing more comes (2 s of quiet) and counts.
+    QElapsedTimer settling;
+    settling.start();
+    while (settling.elapsed() < 120'000) {
+        const bool allDone =
+            std::all_of(lines.begin(), lines.end(), [](const PublisherLine& l) { return l.done; }) &&
+            std::all_of(publishers.begin(), publishers.end(),
+                        [](const auto& p) { return p->state() == QProcess::NotRunning; });
+        if (allDone && utcMicros() - lastDelivery > 2 * kSecond)
+            break;
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+    }
+    std::array<quint64, kKinds> handed{};
+    std::array<quint64, kKinds> acknowledged{};
+    quint64 unacknowledged = 0;
+    for (const PublisherLine& l : lines) {
+        for (int k = 0; k < kKinds; ++k) {
+            handed[std::size_t(k)] += l.handed[std::size_t(k)];
+            acknowledged[std::size_t(k)] += l.acknowledged[std::size_t(k)];
+        }
+        unacknowledged += l.unacknowledged;
+    }
+    delivered[kFramesUp] = framesReceived[kFramesUp];
+    delivered[kFramesDown] = framesReceived[kFramesDown];
+    // Numbers never seen within each aircraft's frames: lost on the way.
+    quint64 gaps = 0;
+    for (const std::set<quint64>& seen : std::as_const(sequences))
+        if (!seen.empty())
+            gaps += *seen.rbegin() - quint64(seen.size());
+    std::printf("\nevery report of the run (publishers' counts, fleet side's counts):\n\n");
+    std::printf("| report | handed to the client | acknowledged by the broker | received by the fleet, verified | "
+                "missing |\n|---|---:|---:|---:|---:|\n");
+    quint64 missingTotal = 0;
+    for (int k = 0; k < kKinds; ++k) {
+        const quint64 a = acknowledged[std::size_t(k)];
+        const quint64 d = delivered[std::size_t(k)];
+        const quint64 missing = a > d ? a - d : 0;
+        missingTotal += missing;
+        std::printf("| %s | %llu | %llu | %llu | %llu |\n", kKindNames[k],
+                    static_cast<unsigned long long>(handed[std::size_t(k)]), static_cast<unsigned long long>(a),
+                    static_cast<unsigned long long>(d), static_cast<unsigned long long>(missing));
+    }
+    std::printf("\nnot acknowledged at the end: %llu; refused or unverified at the fleet: %llu; frames seen twice: "
+                "%llu; frame numbers skipped: %llu; reports missing: %llu\n",
+                static_cast<unsigned long long>(unacknowledged), static_cast<unsigned long long>(deliveredRefused),
+                static_cast<unsigned long long>(framesTwice), static_cast<unsigned long long>(gaps),
+                static_cast<unsigned long long>(missingTotal));
 
     for (const auto& p : publishers) {
         p->kill();
