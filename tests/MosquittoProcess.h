@@ -38,6 +38,8 @@ public:
         // resources/mosquitto/rcm.conf, with these users (name, password).
         bool deployment = false;
         QList<std::pair<QString, QString>> users = {};
+        // More lines for the tests' own configuration ("max_queued_messages 20000").
+        QStringList more = {};
     };
 
     MosquittoProcess() : MosquittoProcess(Options{}) {}
@@ -127,6 +129,7 @@ private:
             // user "mosquitto" and could not read the temporary folder.
             QStringLiteral("user %1").arg(userName()),
         };
+        conf << m_options.more;
         if (m_options.user.isEmpty()) {
             conf << QStringLiteral("allow_anonymous true");
         } else {

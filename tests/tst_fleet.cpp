@@ -1,5 +1,6 @@
 // The fleet view over an MQTT broker: FleetFeed reading every aircraft's
-// station reports, frames and statistics into one summary each; FleetModel
+// station reports and statistics into one summary each, believing only
+// what a trusted station signed; FleetModel
 // telling a burst of updates once per pass of the event loop (one
 // dataChanged(), one rowsInserted()), its cells exact against a fake clock,
 // rows stale or offline as time passes; FleetView sorted by aircraft and
@@ -119,21 +120,6 @@ QByteArray signedOn(const QString& topic, const QByteArray& body)
     return writerOf(BrokerTopics::parseTopic(topic)->station).wrap(topic, body);
 }
 
-FrameReport frame(const QString& id, FrameDirection direction, FrameStatus status, qint64 utcMicros)
-{
-    FrameReport f;
-    f.station = id;
-    f.direction = direction;
-    f.status = status;
-    f.utcMicros = utcMicros;
-    f.messageId = 7;
-    f.bytes = QByteArray(600, '\x5a');
-    f.transport = FrameTransport::Udp;
-    if (direction == FrameDirection::Received)
-        f.corrected = {0, 0};
-    return f;
-}
-
 }  // namespace
 
 class TestFleet : public QObject {
@@ -144,7 +130,7 @@ private slots:
     {
         QLocale::setDefault(QLocale(QLocale::English, QLocale::UnitedStates));
         qRegisterMetaType<AircraftSummary>();
-        qRegisterMetaType<FrameReport>();
+        qRegisterMetaType<StatsReport>();
     }
 
     // A thousand updates of a hundred aircraft in one pass are one insert of
@@ -401,9 +387,9 @@ private slots:
     {
         FleetFeed feed(nullptr);
         feed.setTrust(trusting({QStringLiteral("GB_1"), QStringLiteral("GB_2"), QStringLiteral("GB_9")}));
-        QCOMPARE(FleetFeed::patterns(), (QStringList{"rcm/+/station/+", "rcm/+/frames/+", "rcm/+/stats/+"}));
+        QCOMPARE(FleetFeed::patterns(), (QStringList{"rcm/+/station/+", "rcm/+/stats/+"}));
         QSignalSpy updated(&feed, &FleetFeed::aircraftUpdated);
-        QSignalSpy frames(&feed, &FleetFeed::frameReported);
+        QSignalSpy statsSeen(&feed, &FleetFeed::statsReported);
         QSignalSpy refused(&feed, &FleetFeed::payloadRefused);
         const QString a = QStringLiteral("GB_133");
         const QString b = QStringLiteral("GB_134");
@@ -413,8 +399,8 @@ private slots:
         const auto stationAt = [](const QString& aircraft, const char* id) {
             return BrokerTopics::stationTopic(aircraft, QString::fromLatin1(id));
         };
-        const auto framesAt = [](const QString& aircraft, const char* id) {
-            return BrokerTopics::framesTopic(aircraft, QString::fromLatin1(id));
+        const auto statsAt = [](const QString& aircraft, const char* id) {
+            return BrokerTopics::statsTopic(aircraft, QString::fromLatin1(id));
         };
 
         say(stationAt(a, "GB_1"), station(QStringLiteral("GB_1"), true, LinkState::Waiting, kT0, 0).toJson());
@@ -438,33 +424,37 @@ private slots:
         expected.lastFrameUtcMicros = kT0 + 900'000;
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
 
-        // Frames both ways: counted; a good one down is the last frame, one
-        // beyond correction is not.
-        say(framesAt(a, "GB_2"),
-            frame(QStringLiteral("GB_2"), FrameDirection::Sent, FrameStatus::NotChecked, kT0 + 2 * kSecond).toJson());
-        say(framesAt(a, "GB_2"), frame(QStringLiteral("GB_2"), FrameDirection::Received, FrameStatus::Corrected,
-                                       kT0 + 2 * kSecond + 300'000)
-                                     .toJson());
-        say(framesAt(a, "GB_1"), frame(QStringLiteral("GB_1"), FrameDirection::Received, FrameStatus::Uncorrectable,
-                                       kT0 + 2 * kSecond + 400'000)
-                                     .toJson());
-        QCOMPARE(frames.count(), 3);
-        QCOMPARE(frames[1][0].toString(), a);
-        QCOMPARE(frames[1][1].value<FrameReport>(), frame(QStringLiteral("GB_2"), FrameDirection::Received,
-                                                          FrameStatus::Corrected, kT0 + 2 * kSecond + 300'000));
+        // Both stations' statistics: their frames add up, and the newest
+        // last good frame of either is the aircraft's.
+        StatsReport two;
+        two.framesSent = 1;
+        two.framesReceived = 1;
+        two.lastGoodFrameUtcMicros = kT0 + 2 * kSecond + 300'000;
+        two.state = LinkState::Connected;
+        say(statsAt(a, "GB_2"), two.toJson());
+        StatsReport one;
+        one.framesReceived = 1;
+        one.lastGoodFrameUtcMicros = kT0 + 500'000;
+        one.state = LinkState::Waiting;
+        say(statsAt(a, "GB_1"), one.toJson());
+        QCOMPARE(statsSeen.count(), 2);
+        QCOMPARE(statsSeen[0][0].toString(), a);
+        QCOMPARE(statsSeen[0][1].value<StatsReport>(), two);
         expected.framesUp = 1;
         expected.framesDown = 2;
         expected.lastFrameUtcMicros = kT0 + 2 * kSecond + 300'000;
-        QCOMPARE(updated.count(), 5);
+        QCOMPARE(updated.count(), 4);
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
 
-        // The statistics' last good frame, when newer.
+        // GB_2's newer statistics replace its older ones.
         StatsReport stats;
         stats.framesSent = 10;
         stats.framesReceived = 9;
         stats.lastGoodFrameUtcMicros = kT0 + 3 * kSecond;
         stats.state = LinkState::Connected;
-        say(BrokerTopics::statsTopic(a, QStringLiteral("GB_2")), stats.toJson());
+        say(statsAt(a, "GB_2"), stats.toJson());
+        expected.framesUp = 10;
+        expected.framesDown = 10;
         expected.lastFrameUtcMicros = kT0 + 3 * kSecond;
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
 
@@ -492,9 +482,10 @@ private slots:
         feed.handleMessage(stationAt(a, "GB_2"), QByteArray());
         QCOMPARE(updated.count(), before);
 
-        // Another aircraft, frames only.
-        say(framesAt(b, "GB_9"),
-            frame(QStringLiteral("GB_9"), FrameDirection::Sent, FrameStatus::NotChecked, kT0).toJson());
+        // Another aircraft, statistics only.
+        StatsReport nine;
+        nine.framesSent = 1;
+        say(statsAt(b, "GB_9"), nine.toJson());
         AircraftSummary other;
         other.aircraft = b;
         other.framesUp = 1;
@@ -505,35 +496,36 @@ private slots:
         QCOMPARE(feed.summary(QStringLiteral("GB_999")), std::nullopt);
 
         // Refused: not JSON, a report published bare, a wrong field, a
-        // topic outside the schema; what is not subscribed to (state,
-        // events) is ignored without a word.
+        // topic outside the schema; what is not subscribed to (frames,
+        // state, events) is ignored without a word.
         QCOMPARE(refused.count(), 0);
         const int updates = int(updated.count());
-        const QString framesA = framesAt(a, "GB_1");
-        feed.handleMessage(framesA, QByteArray("{not json"));
-        const QByteArray bare = frame(QStringLiteral("GB_1"), FrameDirection::Sent, FrameStatus::NotChecked, kT0).toJson();
-        feed.handleMessage(framesA, bare);
+        const QString statsA = statsAt(a, "GB_1");
+        feed.handleMessage(statsA, QByteArray("{not json"));
+        const QByteArray bare = one.toJson();
+        feed.handleMessage(statsA, bare);
         QByteArray sideways = bare;
-        sideways.replace("\"up\"", "\"sideways\"");
-        say(framesA, sideways);
-        feed.handleMessage(QStringLiteral("other/GB_133/frames/GB_1"), QByteArray("{}"));
+        sideways.replace("\"waiting\"", "\"sideways\"");
+        say(statsA, sideways);
+        feed.handleMessage(QStringLiteral("other/GB_133/stats/GB_1"), QByteArray("{}"));
         say(BrokerTopics::stateTopic(a, QStringLiteral("GB_1")), QByteArray("{}"));
+        say(BrokerTopics::framesTopic(a, QStringLiteral("GB_1")), QByteArray("{}"));
         QCOMPARE(refused.count(), 4);
         QCOMPARE(feed.refusedPayloads(), 4u);
         QVERIFY2(refused[0][1].toString().startsWith(
-                     QStringLiteral("malformed: rcm/GB_133/frames/GB_1: envelope: not JSON")),
+                     QStringLiteral("malformed: rcm/GB_133/stats/GB_1: envelope: not JSON")),
                  qPrintable(refused[0][1].toString()));
         QCOMPARE(refused[1][1].toString(),
-                 QStringLiteral("malformed: rcm/GB_133/frames/GB_1: envelope: v is missing: not an envelope (a "
+                 QStringLiteral("malformed: rcm/GB_133/stats/GB_1: envelope: v is missing: not an envelope (a "
                                 "report published bare is refused)"));
         QCOMPARE(refused[2][1].toString(),
-                 QStringLiteral("unreadable: GB_1's frame: frames: direction must be \"up\" or \"down\", not "
-                                "\"sideways\""));
-        QCOMPARE(refused[3][0].toString(), QStringLiteral("other/GB_133/frames/GB_1"));
+                 QStringLiteral("unreadable: GB_1's statistics: stats: state must be \"closed\", \"waiting\", "
+                                "\"connected\" or \"lost\", not \"sideways\""));
+        QCOMPARE(refused[3][0].toString(), QStringLiteral("other/GB_133/stats/GB_1"));
         QCOMPARE(refused[3][1].toString(),
-                 QStringLiteral("malformed: other/GB_133/frames/GB_1 is not a topic of the rcm schema"));
+                 QStringLiteral("malformed: other/GB_133/stats/GB_1 is not a topic of the rcm schema"));
         QCOMPARE(updated.count(), updates);
-        QCOMPARE(frames.count(), 4);
+        QCOMPARE(statsSeen.count(), 4);
     }
 
     // What nobody trusted vouches for: forged, replayed, unsigned in a
@@ -807,8 +799,6 @@ private slots:
         const auto publish = [](MqttClient& client, const QString& topic, const QByteArray& body, bool retain) {
             return client.publish(topic, signedOn(topic, body), 1, retain);
         };
-        const QString framesA = BrokerTopics::framesTopic(a, QStringLiteral("GB_1"));
-        const QString framesB = BrokerTopics::framesTopic(b, QStringLiteral("GB_7"));
         // Retained before the fleet subscribes: it sees them at once.
         QVERIFY(publish(first, BrokerTopics::stationTopic(a, QStringLiteral("GB_1")),
                         station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0 - kSecond,
@@ -833,37 +823,30 @@ private slots:
         fleet.start();
         QTRY_COMPARE(fleetUp.count(), 1);
         // The two station reports and the statistics, retained: the last
-        // subscription (statistics) is through, and so the frames' before it.
+        // subscription (statistics) is through.
         QTRY_COMPARE(updated.count(), 3);
         QTRY_COMPARE(model.rowCount(), 2);
 
-        // Frames are not retained: published once the fleet is subscribed.
-        for (int i = 0; i < 3; ++i) {
-            QVERIFY(publish(
-                first, framesA,
-                frame(QStringLiteral("GB_1"), FrameDirection::Sent, FrameStatus::NotChecked, kT0 + i * kSecond).toJson(),
-                false));
-            QVERIFY(publish(first, framesA,
-                            frame(QStringLiteral("GB_1"), FrameDirection::Received, FrameStatus::Decoded,
-                                  kT0 + i * kSecond + 400'000)
-                                .toJson(),
-                            false));
+        // GB_1's link counts its frames, once a second.
+        const QString statsA = BrokerTopics::statsTopic(a, QStringLiteral("GB_1"));
+        for (int i = 1; i <= 3; ++i) {
+            StatsReport counted;
+            counted.framesSent = quint64(i);
+            counted.framesReceived = quint64(i);
+            counted.lastGoodFrameUtcMicros = kT0 + (i - 1) * kSecond + 400'000;
+            counted.state = LinkState::Connected;
+            QVERIFY(publish(first, statsA, counted.toJson(), true));
         }
-        QVERIFY(publish(second, framesB,
-                        frame(QStringLiteral("GB_7"), FrameDirection::Sent, FrameStatus::NotChecked, kT0).toJson(),
-                        false));
-        // A forger publishes a frame in GB_1's name, unsigned: refused.
-        QVERIFY(first.publish(framesA,
-                              EnvelopeWriter(QStringLiteral("GB_1"))
-                                  .wrap(framesA, frame(QStringLiteral("GB_1"), FrameDirection::Sent,
-                                                       FrameStatus::NotChecked, kT0 + 9 * kSecond)
-                                                     .toJson()),
-                              1, false));
+        // A forger publishes statistics in GB_1's name, unsigned: refused.
+        StatsReport forged;
+        forged.framesSent = 999;
+        QVERIFY(first.publish(statsA, EnvelopeWriter(QStringLiteral("GB_1")).wrap(statsA, forged.toJson()), 1, false));
         const auto rowOf = [&](const QString& aircraft) { return rowTexts(model, model.rowOf(aircraft)); };
         QTRY_COMPARE(rowOf(a),
                      (QStringList{"GB_133", "Connected", "GB_1", "GB_2", "1 of 1 online", "0 s", "3 up, 3 down"}));
         QTRY_COMPARE(rowOf(b),
                      (QStringList{"GB_134", "Waiting", "\u2014", "\u2014", "1 of 1 online", "7 s", "1 up, 0 down"}));
+        QTRY_COMPARE(refused.count(), 1);
         AircraftSummary expectedA;
         expectedA.aircraft = a;
         expectedA.inControl = QStringLiteral("GB_1");
@@ -878,10 +861,9 @@ private slots:
         QCOMPARE(model.rowState(model.rowOf(a)), FleetModel::RowState::Live);
         QCOMPARE(model.rowState(model.rowOf(b)), FleetModel::RowState::Stale);
 
-        QTRY_COMPARE(refused.count(), 1);
         QCOMPARE(refused[0][1].toString(),
                  QStringLiteral("unsigned: a message in the name of GB_1, whose key is trusted, on "
-                                "rcm/GB_133/frames/GB_1"));
+                                "rcm/GB_133/stats/GB_1"));
 
         // The second console says it is gone: its aircraft's row is offline.
         QVERIFY(publish(second, BrokerTopics::stationTopic(b, QStringLiteral("GB_7")),

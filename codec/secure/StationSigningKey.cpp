@@ -79,20 +79,46 @@ bool StationSigningKey::writeFile(const std::string& path, std::string& error) c
     return writeKeyFile(path, m_seed, error);
 }
 
-bool verifyStationSignature(const StationPublicKey& key, std::span<const std::uint8_t> message,
-                            std::span<const std::uint8_t> signature)
+namespace {
+
+bool verifyWith(EVP_PKEY* pkey, std::span<const std::uint8_t> message, std::span<const std::uint8_t> signature)
 {
-    if (signature.size() != kStationSignatureSize)
-        return false;
-    EVP_PKEY* pkey = EVP_PKEY_new_raw_public_key(EVP_PKEY_ED25519, nullptr, key.data(), key.size());
-    if (!pkey)
+    if (!pkey || signature.size() != kStationSignatureSize)
         return false;
     EVP_MD_CTX* ctx = EVP_MD_CTX_new();
     const bool ok = ctx && EVP_DigestVerifyInit(ctx, nullptr, nullptr, nullptr, pkey) == 1 &&
                     EVP_DigestVerify(ctx, signature.data(), signature.size(), message.data(), message.size()) == 1;
     EVP_MD_CTX_free(ctx);
-    EVP_PKEY_free(pkey);
     return ok;
+}
+
+}  // namespace
+
+bool verifyStationSignature(const StationPublicKey& key, std::span<const std::uint8_t> message,
+                            std::span<const std::uint8_t> signature)
+{
+    const std::unique_ptr<EVP_PKEY, void (*)(EVP_PKEY*)> pkey(
+        EVP_PKEY_new_raw_public_key(EVP_PKEY_ED25519, nullptr, key.data(), key.size()), &EVP_PKEY_free);
+    return verifyWith(pkey.get(), message, signature);
+}
+
+struct StationVerifier::Pkey {
+    EVP_PKEY* pkey = nullptr;
+    ~Pkey() { EVP_PKEY_free(pkey); }
+};
+
+StationVerifier::StationVerifier(const StationPublicKey& key) : m_key(std::make_unique<Pkey>()), m_public(key)
+{
+    m_key->pkey = EVP_PKEY_new_raw_public_key(EVP_PKEY_ED25519, nullptr, key.data(), key.size());
+    if (!m_key->pkey)
+        throw std::runtime_error("OpenSSL refused an Ed25519 public key");
+}
+
+StationVerifier::~StationVerifier() = default;
+
+bool StationVerifier::verify(std::span<const std::uint8_t> message, std::span<const std::uint8_t> signature) const
+{
+    return verifyWith(m_key->pkey, message, signature);
 }
 
 std::string hexOf(std::span<const std::uint8_t> bytes)

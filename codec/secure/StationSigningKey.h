@@ -59,6 +59,25 @@ private:
 bool verifyStationSignature(const StationPublicKey& key, std::span<const std::uint8_t> message,
                             std::span<const std::uint8_t> signature);
 
+// The same for one key, many messages: OpenSSL's key made once. Safe from
+// several threads at once.
+class StationVerifier {
+public:
+    // Throws std::runtime_error if OpenSSL refuses the key.
+    explicit StationVerifier(const StationPublicKey& key);
+    ~StationVerifier();
+    StationVerifier(const StationVerifier&) = delete;
+    StationVerifier& operator=(const StationVerifier&) = delete;
+
+    const StationPublicKey& publicKey() const { return m_public; }
+    bool verify(std::span<const std::uint8_t> message, std::span<const std::uint8_t> signature) const;
+
+private:
+    struct Pkey;
+    std::unique_ptr<Pkey> m_key;
+    StationPublicKey m_public;
+};
+
 // 64 lowercase hex digits, and back (either case; nothing for anything else).
 std::string hexOf(std::span<const std::uint8_t> bytes);
 std::optional<StationPublicKey> parseStationPublicKey(std::string_view hex);

@@ -63,7 +63,7 @@ std::optional<BrokerTrust> BrokerTrust::fromFile(const QString& path, QString* e
 
 void BrokerTrust::trustStation(const QString& station, const rcm::secure::StationPublicKey& key)
 {
-    m_stations.insert(station, key);
+    m_stations.insert(station, std::make_shared<const rcm::secure::StationVerifier>(key));
 }
 
 void BrokerTrust::addLinkKey(const rcm::LogKey& key)
@@ -124,7 +124,7 @@ OpenedMessage BrokerTrust::open(const QString& topic, const QByteArray& payload,
         m.refuse(QStringLiteral("unsigned: a message in the name of %1, whose key is trusted, on %2")
                      .arg(m.station, topic));
         return m;
-    } else if (!rcm::secure::verifyStationSignature(*key, bytesOf(e->signedBytes(topic)), bytesOf(e->signature))) {
+    } else if (!(*key)->verify(bytesOf(e->signedBytes(topic)), bytesOf(e->signature))) {
         m.refuse(QStringLiteral("forged: %1's signature does not verify on %2").arg(m.station, topic));
         return m;
     } else {

@@ -23,6 +23,7 @@
 #include <QString>
 #include <QStringList>
 
+#include <memory>
 #include <optional>
 
 namespace rcm {
@@ -52,6 +53,7 @@ public:
     OpenedMessage open(const QString& topic, const QByteArray& payload, bool retained) const;
 
 private:
-    QHash<QString, rcm::secure::StationPublicKey> m_stations;
+    // Shared between copies: a trust copied to add a link key keeps its keys.
+    QHash<QString, std::shared_ptr<const rcm::secure::StationVerifier>> m_stations;
     QHash<QString, rcm::secure::SecretKey> m_sealKeys;  // by the link key's fingerprint: its broker key
 };

@@ -53,7 +53,7 @@ FleetFeed::FleetFeed(MqttClient* client, QObject* parent)
     // The client keeps its subscriptions and sends them again on every
     // reconnection: asking once is enough.
     const QStringList wanted = patterns();
-    const int qos[] = {BrokerTopics::kStationQos, BrokerTopics::kFramesQos, BrokerTopics::kStatsQos};
+    const int qos[] = {BrokerTopics::kStationQos, BrokerTopics::kStatsQos};
     for (qsizetype i = 0; i < wanted.size(); ++i)
         m_client->subscribe(wanted[i], qos[i]);
 }
@@ -74,8 +74,7 @@ void FleetFeed::setClock(Clock clock)
 
 QStringList FleetFeed::patterns()
 {
-    return {BrokerTopics::allStationsPattern(), BrokerTopics::allPattern(BrokerTopics::Kind::Frames),
-            BrokerTopics::allPattern(BrokerTopics::Kind::Stats)};
+    return {BrokerTopics::allStationsPattern(), BrokerTopics::allPattern(BrokerTopics::Kind::Stats)};
 }
 
 std::optional<AircraftSummary> FleetFeed::summary(const QString& aircraft) const
@@ -187,26 +186,6 @@ void FleetFeed::handleOpened(const OpenedMessage& m)
             aircraft.heardMicros = m_clock();
             break;
         }
-        case BrokerTopics::Kind::Frames: {
-            if (!m.verified() || !m.opened)
-                return;
-            std::optional<FrameReport> frame = FrameReport::fromJson(m.body, &error);
-            if (!frame) {
-                refuse(m.topic, QStringLiteral("unreadable: %1's frame: %2").arg(m.station, error));
-                return;
-            }
-            Aircraft& aircraft = m_aircraft[name];
-            aircraft.heardMicros = m_clock();
-            if (frame->direction == FrameDirection::Sent) {
-                ++aircraft.framesUp;
-            } else {
-                ++aircraft.framesDown;
-                if (isGood(frame->status))
-                    aircraft.lastDownUtcMicros = std::max(aircraft.lastDownUtcMicros, frame->utcMicros);
-            }
-            emit frameReported(name, *frame);
-            break;
-        }
         case BrokerTopics::Kind::Stats: {
             if (!m.verified() || !m.opened)
                 return;
@@ -216,10 +195,12 @@ void FleetFeed::handleOpened(const OpenedMessage& m)
                 return;
             }
             Aircraft& aircraft = m_aircraft[name];
-            aircraft.stats[m.station] = std::move(*stats);
+            aircraft.stats[m.station] = *stats;
             aircraft.heardMicros = m_clock();
+            emit statsReported(name, *stats, m.seq);
             break;
         }
+        case BrokerTopics::Kind::Frames:
         case BrokerTopics::Kind::State:
         case BrokerTopics::Kind::Events:
             // Not subscribed to: what one aircraft's observer reads, not the fleet.
@@ -273,12 +254,12 @@ AircraftSummary FleetFeed::summarise(const QString& name, const Aircraft& aircra
 {
     AircraftSummary s;
     s.aircraft = name;
-    s.framesUp = aircraft.framesUp;
-    s.framesDown = aircraft.framesDown;
-    s.lastFrameUtcMicros = aircraft.lastDownUtcMicros;
     s.brokerReachable = m_brokerReachable;
-    for (const auto& [station, stats] : aircraft.stats)
+    for (const auto& [station, stats] : aircraft.stats) {
         s.lastFrameUtcMicros = std::max(s.lastFrameUtcMicros, stats.lastGoodFrameUtcMicros);
+        s.framesUp += stats.framesSent;
+        s.framesDown += stats.framesReceived;
+    }
     const bool local = m_local && name == m_localAircraft;
     s.local = local;
     // Who is in control is what the aircraft said last: the newest verified

@@ -1,14 +1,19 @@
 #pragma once
 
 // Every aircraft a broker hears of, one summary each, for the fleet view.
-// Subscribes its MqttClient to every aircraft's station reports, frames and
-// statistics (BrokerTopics: rcm/+/station/+, rcm/+/frames/+, rcm/+/stats/+;
-// the client renews them on every reconnection), judges each message by its
-// trust (BrokerTrust: signature, seal, size; then its number, SequenceCheck)
-// and says after each one what the aircraft it concerns now looks like.
+// Subscribes its MqttClient to every aircraft's station reports and
+// statistics (BrokerTopics: rcm/+/station/+, rcm/+/stats/+; the client
+// renews them on every reconnection), judges each message by its trust
+// (BrokerTrust: signature, seal, size; then its number, SequenceCheck) and
+// says after each one what the aircraft it concerns now looks like.
 //
-// What it believes: the station in control, the link, the frames and the
-// statistics come from verified stations only. A station whose key is not
+// Not the frames: each is a signature to verify, two a second an aircraft,
+// and the statistics, once a second, say how many went each way and when
+// the last good one came (docs/performance.md, "Fleet through one broker").
+// Frames are for the observer of one aircraft.
+//
+// What it believes: the station in control, the link and the statistics
+// come from verified stations only. A station whose key is not
 // trusted is counted as unverified, and an aircraft only such stations
 // report is unverified: never shown in control. A keyed station's sealed
 // session, without its key, says only that it exists. Refused messages are
@@ -16,9 +21,8 @@
 //
 // A summary holds only what the reports say, never a time of its own: the
 // view computes ages against its clock when it draws them, as it does for a
-// link's statistics. Frames are not retained, so the frame counts are those
-// this feed has seen since it subscribed; the station reports and the
-// statistics are, so a late feed knows every station and its link at once.
+// link's statistics. The station reports and the statistics are retained,
+// so a late feed knows every station and its link at once.
 //
 // Aircraft expire: one not heard of for the time to live (kTimeToLiveMicros,
 // by this feed's clock) is removed, by expireStale(), which a timer calls.
@@ -61,11 +65,13 @@ struct AircraftSummary {
     int unverifiedStations = 0;  // stations heard whose key is not trusted
     int sealedStations = 0;      // verified stations whose keyed session no key of ours opens
     // The newest good frame from the aircraft (delivered: decoded or
-    // corrected) any verified report told of: a frame down, a station
-    // report's last frame, the statistics' last good frame. 0: none yet.
+    // corrected) any verified report told of: a station report's last
+    // frame, the statistics' last good frame. 0: none yet.
     qint64 lastFrameUtcMicros = 0;
-    quint64 framesUp = 0;    // FrameReports seen going to the aircraft, from any verified station
-    quint64 framesDown = 0;  // and coming from it, as each station received them
+    // Frames sent to the aircraft and received from it, by all its verified
+    // stations' links together, as their latest statistics say.
+    quint64 framesUp = 0;
+    quint64 framesDown = 0;
     bool local = false;      // this console flies it (setLocalStation)
     // False while the broker is unreachable: what other stations said is
     // then as of the outage's start.
@@ -134,8 +140,9 @@ signals:
     void aircraftUpdated(const AircraftSummary& summary);
     // An aircraft expired: nothing heard of it for the time to live.
     void aircraftRemoved(const QString& aircraft);
-    // Each verified frame reported, before the aircraftUpdated() that counts it.
-    void frameReported(const QString& aircraft, const FrameReport& frame);
+    // Each verified statistics message, before the aircraftUpdated() that
+    // counts it; `publishedUtcMicros` is its envelope's number.
+    void statsReported(const QString& aircraft, const StatsReport& stats, qint64 publishedUtcMicros);
     // A message that could not be read or believed, and why.
     void payloadRefused(const QString& topic, const QString& error);
     // The same, as refused frames are told: "forged: ...".
@@ -150,9 +157,6 @@ private:
     struct Aircraft {
         std::map<QString, Station> stations;  // by station
         std::map<QString, StatsReport> stats;  // by verified station
-        qint64 lastDownUtcMicros = 0;          // newest good frame down
-        quint64 framesUp = 0;
-        quint64 framesDown = 0;
         qint64 heardMicros = 0;  // by our clock: the last message about it
     };
 

@@ -2,7 +2,7 @@
 // aircraft, each publishing as a console does at the link's real cadence,
 // through one real mosquitto on loopback to one FleetFeed, FleetModel and
 // FleetView (offscreen), measuring what each side costs and how late a
-// frame reaches its row.
+// report reaches its row, and accounting for every report published.
 //
 //   bench_fleet N [SECONDS] [WARMUP] [--no-view]
 //       N aircraft (10, 100, 1000), measured for SECONDS (default 30) after
@@ -15,28 +15,31 @@
 // broker (started here on a free port, with tests/MosquittoProcess.h), the
 // publishers (this program again, with --publish: one MqttClient per
 // aircraft, as each aircraft's console has its own connection, at most 250
-// to a process, see runFleet) and the fleet side (this process: one
+// to a process, see runFleet), the fleet side (this process: one
 // MqttClient, FleetFeed, FleetModel and a FleetView shown on the offscreen
-// platform).
+// platform) and a frame counter (this program again, with --count-frames:
+// every frame, as the observers of all the aircraft together would get
+// them).
 //
 // Each aircraft, every second, at its own offset in the second (the fleet
 // spread evenly over it): a frame up (a FrameReport of a 600-byte frame,
 // base64), a frame down half a second later (with its decoded text, as a
 // console publishes what it received), its station report and its link
 // statistics (both retained), all QoS 1 as the console publishes them, each
-// in its station's envelope, signed with its Ed25519 key (the fleet side
-// trusts every station's key and verifies every message). A frame's
-// utcMicros is stamped when it is handed to the client, as a console stamps
-// it when it goes on the link; its delay is taken when the model tells its
-// views of the row that counts it (the dataChanged() or rowsInserted() of
-// the model's once-a-pass flush).
+// in its station's envelope, signed with its Ed25519 key. The fleet side
+// trusts every station's key and verifies every message it reads: the
+// station reports and the statistics (FleetFeed reads no frames). A report's
+// delay runs from its envelope's number (the publisher's UTC microseconds
+// when it signed it) to the model telling its views of the row (the
+// dataChanged() or rowsInserted() of the model's flush).
 //
 // Every report is accounted for: each publisher counts what it handed to
 // its client and what the broker acknowledged (PUBACK), by kind, stops on
-// time and waits for the last acknowledgements; the fleet side counts what
-// it received, by kind, and checks each aircraft's frames by their numbers
-// (FrameReport::seq): none missing, none twice. Both sides' counts cover the
-// whole run, not only the window measured.
+// time and waits for the last acknowledgements; the fleet side counts the
+// station reports and statistics it received and verified, the frame
+// counter the frames, each aircraft's by their numbers (FrameReport::seq):
+// none missing, none twice. The counts cover the whole run, not only the
+// window measured.
 #include "codec/message/Airframe.h"
 #include "codec/message/TextFormat.h"
 #include "codec/secure/StationSigningKey.h"
@@ -57,6 +60,7 @@
 #include <QHash>
 #include <QProcess>
 #include <QRandomGenerator>
+#include <QSocketNotifier>
 #include <QTimer>
 
 #include <unistd.h>
@@ -276,9 +280,15 @@ int publish(int first, int count, int total, quint16 port, int seconds)
         }
     }
     if (first == 0)
-        say(QStringLiteral("a frame's JSON is %1 bytes up, %2 bytes down")
-                .arg(frameReport(consoles[0], true, utcMicros(), downText).toJson().size())
-                .arg(frameReport(consoles[0], false, utcMicros(), downText).toJson().size()));
+        say(QStringLiteral("a frame's envelope is %1 bytes up, %2 bytes down")
+                .arg(consoles[0]
+                         .envelopes->wrap(consoles[0].framesTopic,
+                                          frameReport(consoles[0], true, utcMicros(), downText).toJson())
+                         .size())
+                .arg(consoles[0]
+                         .envelopes->wrap(consoles[0].framesTopic,
+                                          frameReport(consoles[0], false, utcMicros(), downText).toJson())
+                         .size()));
     std::printf("ready\n");
     std::fflush(stdout);
 
@@ -418,6 +428,66 @@ int publish(int first, int count, int total, quint16 port, int seconds)
     return 0;
 }
 
+// ---------------------------------------------------------------- frame counter
+
+// Every frame the broker delivers to a subscriber of rcm/+/frames/+, as an
+// observer of each aircraft would get it: counted by direction, and each
+// aircraft's frame numbers kept, so that a number never seen is a frame lost
+// on the way and one seen twice came twice. Prints "ready" once subscribed;
+// on "report" from the fleet side, waits until nothing came for 2 s, prints
+// "frames UP DOWN TWICE SKIPPED" and exits. The envelopes are read, not
+// verified: this is the bench's ledger, not a console (the fleet side
+// verifies what it shows).
+int countFrames(quint16 port)
+{
+    MqttClient client(brokerAt(port, QStringLiteral("bench-frame-counter")));
+    QHash<QString, std::set<quint64>> numbers;
+    quint64 up = 0, down = 0, twice = 0;
+    qint64 last = utcMicros();
+    QObject::connect(&client, &MqttClient::messageReceived, [&](const QString& topic, const QByteArray& payload) {
+        last = utcMicros();
+        const std::optional<BrokerEnvelope> e = BrokerEnvelope::fromJson(payload, nullptr);
+        const std::optional<FrameReport> f = e ? FrameReport::fromJson(e->body, nullptr) : std::nullopt;
+        if (!f)
+            return;
+        ++(f->direction == FrameDirection::Sent ? up : down);
+        if (!numbers[topic].insert(f->seq).second)
+            ++twice;
+    });
+    QObject::connect(&client, &MqttClient::subscribed, [] {
+        std::printf("ready\n");
+        std::fflush(stdout);
+    });
+    client.subscribe(BrokerTopics::allPattern(BrokerTopics::Kind::Frames), BrokerTopics::kFramesQos);
+    client.start();
+    QSocketNotifier input(STDIN_FILENO, QSocketNotifier::Read);
+    bool reporting = false;
+    QObject::connect(&input, &QSocketNotifier::activated, [&] {
+        char line[64];
+        if (!std::fgets(line, sizeof line, stdin) || qstrncmp(line, "report", 6) == 0)
+            reporting = true;
+    });
+    QTimer tick;
+    tick.setInterval(100);
+    QObject::connect(&tick, &QTimer::timeout, [&] {
+        if (!reporting || utcMicros() - last < 2 * kSecond)
+            return;
+        quint64 skipped = 0;
+        for (const std::set<quint64>& seen : std::as_const(numbers))
+            if (!seen.empty())
+                skipped += *seen.rbegin() - *seen.begin() + 1 - quint64(seen.size());
+        std::printf("frames %llu %llu %llu %llu\n", static_cast<unsigned long long>(up),
+                    static_cast<unsigned long long>(down), static_cast<unsigned long long>(twice),
+                    static_cast<unsigned long long>(skipped));
+        std::fflush(stdout);
+        QCoreApplication::quit();
+    });
+    tick.start();
+    QCoreApplication::exec();
+    client.stop();
+    return 0;
+}
+
 // ---------------------------------------------------------------- fleet side
 
 struct Snapshot {
@@ -426,7 +496,8 @@ struct Snapshot {
     double publishersCpu = 0;
     double fleetCpu = 0;
     double fleetGuiCpu = 0;
-    quint64 framesReported = 0;
+    double counterCpu = 0;
+    quint64 statsReported = 0;
     quint64 published = 0;
 };
 
@@ -445,7 +516,12 @@ struct PublisherLine {
 
 int runFleet(int n, int seconds, int warmup, bool shown)
 {
-    rcm::test::MosquittoProcess broker;
+    // A client that falls behind has 20,000 messages queued for it before the
+    // broker drops any (mosquitto's default: 1,000); the broker says how many
+    // it dropped in $SYS, once a second.
+    rcm::test::MosquittoProcess::Options brokerOptions;
+    brokerOptions.more = {QStringLiteral("max_queued_messages 20000"), QStringLiteral("sys_interval 1")};
+    rcm::test::MosquittoProcess broker(brokerOptions);
     if (!broker.start()) {
         say(QStringLiteral("cannot start /usr/sbin/mosquitto: ") + broker.setupError());
         return 1;
@@ -496,27 +572,19 @@ int runFleet(int n, int seconds, int warmup, bool shown)
     if (shown)
         view.show();
 
-    // Frames reported since the model's last flush, by their utcMicros; the
-    // flush is the model's dataChanged() without roles, or rowsInserted()
-    // (refreshAges() names its roles).
+    // Statistics reported since the model's last flush, by when they were
+    // published (their envelope's number, the publisher's UTC microseconds);
+    // the flush is the model's dataChanged() without roles, or
+    // rowsInserted() (refreshAges() names its roles).
     bool measuring = false;
-    quint64 framesReported = 0;
+    quint64 statsReported = 0;
     std::vector<qint64> waiting;
     std::vector<std::int64_t> delays;
-    delays.reserve(std::size_t(n) * 2 * std::size_t(seconds) + 1024);
-    // Frames lost on the way: each aircraft's frames are numbered 1, 2, 3 ...
-    // (both ways together), so a number never seen is a frame that never
-    // arrived, and one seen twice came twice.
-    QHash<QString, std::set<quint64>> sequences;
-    std::array<quint64, kKinds> framesReceived{};
-    quint64 framesTwice = 0;
-    QObject::connect(&feed, &FleetFeed::frameReported, [&](const QString& aircraft, const FrameReport& frame) {
-        ++framesReported;
-        ++framesReceived[frame.direction == FrameDirection::Sent ? kFramesUp : kFramesDown];
-        if (!sequences[aircraft].insert(frame.seq).second)
-            ++framesTwice;
+    delays.reserve(std::size_t(n) * std::size_t(seconds) + 1024);
+    QObject::connect(&feed, &FleetFeed::statsReported, [&](const QString&, const StatsReport&, qint64 published) {
+        ++statsReported;
         if (measuring)
-            waiting.push_back(frame.utcMicros);
+            waiting.push_back(published);
     });
     const auto told = [&] {
         if (waiting.empty())
@@ -533,6 +601,38 @@ int runFleet(int n, int seconds, int warmup, bool shown)
                              told();
                      });
     fleetClient.start();
+    MqttClient sysClient(brokerAt(broker.port(), QStringLiteral("bench-sys")));
+    quint64 brokerDropped = 0;
+    QObject::connect(&sysClient, &MqttClient::messageReceived,
+                     [&](const QString&, const QByteArray& payload) { brokerDropped = payload.toULongLong(); });
+    sysClient.subscribe(QStringLiteral("$SYS/broker/publish/messages/dropped"), 0);
+    sysClient.start();
+
+    // The frames' ledger, a process of its own, subscribed before anyone publishes.
+    QProcess counter;
+    counter.setProgram(QCoreApplication::applicationFilePath());
+    counter.setArguments({QStringLiteral("--count-frames"), QString::number(broker.port())});
+    counter.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+    bool counterReady = false;
+    QList<QByteArray> counted;
+    QObject::connect(&counter, &QProcess::readyReadStandardOutput, [&] {
+        while (counter.canReadLine()) {
+            const QByteArray line = counter.readLine().trimmed();
+            if (line == "ready")
+                counterReady = true;
+            else if (line.startsWith("frames "))
+                counted = line.split(' ');
+        }
+    });
+    counter.start();
+    waited.restart();
+    while (!counterReady) {
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+        if (counter.state() == QProcess::NotRunning || waited.elapsed() > 30'000) {
+            say(QStringLiteral("the frame counter did not get ready"));
+            return 1;
+        }
+    }
 
     // The publishers, in processes of at most kClientsPerProcess clients:
     // libmosquitto's network loop waits with select(), which cannot watch a
@@ -629,12 +729,13 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         s.publishersCpu = publishersCpu();
         s.fleetCpu = processCpu(fleetPid);
         s.fleetGuiCpu = cpuSeconds(QStringLiteral("/proc/%1/task/%1/stat").arg(fleetPid));
-        s.framesReported = framesReported;
+        s.counterCpu = processCpu(counter.processId());
+        s.statsReported = statsReported;
         s.published = publishedSoFar();
         return s;
     };
     Snapshot start, end;
-    double brokerRss = 0, publishersRss = 0, fleetRss = 0;
+    double brokerRss = 0, publishersRss = 0, fleetRss = 0, counterRss = 0;
     QEventLoop loop;
     QTimer::singleShot(warmup * 1000, Qt::PreciseTimer, &loop, [&] {
         start = snapshot();
@@ -648,6 +749,7 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         brokerRss = statusMiB(mosquittoPid, "VmRSS");
         publishersRss = publishersRssNow();
         fleetRss = statusMiB(fleetPid, "VmRSS");
+        counterRss = statusMiB(counter.processId(), "VmRSS");
         loop.quit();
     });
     loop.exec();
@@ -660,9 +762,9 @@ int runFleet(int n, int seconds, int warmup, bool shown)
     }
     const double wall = double(end.steadyMicros - start.steadyMicros) / 1e6;
     const auto percent = [&](double a, double b) { return 100.0 * (b - a) / wall; };
-    // Two frames a second for each aircraft, over the time measured.
-    const quint64 expected = quint64(double(n) * 2.0 * wall + 0.5);
-    const quint64 reported = end.framesReported - start.framesReported;
+    // One statistics message a second for each aircraft, over the time measured.
+    const quint64 expected = quint64(double(n) * wall + 0.5);
+    const quint64 reported = end.statsReported - start.statsReported;
     std::sort(delays.begin(), delays.end());
     const auto at = [&](double q) {
         return delays.empty() ? 0.0 : double(delays[std::size_t(q * double(delays.size() - 1))]) / 1000.0;
@@ -676,7 +778,7 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         static_cast<unsigned long long>(end.published - start.published),
         double(end.published - start.published) / wall, static_cast<unsigned long long>(refusedByClients),
         double(lateMaxMicros) / 1000.0);
-    std::printf("frames reported to the fleet in the window: %llu, %llu due (%.2f %%)\n",
+    std::printf("statistics reported to the fleet in the window: %llu, %llu due (%.2f %%)\n",
                 static_cast<unsigned long long>(reported), static_cast<unsigned long long>(expected),
                 expected ? 100.0 * double(reported) / double(expected) : 0.0);
     std::printf("rows: %d\n\n", model.rowCount());
@@ -686,9 +788,11 @@ int runFleet(int n, int seconds, int warmup, bool shown)
                 percent(start.publishersCpu, end.publishersCpu), publishersRss);
     std::printf("| fleet side (MqttClient, FleetFeed, FleetModel%s) | %.1f | %.1f |\n",
                 shown ? ", FleetView shown" : ", no view shown", percent(start.fleetCpu, end.fleetCpu), fleetRss);
-    std::printf("| of which its GUI thread | %.1f | |\n\n", percent(start.fleetGuiCpu, end.fleetGuiCpu));
-    std::printf("frame to row: n=%zu  median %.1f ms  p99 %.1f ms  max %.1f ms\n", delays.size(), at(0.5), at(0.99),
-                delays.empty() ? 0.0 : double(delays.back()) / 1000.0);
+    std::printf("| of which its GUI thread | %.1f | |\n", percent(start.fleetGuiCpu, end.fleetGuiCpu));
+    std::printf("| frame counter (one MqttClient reading every frame's envelope) | %.1f | %.1f |\n\n",
+                percent(start.counterCpu, end.counterCpu), counterRss);
+    std::printf("statistics to row: n=%zu  median %.1f ms  p99 %.1f ms  max %.1f ms\n", delays.size(), at(0.5),
+                at(0.99), delays.empty() ? 0.0 : double(delays.back()) / 1000.0);
 
     // Every report of the whole run: the publishers stop on time and wait
     // for their last acknowledgements; then the fleet side waits until
@@ -704,6 +808,9 @@ int runFleet(int n, int seconds, int warmup, bool shown)
             break;
         QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
     }
+    counter.write("report\n");
+    while (counted.isEmpty() && counter.state() != QProcess::NotRunning && settling.elapsed() < 180'000)
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
     std::array<quint64, kKinds> handed{};
     std::array<quint64, kKinds> acknowledged{};
     quint64 unacknowledged = 0;
@@ -714,15 +821,18 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         }
         unacknowledged += l.unacknowledged;
     }
-    delivered[kFramesUp] = framesReceived[kFramesUp];
-    delivered[kFramesDown] = framesReceived[kFramesDown];
-    // Numbers never seen within each aircraft's frames: lost on the way.
-    quint64 gaps = 0;
-    for (const std::set<quint64>& seen : std::as_const(sequences))
-        if (!seen.empty())
-            gaps += *seen.rbegin() - quint64(seen.size());
-    std::printf("\nevery report of the run (publishers' counts, fleet side's counts):\n\n");
-    std::printf("| report | handed to the client | acknowledged by the broker | received by the fleet, verified | "
+    quint64 framesTwice = 0, gaps = 0;
+    if (counted.size() == 5) {
+        delivered[kFramesUp] = counted[1].toULongLong();
+        delivered[kFramesDown] = counted[2].toULongLong();
+        framesTwice = counted[3].toULongLong();
+        gaps = counted[4].toULongLong();
+    } else {
+        say(QStringLiteral("the frame counter said nothing"));
+    }
+    std::printf("\nevery report of the run (publishers' counts; the fleet side's for station reports and "
+                "statistics, verified; the frame counter's for frames):\n\n");
+    std::printf("| report | handed to the client | acknowledged by the broker | received | "
                 "missing |\n|---|---:|---:|---:|---:|\n");
     quint64 missingTotal = 0;
     for (int k = 0; k < kKinds; ++k) {
@@ -735,15 +845,19 @@ int runFleet(int n, int seconds, int warmup, bool shown)
                     static_cast<unsigned long long>(d), static_cast<unsigned long long>(missing));
     }
     std::printf("\nnot acknowledged at the end: %llu; refused or unverified at the fleet: %llu; frames seen twice: "
-                "%llu; frame numbers skipped: %llu; reports missing: %llu\n",
+                "%llu; frame numbers skipped: %llu; reports missing: %llu; dropped by the broker (a subscriber's "
+                "queue full): %llu\n",
                 static_cast<unsigned long long>(unacknowledged), static_cast<unsigned long long>(deliveredRefused),
                 static_cast<unsigned long long>(framesTwice), static_cast<unsigned long long>(gaps),
-                static_cast<unsigned long long>(missingTotal));
+                static_cast<unsigned long long>(missingTotal), static_cast<unsigned long long>(brokerDropped));
 
     for (const auto& p : publishers) {
         p->kill();
         p->waitForFinished();
     }
+    counter.kill();
+    counter.waitForFinished();
+    sysClient.stop();
     fleetClient.stop();
     broker.stop();
     return 0;
@@ -753,6 +867,11 @@ int runFleet(int n, int seconds, int warmup, bool shown)
 
 int main(int argc, char** argv)
 {
+    if (argc == 3 && qstrcmp(argv[1], "--count-frames") == 0) {
+        // --count-frames PORT: started by the fleet side.
+        QCoreApplication app(argc, argv);
+        return countFrames(quint16(QByteArray(argv[2]).toInt()));
+    }
     if (argc >= 2 && qstrcmp(argv[1], "--publish") == 0) {
         // --publish FIRST COUNT TOTAL PORT SECONDS: started by the fleet side.
         QCoreApplication app(argc, argv);

@@ -123,7 +123,8 @@ QVariant FleetModel::headerData(int section, Qt::Orientation orientation, int ro
             case LastFrameColumn:
                 return tr("Time since the last good frame from the aircraft any station reported");
             case FramesColumn:
-                return tr("Frames reported going up to the aircraft and coming down from it since this view started");
+                return tr("Frames sent up to the aircraft and received down from it by its stations' links, as their "
+                          "statistics say");
         }
     }
     return {};
