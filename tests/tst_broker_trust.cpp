@@ -25,6 +25,10 @@
 #include "link/session/LinkSettings.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/alerts/ErrorBanner.h"
+#include "codec/frame/Frame.h"
+#include "codec/message/Airframe.h"
+#include "codec/message/ItemTable.h"
+#include "ui/panels/CommandState.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
 
@@ -932,6 +936,83 @@ private slots:
             QVERIFY2(!e.text.contains(QStringLiteral("connected, publishing")), qPrintable(e.text));
         }
         QVERIFY(logged);
+    }
+
+    // A keyed session seen by an observer that holds the aircraft's key: the
+    // frames the station sent, enciphered as they went on the air, are read
+    // with the key, and the panels show what the station commands; without
+    // the key, only that the session exists.
+    void observerWindowReadsKeyedSession()
+    {
+        MosquittoProcess broker;
+        QVERIFY(broker.start());
+        QTRY_VERIFY_WITH_TIMEOUT(broker.accepts(), kTimeoutMs);
+        const rcm::secure::SecretKey psk = rcm::secure::generateKey();
+        const auto linkKey = std::make_shared<const rcm::LogKey>(psk);
+        LinkEvents events;
+        MqttClient client(local(broker.port()));
+        EnvelopeWriter envelopes = signedAs(kPrimary);
+        envelopes.setSealKey(linkKey->brokerKey(), QString::fromStdString(linkKey->fingerprint()));
+        SessionPublisher publisher(&client, std::move(envelopes), &events);
+        publisher.setAircraft(kAircraft);
+        publisher.setRole(QStringLiteral("control"), kPrimary, {});
+        QSignalSpy publishing(&client, &MqttClient::connected);
+        client.start();
+        QTRY_COMPARE_WITH_TIMEOUT(publishing.count(), 1, kTimeoutMs);
+
+        // The gear up, enciphered for the aircraft as the link sends it.
+        rcm::Message command = rcm::restingCommand(rcm::Airframe::wellEquipped());
+        command.header.set(rcm::ItemId::ID_msg, 4242);
+        command.header.set(rcm::ItemId::time_UTC, 120000);
+        command.header.set(rcm::ItemId::date_UTC, 251124);
+        command.settings.set(rcm::ItemId::land_wheels, rcm::withEveryFieldCode(rcm::code::kRetracted));
+        const rcm::secure::SecureCodec up(psk, rcm::secure::Direction::GcsToUa);
+        rcm::Diagnostics errors;
+        const std::optional<rcm::EncodedBlocks> blocks = up.encode(command, errors);
+        QVERIFY2(blocks, errors.empty() ? "" : errors.front().toString().c_str());
+        const rcm::DatagramBytes datagram = rcm::makeDatagram(blocks->block1, blocks->block2);
+        LoggedFrame sent = sentFrame(1);
+        sent.entry.enciphered = true;
+        sent.bytes = QByteArray(reinterpret_cast<const char*>(datagram.data()), qsizetype(datagram.size()));
+
+        QTemporaryDir home;
+        qputenv("XDG_CONFIG_HOME", home.filePath(QStringLiteral("config")).toUtf8());
+        qputenv("XDG_DATA_HOME", home.filePath(QStringLiteral("data")).toUtf8());
+        MainWindow::Options options;
+        options.restoreSettings = false;
+        MainWindow window(options);
+        std::shared_ptr<BrokerTrust> trust = trusting({kPrimary});
+        trust->addLinkKey(linkKey);
+        const BrokerSettings settings = observing(broker.port(), trust);
+        window.joinBroker(settings, false);
+        window.observe(settings);
+        QSignalSpy logged(window.observation(), &LinkEvents::frameLogged);
+        QTRY_VERIFY_WITH_TIMEOUT(window.observation()->stations().contains(kPrimary), kTimeoutMs);
+        const unsigned before = window.command()->message().settings.fieldCode(rcm::ItemId::land_wheels, 0);
+        QVERIFY(before != rcm::code::kRetracted);
+        emit events.frameLogged(sent);
+        QTRY_COMPARE_WITH_TIMEOUT(logged.count(), 1, kTimeoutMs);
+        QCOMPARE(logged.at(0).at(0).value<LoggedFrame>().bytes, sent.bytes);
+        QCOMPARE(window.command()->message().settings.fieldCode(rcm::ItemId::land_wheels, 0), rcm::code::kRetracted);
+        QCOMPARE(window.command()->message().header.number(rcm::ItemId::ID_msg), 4242);
+
+        // Without the key: sealed, and said once.
+        BrokerObservation blind(observing(broker.port(), trusting({kPrimary})));
+        QSignalSpy blindLogged(&blind, &LinkEvents::frameLogged);
+        QSignalSpy blindWarnings(&blind, &BrokerObservation::warning);
+        blind.start();
+        QTRY_VERIFY_WITH_TIMEOUT(blind.sealedStations().contains(kPrimary), kTimeoutMs);
+        QCOMPARE(blind.sealedStations().value(kPrimary), QString::fromStdString(linkKey->fingerprint()));
+        QVERIFY(blind.stations().isEmpty());
+        sent.entry.utcMicros += 1'000'000;
+        emit events.frameLogged(sent);
+        QTRY_COMPARE_WITH_TIMEOUT(logged.count(), 2, kTimeoutMs);
+        QCOMPARE(blindLogged.count(), 0);
+        QCOMPARE(blindWarnings.count(), 1);
+        QCOMPARE(blindWarnings.at(0).at(0).toString(),
+                 QStringLiteral("broker: GB_30226's session with GB_133 is keyed and sealed (key fingerprint %1): "
+                                "give that key (--key) to observe it")
+                     .arg(QString::fromStdString(linkKey->fingerprint())));
     }
 
     // A password sent over plain mqtt:// is warned about; the observer

@@ -71,6 +71,14 @@ void BrokerTrust::addLinkKey(const rcm::LogKey& key)
     m_sealKeys.insert(QString::fromStdString(key.fingerprint()), key.brokerKey());
 }
 
+void BrokerTrust::addLinkKey(std::shared_ptr<const rcm::LogKey> key)
+{
+    if (!key)
+        return;
+    addLinkKey(*key);
+    m_linkKeys.append(std::move(key));
+}
+
 QStringList BrokerTrust::trustedStations() const
 {
     QStringList names = m_stations.keys();

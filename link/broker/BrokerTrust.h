@@ -20,6 +20,7 @@
 #include "link/broker/BrokerEnvelope.h"
 
 #include <QHash>
+#include <QList>
 #include <QString>
 #include <QStringList>
 
@@ -41,6 +42,10 @@ public:
     void trustStation(const QString& station, const rcm::secure::StationPublicKey& key);
     // What a keyed session sealed with this link key opens.
     void addLinkKey(const rcm::LogKey& key);
+    // The same, and the key is kept: a reader deciphers the session's frames
+    // with it (linkKeys()).
+    void addLinkKey(std::shared_ptr<const rcm::LogKey> key);
+    const QList<std::shared_ptr<const rcm::LogKey>>& linkKeys() const { return m_linkKeys; }
 
     bool trusts(const QString& station) const { return m_stations.contains(station); }
     QStringList trustedStations() const;
@@ -56,4 +61,5 @@ private:
     // Shared between copies: a trust copied to add a link key keeps its keys.
     QHash<QString, std::shared_ptr<const rcm::secure::StationVerifier>> m_stations;
     QHash<QString, rcm::secure::SecretKey> m_sealKeys;  // by the link key's fingerprint: its broker key
+    QList<std::shared_ptr<const rcm::LogKey>> m_linkKeys;
 };

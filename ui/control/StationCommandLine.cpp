@@ -130,12 +130,12 @@ bool StationCommandLine::apply(MainWindow& window, QString* error) const
     if (m_parser.isSet(m_observe))
         for (const QString& path : m_parser.values(QStringLiteral("key"))) {
             std::string reason;
-            const std::unique_ptr<rcm::LogKey> key = rcm::LogKey::open(path.toStdString(), reason);
+            std::shared_ptr<const rcm::LogKey> key = rcm::LogKey::open(path.toStdString(), reason);
             if (!key) {
                 *error = QStringLiteral("--key: %1").arg(QString::fromStdString(reason));
                 return false;
             }
-            trust->addLinkKey(*key);
+            trust->addLinkKey(std::move(key));
         }
     settings.trust = trust;
     window.joinBroker(settings, !m_parser.isSet(m_observe));

@@ -802,7 +802,7 @@ void MainWindow::joinBroker(const BrokerSettings& settings, bool publish)
     fleetSettings.clientId.clear();
     m_fleetClient = new MqttClient(fleetSettings, this);
     if (!publish)
-        followBrokerClient(m_fleetClient);
+        followBrokerClient(m_fleetClient, true);
     m_fleetFeed = new FleetFeed(m_fleetClient, this);
     updateBrokerTrust();
     m_fleetModel = new FleetModel(this);
@@ -833,16 +833,26 @@ void MainWindow::joinBroker(const BrokerSettings& settings, bool publish)
     m_fleetClient->start();
 }
 
-void MainWindow::followBrokerClient(const MqttClient* client)
+void MainWindow::followBrokerClient(const MqttClient* client, bool quietWhileObserving)
 {
-    connect(client, &MqttClient::errorOccurred, this,
-            [this](const QString& error) { m_alerts->warning(EventSource::Link, error); });
-    connect(client, &MqttClient::setupFailed, this,
-            [this](const QString& error) { m_alerts->error(EventSource::Link, error); });
-    connect(client, &MqttClient::refusedByBroker, this,
-            [this](const QString& error) { m_alerts->error(EventSource::Link, error); });
-    connect(client, &MqttClient::restored, this,
-            [this](const QString& message) { m_alerts->info(EventSource::Link, message); });
+    // An observation's own client says the same of the same broker.
+    const auto heard = [this, quietWhileObserving] { return !(quietWhileObserving && m_observation); };
+    connect(client, &MqttClient::errorOccurred, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->warning(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::setupFailed, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->error(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::refusedByBroker, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->error(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::restored, this, [this, heard](const QString& message) {
+        if (heard())
+            m_alerts->info(EventSource::Link, message);
+    });
 }
 
 void MainWindow::updateBrokerTrust()
@@ -853,8 +863,8 @@ void MainWindow::updateBrokerTrust()
     // This station believes itself, and reads its own keyed sessions.
     if (m_broadcast && m_broker->signingKey)
         trust->trustStation(m_broadcast->stationName(), m_broker->signingKey->publicKey());
-    if (const std::shared_ptr<const rcm::LogKey> key = m_session->logKey())
-        trust->addLinkKey(*key);
+    if (std::shared_ptr<const rcm::LogKey> key = m_session->logKey())
+        trust->addLinkKey(std::move(key));
     m_brokerTrust = trust;
     if (m_fleetFeed)
         m_fleetFeed->setTrust(m_brokerTrust);
@@ -876,8 +886,12 @@ void MainWindow::observe(const BrokerSettings& settings)
     m_session->stop();
     endObservation();
     m_observation = new BrokerObservation(settings, this);
+    // A keyed session's frames are the enciphered bytes: with the aircraft's
+    // key the log view and the panels read them as the station's own would.
+    const QList<std::shared_ptr<const rcm::LogKey>> keys =
+        settings.trust ? settings.trust->linkKeys() : QList<std::shared_ptr<const rcm::LogKey>>();
     m_logModel->clear();
-    m_logModel->setLogKey(nullptr);
+    m_logModel->setLogKey(keys.isEmpty() ? nullptr : keys.front());
     m_status->setTransportLabel(tr("Broker"), tr("The broker the observation comes through, and for how long"));
     bindLinkEvents(m_observation, true);
     // Refused messages are counted as refused frames are; what is worth
@@ -897,17 +911,29 @@ void MainWindow::observe(const BrokerSettings& settings)
     m_replayNote->show();
     m_replayReadOnly = new ReadOnlyArea(m_panels, this);
     qApp->installEventFilter(m_replayReadOnly);
-    connect(m_observation, &LinkEvents::frameLogged, this, [this](const LoggedFrame& frame) {
+    connect(m_observation, &LinkEvents::frameLogged, this, [this, keys](const LoggedFrame& frame) {
         m_replayMicros = frame.entry.utcMicros;
-        if (frame.entry.direction != FrameDirection::Sent || frame.entry.enciphered)
+        if (frame.entry.direction != FrameDirection::Sent)
             return;
-        rcm::DecodeResult r = rcm::decodeFrame(std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()),
-                                                         std::size_t(frame.bytes.size())));
+        const auto bytes = std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()),
+                                     std::size_t(frame.bytes.size()));
+        if (frame.entry.enciphered) {
+            // Read only when a key of ours authenticates it.
+            for (const std::shared_ptr<const rcm::LogKey>& key : keys)
+                if (const rcm::LoggedFrameReading reading = rcm::readLoggedFrame(bytes, true, key.get());
+                    reading.read()) {
+                    m_command->replaceMessage(reading.decoded.message);
+                    return;
+                }
+            return;
+        }
+        rcm::DecodeResult r = rcm::decodeFrame(bytes);
         if (r.ok() && r.diagnostics.empty())
             m_command->replaceMessage(r.message);
     });
     const QString description = tr("Observing %1 on %2").arg(m_observation->aircraft(), settings.url());
     m_status->setLinkDescription(description);
+    m_status->setKeyFingerprint(keys.isEmpty() ? QString() : QString::fromStdString(keys.front()->fingerprint()));
     m_status->setStatistics(LinkStatistics());
     m_flightPlan->setLinkReady(false);
     m_linkNote->setText(tr("%1: read only, nothing is sent to the aircraft").arg(description));
@@ -938,6 +964,7 @@ void MainWindow::endObservation()
     m_replayNote->setText(replayNoteText());
     endReplay();
     m_status->setLinkDescription(QString());
+    m_status->setKeyFingerprint(QString());
     m_status->setStatistics(LinkStatistics());
     m_alerts->setStatistics(LinkStatistics());  // closed: no alarm
     m_alerts->info(EventSource::Link, tr("Stopped observing"));

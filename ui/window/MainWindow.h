@@ -162,8 +162,9 @@ private:
     void bindLinkEvents(const LinkEvents* events, bool logRows);
     void endObservation();
     // The broker's own trouble: what waiting mends to the event log, what it
-    // does not to the banner too, its return to the event log.
-    void followBrokerClient(const MqttClient* client);
+    // does not to the banner too, its return to the event log. Quiet while
+    // an observation runs, whose own client says it.
+    void followBrokerClient(const MqttClient* client, bool quietWhileObserving = false);
     // Whom the fleet and the observations believe: the command line's trust,
     // this station's own key, the running link's key.
     void updateBrokerTrust();
