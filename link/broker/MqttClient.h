@@ -76,7 +76,9 @@ public:
     // (MQTT 5 message expiry), retained or queued for a client away.
     bool publish(const QString& topic, const QByteArray& payload, int qos, bool retain, int* messageId = nullptr,
                  int expirySeconds = 0);
-    // Kept, and sent again after every reconnection (sessions are clean).
+    // Kept, and sent again after every reconnection (a clean session keeps
+    // none; a persistent one would not need them, and a retained message
+    // sent again is a duplicate its reader drops).
     void subscribe(const QString& pattern, int qos);
 
     bool isConnected() const { return m_connected; }
