@@ -61,12 +61,13 @@ int main(int argc, char* argv[])
                                         QStringLiteral("Lay the window out with the default settings, save a "
                                                        "picture of it and exit (works offscreen)."),
                                         QStringLiteral("file.png"));
-    const QCommandLineOption key(QStringLiteral("key"),
-                                 QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex "
-                                                "digits, mode 0600. With --rehearsal, uasim uses it too; with --replay, "
-                                                "it reads a keyed session's log; with --observe (once per station), "
-                                                "it opens the sealed sessions on the broker. Kept in the link settings."),
-                                 QStringLiteral("file"));
+    const QCommandLineOption key(
+        QStringLiteral("key"),
+        QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex "
+                       "digits, mode 0600. With --rehearsal, uasim uses it too; with --replay, "
+                       "it reads a keyed session's log; with --observe (once per station), "
+                       "it opens the sealed sessions on the broker. Kept in the link settings."),
+        QStringLiteral("file"));
     const QCommandLineOption size(QStringLiteral("size"), QStringLiteral("Window size for --screenshot."),
                                   QStringLiteral("WxH"), QStringLiteral("1600x1000"));
     const QCommandLineOption after(QStringLiteral("screenshot-after"),

@@ -179,9 +179,8 @@ private:
         for (const QString& line : QString::fromUtf8(source.readAll()).split(u'\n')) {
             const QString key = line.section(u' ', 0, 0);
             if (key == QLatin1String("listener"))
-                conf << QStringLiteral("listener %1 127.0.0.1").arg(line.section(u' ', 1, 1) == QLatin1String("8883")
-                                                                        ? m_tlsPort
-                                                                        : m_port);
+                conf << QStringLiteral("listener %1 127.0.0.1")
+                            .arg(line.section(u' ', 1, 1) == QLatin1String("8883") ? m_tlsPort : m_port);
             else if (key == QLatin1String("password_file"))
                 conf << QStringLiteral("password_file ") + passwords;
             else if (key == QLatin1String("acl_file"))

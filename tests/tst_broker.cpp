@@ -734,7 +734,8 @@ void TestBroker::frameBytesFromReader()
     emit events.frameLogged(inLog);
     QTRY_COMPARE_WITH_TIMEOUT(listener.messages.count(), 1, kTimeoutMs);
     QCOMPARE(asked, QList<qint64>{4096});
-    QCOMPARE(FrameReport::fromJson(bodyOf(listener.messages.at(0).at(1).toByteArray()), nullptr)->bytes, frameBytes(4096, 600));
+    QCOMPARE(FrameReport::fromJson(bodyOf(listener.messages.at(0).at(1).toByteArray()), nullptr)->bytes,
+             frameBytes(4096, 600));
 }
 
 void TestBroker::observerGetsEveryFrame()
@@ -904,7 +905,8 @@ void TestBroker::gracefulFinishSaysOffline()
 
     Listener late(broker.port(), topic);
     QTRY_COMPARE_WITH_TIMEOUT(late.messages.count(), 1, kTimeoutMs);
-    const std::optional<StationReport> r = StationReport::fromJson(bodyOf(late.messages.at(0).at(1).toByteArray()), nullptr);
+    const std::optional<StationReport> r =
+        StationReport::fromJson(bodyOf(late.messages.at(0).at(1).toByteArray()), nullptr);
     QVERIFY(r);
     // The goodbye's report, not the will (which says the link was closed).
     QCOMPARE(r->online, false);

@@ -322,13 +322,13 @@ private slots:
         const QByteArray head = "{\"body\":\"{\\\"x\\\":1}\",\"seq\":1764000000000000,\"sig\":\"";
         QVERIFY2(payload.startsWith(head), payload.constData());
         QVERIFY2(payload.endsWith("\",\"station\":\"GB_30226\",\"v\":1}"), payload.constData());
-        for (const auto& [json, what] :
-             std::initializer_list<std::pair<const char*, const char*>>{
+        for (const auto& [json, what] : std::initializer_list<std::pair<const char*, const char*>>{
                  {R"({"v":2,"station":"S","seq":1,"body":""})", "envelope: v must be 1"},
                  {R"({"v":1,"station":"a/b","seq":1,"body":""})", "envelope: station must be a station's name"},
                  {R"({"v":1,"station":"S","seq":0,"body":""})", "envelope: seq must be a whole number from 1"},
                  {R"({"v":1,"station":"S","seq":1})", "envelope: must hold either body or sealed"},
-                 {R"({"v":1,"station":"S","seq":1,"body":"","sig":"AAAA"})", "envelope: sig must be 64 bytes in base64"},
+                 {R"({"v":1,"station":"S","seq":1,"body":"","sig":"AAAA"})",
+                  "envelope: sig must be 64 bytes in base64"},
                  {R"({"v":1,"station":"S","seq":1,"sealed":"AAAA","key":"12"})",
                   "envelope: key must be a key's fingerprint, 16 hex digits"},
              }) {
@@ -445,8 +445,8 @@ private slots:
 
         // AES-256-GCM itself: a changed byte anywhere, another key, another topic.
         const QByteArray topicBytes = topic.toUtf8();
-        const auto aad = std::span(reinterpret_cast<const std::uint8_t*>(topicBytes.constData()),
-                                   std::size_t(topicBytes.size()));
+        const auto aad =
+            std::span(reinterpret_cast<const std::uint8_t*>(topicBytes.constData()), std::size_t(topicBytes.size()));
         const auto plain = std::span(reinterpret_cast<const std::uint8_t*>(body.constData()), std::size_t(body.size()));
         std::vector<std::uint8_t> sealed = rcm::secure::sealBrokerPayload(brokerKey, aad, plain);
         QCOMPARE(sealed.size(), body.size() + rcm::secure::kSealOverhead);
@@ -480,14 +480,15 @@ private slots:
                                        "it, so it is refused; run: chmod 600 %1")
                             .arg(passwords));
         const rcm::test::ProgramRun refused = rcm::test::runProgram(
-            QStringLiteral("gcs"), {QStringLiteral("--broker"), QStringLiteral("mqtt://127.0.0.1:1/"),
-                                    QStringLiteral("--broker-user"), QStringLiteral("ops"),
-                                    QStringLiteral("--broker-password-file"), passwords});
+            QStringLiteral("gcs"),
+            {QStringLiteral("--broker"), QStringLiteral("mqtt://127.0.0.1:1/"), QStringLiteral("--broker-user"),
+             QStringLiteral("ops"), QStringLiteral("--broker-password-file"), passwords});
         QCOMPARE(refused.exitCode, 2);
         QVERIFY2(refused.err.contains(QStringLiteral("gcs: --broker-password-file: %1\n").arg(error).toUtf8()),
                  refused.err.constData());
         QFile::setPermissions(passwords, QFile::ReadOwner | QFile::WriteOwner);
-        QCOMPARE(BrokerSettings::readPasswordFile(passwords, &error), std::optional<QString>(QStringLiteral("s3cret pass")));
+        QCOMPARE(BrokerSettings::readPasswordFile(passwords, &error),
+                 std::optional<QString>(QStringLiteral("s3cret pass")));
 
         // The station's signing key: as a link key file.
         const QString keyPath = dir.filePath(QStringLiteral("GB_30226.key"));
@@ -510,8 +511,8 @@ private slots:
         t.write("# the fleet's stations\n\nGB_30226 " +
                 QByteArray::fromStdString(rcm::secure::hexOf(stationKey(kPrimary)->publicKey())) + "\n");
         t.close();
-        QFile::setPermissions(trustPath, QFile::ReadOwner | QFile::WriteOwner | QFile::ReadGroup |
-                                             QFile::WriteGroup | QFile::ReadOther);
+        QFile::setPermissions(
+            trustPath, QFile::ReadOwner | QFile::WriteOwner | QFile::ReadGroup | QFile::WriteGroup | QFile::ReadOther);
         QVERIFY(!BrokerTrust::fromFile(trustPath, &error));
         QCOMPARE(error, QStringLiteral("the trust file %1 has mode 0664: others than its owner may change whom this "
                                        "console trusts, so it is refused; run: chmod 644 %1")
@@ -524,20 +525,22 @@ private slots:
         t.write("GB_41251 0123\n");
         t.close();
         QVERIFY(!BrokerTrust::fromFile(trustPath, &error));
-        QCOMPARE(error, QStringLiteral("the trust file %1 line 4: the public key must be 64 hex digits").arg(trustPath));
+        QCOMPARE(error,
+                 QStringLiteral("the trust file %1 line 4: the public key must be 64 hex digits").arg(trustPath));
 
         // rcm stationkey: the key file, and the trust line to hand out.
         const QString made = dir.filePath(QStringLiteral("GB_41251.key"));
-        const rcm::test::ProgramRun run =
-            rcm::test::runProgram(QStringLiteral("rcm"), {QStringLiteral("stationkey"), QStringLiteral("GB_41251"), made});
+        const rcm::test::ProgramRun run = rcm::test::runProgram(
+            QStringLiteral("rcm"), {QStringLiteral("stationkey"), QStringLiteral("GB_41251"), made});
         QCOMPARE(run.exitCode, 0);
-        QVERIFY(QFile::permissions(made) == (QFile::ReadOwner | QFile::WriteOwner | QFile::ReadUser | QFile::WriteUser));
+        QVERIFY(QFile::permissions(made) ==
+                (QFile::ReadOwner | QFile::WriteOwner | QFile::ReadUser | QFile::WriteUser));
         const auto madeKey = rcm::secure::StationSigningKey::fromFile(made.toStdString(), keyError);
         QVERIFY(madeKey);
         QCOMPARE(run.out, "GB_41251 " + QByteArray::fromStdString(rcm::secure::hexOf(madeKey->publicKey())) + "\n");
         // Again: the same line, the key untouched.
-        const rcm::test::ProgramRun again =
-            rcm::test::runProgram(QStringLiteral("rcm"), {QStringLiteral("stationkey"), QStringLiteral("GB_41251"), made});
+        const rcm::test::ProgramRun again = rcm::test::runProgram(
+            QStringLiteral("rcm"), {QStringLiteral("stationkey"), QStringLiteral("GB_41251"), made});
         QCOMPARE(again.exitCode, 0);
         QCOMPARE(again.out, run.out);
         QCOMPARE(again.err, QStringLiteral("rcm: %1 exists already: its trust line, unchanged\n").arg(made).toUtf8());
@@ -597,13 +600,14 @@ private slots:
         // a: the report bare, as the issue published it.
         QCOMPARE(mosquittoPub(port, stationTopic, claim.toJson(), true), 0);
         // b: in an envelope, unsigned.
-        QCOMPARE(mosquittoPub(port, stationTopic, EnvelopeWriter(kPrimary).wrap(stationTopic, claim.toJson()), true), 0);
+        QCOMPARE(mosquittoPub(port, stationTopic, EnvelopeWriter(kPrimary).wrap(stationTopic, claim.toJson()), true),
+                 0);
         // c: a station of its own, claiming control: unverified, not refused.
         StationReport ad1 = claim;
         ad1.station = QStringLiteral("AD_1");
         const QString ad1Topic = BrokerTopics::stationTopic(kAircraft, QStringLiteral("AD_1"));
-        QCOMPARE(mosquittoPub(port, ad1Topic, EnvelopeWriter(QStringLiteral("AD_1")).wrap(ad1Topic, ad1.toJson()), true),
-                 0);
+        QCOMPARE(
+            mosquittoPub(port, ad1Topic, EnvelopeWriter(QStringLiteral("AD_1")).wrap(ad1Topic, ad1.toJson()), true), 0);
         // d: a frame from the future, unsigned; e: signed with another key.
         FrameReport future;
         future.station = kPrimary;
@@ -612,7 +616,8 @@ private slots:
         future.bytes = frameBytes(99);
         future.session = 1;
         future.seq = 1'000'000;
-        QCOMPARE(mosquittoPub(port, framesTopic, EnvelopeWriter(kPrimary).wrap(framesTopic, future.toJson()), false), 0);
+        QCOMPARE(mosquittoPub(port, framesTopic, EnvelopeWriter(kPrimary).wrap(framesTopic, future.toJson()), false),
+                 0);
         EnvelopeWriter impostor(kPrimary, stationKey(QStringLiteral("AD_1")));
         QCOMPARE(mosquittoPub(port, framesTopic, impostor.wrap(framesTopic, future.toJson()), false), 0);
         // f: an alarm event.
@@ -728,7 +733,10 @@ private slots:
     // comes, every frame once, and both say the broker's return.
     void deploymentBrokerRestartFillsTheGap()
     {
-        MosquittoProcess broker({{}, {}, false, true,
+        MosquittoProcess broker({{},
+                                 {},
+                                 false,
+                                 true,
                                  {{kPrimary, QStringLiteral("primary pass")},
                                   {QStringLiteral("observer-ops"), QStringLiteral("observer pass")}}});
         QVERIFY2(broker.start(), qPrintable(broker.setupError()));
@@ -769,8 +777,8 @@ private slots:
                      .arg(framesTopic));
         QVERIFY(mosquittoPub(broker.port(), framesTopic, "{}", false) != 0);
         // Nor anything larger than any console publishes, from anyone.
-        QVERIFY(mosquittoPubHuge(broker.port(), BrokerTopics::framesTopic(kAircraft, QStringLiteral("observer-ops")), 50,
-                                 true,
+        QVERIFY(mosquittoPubHuge(broker.port(), BrokerTopics::framesTopic(kAircraft, QStringLiteral("observer-ops")),
+                                 50, true,
                                  {QStringLiteral("-u"), QStringLiteral("observer-ops"), QStringLiteral("-P"),
                                   QStringLiteral("observer pass")}) != 0);
         intruder.stop();
@@ -794,8 +802,8 @@ private slots:
                  qPrintable(primaryBack.at(0).at(0).toString()));
         bool said = false;
         for (const QList<QVariant>& s : std::as_const(status))
-            said = said || s.at(0).toString().startsWith(QStringLiteral("broker 127.0.0.1:%1: back after ")
-                                                             .arg(broker.port()));
+            said = said ||
+                   s.at(0).toString().startsWith(QStringLiteral("broker 127.0.0.1:%1: back after ").arg(broker.port()));
         QVERIFY(said);
         // Nothing of the 50 MB was kept: a client that takes packets of any
         // size hears nothing on its topic.
@@ -881,9 +889,8 @@ private slots:
         QVERIFY2(broker.start(), qPrintable(broker.setupError()));
         QTRY_VERIFY_WITH_TIMEOUT(broker.accepts(), kTimeoutMs);
         QString urlError;
-        std::optional<BrokerSettings> tls =
-            BrokerSettings::fromUrl(QStringLiteral("mqtts://%1@127.0.0.1:%2").arg(kPrimary).arg(broker.tlsPort()),
-                                    &urlError);
+        std::optional<BrokerSettings> tls = BrokerSettings::fromUrl(
+            QStringLiteral("mqtts://%1@127.0.0.1:%2").arg(kPrimary).arg(broker.tlsPort()), &urlError);
         QVERIFY2(tls, qPrintable(urlError));
         tls->password = QStringLiteral("primary pass");
 
@@ -1045,8 +1052,9 @@ private slots:
         window.joinBroker(settings, false);
         window.observe(settings);
         bool warned = false;
-        const QString warning = QStringLiteral("The broker password goes to 127.0.0.1:%1 over plain mqtt://, "
-                                               "unencrypted: anyone on the path reads it; use mqtts://")
+        const QString warning = QStringLiteral(
+                                    "The broker password goes to 127.0.0.1:%1 over plain mqtt://, "
+                                    "unencrypted: anyone on the path reads it; use mqtts://")
                                     .arg(broker.port());
         for (const QList<QVariant>& r : std::as_const(recorded)) {
             const auto e = r.at(0).value<ConsoleEvent>();

@@ -512,9 +512,9 @@ private slots:
         say(BrokerTopics::framesTopic(a, QStringLiteral("GB_1")), QByteArray("{}"));
         QCOMPARE(refused.count(), 4);
         QCOMPARE(feed.refusedPayloads(), 4u);
-        QVERIFY2(refused[0][1].toString().startsWith(
-                     QStringLiteral("malformed: rcm/GB_133/stats/GB_1: envelope: not JSON")),
-                 qPrintable(refused[0][1].toString()));
+        QVERIFY2(
+            refused[0][1].toString().startsWith(QStringLiteral("malformed: rcm/GB_133/stats/GB_1: envelope: not JSON")),
+            qPrintable(refused[0][1].toString()));
         QCOMPARE(refused[1][1].toString(),
                  QStringLiteral("malformed: rcm/GB_133/stats/GB_1: envelope: v is missing: not an envelope (a "
                                 "report published bare is refused)"));
@@ -541,8 +541,8 @@ private slots:
         const QString a = QStringLiteral("GB_133");
         const QString topic = BrokerTopics::stationTopic(a, QStringLiteral("GB_1"));
         const QByteArray genuine = signedOn(
-            topic, station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0, QStringLiteral("GB_1"))
-                       .toJson());
+            topic,
+            station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0, QStringLiteral("GB_1")).toJson());
         feed.handleMessage(topic, genuine);
         QCOMPARE(feed.summary(a)->inControl, QStringLiteral("GB_1"));
         QVERIFY(feed.summary(a)->verified());
@@ -561,9 +561,9 @@ private slots:
         // The genuine one again: a duplicate (a retained message sent anew),
         // dropped; an older genuine one after a newer: replayed.
         feed.handleMessage(topic, genuine);
-        const QByteArray newer = signedOn(topic, station(QStringLiteral("GB_1"), true, LinkState::Lost, kT0 + kSecond,
-                                                         kT0, QStringLiteral("GB_1"))
-                                                     .toJson());
+        const QByteArray newer = signedOn(
+            topic, station(QStringLiteral("GB_1"), true, LinkState::Lost, kT0 + kSecond, kT0, QStringLiteral("GB_1"))
+                       .toJson());
         feed.handleMessage(topic, newer);
         feed.handleMessage(topic, genuine);
         QCOMPARE(refused.count(), 4);
@@ -619,12 +619,13 @@ private slots:
         const QString a = QStringLiteral("GB_133");
         const QString b = QStringLiteral("GB_134");
         const QString other = BrokerTopics::stationTopic(b, QStringLiteral("GB_2"));
-        feed.handleMessage(other, signedOn(other, station(QStringLiteral("GB_2"), true, LinkState::Connected, kT0,
-                                                          kT0, QStringLiteral("GB_2"))
+        feed.handleMessage(other, signedOn(other, station(QStringLiteral("GB_2"), true, LinkState::Connected, kT0, kT0,
+                                                          QStringLiteral("GB_2"))
                                                       .toJson()));
         // This console flies GB_133 as GB_1, and publishes it: its own report
         // comes back from the broker too, and counts once.
-        StationReport mine = station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0, QStringLiteral("GB_1"));
+        StationReport mine =
+            station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0, QStringLiteral("GB_1"));
         feed.setLocalStation(a, mine);
         const QString mineTopic = BrokerTopics::stationTopic(a, QStringLiteral("GB_1"));
         feed.handleMessage(mineTopic, signedOn(mineTopic, mine.toJson()));
@@ -663,8 +664,8 @@ private slots:
         FleetModel model;
         connect(&feed, &FleetFeed::aircraftUpdated, &model, &FleetModel::update);
         connect(&feed, &FleetFeed::aircraftRemoved, &model, &FleetModel::remove);
-        feed.handleMessage(other, signedOn(other, station(QStringLiteral("GB_2"), true, LinkState::Connected, kT0,
-                                                          kT0, QStringLiteral("GB_2"))
+        feed.handleMessage(other, signedOn(other, station(QStringLiteral("GB_2"), true, LinkState::Connected, kT0, kT0,
+                                                          QStringLiteral("GB_2"))
                                                       .toJson()));
         feed.setLocalStation(a, mine);
         QTRY_COMPARE(model.rowCount(), 2);
@@ -749,10 +750,10 @@ private slots:
         view.showUnverified()->setChecked(true);
         QCOMPARE(view.sorted()->rowCount(), 5);
         QCOMPARE(cell(*view.sorted(), 0, FleetModel::AircraftColumn), QStringLiteral("GB_100"));
-        QCOMPARE(rowTexts(*view.sorted(), 1),
-                 (QStringList{"GB_110", "Unverified", "\u2014", "\u2014", "0 of 0 online, 1 unverified", "\u2014",
-                              "0 up, 0 down"}));
-        QCOMPARE(view.sorted()->data(view.sorted()->index(1, FleetModel::LinkColumn), Qt::BackgroundRole)
+        QCOMPARE(rowTexts(*view.sorted(), 1), (QStringList{"GB_110", "Unverified", "\u2014", "\u2014",
+                                                           "0 of 0 online, 1 unverified", "\u2014", "0 up, 0 down"}));
+        QCOMPARE(view.sorted()
+                     ->data(view.sorted()->index(1, FleetModel::LinkColumn), Qt::BackgroundRole)
                      .value<QBrush>()
                      .color(),
                  QColor(0xf8, 0xd7, 0xd7));

@@ -236,8 +236,8 @@ private slots:
         // Frames are not retained: the observer is there before the first one.
         QTRY_VERIFY_WITH_TIMEOUT(observer.isConnected(), kPatience);
 
-        PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.ports[0], primaryKey,
-                               broker.port(), primaryBrokerKey);
+        PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.ports[0], primaryKey, broker.port(),
+                               primaryBrokerKey);
         QVERIFY(primary.start());
 
         // The backup commands the gear up all along; the primary, at rest, down.

@@ -29,8 +29,7 @@ int hexValue(char c)
 
 StationSigningKey::StationSigningKey(const SecretKey& seed) : m_key(std::make_unique<Pkey>()), m_seed(seed)
 {
-    m_key->pkey =
-        EVP_PKEY_new_raw_private_key(EVP_PKEY_ED25519, nullptr, m_seed.bytes().data(), m_seed.bytes().size());
+    m_key->pkey = EVP_PKEY_new_raw_private_key(EVP_PKEY_ED25519, nullptr, m_seed.bytes().data(), m_seed.bytes().size());
     std::size_t length = m_public.size();
     if (!m_key->pkey || EVP_PKEY_get_raw_public_key(m_key->pkey, m_public.data(), &length) != 1 ||
         length != m_public.size())

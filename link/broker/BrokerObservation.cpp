@@ -23,8 +23,7 @@ BrokerSettings observerSettings(BrokerSettings settings, const QString& aircraft
 }  // namespace
 
 BrokerObservation::BrokerObservation(const BrokerSettings& settings, QObject* parent)
-    : LinkEvents(parent),
-      m_aircraft(settings.aircraft.isEmpty() ? BrokerTopics::kUnknownAircraft : settings.aircraft)
+    : LinkEvents(parent), m_aircraft(settings.aircraft.isEmpty() ? BrokerTopics::kUnknownAircraft : settings.aircraft)
 {
     m_client = new MqttClient(observerSettings(settings, m_aircraft), this);
     m_client->setTrust(settings.trust ? settings.trust : std::make_shared<const BrokerTrust>());
@@ -34,9 +33,8 @@ BrokerObservation::BrokerObservation(const BrokerSettings& settings, QObject* pa
     connect(m_client, &MqttClient::errorOccurred, this, &BrokerObservation::errorOccurred);
     connect(m_client, &MqttClient::setupFailed, this, &BrokerObservation::errorOccurred);
     connect(m_client, &MqttClient::refusedByBroker, this, &BrokerObservation::errorOccurred);
-    connect(m_client, &MqttClient::restored, this, [this](const QString& message) {
-        emit transportStatusChanged(message);
-    });
+    connect(m_client, &MqttClient::restored, this,
+            [this](const QString& message) { emit transportStatusChanged(message); });
     m_client->subscribe(BrokerTopics::aircraftPattern(m_aircraft), 1);
 }
 

@@ -173,12 +173,12 @@ inline constexpr int kMaxPacketBytes = 64 * 1024;
 inline constexpr int kMessageExpirySeconds = 600;
 
 QString topic(const QString& aircraft, Kind kind, const QString& station);  // rcm/A/<kind>/S
-QString stationTopic(const QString& aircraft, const QString& station);     // rcm/A/station/S
-QString framesTopic(const QString& aircraft, const QString& station);      // rcm/A/frames/S
-QString stateTopic(const QString& aircraft, const QString& station);       // rcm/A/state/S
-QString statsTopic(const QString& aircraft, const QString& station);       // rcm/A/stats/S
-QString eventsTopic(const QString& aircraft, const QString& station);      // rcm/A/events/S
-QString kindName(Kind kind);                                               // "station", "frames" ...
+QString stationTopic(const QString& aircraft, const QString& station);      // rcm/A/station/S
+QString framesTopic(const QString& aircraft, const QString& station);       // rcm/A/frames/S
+QString stateTopic(const QString& aircraft, const QString& station);        // rcm/A/state/S
+QString statsTopic(const QString& aircraft, const QString& station);        // rcm/A/stats/S
+QString eventsTopic(const QString& aircraft, const QString& station);       // rcm/A/events/S
+QString kindName(Kind kind);                                                // "station", "frames" ...
 
 // Subscription patterns: every station report of every aircraft (the fleet
 // view), every station's frames or statistics of every aircraft, and

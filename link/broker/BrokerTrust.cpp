@@ -129,8 +129,8 @@ OpenedMessage BrokerTrust::open(const QString& topic, const QByteArray& payload,
         // Signed or not, nothing here can check it.
         m.trust = OpenedMessage::Trust::Unverified;
     } else if (e->signature.isEmpty()) {
-        m.refuse(QStringLiteral("unsigned: a message in the name of %1, whose key is trusted, on %2")
-                     .arg(m.station, topic));
+        m.refuse(
+            QStringLiteral("unsigned: a message in the name of %1, whose key is trusted, on %2").arg(m.station, topic));
         return m;
     } else if (!(*key)->verify(bytesOf(e->signedBytes(topic)), bytesOf(e->signature))) {
         m.refuse(QStringLiteral("forged: %1's signature does not verify on %2").arg(m.station, topic));

@@ -170,9 +170,9 @@ void FleetFeed::handleOpened(const OpenedMessage& m)
                 std::optional<StationReport> report = StationReport::fromJson(m.body, &error);
                 const bool readable = report && report->station == m.station;
                 if (!readable && m.verified()) {
-                    refuse(m.topic, QStringLiteral("unreadable: %1's station report: %2")
-                                        .arg(m.station, report ? QStringLiteral("it names %1").arg(report->station)
-                                                               : error));
+                    refuse(m.topic,
+                           QStringLiteral("unreadable: %1's station report: %2")
+                               .arg(m.station, report ? QStringLiteral("it names %1").arg(report->station) : error));
                     return;
                 }
                 // Unverified and unreadable: still a station heard of.

@@ -72,7 +72,7 @@ struct AircraftSummary {
     // stations' links together, as their latest statistics say.
     quint64 framesUp = 0;
     quint64 framesDown = 0;
-    bool local = false;      // this console flies it (setLocalStation)
+    bool local = false;  // this console flies it (setLocalStation)
     // False while the broker is unreachable: what other stations said is
     // then as of the outage's start.
     bool brokerReachable = true;
@@ -155,9 +155,9 @@ private:
         bool sealed = false;  // verified, and no key of ours opens it
     };
     struct Aircraft {
-        std::map<QString, Station> stations;  // by station
+        std::map<QString, Station> stations;   // by station
         std::map<QString, StatsReport> stats;  // by verified station
-        qint64 heardMicros = 0;  // by our clock: the last message about it
+        qint64 heardMicros = 0;                // by our clock: the last message about it
     };
 
     void subscribe();

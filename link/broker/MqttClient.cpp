@@ -311,10 +311,8 @@ struct MqttClient::Core {
             opened.where = where;
             opened.station = where->station;
             opened.retained = message->retain;
-            opened.refuse(QStringLiteral("too large: %1 bytes on %2, at most %3")
-                              .arg(message->payloadlen)
-                              .arg(topic)
-                              .arg(limit));
+            opened.refuse(
+                QStringLiteral("too large: %1 bytes on %2, at most %3").arg(message->payloadlen).arg(topic).arg(limit));
         } else {
             const QByteArray payload =
                 where ? QByteArray(static_cast<const char*>(message->payload), message->payloadlen) : QByteArray();
@@ -443,7 +441,8 @@ void MqttClient::start()
             const QFileInfo info(file);
             if (!file.isEmpty() && (!info.isFile() || !info.isReadable())) {
                 fail(QStringLiteral("TLS: cannot read \"%1\": %2")
-                         .arg(file, info.exists() ? QStringLiteral("not a readable file") : QStringLiteral("no such file")),
+                         .arg(file,
+                              info.exists() ? QStringLiteral("not a readable file") : QStringLiteral("no such file")),
                      true);
                 return;
             }
@@ -458,10 +457,9 @@ void MqttClient::start()
         const QByteArray capath = caPath.toLocal8Bit();
         const QByteArray cert = m_settings.certFile.toLocal8Bit();
         const QByteArray key = m_settings.keyFile.toLocal8Bit();
-        const int rc = mosquitto_tls_set(m_core->mosq, ca.isEmpty() ? nullptr : ca.constData(),
-                                         capath.isEmpty() ? nullptr : capath.constData(),
-                                         cert.isEmpty() ? nullptr : cert.constData(),
-                                         key.isEmpty() ? nullptr : key.constData(), nullptr);
+        const int rc = mosquitto_tls_set(
+            m_core->mosq, ca.isEmpty() ? nullptr : ca.constData(), capath.isEmpty() ? nullptr : capath.constData(),
+            cert.isEmpty() ? nullptr : cert.constData(), key.isEmpty() ? nullptr : key.constData(), nullptr);
         if (rc != MOSQ_ERR_SUCCESS) {
             fail(QStringLiteral("TLS: cannot use the CA \"%1\"%2: %3")
                      .arg(ca.isEmpty() ? caPath : m_settings.caFile,
@@ -501,9 +499,8 @@ void MqttClient::connectInThread(bool restart, std::optional<Will> will, std::ch
     // MQTT 5's CONNECT properties go only with libmosquitto's blocking
     // connect, which then keeps them for its own reconnections: it runs
     // here, off the owner's thread, as the asynchronous one would.
-    std::shared_ptr<mosquitto_property> properties(connectProperties(m_settings), [](mosquitto_property* p) {
-        mosquitto_property_free_all(&p);
-    });
+    std::shared_ptr<mosquitto_property> properties(connectProperties(m_settings),
+                                                   [](mosquitto_property* p) { mosquitto_property_free_all(&p); });
     Core* core = m_core.get();
     core->starter = std::thread([core, host, port, keepAlive, restart, will = std::move(will), delay, properties,
                                  before = std::move(core->starter)]() mutable {
@@ -519,8 +516,8 @@ void MqttClient::connectInThread(bool restart, std::optional<Will> will, std::ch
             if (core->stopping())
                 return;
             errno = 0;
-            const int rc = mosquitto_connect_bind_v5(core->mosq, host.c_str(), port, keepAlive, nullptr,
-                                                     properties.get());
+            const int rc =
+                mosquitto_connect_bind_v5(core->mosq, host.c_str(), port, keepAlive, nullptr, properties.get());
             if (rc == MOSQ_ERR_SUCCESS)
                 break;
             const int error = errno;
@@ -574,8 +571,8 @@ bool MqttClient::publish(const QString& topic, const QByteArray& payload, int qo
     }
     int id = 0;
     mosquitto_property* properties = expiryProperty(expirySeconds);
-    const int rc = mosquitto_publish_v5(m_core->mosq, &id, t.constData(), int(payload.size()), payload.constData(),
-                                        qos, retain, properties);
+    const int rc = mosquitto_publish_v5(m_core->mosq, &id, t.constData(), int(payload.size()), payload.constData(), qos,
+                                        retain, properties);
     mosquitto_property_free_all(&properties);
     if (messageId)
         *messageId = id;
@@ -628,15 +625,14 @@ void MqttClient::onConnect(int resultCode, const QString& reason)
         const qint64 ms = m_outage.elapsed();
         m_outage.invalidate();
         const qint64 seconds = (ms + 500) / 1000;
-        const QString length = seconds < 60 ? QStringLiteral("%1 s").arg(seconds)
-                                            : QStringLiteral("%1 min %2 s")
-                                                  .arg(seconds / 60)
-                                                  .arg(seconds % 60, 2, 10, QLatin1Char('0'));
-        emit restored(QStringLiteral("broker %1: %2 %3")
-                          .arg(m_settings.hostAndPort(),
-                               everConnected ? QStringLiteral("back after") : QStringLiteral("reached after trying for"),
-                               length),
-                      ms);
+        const QString length =
+            seconds < 60 ? QStringLiteral("%1 s").arg(seconds)
+                         : QStringLiteral("%1 min %2 s").arg(seconds / 60).arg(seconds % 60, 2, 10, QLatin1Char('0'));
+        emit restored(
+            QStringLiteral("broker %1: %2 %3")
+                .arg(m_settings.hostAndPort(),
+                     everConnected ? QStringLiteral("back after") : QStringLiteral("reached after trying for"), length),
+            ms);
     }
     sendSubscriptions();
     emit connected();
@@ -654,9 +650,9 @@ void MqttClient::onPublished(int messageId, int reasonCode)
     // MQTT 5: 0 accepted, 16 accepted with no subscriber; 128 and above refused.
     if (reasonCode >= 128 && !m_refusalsSaid.contains(topic)) {
         m_refusalsSaid.insert(topic, true);
-        emit refusedByBroker(QStringLiteral("broker %1 refused a message on %2: %3")
-                                 .arg(m_settings.hostAndPort(), topic,
-                                      forPeople(mosquitto_reason_string(reasonCode)).toLower()));
+        emit refusedByBroker(
+            QStringLiteral("broker %1 refused a message on %2: %3")
+                .arg(m_settings.hostAndPort(), topic, forPeople(mosquitto_reason_string(reasonCode)).toLower()));
     }
     emit published(messageId);
 }
@@ -669,9 +665,9 @@ void MqttClient::onSubscribed(int messageId, QList<int> granted)
     for (const int code : granted)
         if (code >= 128 && !m_refusalsSaid.contains(pattern)) {
             m_refusalsSaid.insert(pattern, true);
-            emit refusedByBroker(QStringLiteral("broker %1 refused the subscription to %2: %3")
-                                     .arg(m_settings.hostAndPort(), pattern,
-                                          forPeople(mosquitto_reason_string(code)).toLower()));
+            emit refusedByBroker(
+                QStringLiteral("broker %1 refused the subscription to %2: %3")
+                    .arg(m_settings.hostAndPort(), pattern, forPeople(mosquitto_reason_string(code)).toLower()));
         }
 }
 

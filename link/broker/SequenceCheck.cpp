@@ -5,8 +5,8 @@
 SequenceCheck::Result SequenceCheck::check(const OpenedMessage& message)
 {
     Seen& seen = m_topics[message.topic];
-    if (message.where && (message.where->kind == BrokerTopics::Kind::Frames ||
-                          message.where->kind == BrokerTopics::Kind::Events))
+    if (message.where &&
+        (message.where->kind == BrokerTopics::Kind::Frames || message.where->kind == BrokerTopics::Kind::Events))
         return checkStream(message, seen);
     if (message.will) {
         if (message.seq == seen.willAnnounced && message.seq != 0) {

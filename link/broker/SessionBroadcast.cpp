@@ -86,8 +86,7 @@ void SessionBroadcast::linkStarted(const LinkController* controller)
     if (const std::shared_ptr<const rcm::LogKey> key = m_session->logKey())
         envelopes.setSealKey(key->brokerKey(), QString::fromStdString(key->fingerprint()));
     m_publisher = new SessionPublisher(m_client, std::move(envelopes), controller, this);
-    connect(m_publisher.data(), &SessionPublisher::stationReportChanged, this,
-            &SessionBroadcast::stationReportChanged);
+    connect(m_publisher.data(), &SessionPublisher::stationReportChanged, this, &SessionBroadcast::stationReportChanged);
     m_publisher->setDescription(m_session->description());
     // Gone with the link: a publisher must not outlive the events it follows.
     connect(controller, &QObject::destroyed, m_publisher.data(), &QObject::deleteLater);

@@ -61,8 +61,7 @@ public:
     // its messages go unsigned and unsealed.
     SessionPublisher(MqttClient* client, const QString& station, const LinkEvents* events, QObject* parent = nullptr);
     // The same, with what signs and seals them.
-    SessionPublisher(MqttClient* client, EnvelopeWriter envelopes, const LinkEvents* events,
-                     QObject* parent = nullptr);
+    SessionPublisher(MqttClient* client, EnvelopeWriter envelopes, const LinkEvents* events, QObject* parent = nullptr);
     ~SessionPublisher() override;
 
     // Default: LoggedFrame::bytes.

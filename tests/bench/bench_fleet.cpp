@@ -282,13 +282,14 @@ int publish(int first, int count, int total, quint16 port, int seconds)
     if (first == 0)
         say(QStringLiteral("a frame's envelope is %1 bytes up, %2 bytes down")
                 .arg(consoles[0]
-                         .envelopes->wrap(consoles[0].framesTopic,
-                                          frameReport(consoles[0], true, utcMicros(), downText).toJson())
+                         .envelopes
+                         ->wrap(consoles[0].framesTopic, frameReport(consoles[0], true, utcMicros(), downText).toJson())
                          .size())
-                .arg(consoles[0]
-                         .envelopes->wrap(consoles[0].framesTopic,
-                                          frameReport(consoles[0], false, utcMicros(), downText).toJson())
-                         .size()));
+                .arg(
+                    consoles[0]
+                        .envelopes
+                        ->wrap(consoles[0].framesTopic, frameReport(consoles[0], false, utcMicros(), downText).toJson())
+                        .size()));
     std::printf("ready\n");
     std::fflush(stdout);
 
@@ -800,10 +801,9 @@ int runFleet(int n, int seconds, int warmup, bool shown)
     QElapsedTimer settling;
     settling.start();
     while (settling.elapsed() < 120'000) {
-        const bool allDone =
-            std::all_of(lines.begin(), lines.end(), [](const PublisherLine& l) { return l.done; }) &&
-            std::all_of(publishers.begin(), publishers.end(),
-                        [](const auto& p) { return p->state() == QProcess::NotRunning; });
+        const bool allDone = std::all_of(lines.begin(), lines.end(), [](const PublisherLine& l) { return l.done; }) &&
+                             std::all_of(publishers.begin(), publishers.end(),
+                                         [](const auto& p) { return p->state() == QProcess::NotRunning; });
         if (allDone && utcMicros() - lastDelivery > 2 * kSecond)
             break;
         QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
@@ -830,10 +830,12 @@ int runFleet(int n, int seconds, int warmup, bool shown)
     } else {
         say(QStringLiteral("the frame counter said nothing"));
     }
-    std::printf("\nevery report of the run (publishers' counts; the fleet side's for station reports and "
-                "statistics, verified; the frame counter's for frames):\n\n");
-    std::printf("| report | handed to the client | acknowledged by the broker | received | "
-                "missing |\n|---|---:|---:|---:|---:|\n");
+    std::printf(
+        "\nevery report of the run (publishers' counts; the fleet side's for station reports and "
+        "statistics, verified; the frame counter's for frames):\n\n");
+    std::printf(
+        "| report | handed to the client | acknowledged by the broker | received | "
+        "missing |\n|---|---:|---:|---:|---:|\n");
     quint64 missingTotal = 0;
     for (int k = 0; k < kKinds; ++k) {
         const quint64 a = acknowledged[std::size_t(k)];
@@ -844,12 +846,13 @@ int runFleet(int n, int seconds, int warmup, bool shown)
                     static_cast<unsigned long long>(handed[std::size_t(k)]), static_cast<unsigned long long>(a),
                     static_cast<unsigned long long>(d), static_cast<unsigned long long>(missing));
     }
-    std::printf("\nnot acknowledged at the end: %llu; refused or unverified at the fleet: %llu; frames seen twice: "
-                "%llu; frame numbers skipped: %llu; reports missing: %llu; dropped by the broker (a subscriber's "
-                "queue full): %llu\n",
-                static_cast<unsigned long long>(unacknowledged), static_cast<unsigned long long>(deliveredRefused),
-                static_cast<unsigned long long>(framesTwice), static_cast<unsigned long long>(gaps),
-                static_cast<unsigned long long>(missingTotal), static_cast<unsigned long long>(brokerDropped));
+    std::printf(
+        "\nnot acknowledged at the end: %llu; refused or unverified at the fleet: %llu; frames seen twice: "
+        "%llu; frame numbers skipped: %llu; reports missing: %llu; dropped by the broker (a subscriber's "
+        "queue full): %llu\n",
+        static_cast<unsigned long long>(unacknowledged), static_cast<unsigned long long>(deliveredRefused),
+        static_cast<unsigned long long>(framesTwice), static_cast<unsigned long long>(gaps),
+        static_cast<unsigned long long>(missingTotal), static_cast<unsigned long long>(brokerDropped));
 
     for (const auto& p : publishers) {
         p->kill();

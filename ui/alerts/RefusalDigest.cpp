@@ -72,13 +72,12 @@ void RefusalDigest::recordMore(const QString& key, Window& window, qint64 now)
     const qint64 seconds = (now - window.startMicros + 500'000) / 1'000'000;
     const QString what = broker ? (window.more == 1 ? tr("broker message") : tr("broker messages"))
                                 : (window.more == 1 ? tr("frame") : tr("frames"));
-    const QString text = window.more == 1 ? tr("1 more %1 refused as %2 in the last %3 s; the last: %4")
-                                                .arg(what, reason)
-                                                .arg(seconds)
-                                          : tr("%1 more %2 refused as %3 in the last %4 s; the last: %5")
-                                                .arg(window.more)
-                                                .arg(what, reason)
-                                                .arg(seconds);
+    const QString text =
+        window.more == 1 ? tr("1 more %1 refused as %2 in the last %3 s; the last: %4").arg(what, reason).arg(seconds)
+                         : tr("%1 more %2 refused as %3 in the last %4 s; the last: %5")
+                               .arg(window.more)
+                               .arg(what, reason)
+                               .arg(seconds);
     m_log->warning(EventSource::Link, text.arg(window.last));
     window.startMicros = now;
     window.more = 0;

@@ -8,7 +8,6 @@
 #include "ui/control/StationControlWidget.h"
 #include "ui/window/MainWindow.h"
 
-
 StationCommandLine::StationCommandLine(QCommandLineParser& parser)
     : m_parser(parser),
       m_station(QStringLiteral("station"),
@@ -99,7 +98,8 @@ bool StationCommandLine::apply(MainWindow& window, QString* error) const
     }
     if (m_parser.isSet(m_passwordFile)) {
         QString reason;
-        const std::optional<QString> password = BrokerSettings::readPasswordFile(m_parser.value(m_passwordFile), &reason);
+        const std::optional<QString> password =
+            BrokerSettings::readPasswordFile(m_parser.value(m_passwordFile), &reason);
         if (!password) {
             *error = QStringLiteral("--broker-password-file: %1").arg(reason);
             return false;

@@ -118,13 +118,15 @@ QVariant FleetModel::headerData(int section, Qt::Orientation orientation, int ro
             case BackupColumn:
                 return tr("The backup station as the aircraft last reported it (ID_GCS_backup)");
             case StationsColumn:
-                return tr("Verified stations publishing for this aircraft that are online, of all that have "
-                          "reported; and stations whose key is not trusted");
+                return tr(
+                    "Verified stations publishing for this aircraft that are online, of all that have "
+                    "reported; and stations whose key is not trusted");
             case LastFrameColumn:
                 return tr("Time since the last good frame from the aircraft any station reported");
             case FramesColumn:
-                return tr("Frames sent up to the aircraft and received down from it by its stations' links, as their "
-                          "statistics say");
+                return tr(
+                    "Frames sent up to the aircraft and received down from it by its stations' links, as their "
+                    "statistics say");
         }
     }
     return {};

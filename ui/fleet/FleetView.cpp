@@ -28,8 +28,7 @@ public:
 protected:
     bool filterAcceptsRow(int row, const QModelIndex& parent) const override
     {
-        return m_showUnverified ||
-               sourceModel()->index(row, 0, parent).data(FleetModel::VerifiedRole).toBool();
+        return m_showUnverified || sourceModel()->index(row, 0, parent).data(FleetModel::VerifiedRole).toBool();
     }
 
 private:
@@ -50,8 +49,9 @@ FleetView::FleetView(FleetModel* model, QWidget* parent)
     m_sorted->setSourceModel(model);
     m_sorted->setSortRole(FleetModel::SortRole);
     m_sorted->setDynamicSortFilter(true);
-    m_showUnverified->setToolTip(tr("Also list aircraft that no station whose key is trusted reports: anyone on the "
-                                    "broker may have published them"));
+    m_showUnverified->setToolTip(
+        tr("Also list aircraft that no station whose key is trusted reports: anyone on the "
+           "broker may have published them"));
     connect(m_showUnverified, &QCheckBox::toggled, this, [this](bool show) {
         static_cast<FleetRows*>(m_sorted)->setShowUnverified(show);
         updateSummary();

@@ -784,12 +784,13 @@ void MainWindow::joinBroker(const BrokerSettings& settings, bool publish)
         m_broadcast->follow(m_alerts->events());
         followBrokerClient(m_broadcast->client());
         const QString station = m_broadcast->stationName();
-        m_alerts->info(EventSource::Link,
-                       settings.signingKey
-                           ? tr("Broker %1: connecting, to publish every link as %2, signed").arg(settings.url(), station)
-                           : tr("Broker %1: connecting, to publish every link as %2, unsigned (no --broker-key): "
-                                "observers will show it as unverified")
-                                 .arg(settings.url(), station));
+        m_alerts->info(
+            EventSource::Link,
+            settings.signingKey
+                ? tr("Broker %1: connecting, to publish every link as %2, signed").arg(settings.url(), station)
+                : tr("Broker %1: connecting, to publish every link as %2, unsigned (no --broker-key): "
+                     "observers will show it as unverified")
+                      .arg(settings.url(), station));
         // Said once: a reconnection is said by its return.
         connect(m_broadcast->client(), &MqttClient::connected, this, [this, url = settings.url()] {
             if (std::exchange(m_brokerAnnounced, true))
@@ -915,8 +916,8 @@ void MainWindow::observe(const BrokerSettings& settings)
         m_replayMicros = frame.entry.utcMicros;
         if (frame.entry.direction != FrameDirection::Sent)
             return;
-        const auto bytes = std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()),
-                                     std::size_t(frame.bytes.size()));
+        const auto bytes =
+            std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()), std::size_t(frame.bytes.size()));
         if (frame.entry.enciphered) {
             // Read only when a key of ours authenticates it.
             for (const std::shared_ptr<const rcm::LogKey>& key : keys)
