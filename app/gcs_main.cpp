@@ -60,11 +60,13 @@ int main(int argc, char* argv[])
                                         QStringLiteral("Lay the window out with the default settings, save a "
                                                        "picture of it and exit (works offscreen)."),
                                         QStringLiteral("file.png"));
-    const QCommandLineOption key(QStringLiteral("key"),
-                                 QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex "
-                                                "digits, mode 0600. With --rehearsal, uasim uses it too; with --replay, "
-                                                "it reads a keyed session's log. Kept in the link settings."),
-                                 QStringLiteral("file"));
+    const QCommandLineOption key(
+        QStringLiteral("key"),
+        QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex "
+                       "digits, mode 0600. With --rehearsal, uasim uses it too; with --replay, "
+                       "it reads a keyed session's log; with --observe (once per station), "
+                       "it opens the sealed sessions on the broker. Kept in the link settings."),
+        QStringLiteral("file"));
     const QCommandLineOption size(QStringLiteral("size"), QStringLiteral("Window size for --screenshot."),
                                   QStringLiteral("WxH"), QStringLiteral("1600x1000"));
     const QCommandLineOption after(QStringLiteral("screenshot-after"),
@@ -99,9 +101,8 @@ int main(int argc, char* argv[])
     const QSize windowSize(wh.value(0).toInt(), wh.value(1).toInt());
     if (wh.size() != 2 || windowSize.width() < 320 || windowSize.height() < 240)
         return usage(QStringLiteral("--size wants WIDTHxHEIGHT, e.g. 1600x1000"));
-    if (parser.isSet(key) && !parser.isSet(rehearsal) && !parser.isSet(udpRemote) && !parser.isSet(serial) &&
-        !parser.isSet(replay))
-        return usage(QStringLiteral("--key goes with --rehearsal, --udp-remote, --serial or --replay"));
+    if (parser.isSet(key) && connections == 0 && !stationOptions.observes())
+        return usage(QStringLiteral("--key goes with --rehearsal, --udp-remote, --serial, --replay or --observe"));
     std::optional<LinkSettings> link;
     if (parser.isSet(udpRemote) && !(link = LinkSettings::udpRemote(parser.value(udpRemote), &error)))
         return usage(error);
@@ -131,7 +132,7 @@ int main(int argc, char* argv[])
     if (parser.isSet(screenshot))
         window.screenshotAndQuit(parser.value(screenshot), windowSize, parser.value(after).toInt());
     window.show();
-    if (parser.isSet(key)) {
+    if (parser.isSet(key) && !stationOptions.observes()) {
         // Into the link settings, where the rehearsal takes it from and which keep its path.
         LinkSettings settings = link.value_or(window.linkSettings()->settings());
         settings.keyPath = parser.value(key);

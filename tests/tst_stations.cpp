@@ -12,9 +12,14 @@
 #include "codec/message/Airframe.h"
 #include "codec/message/ItemTable.h"
 #include "codec/message/TextFormat.h"
+#include "codec/receive/LoggedFrameReading.h"
 #include "codec/secure/SecureCodec.h"
+#include "codec/secure/StationSigningKey.h"
+#include "link/broker/BrokerEnvelope.h"
 #include "link/broker/BrokerObservation.h"
 #include "link/broker/BrokerSettings.h"
+#include "link/broker/BrokerTrust.h"
+#include "link/broker/MqttClient.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkController.h"
@@ -125,7 +130,9 @@ QStringList aircraftOptions(int failoverSeconds = kFailoverSeconds)
 // settings and frame logs in `home`.
 class PrimaryConsole {
 public:
-    PrimaryConsole(const QString& home, quint16 port, const QString& keyPath, quint16 brokerPort) : m_home(home)
+    PrimaryConsole(const QString& home, quint16 port, const QString& keyPath, quint16 brokerPort,
+                   const QString& brokerKeyPath)
+        : m_home(home)
     {
         QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
         env.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
@@ -136,7 +143,8 @@ public:
         m_process.setProgram(QStringLiteral(RCM_BIN_DIR "/gcs"));
         m_process.setArguments({QStringLiteral("--udp-remote"), QStringLiteral("127.0.0.1:%1").arg(port),
                                 QStringLiteral("--key"), keyPath, QStringLiteral("--station"), kPrimaryText,
-                                QStringLiteral("--broker"), QStringLiteral("mqtt://127.0.0.1:%1").arg(brokerPort)});
+                                QStringLiteral("--broker"), QStringLiteral("mqtt://127.0.0.1:%1").arg(brokerPort),
+                                QStringLiteral("--broker-key"), brokerKeyPath});
         m_process.setProcessChannelMode(QProcess::ForwardedErrorChannel);
     }
     ~PrimaryConsole()
@@ -196,11 +204,30 @@ private slots:
         test::UasimProcess aircraft(test::kTwoStations, aircraftOptions(), {primaryKey, backupKey});
         QVERIFY(aircraft.start());
 
+        // The primary signs what it publishes; the observer trusts its key,
+        // and holds the aircraft's key for the primary's station, which
+        // opens its sealed session.
+        const QString primaryBrokerKey = dir.filePath(QStringLiteral("primary-broker.key"));
+        const rcm::secure::StationSigningKey signing = rcm::secure::StationSigningKey::generate();
+        std::string keyError;
+        QVERIFY2(signing.writeFile(primaryBrokerKey.toStdString(), keyError), keyError.c_str());
+        auto trust = std::make_shared<BrokerTrust>();
+        trust->trustStation(kPrimaryText, signing.publicKey());
+        trust->addLinkKey(*LogKey::open(primaryKey.toStdString(), keyError));
         BrokerSettings brokerSettings;
         brokerSettings.host = QStringLiteral("127.0.0.1");
         brokerSettings.port = broker.port();
         brokerSettings.aircraft = QStringLiteral("GB_133");
+        brokerSettings.trust = trust;
         BrokerObservation observer(brokerSettings);
+        QSignalSpy refused(&observer, &BrokerObservation::messageRefused);
+        // And everything the broker carries, as anyone on it reads it.
+        BrokerSettings anyone = brokerSettings;
+        anyone.trust.reset();
+        MqttClient wiretap(anyone);
+        QSignalSpy carried(&wiretap, &MqttClient::messageReceived);
+        wiretap.subscribe(QStringLiteral("rcm/#"), 1);
+        wiretap.start();
         std::set<FrameKey> observed;
         connect(&observer, &LinkEvents::frameLogged, this, [&](const LoggedFrame& f) {
             observed.insert({int(f.entry.direction), f.entry.utcMicros, f.bytes});
@@ -209,8 +236,8 @@ private slots:
         // Frames are not retained: the observer is there before the first one.
         QTRY_VERIFY_WITH_TIMEOUT(observer.isConnected(), kPatience);
 
-        PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.ports[0], primaryKey,
-                               broker.port());
+        PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.ports[0], primaryKey, broker.port(),
+                               primaryBrokerKey);
         QVERIFY(primary.start());
 
         // The backup commands the gear up all along; the primary, at rest, down.
@@ -248,6 +275,27 @@ private slots:
                                                  .arg(observed.size())
                                                  .arg(missing().join(QStringLiteral(", ")))),
                                   kPatience);
+
+        QCOMPARE(refused.count(), 0);
+        // The keyed session put nothing readable on the broker: every message
+        // is an envelope signed by the primary, its report sealed under the
+        // aircraft's key (the frames inside it are the enciphered bytes the
+        // frame log holds, compared above).
+        QVERIFY(carried.count() >= logged.size());
+        for (const QList<QVariant>& m : std::as_const(carried)) {
+            const QString topic = m.at(0).toString();
+            const QByteArray payload = m.at(1).toByteArray();
+            if (payload.isEmpty())
+                continue;  // a retained report cleared
+            QString error;
+            const std::optional<BrokerEnvelope> e = BrokerEnvelope::fromJson(payload, &error);
+            QVERIFY2(e, qPrintable(topic + QStringLiteral(": ") + error));
+            QVERIFY2(e->sealed, qPrintable(topic + QStringLiteral(": not sealed: ") + QString::fromUtf8(payload)));
+            QCOMPARE(e->station, kPrimaryText);
+            QCOMPARE(e->signature.size(), 64);
+            for (const char* plain : {"ID_msg", "GB_41251", "\"text\"", "\"bytes\"", "land_wheels", "online"})
+                QVERIFY2(!payload.contains(plain), qPrintable(topic + QStringLiteral(" carries ") + plain));
+        }
 
         // The primary's process dies: the backup is given control, and told.
         QSignalSpy alarms(backup.control(), &StationControl::alarm);

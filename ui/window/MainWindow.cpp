@@ -13,7 +13,11 @@
 #include "ui/control/StationControlWidget.h"
 #include "ui/panels/CommandJournal.h"
 #include "ui/panels/ItemText.h"
+#include "ui/alerts/RefusalDigest.h"
+#include "codec/receive/LoggedFrameReading.h"
+#include "codec/secure/StationSigningKey.h"
 #include "link/broker/BrokerObservation.h"
+#include "link/broker/BrokerTrust.h"
 #include "link/broker/FleetFeed.h"
 #include "link/broker/MqttClient.h"
 #include "link/broker/SessionBroadcast.h"
@@ -762,6 +766,8 @@ void MainWindow::linkStarted(const LinkController* controller)
             m_logModel->setSessionLog(logPath);
     }
     endObservation();
+    // The fleet reads this link's keyed sessions on the broker too.
+    updateBrokerTrust();
     m_status->setTransportLabel(tr("Call"), tr("The satellite phone's call: what the modem does, and for how long"));
     bindLinkEvents(controller, !replay);
     // Also when a live link replaced a log being opened.
@@ -860,32 +866,101 @@ void MainWindow::joinBroker(const BrokerSettings& settings, bool publish)
     if (m_broker)
         return;  // once a run: the command line's broker
     m_broker = std::make_unique<BrokerSettings>(settings);
+    if (!settings.tls && !settings.password.isEmpty())
+        m_alerts->warning(EventSource::Link,
+                          tr("The broker password goes to %1 over plain mqtt://, unencrypted: anyone on the path "
+                             "reads it; use mqtts://")
+                              .arg(settings.hostAndPort()));
     if (publish) {
         m_broadcast = new SessionBroadcast(m_session, settings, this);
         m_broadcast->follow(m_alerts->events());
-        connect(m_broadcast, &SessionBroadcast::errorOccurred, this,
-                [this](const QString& error) { m_alerts->warning(EventSource::Link, error); });
-        m_alerts->info(EventSource::Link, tr("Publishing every link on the broker %1").arg(settings.url()));
+        followBrokerClient(m_broadcast->client());
+        const QString station = m_broadcast->stationName();
+        m_alerts->info(
+            EventSource::Link,
+            settings.signingKey
+                ? tr("Broker %1: connecting, to publish every link as %2, signed").arg(settings.url(), station)
+                : tr("Broker %1: connecting, to publish every link as %2, unsigned (no --broker-key): "
+                     "observers will show it as unverified")
+                      .arg(settings.url(), station));
+        // Said once: a reconnection is said by its return.
+        connect(m_broadcast->client(), &MqttClient::connected, this, [this, url = settings.url()] {
+            if (std::exchange(m_brokerAnnounced, true))
+                return;
+            m_alerts->info(EventSource::Link, tr("Broker %1: connected, publishing every link").arg(url));
+        });
     }
     // The fleet has a connection of its own: it reads everything, the publisher only writes.
     BrokerSettings fleetSettings = settings;
     fleetSettings.clientId.clear();
     m_fleetClient = new MqttClient(fleetSettings, this);
-    auto* feed = new FleetFeed(m_fleetClient, this);
+    if (!publish)
+        followBrokerClient(m_fleetClient, true);
+    m_fleetFeed = new FleetFeed(m_fleetClient, this);
+    updateBrokerTrust();
     m_fleetModel = new FleetModel(this);
-    connect(feed, &FleetFeed::aircraftUpdated, m_fleetModel, &FleetModel::update);
+    connect(m_fleetFeed, &FleetFeed::aircraftUpdated, m_fleetModel, &FleetModel::update);
+    connect(m_fleetFeed, &FleetFeed::aircraftRemoved, m_fleetModel, &FleetModel::remove);
     m_fleetView = new FleetView(m_fleetModel);
     m_fleetView->setBroker(settings.url());
-    connect(m_fleetClient, &MqttClient::connected, m_fleetView, [this] { m_fleetView->setBrokerConnected(true); });
-    connect(m_fleetClient, &MqttClient::disconnected, m_fleetView, [this] { m_fleetView->setBrokerConnected(false); });
-    if (!publish)
-        connect(m_fleetClient, &MqttClient::errorOccurred, this,
-                [this](const QString& error) { m_alerts->warning(EventSource::Link, error); });
+    connect(m_fleetFeed, &FleetFeed::messageRefused, this, [this](const QString& reason) {
+        m_alerts->refusals()->refusedBrokerMessage(reason);
+        m_fleetView->setRefusedMessages(m_fleetFeed->refusedPayloads());
+    });
+    // The broker's state, apart from any link's: this console's own row
+    // keeps its link while the broker is away.
+    const auto reachable = [this](bool yes) {
+        m_fleetView->setBrokerConnected(yes);
+        m_fleetFeed->setBrokerReachable(yes);
+    };
+    connect(m_fleetClient, &MqttClient::connected, this, [reachable] { reachable(true); });
+    connect(m_fleetClient, &MqttClient::disconnected, this, [reachable] { reachable(false); });
+    connect(m_fleetClient, &MqttClient::errorOccurred, this, [reachable] { reachable(false); });
+    connect(m_fleetClient, &MqttClient::setupFailed, this, [reachable] { reachable(false); });
+    if (m_broadcast)
+        connect(m_broadcast, &SessionBroadcast::stationReportChanged, m_fleetFeed, &FleetFeed::setLocalStation);
     connect(m_fleetView, &FleetView::observeRequested, this, &MainWindow::observeRequested);
     QDockWidget* fleet = dock(tr("Fleet"), QStringLiteral("fleetDock"), m_fleetView, this);
     tabifyDockWidget(m_docks[5], fleet);
     fleet->raise();
     m_fleetClient->start();
+}
+
+void MainWindow::followBrokerClient(const MqttClient* client, bool quietWhileObserving)
+{
+    // An observation's own client says the same of the same broker.
+    const auto heard = [this, quietWhileObserving] { return !(quietWhileObserving && m_observation); };
+    connect(client, &MqttClient::errorOccurred, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->warning(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::setupFailed, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->error(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::refusedByBroker, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->error(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::restored, this, [this, heard](const QString& message) {
+        if (heard())
+            m_alerts->info(EventSource::Link, message);
+    });
+}
+
+void MainWindow::updateBrokerTrust()
+{
+    if (!m_broker)
+        return;
+    auto trust = std::make_shared<BrokerTrust>(m_broker->trust ? *m_broker->trust : BrokerTrust());
+    // This station believes itself, and reads its own keyed sessions.
+    if (m_broadcast && m_broker->signingKey)
+        trust->trustStation(m_broadcast->stationName(), m_broker->signingKey->publicKey());
+    if (std::shared_ptr<const rcm::LogKey> key = m_session->logKey())
+        trust->addLinkKey(std::move(key));
+    m_brokerTrust = trust;
+    if (m_fleetFeed)
+        m_fleetFeed->setTrust(m_brokerTrust);
 }
 
 void MainWindow::observeRequested(const QString& aircraft)
@@ -895,6 +970,7 @@ void MainWindow::observeRequested(const QString& aircraft)
     BrokerSettings settings = *m_broker;
     settings.aircraft = aircraft;
     settings.clientId.clear();
+    settings.trust = m_brokerTrust;
     observe(settings);
 }
 
@@ -903,10 +979,23 @@ void MainWindow::observe(const BrokerSettings& settings)
     m_session->stop();
     endObservation();
     m_observation = new BrokerObservation(settings, this);
+    // A keyed session's frames are the enciphered bytes: with the aircraft's
+    // key the log view and the panels read them as the station's own would.
+    const QList<std::shared_ptr<const rcm::LogKey>> keys =
+        settings.trust ? settings.trust->linkKeys() : QList<std::shared_ptr<const rcm::LogKey>>();
     m_logModel->clear();
-    m_logModel->setLogKey(nullptr);
+    m_logModel->setLogKey(keys.isEmpty() ? nullptr : keys.front());
     m_status->setTransportLabel(tr("Broker"), tr("The broker the observation comes through, and for how long"));
     bindLinkEvents(m_observation, true);
+    // Refused messages are counted as refused frames are; what is worth
+    // knowing (frames missed, stations unverified or sealed) is a warning.
+    connect(m_observation, &BrokerObservation::messageRefused, m_alerts->refusals(),
+            &RefusalDigest::refusedBrokerMessage);
+    connect(m_observation, &BrokerObservation::messageRefused, this, [this](const QString& reason) {
+        statusBar()->showMessage(tr("A broker message was refused: %1").arg(reason), 8000);
+    });
+    connect(m_observation, &BrokerObservation::warning, this,
+            [this](const QString& text) { m_alerts->warning(EventSource::Link, text); });
     // Read only, as a replay: the panels show what the observed station commands.
     m_ownCommand = m_command->message();
     m_replayMicros = QDateTime::currentMSecsSinceEpoch() * 1000;
@@ -915,21 +1004,45 @@ void MainWindow::observe(const BrokerSettings& settings)
     m_replayNote->show();
     m_replayReadOnly = new ReadOnlyArea(m_panels, this);
     qApp->installEventFilter(m_replayReadOnly);
-    connect(m_observation, &LinkEvents::frameLogged, this, [this](const LoggedFrame& frame) {
+    connect(m_observation, &LinkEvents::frameLogged, this, [this, keys](const LoggedFrame& frame) {
         m_replayMicros = frame.entry.utcMicros;
-        if (frame.entry.direction != FrameDirection::Sent || frame.entry.enciphered)
+        if (frame.entry.direction != FrameDirection::Sent)
             return;
-        rcm::DecodeResult r = rcm::decodeFrame(std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()),
-                                                         std::size_t(frame.bytes.size())));
+        const auto bytes =
+            std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()), std::size_t(frame.bytes.size()));
+        if (frame.entry.enciphered) {
+            // Read only when a key of ours authenticates it.
+            for (const std::shared_ptr<const rcm::LogKey>& key : keys)
+                if (const rcm::LoggedFrameReading reading = rcm::readLoggedFrame(bytes, true, key.get());
+                    reading.read()) {
+                    m_command->replaceMessage(reading.decoded.message);
+                    return;
+                }
+            return;
+        }
+        rcm::DecodeResult r = rcm::decodeFrame(bytes);
         if (r.ok() && r.diagnostics.empty())
             m_command->replaceMessage(r.message);
     });
     const QString description = tr("Observing %1 on %2").arg(m_observation->aircraft(), settings.url());
     m_status->setLinkDescription(description);
+    m_status->setKeyFingerprint(keys.isEmpty() ? QString() : QString::fromStdString(keys.front()->fingerprint()));
     m_status->setStatistics(LinkStatistics());
     m_flightPlan->setLinkReady(false);
     m_linkNote->setText(tr("%1: read only, nothing is sent to the aircraft").arg(description));
     m_alerts->info(EventSource::Link, description);
+    const QStringList trusted = settings.trust ? settings.trust->trustedStations() : QStringList();
+    if (trusted.isEmpty())
+        m_alerts->warning(EventSource::Link, tr("No station's key is trusted (--broker-trust): nothing %1's stations "
+                                                "publish can be verified, and nothing unverified is shown")
+                                                 .arg(m_observation->aircraft()));
+    else
+        m_alerts->info(EventSource::Link, tr("Trusting the keys of %1").arg(trusted.join(QStringLiteral(", "))));
+    if (!settings.tls && !settings.password.isEmpty() && !m_broker)
+        m_alerts->warning(EventSource::Link,
+                          tr("The broker password goes to %1 over plain mqtt://, unencrypted: anyone on the path "
+                             "reads it; use mqtts://")
+                              .arg(settings.hostAndPort()));
     m_observation->start();
     updateLinkControls();
 }
@@ -944,6 +1057,7 @@ void MainWindow::endObservation()
     m_replayNote->setText(replayNoteText());
     endReplay();
     m_status->setLinkDescription(QString());
+    m_status->setKeyFingerprint(QString());
     m_status->setStatistics(LinkStatistics());
     m_alerts->setStatistics(LinkStatistics());  // closed: no alarm
     m_alerts->info(EventSource::Link, tr("Stopped observing"));

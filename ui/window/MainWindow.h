@@ -44,6 +44,7 @@ class ReplayLink;
 class ReportedState;
 class StationControlWidget;
 class BrokerObservation;
+class BrokerTrust;
 class FleetFeed;
 class FleetModel;
 class FleetView;
@@ -85,6 +86,7 @@ public:
     FleetView* fleetView() const { return m_fleetView; }
     SessionBroadcast* broadcast() const { return m_broadcast; }
     BrokerObservation* observation() const { return m_observation; }
+    FleetFeed* fleetFeed() const { return m_fleetFeed; }
     ConsoleSession* session() const { return m_session; }
     // The event log, its dock, the error banner and the link-loss alarm.
     ConsoleAlerts* alerts() const { return m_alerts; }
@@ -139,8 +141,9 @@ public slots:
     // 0.25 to 10 times the logged pace.
     void setReplaySpeed(double speed);
     // Joins the broker: the Fleet dock lists every aircraft on it, and with
-    // `publish` every link this console runs is published there
-    // (docs/architecture.md, "Stations and the broker").
+    // `publish` every link this console runs is published there, signed with
+    // settings.signingKey (docs/architecture.md, "Stations and the broker";
+    // docs/security.md, "The broker").
     void joinBroker(const BrokerSettings& settings, bool publish);
     // Shows settings.aircraft read-only from the broker: its frames, status
     // and events as the station publishing it logged them; nothing is sent.
@@ -171,6 +174,13 @@ private:
     // What a link or an observation says, to the status bar, overview, alerts and log view.
     void bindLinkEvents(const LinkEvents* events, bool logRows);
     void endObservation();
+    // The broker's own trouble: what waiting mends to the event log, what it
+    // does not to the banner too, its return to the event log. Quiet while
+    // an observation runs, whose own client says it.
+    void followBrokerClient(const MqttClient* client, bool quietWhileObserving = false);
+    // Whom the fleet and the observations believe: the command line's trust,
+    // this station's own key, the running link's key.
+    void updateBrokerTrust();
     void buildMenus();
     void restoreSession(const Options& options);
     void saveSession() const;
@@ -228,6 +238,9 @@ private:
     StationControlWidget* m_stationControl = nullptr;
     SessionBroadcast* m_broadcast = nullptr;
     MqttClient* m_fleetClient = nullptr;
+    FleetFeed* m_fleetFeed = nullptr;
+    std::shared_ptr<const BrokerTrust> m_brokerTrust;
+    bool m_brokerAnnounced = false;  // "connected, publishing" said once
     FleetModel* m_fleetModel = nullptr;
     FleetView* m_fleetView = nullptr;
     BrokerObservation* m_observation = nullptr;
