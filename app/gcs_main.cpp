@@ -1,7 +1,7 @@
-// gcs: the operator console; `gcs --help` lists its options. Start-up, memory
-// and GUI stall measurements: tests/bench/bench_console.cpp.
+// gcs: the operator console (`gcs --help`); start-up, memory and GUI stalls: tests/bench/bench_console.cpp.
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
+#include "link/transport/ModemProfile.h"
 #include "ui/control/StationCommandLine.h"
 #include "ui/plan/PlanCommandLine.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
@@ -11,20 +11,17 @@
 
 #include <QApplication>
 #include <QCommandLineParser>
-
 #include <cstdio>
 
-namespace {
-constexpr int kUsageError = 2;
-void say(const QString& line) { std::fprintf(stderr, "gcs: %s\n", qPrintable(line)); }
-}  // namespace
+static constexpr int kUsageError = 2;
+static void say(const QString& line) { std::fprintf(stderr, "gcs: %s\n", qPrintable(line)); }
 
 int main(int argc, char* argv[])
 {
     QApplication app(argc, argv);
     QCoreApplication::setOrganizationName(QStringLiteral("rcm"));
     QCoreApplication::setApplicationName(QStringLiteral("gcs"));
-
+    QGuiApplication::setDesktopFileName(QStringLiteral(RCM_APP_ID));  // its menu entry and icon (Wayland)
     QCommandLineParser parser;
     parser.setApplicationDescription(
         QStringLiteral("The operator console of the RCM ground control station: commands an unmanned aircraft with\n"
@@ -51,6 +48,8 @@ int main(int argc, char* argv[])
                                   QStringLiteral("The serial port is a satellite phone's modem: dial this number, "
                                                  "redial a dropped call, hang up on quit (docs/modem.md)."),
                                   QStringLiteral("number"));
+    const QCommandLineOption profile(QStringLiteral("modem-profile"), QStringLiteral("With --dial: the phone "
+        "(docs/modem.md), one of %1; default generic.").arg(modem::profileNames().join(", ")), QStringLiteral("name"));
     const QCommandLineOption replay(QStringLiteral("replay"), QStringLiteral("Replay a frame log."),
                                     QStringLiteral("log.pcapng"));
     const QCommandLineOption airframe(QStringLiteral("airframe"),
@@ -61,11 +60,13 @@ int main(int argc, char* argv[])
                                         QStringLiteral("Lay the window out with the default settings, save a "
                                                        "picture of it and exit (works offscreen)."),
                                         QStringLiteral("file.png"));
-    const QCommandLineOption key(QStringLiteral("key"),
-                                 QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex "
-                                                "digits, mode 0600. With --rehearsal, uasim uses it too; with --replay, "
-                                                "it reads a keyed session's log. Kept in the link settings."),
-                                 QStringLiteral("file"));
+    const QCommandLineOption key(
+        QStringLiteral("key"),
+        QStringLiteral("The secure link (docs/security.md): the aircraft's key file, 64 hex "
+                       "digits, mode 0600. With --rehearsal, uasim uses it too; with --replay, "
+                       "it reads a keyed session's log; with --observe (once per station), "
+                       "it opens the sealed sessions on the broker. Kept in the link settings."),
+        QStringLiteral("file"));
     const QCommandLineOption size(QStringLiteral("size"), QStringLiteral("Window size for --screenshot."),
                                   QStringLiteral("WxH"), QStringLiteral("1600x1000"));
     const QCommandLineOption after(QStringLiteral("screenshot-after"),
@@ -75,14 +76,13 @@ int main(int argc, char* argv[])
     const QCommandLineOption page(QStringLiteral("page"), QStringLiteral("The tab shown, 1 to 9 (Alt+1 ..)."),
                                   QStringLiteral("n"), QStringLiteral("1"));
     parser.addOptions(
-        {rehearsal, udpRemote, serial, baud, dial, replay, airframe, key, screenshot, size, after, night, page});
+        {rehearsal, udpRemote, serial, baud, dial, profile, replay, airframe, key, screenshot, size, after, night, page});
     const RehearsalCommandLine rehearse(parser);
     const PlanCommandLine planOptions(parser);
     const StationCommandLine stationOptions(parser);
     parser.process(app);
     if (rehearse.requested())
         return rehearse.run();
-
     const auto usage = [&](const QString& message) {
         say(message);
         std::fprintf(stderr, "%s", qPrintable(parser.helpText()));
@@ -101,9 +101,8 @@ int main(int argc, char* argv[])
     const QSize windowSize(wh.value(0).toInt(), wh.value(1).toInt());
     if (wh.size() != 2 || windowSize.width() < 320 || windowSize.height() < 240)
         return usage(QStringLiteral("--size wants WIDTHxHEIGHT, e.g. 1600x1000"));
-    if (parser.isSet(key) && !parser.isSet(rehearsal) && !parser.isSet(udpRemote) && !parser.isSet(serial) &&
-        !parser.isSet(replay))
-        return usage(QStringLiteral("--key goes with --rehearsal, --udp-remote, --serial or --replay"));
+    if (parser.isSet(key) && connections == 0 && !stationOptions.observes())
+        return usage(QStringLiteral("--key goes with --rehearsal, --udp-remote, --serial, --replay or --observe"));
     std::optional<LinkSettings> link;
     if (parser.isSet(udpRemote) && !(link = LinkSettings::udpRemote(parser.value(udpRemote), &error)))
         return usage(error);
@@ -113,7 +112,9 @@ int main(int argc, char* argv[])
         return usage(QStringLiteral("--dial goes with --serial DEVICE: the phone's modem is on a serial port"));
     if (link && parser.isSet(dial))
         link->dialNumber = parser.value(dial);
-
+    error = QStringLiteral("it goes with --dial NUMBER");
+    if (parser.isSet(profile) && !(link && link->dialsModem() && link->setModemProfile(parser.value(profile), &error)))
+        return usage(QStringLiteral("--modem-profile: %1").arg(error));
     MainWindow::Options options;
     // Pictures use the defaults, not the last session's layout.
     options.restoreSettings = !parser.isSet(screenshot);
@@ -124,12 +125,14 @@ int main(int argc, char* argv[])
     if (parser.isSet(night))
         window.setTheme(Theme::Kind::Night);
     window.showPanel(parser.value(page).toInt() - 1);
-    if (!planOptions.apply(*window.flightPlan(), &error) || !stationOptions.apply(window, &error))
+    if (!planOptions.apply(*window.flightPlan(), &error))  // the file is wrong, not the options: no help
+        return say(QStringLiteral("--plan: ") + error), kUsageError;
+    if (!stationOptions.apply(window, &error))
         return usage(error);
     if (parser.isSet(screenshot))
         window.screenshotAndQuit(parser.value(screenshot), windowSize, parser.value(after).toInt());
     window.show();
-    if (parser.isSet(key)) {
+    if (parser.isSet(key) && !stationOptions.observes()) {
         // Into the link settings, where the rehearsal takes it from and which keep its path.
         LinkSettings settings = link.value_or(window.linkSettings()->settings());
         settings.keyPath = parser.value(key);

@@ -3,6 +3,7 @@
 //   rcm decode [FILE] [--datagram] [--summary]   bytes -> text
 //   rcm dissector                            the Wireshark dissector, from the item table
 //   rcm keygen FILE                          a new 256-bit key for the secure link
+//   rcm stationkey STATION FILE              a station's Ed25519 key for signing on a broker
 // The commands live in codec/cli (`rcm --help` says what each does); this
 // file only picks one.
 #include "codec/cli/Decode.h"
@@ -33,6 +34,8 @@ int main(int argc, char** argv)
         return decode(*o);
     if (o->command == "keygen")
         return keygen(*o);
+    if (o->command == "stationkey")
+        return stationkey(*o);
     std::fputs(rcm::wiresharkDissectorLua().c_str(), stdout);  // dissector: the only command left
     return kExitOk;
 }

@@ -7,9 +7,12 @@
 #include <QDir>
 #include <QSocketNotifier>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <sys/signalfd.h>
+#include <unistd.h>
 
 namespace {
 
@@ -48,8 +51,11 @@ int main(int argc, char* argv[])
         {"drop-mean", "Mean seconds between random call drops; 0: never.", "S", "0"},
         {"seed", "Seed of the random drops.", "N", QString::number(d.seed)},
         {"busy", "The far side is busy: BUSY after the set-up time."},
-        {"no-service", "No network: NO DIALTONE at once."},
-        {"link-dir", "Make symlinks DIR/ground and DIR/aircraft to the two devices.", "DIR"},
+        {"no-service", "No network ever: not registered, no signal, NO DIALTONE at once."},
+        {"no-service-for", "No network for the first S seconds (not registered, no signal), then 4 bars.", "S"},
+        {"service", "The signal as time goes, SECONDS:BARS,... (0 bars: no service; a call then drops), e.g. 0:0,10:4,60:1.", "SCRIPT"},
+        {"profile", "The phones' AT dialect: " + modem::profileNames().join(", ") + " (default generic).", "NAME", "generic"},
+        {"link-dir", "Make symlinks DIR/ground and DIR/aircraft to the two devices; DIR is made if missing.", "DIR"},
         {"verbose", "Log commands, results and call states to standard error."},
     });
     if (!parser.parse(app.arguments()) || !parser.positionalArguments().isEmpty())
@@ -65,21 +71,35 @@ int main(int argc, char* argv[])
     };
     const int setup = number("setup-time", 0), delay = number("delay", 0), rate = number("rate", 1);
     const int buffer = number("buffer", 1), dropMean = number("drop-mean", 0), seed = number("seed", 0);
-    if (std::min({setup, delay, rate, buffer, dropMean, seed}) < 0)
+    const int noServiceFor = parser.isSet("no-service-for") ? number("no-service-for", 0) : 0;
+    if (std::min({setup, delay, rate, buffer, dropMean, seed, noServiceFor}) < 0)
         return kUsageError;
+    QString error;
+    const std::optional<modem::Profile> profile = modem::findProfile(parser.value("profile"));
+    if (!profile)
+        return say("--profile: no profile is called \"" + parser.value("profile") + "\"; there are " + modem::profileNames().join(", "), kUsageError);
+    auto service = SatelliteModem::parseService(parser.value("service"), &error);
+    if (!service)
+        return say("--service: " + error, kUsageError);
+    if (parser.isSet("no-service-for") && parser.isSet("service"))
+        return say("give --no-service-for or --service, not both", kUsageError);
+    if (noServiceFor > 0)
+        service = {{std::chrono::milliseconds(0), 0}, {std::chrono::seconds(noServiceFor), 4}};
     SatelliteModem modem({.callSetupTime = std::chrono::milliseconds(setup), .oneWayDelay = std::chrono::milliseconds(delay),
                           .airRate = rate, .bufferLimit = buffer, .meanTimeBetweenDrops = std::chrono::seconds(dropMean),
-                          .seed = quint32(seed), .busy = parser.isSet("busy"), .noService = parser.isSet("no-service")});
-    QString error;
+                          .seed = quint32(seed), .busy = parser.isSet("busy"), .noService = parser.isSet("no-service"),
+                          .profile = *profile, .service = *service});
     if (!modem.open(&error))
         return say(error, kRunError);
     const QString linkDir = parser.value("link-dir");
     const auto linkOf = [&](int side) { return QDir(linkDir).filePath(kSides[side]); };
+    if (!linkDir.isEmpty() && !QDir().mkpath(linkDir))
+        return say("--link-dir: cannot make the directory " + linkDir + ": " + std::strerror(errno), kRunError);
     for (int side = 0; side < 2; ++side) {
         if (!linkDir.isEmpty())
             QFile::remove(linkOf(side));  // left by a run that was killed
-        if (!linkDir.isEmpty() && !QFile::link(modem.device(side), linkOf(side)))
-            return say("cannot make the symlink " + linkOf(side), kRunError);
+        if (!linkDir.isEmpty() && ::symlink(qPrintable(modem.device(side)), qPrintable(linkOf(side))) != 0)
+            return say("cannot make the symlink " + linkOf(side) + " to " + modem.device(side) + ": " + std::strerror(errno), kRunError);
         std::printf("%s: %s\n", qPrintable(kSides[side]), qPrintable(modem.device(side)));
     }
     std::fflush(stdout);
@@ -89,6 +109,9 @@ int main(int argc, char* argv[])
         QObject::connect(&modem, &SatelliteModem::flowControlChanged, [](int side, bool off) { say(kSides[side] + (off ? ": CTS off" : ": CTS on")); });
         QObject::connect(&modem, &SatelliteModem::hungUp, [](int side, const QString& how) { say((side < 0 ? "network" : kSides[side]) + " hung up: " + how); });
         QObject::connect(&modem, &SatelliteModem::callStateChanged, [](SatelliteModem::CallState s) { say("call " + QVariant::fromValue(s).toString()); });
+        const auto saySignal = [](int bars) { say(bars ? QString("signal %1 of 5").arg(bars) : QString("no service")); };
+        QObject::connect(&modem, &SatelliteModem::signalChanged, saySignal);
+        saySignal(modem.signalBars());
     }
     QSocketNotifier stopped(::signalfd(-1, &stops, SFD_CLOEXEC), QSocketNotifier::Read);
     QObject::connect(&stopped, &QSocketNotifier::activated, &app, &QCoreApplication::quit);

@@ -17,6 +17,7 @@ struct SeenBox {
     bool cancelHasFocus = false;
     QString text;
     QString informativeText;
+    QString actionText;  // the button that confirms
 };
 
 // Once the box is up (the next pass of the event loop), presses Cancel when
@@ -37,6 +38,7 @@ inline void answerNextBox(SeenBox* seen, bool cancel)
         for (QAbstractButton* b : box->buttons())
             if (b != cancelButton)
                 go = b;
+        seen->actionText = go ? go->text() : QString();
         (cancel ? cancelButton : go)->click();
     });
 }

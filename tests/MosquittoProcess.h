@@ -2,6 +2,12 @@
 // configuration (and, as asked, a password file or a CA and a server
 // certificate) in a temporary folder of its own. stop() and start() again
 // give a broker restarted on the same port, as an operator's would be.
+//
+// Options::deployment runs it with the deployment configuration,
+// resources/mosquitto/rcm.conf and rcm.acl, as they are but for the
+// listeners (moved to free loopback ports: port() plain, tlsPort() TLS) and
+// the files (the password file of Options::users, the certificates, the
+// persistence folder, all in the temporary folder).
 #pragma once
 
 #include <QByteArray>
@@ -14,6 +20,7 @@
 #include <QTemporaryDir>
 
 #include <csignal>
+#include <utility>
 #include <pwd.h>
 #include <unistd.h>
 
@@ -28,10 +35,16 @@ public:
         // A TLS listener with a server certificate for 127.0.0.1, signed by
         // a CA made for the occasion (caFile()).
         bool tls = false;
+        // resources/mosquitto/rcm.conf, with these users (name, password).
+        bool deployment = false;
+        QList<std::pair<QString, QString>> users = {};
+        // More lines for the tests' own configuration ("max_queued_messages 20000").
+        QStringList more = {};
     };
 
     MosquittoProcess() : MosquittoProcess(Options{}) {}
-    explicit MosquittoProcess(const Options& options) : m_options(options), m_port(freePort())
+    explicit MosquittoProcess(const Options& options)
+        : m_options(options), m_port(freePort()), m_tlsPort(options.deployment ? freePort() : 0)
     {
         QObject::connect(&m_process, &QProcess::readyReadStandardError,
                          [this] { m_stderr += m_process.readAllStandardError(); });
@@ -75,6 +88,7 @@ public:
     bool isRunning() const { return m_process.state() == QProcess::Running; }
 
     quint16 port() const { return m_port; }
+    quint16 tlsPort() const { return m_tlsPort; }
     QString caFile() const { return m_dir.filePath(QStringLiteral("ca.crt")); }
     QString dir() const { return m_dir.path(); }
     const QByteArray& stderrText() const { return m_stderr; }
@@ -105,6 +119,8 @@ public:
 private:
     bool configure()
     {
+        if (m_options.deployment)
+            return configureDeployment();
         QStringList conf{
             QStringLiteral("listener %1 127.0.0.1").arg(m_port),
             QStringLiteral("persistence false"),
@@ -113,6 +129,7 @@ private:
             // user "mosquitto" and could not read the temporary folder.
             QStringLiteral("user %1").arg(userName()),
         };
+        conf << m_options.more;
         if (m_options.user.isEmpty()) {
             conf << QStringLiteral("allow_anonymous true");
         } else {
@@ -129,6 +146,57 @@ private:
                  << QStringLiteral("certfile ") + m_dir.filePath(QStringLiteral("server.crt"))
                  << QStringLiteral("keyfile ") + m_dir.filePath(QStringLiteral("server.key"));
         }
+        m_configPath = m_dir.filePath(QStringLiteral("mosquitto.conf"));
+        QFile f(m_configPath);
+        if (!f.open(QIODevice::WriteOnly))
+            return false;
+        f.write(conf.join(u'\n').toUtf8() + '\n');
+        return true;
+    }
+
+    // The deployment configuration, line for line, but for where it listens
+    // and where its files are.
+    bool configureDeployment()
+    {
+        QFile source(QStringLiteral(RCM_SOURCE_DIR "/resources/mosquitto/rcm.conf"));
+        if (!source.open(QIODevice::ReadOnly)) {
+            m_setupError = source.fileName() + QStringLiteral(": ") + source.errorString();
+            return false;
+        }
+        const QString passwords = m_dir.filePath(QStringLiteral("passwords"));
+        for (qsizetype i = 0; i < m_options.users.size(); ++i) {
+            QStringList arguments{QStringLiteral("-b")};
+            if (i == 0)
+                arguments << QStringLiteral("-c");
+            arguments << passwords << m_options.users[i].first << m_options.users[i].second;
+            if (!run(QStringLiteral("mosquitto_passwd"), arguments))
+                return false;
+        }
+        if (!makeCertificates())
+            return false;
+        QDir().mkpath(m_dir.filePath(QStringLiteral("db")));
+        QStringList conf;
+        for (const QString& line : QString::fromUtf8(source.readAll()).split(u'\n')) {
+            const QString key = line.section(u' ', 0, 0);
+            if (key == QLatin1String("listener"))
+                conf << QStringLiteral("listener %1 127.0.0.1")
+                            .arg(line.section(u' ', 1, 1) == QLatin1String("8883") ? m_tlsPort : m_port);
+            else if (key == QLatin1String("password_file"))
+                conf << QStringLiteral("password_file ") + passwords;
+            else if (key == QLatin1String("acl_file"))
+                conf << QStringLiteral("acl_file " RCM_SOURCE_DIR "/resources/mosquitto/rcm.acl");
+            else if (key == QLatin1String("certfile"))
+                conf << QStringLiteral("certfile ") + m_dir.filePath(QStringLiteral("server.crt"));
+            else if (key == QLatin1String("keyfile"))
+                conf << QStringLiteral("keyfile ") + m_dir.filePath(QStringLiteral("server.key"));
+            else if (key == QLatin1String("persistence_location"))
+                conf << QStringLiteral("persistence_location ") + m_dir.filePath(QStringLiteral("db")) + u'/';
+            else
+                conf << line;
+        }
+        // Before the listeners: global settings.
+        conf.prepend(QStringLiteral("user %1").arg(userName()));
+        conf.prepend(QStringLiteral("log_dest stderr"));
         m_configPath = m_dir.filePath(QStringLiteral("mosquitto.conf"));
         QFile f(m_configPath);
         if (!f.open(QIODevice::WriteOnly))
@@ -172,6 +240,7 @@ private:
 
     Options m_options;
     quint16 m_port;
+    quint16 m_tlsPort;
     QTemporaryDir m_dir;
     QString m_configPath;
     QString m_setupError;

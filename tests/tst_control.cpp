@@ -52,7 +52,7 @@ QString state(const ControlArbiter& a)
 ControlArbiter takenUpByA(std::chrono::microseconds failover = ControlArbiter::kDefaultFailover)
 {
     ControlArbiter a({kA, kB}, failover);
-    a.onFrame(kA, kA, kB, kT0);
+    a.onFrame(kA, kA, kA, kT0);  // the claim: A's operator took control
     return a;
 }
 
@@ -74,11 +74,24 @@ private slots:
         QCOMPARE(a.notInControlCount(kB), quint64(0));
     }
 
-    // Row 1: S = C and D = S.
-    void controllerNamingItselfTakesUpAndIsActedOn()
+    // Row 1: S = C and D = S, taken up by the claim (D = B = S) alone.
+    void controllerClaimingTakesUpAndIsActedOn()
     {
         ControlArbiter a({kA, kB});
-        const ControlArbiter::Decision first = a.onFrame(kA, kA, kB, kT0);
+        // Naming itself is not enough: what a console just restarted sends.
+        const ControlArbiter::Decision named = a.onFrame(kA, kA, kB, kT0);
+        QVERIFY(!named.act);
+        QCOMPARE(named.notActedOn,
+                 std::string("control not yet taken up (GB_30226 in control, waiting for its operator's Take control)"));
+        QVERIFY(named.events.empty());
+        QVERIFY(!a.onFrame(kA, kA, std::nullopt, kT0).act);
+        QCOMPARE(state(a), QStringLiteral("44_30226 44_41251 offered"));
+
+        QVERIFY(ControlArbiter::isClaim(kA, kA, kA));
+        QVERIFY(!ControlArbiter::isClaim(kA, kA, kB));
+        QVERIFY(!ControlArbiter::isClaim(kA, kB, kB));
+        QVERIFY(!ControlArbiter::isClaim(kA, std::nullopt, std::nullopt));
+        const ControlArbiter::Decision first = a.onFrame(kA, kA, kA, kT0);
         QVERIFY(first.act);
         QVERIFY(first.notActedOn.empty());
         QCOMPARE(first.events.size(), std::size_t{1});
@@ -86,20 +99,45 @@ private slots:
         QCOMPARE(texts(first), QStringList{"taken up: GB_30226 in control, GB_41251 backup"});
         QCOMPARE(state(a), QStringLiteral("44_30226 44_41251 taken"));
 
+        // Taken up, its frames naming itself are commands, claims or not.
         const ControlArbiter::Decision next = a.onFrame(kA, kA, kB, at(1s));
         QVERIFY(next.act);
         QVERIFY(next.events.empty());
+        QVERIFY(a.onFrame(kA, kA, kA, at(2s)).act);
+        QCOMPARE(state(a), QStringLiteral("44_30226 44_41251 taken"));
+    }
+
+    // After a failover a backup console restarted (or one that lost control)
+    // names itself as before; the aircraft does not take it up for that.
+    void stationGivenControlNamingItselfIsNotTakenUp()
+    {
+        ControlArbiter a = takenUpByA();
+        a.onFrame(kB, kA, kB, at(1s));
+        QVERIFY(a.tick(at(5s)));
+        QCOMPARE(state(a), QStringLiteral("44_41251 44_30226 offered"));
+        for (int s = 6; s <= 8; ++s) {
+            const ControlArbiter::Decision d = a.onFrame(kB, kB, std::nullopt, at(std::chrono::seconds(s)));
+            QVERIFY(!d.act);
+            QVERIFY(d.events.empty());
+            QVERIFY(!a.onFrame(kB, kB, kA, at(std::chrono::seconds(s))).act);
+        }
+        QCOMPARE(state(a), QStringLiteral("44_41251 44_30226 offered"));
+        // A claim from a station not in control is counted, not taken up.
+        QVERIFY(!a.onFrame(kA, kA, kA, at(9s)).act);
+        QCOMPARE(a.notInControlCount(kA), quint64(1));
+        QVERIFY(a.onFrame(kB, kB, kB, at(9s)).act);
+        QCOMPARE(state(a), QStringLiteral("44_41251 44_30226 taken"));
     }
 
     // Row 1, the backup it names: another of the aircraft's stations becomes K.
     void controllerChangesItsBackup()
     {
         ControlArbiter a({kA, kB, kX});
+        QCOMPARE(texts(a.onFrame(kA, kA, kA, kT0)), QStringList{"taken up: GB_30226 in control, GB_41251 backup"});
         const ControlArbiter::Decision d = a.onFrame(kA, kA, kX, kT0);
         QVERIFY(d.act);
-        QCOMPARE(texts(d), QStringList({"taken up: GB_30226 in control, GB_41251 backup",
-                                        "backup changed: GB_52000, named by GB_30226 in control (was GB_41251)"}));
-        QCOMPARE(d.events[1].kind, Kind::BackupChanged);
+        QCOMPARE(texts(d), QStringList{"backup changed: GB_52000, named by GB_30226 in control (was GB_41251)"});
+        QCOMPARE(d.events[0].kind, Kind::BackupChanged);
         QCOMPARE(state(a), QStringLiteral("44_30226 44_52000 taken"));
 
         // B is now only an observer; X the one that takes over. Watching, as
@@ -149,9 +187,11 @@ private slots:
         // Nobody's commands until B takes up: not A's, though it named itself.
         QVERIFY(!a.onFrame(kA, kA, kB, at(2s)).act);
         QCOMPARE(a.notInControlCount(kA), quint64(1));
-        // B, given control, names the backup as destination: not yet taken up.
+        // B, given control, names the backup as destination: not yet taken
+        // up; nor by naming itself, only by its claim.
         QVERIFY(!a.onFrame(kB, kA, kB, at(2s)).act);
-        const ControlArbiter::Decision taken = a.onFrame(kB, kB, kA, at(3s));
+        QVERIFY(!a.onFrame(kB, kB, kA, at(3s)).act);
+        const ControlArbiter::Decision taken = a.onFrame(kB, kB, kB, at(3s));
         QVERIFY(taken.act);
         QCOMPARE(texts(taken), QStringList{"taken up: GB_41251 in control, GB_30226 backup"});
         QCOMPARE(state(a), QStringLiteral("44_41251 44_30226 taken"));
@@ -224,7 +264,7 @@ private slots:
     {
         QFETCH(std::optional<StationId>, destination);
         ControlArbiter a({kA, kB, kX});
-        a.onFrame(kA, kA, kB, kT0);
+        a.onFrame(kA, kA, kA, kT0);
         const ControlArbiter::Decision d = a.onFrame(kA, destination, kB, at(1s));
         QVERIFY(!d.act);
         QFETCH(QString, why);
@@ -258,9 +298,9 @@ private slots:
         QVERIFY(!a.tick(at(6s)));  // once
 
         // Taking up: B's frames naming A (it has not yet seen the change) are
-        // nothing; the first naming itself is acted on.
+        // nothing; its claim is acted on.
         QVERIFY(!a.onFrame(kB, kA, kB, at(6s)).act);
-        const ControlArbiter::Decision taken = a.onFrame(kB, kB, kA, at(7s));
+        const ControlArbiter::Decision taken = a.onFrame(kB, kB, kB, at(7s));
         QVERIFY(taken.act);
         QCOMPARE(texts(taken), QStringList{"taken up: GB_41251 in control, GB_30226 backup"});
     }
@@ -316,7 +356,7 @@ private slots:
                  std::string("failover: nothing from GB_41251 for 5 s; GB_30226 in control, not yet taken up"));
         QCOMPARE(state(a), QStringLiteral("44_30226 44_41251 offered"));
         QVERIFY(!a.onFrame(kA, kB, kA, at(8s)).act);
-        const ControlArbiter::Decision taken = a.onFrame(kA, kA, kB, at(9s));
+        const ControlArbiter::Decision taken = a.onFrame(kA, kA, kA, at(9s));
         QVERIFY(taken.act);
         QCOMPARE(texts(taken), QStringList{"taken up: GB_30226 in control, GB_41251 backup"});
         // A named B while it was the backup: watching, not counted.
@@ -346,7 +386,7 @@ private slots:
                              "taken up"));
         QCOMPARE(state(a), QStringLiteral("44_30226 44_41251 offered"));
         // Taken up by A: nothing lapses any more.
-        QVERIFY(a.onFrame(kA, kA, kB, at(7s)).act);
+        QVERIFY(a.onFrame(kA, kA, kA, at(7s)).act);
         a.onFrame(kB, kA, kB, at(12s));
         QVERIFY(a.onFrame(kA, kA, kB, at(12s)).act);
         QVERIFY(!a.tick(at(13s)));
@@ -398,6 +438,10 @@ private slots:
         QCOMPARE(*a.backup(), kX);
         QVERIFY(a.onFrame(kB, std::nullopt, kB, at(1s)).act);
         QCOMPARE(*a.controller(), kZ);
+        QCOMPARE(*a.backup(), kB);
+        // A claim names its station twice: the backup stays.
+        QVERIFY(a.onFrame(kA, kA, kA, at(2s)).act);
+        QCOMPARE(*a.controller(), kA);
         QCOMPARE(*a.backup(), kB);
         QVERIFY(!a.tick(at(1h)));
         QCOMPARE(a.notInControlCount(kB), quint64(0));

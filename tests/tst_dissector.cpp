@@ -8,6 +8,7 @@
 #include "link/framelog/FrameLog.h"
 
 #include <QFile>
+#include <QFileInfo>
 #include <QProcess>
 #include <QRegularExpression>
 #include <QSet>
@@ -203,6 +204,7 @@ class TestDissector : public QObject {
 private slots:
     void initTestCase();
     void checkedInCopyIsGenerated();
+    void installedCopyIsTheSame();
     void fieldNamesAreUnique();
     void everyItemHasAField();
     void tsharkValues_data();
@@ -331,6 +333,30 @@ void TestDissector::checkedInCopyIsGenerated()
             .arg(line + 1)
             .arg(QString::fromUtf8(a.value(line)), QString::fromUtf8(b.value(line)));
     QFAIL(qPrintable(message));
+}
+
+// tshark loads an installed rcm.lua (the rcm-gcs package puts one in
+// Wireshark's plugin folder) before the -X lua_script copy, which then cannot
+// register the protocol again: the tshark tests below check the installed
+// copy, and say something of this tree only when it is the same text.
+void TestDissector::installedCopyIsTheSame()
+{
+    if (!haveTshark())
+        QSKIP("/usr/bin/tshark is not installed");
+    QProcess p;
+    p.start(kTshark, {QStringLiteral("-G"), QStringLiteral("plugins")});
+    QVERIFY(p.waitForFinished(60000) && p.exitStatus() == QProcess::NormalExit);
+    const QByteArray checkedIn = readFile(kCheckedIn);
+    for (const QByteArray& line : p.readAllStandardOutput().split('\n')) {
+        const QString path = QString::fromUtf8(line.split('\t').constLast()).trimmed();
+        if (QFileInfo(path).fileName() != QLatin1String("rcm.lua"))
+            continue;
+        QVERIFY2(readFile(path) == checkedIn,
+                 qPrintable(QStringLiteral("tshark loads %1 before this tree's resources/wireshark/rcm.lua, and it "
+                                           "is not the same: the tshark tests would check it instead. Remove it, "
+                                           "or install this tree's package (scripts/package).")
+                                .arg(path)));
+    }
 }
 
 void TestDissector::fieldNamesAreUnique()

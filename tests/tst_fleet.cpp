@@ -1,13 +1,17 @@
 // The fleet view over an MQTT broker: FleetFeed reading every aircraft's
-// station reports, frames and statistics into one summary each; FleetModel
+// station reports and statistics into one summary each, believing only
+// what a trusted station signed; FleetModel
 // telling a burst of updates once per pass of the event loop (one
 // dataChanged(), one rowsInserted()), its cells exact against a fake clock,
 // rows stale or offline as time passes; FleetView sorted by aircraft and
 // asking to observe one on Enter or double-click; and the whole path through
 // a real mosquitto, two consoles publishing for two aircraft.
 
+#include "codec/secure/StationSigningKey.h"
 #include "link/broker/BrokerSettings.h"
 #include "link/broker/BrokerTopics.h"
+#include "link/broker/BrokerTrust.h"
+#include "link/broker/EnvelopeWriter.h"
 #include "link/broker/FleetFeed.h"
 #include "link/broker/MqttClient.h"
 #include "ui/fleet/FleetModel.h"
@@ -17,6 +21,7 @@
 
 #include <QApplication>
 #include <QBrush>
+#include <QCheckBox>
 #include <QHeaderView>
 #include <QLabel>
 #include <QSignalSpy>
@@ -82,19 +87,37 @@ StationReport station(const QString& id, bool online, LinkState link, qint64 utc
     return r;
 }
 
-FrameReport frame(const QString& id, FrameDirection direction, FrameStatus status, qint64 utcMicros)
+// Each station's signing key and envelopes, made once a run.
+std::shared_ptr<const rcm::secure::StationSigningKey> keyOf(const QString& station)
 {
-    FrameReport f;
-    f.station = id;
-    f.direction = direction;
-    f.status = status;
-    f.utcMicros = utcMicros;
-    f.messageId = 7;
-    f.bytes = QByteArray(600, '\x5a');
-    f.transport = FrameTransport::Udp;
-    if (direction == FrameDirection::Received)
-        f.corrected = {0, 0};
-    return f;
+    static QHash<QString, std::shared_ptr<const rcm::secure::StationSigningKey>> keys;
+    auto& key = keys[station];
+    if (!key)
+        key = std::make_shared<const rcm::secure::StationSigningKey>(rcm::secure::StationSigningKey::generate());
+    return key;
+}
+
+EnvelopeWriter& writerOf(const QString& station)
+{
+    static QHash<QString, std::shared_ptr<EnvelopeWriter>> writers;
+    auto& writer = writers[station];
+    if (!writer)
+        writer = std::make_shared<EnvelopeWriter>(station, keyOf(station));
+    return *writer;
+}
+
+std::shared_ptr<const BrokerTrust> trusting(const QStringList& stations)
+{
+    auto trust = std::make_shared<BrokerTrust>();
+    for (const QString& station : stations)
+        trust->trustStation(station, keyOf(station)->publicKey());
+    return trust;
+}
+
+// `body` as the station named by `topic` publishes it there: signed.
+QByteArray signedOn(const QString& topic, const QByteArray& body)
+{
+    return writerOf(BrokerTopics::parseTopic(topic)->station).wrap(topic, body);
 }
 
 }  // namespace
@@ -107,7 +130,7 @@ private slots:
     {
         QLocale::setDefault(QLocale(QLocale::English, QLocale::UnitedStates));
         qRegisterMetaType<AircraftSummary>();
-        qRegisterMetaType<FrameReport>();
+        qRegisterMetaType<StatsReport>();
     }
 
     // A thousand updates of a hundred aircraft in one pass are one insert of
@@ -363,15 +386,24 @@ private slots:
     void feedSummarises()
     {
         FleetFeed feed(nullptr);
-        QCOMPARE(FleetFeed::patterns(), (QStringList{"rcm/+/station/+", "rcm/+/frames", "rcm/+/stats"}));
+        feed.setTrust(trusting({QStringLiteral("GB_1"), QStringLiteral("GB_2"), QStringLiteral("GB_9")}));
+        QCOMPARE(FleetFeed::patterns(), (QStringList{"rcm/+/station/+", "rcm/+/stats/+"}));
         QSignalSpy updated(&feed, &FleetFeed::aircraftUpdated);
-        QSignalSpy frames(&feed, &FleetFeed::frameReported);
+        QSignalSpy statsSeen(&feed, &FleetFeed::statsReported);
         QSignalSpy refused(&feed, &FleetFeed::payloadRefused);
         const QString a = QStringLiteral("GB_133");
         const QString b = QStringLiteral("GB_134");
+        const auto say = [&feed](const QString& topic, const QByteArray& body) {
+            feed.handleMessage(topic, signedOn(topic, body));
+        };
+        const auto stationAt = [](const QString& aircraft, const char* id) {
+            return BrokerTopics::stationTopic(aircraft, QString::fromLatin1(id));
+        };
+        const auto statsAt = [](const QString& aircraft, const char* id) {
+            return BrokerTopics::statsTopic(aircraft, QString::fromLatin1(id));
+        };
 
-        feed.handleMessage(BrokerTopics::stationTopic(a, QStringLiteral("GB_1")),
-                           station(QStringLiteral("GB_1"), true, LinkState::Waiting, kT0, 0).toJson());
+        say(stationAt(a, "GB_1"), station(QStringLiteral("GB_1"), true, LinkState::Waiting, kT0, 0).toJson());
         QCOMPARE(updated.count(), 1);
         AircraftSummary expected;
         expected.aircraft = a;
@@ -381,10 +413,9 @@ private slots:
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
 
         // The second station is connected and knows who is in control.
-        feed.handleMessage(BrokerTopics::stationTopic(a, QStringLiteral("GB_2")),
-                           station(QStringLiteral("GB_2"), true, LinkState::Connected, kT0 + kSecond, kT0 + 900'000,
-                                   QStringLiteral("GB_2"), QStringLiteral("GB_1"))
-                               .toJson());
+        say(stationAt(a, "GB_2"), station(QStringLiteral("GB_2"), true, LinkState::Connected, kT0 + kSecond,
+                                          kT0 + 900'000, QStringLiteral("GB_2"), QStringLiteral("GB_1"))
+                                      .toJson());
         expected.link = LinkState::Connected;
         expected.stations = 2;
         expected.stationsOnline = 2;
@@ -393,69 +424,68 @@ private slots:
         expected.lastFrameUtcMicros = kT0 + 900'000;
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
 
-        // Frames both ways: counted; a good one down is the last frame, one
-        // beyond correction is not.
-        const QString framesA = BrokerTopics::framesTopic(a);
-        feed.handleMessage(
-            framesA,
-            frame(QStringLiteral("GB_2"), FrameDirection::Sent, FrameStatus::NotChecked, kT0 + 2 * kSecond).toJson());
-        feed.handleMessage(framesA, frame(QStringLiteral("GB_2"), FrameDirection::Received, FrameStatus::Corrected,
-                                          kT0 + 2 * kSecond + 300'000)
-                                        .toJson());
-        feed.handleMessage(framesA, frame(QStringLiteral("GB_1"), FrameDirection::Received, FrameStatus::Uncorrectable,
-                                          kT0 + 2 * kSecond + 400'000)
-                                        .toJson());
-        QCOMPARE(frames.count(), 3);
-        QCOMPARE(frames[1][0].toString(), a);
-        QCOMPARE(frames[1][1].value<FrameReport>(), frame(QStringLiteral("GB_2"), FrameDirection::Received,
-                                                          FrameStatus::Corrected, kT0 + 2 * kSecond + 300'000));
+        // Both stations' statistics: their frames add up, and the newest
+        // last good frame of either is the aircraft's.
+        StatsReport two;
+        two.framesSent = 1;
+        two.framesReceived = 1;
+        two.lastGoodFrameUtcMicros = kT0 + 2 * kSecond + 300'000;
+        two.state = LinkState::Connected;
+        say(statsAt(a, "GB_2"), two.toJson());
+        StatsReport one;
+        one.framesReceived = 1;
+        one.lastGoodFrameUtcMicros = kT0 + 500'000;
+        one.state = LinkState::Waiting;
+        say(statsAt(a, "GB_1"), one.toJson());
+        QCOMPARE(statsSeen.count(), 2);
+        QCOMPARE(statsSeen[0][0].toString(), a);
+        QCOMPARE(statsSeen[0][1].value<StatsReport>(), two);
         expected.framesUp = 1;
         expected.framesDown = 2;
         expected.lastFrameUtcMicros = kT0 + 2 * kSecond + 300'000;
-        QCOMPARE(updated.count(), 5);
+        QCOMPARE(updated.count(), 4);
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
 
-        // The statistics' last good frame, when newer.
+        // GB_2's newer statistics replace its older ones.
         StatsReport stats;
         stats.framesSent = 10;
         stats.framesReceived = 9;
         stats.lastGoodFrameUtcMicros = kT0 + 3 * kSecond;
         stats.state = LinkState::Connected;
-        feed.handleMessage(BrokerTopics::statsTopic(a), stats.toJson());
+        say(statsAt(a, "GB_2"), stats.toJson());
+        expected.framesUp = 10;
+        expected.framesDown = 10;
         expected.lastFrameUtcMicros = kT0 + 3 * kSecond;
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
 
         // The station in control goes: its will says offline. The other one
         // still stands, waiting; who is in control is still what the
         // aircraft said last (only a gone station knew it).
-        feed.handleMessage(BrokerTopics::stationTopic(a, QStringLiteral("GB_2")),
-                           station(QStringLiteral("GB_2"), false, LinkState::Connected, kT0 + 4 * kSecond,
-                                   kT0 + 900'000, QStringLiteral("GB_2"), QStringLiteral("GB_1"))
-                               .toJson());
+        say(stationAt(a, "GB_2"), station(QStringLiteral("GB_2"), false, LinkState::Connected, kT0 + 4 * kSecond,
+                                          kT0 + 900'000, QStringLiteral("GB_2"), QStringLiteral("GB_1"))
+                                      .toJson());
         expected.link = LinkState::Waiting;
         expected.stationsOnline = 1;
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
         // An online station's older word wins over a gone one's newer word.
-        feed.handleMessage(BrokerTopics::stationTopic(a, QStringLiteral("GB_1")),
-                           station(QStringLiteral("GB_1"), true, LinkState::Lost, kT0 + 3 * kSecond, kT0 + 500'000,
-                                   QStringLiteral("GB_1"), QString())
-                               .toJson());
+        say(stationAt(a, "GB_1"), station(QStringLiteral("GB_1"), true, LinkState::Lost, kT0 + 3 * kSecond,
+                                          kT0 + 500'000, QStringLiteral("GB_1"), QString())
+                                      .toJson());
         expected.link = LinkState::Lost;
         expected.inControl = QStringLiteral("GB_1");
         expected.backup = QString();
         QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
 
-        // A retained report cleared: the station is forgotten.
-        feed.handleMessage(BrokerTopics::stationTopic(a, QStringLiteral("GB_2")), QByteArray());
-        expected.stations = 1;
-        QCOMPARE(updated.last()[0].value<AircraftSummary>(), expected);
+        // A retained report cleared: nobody can sign that, so a verified
+        // station stays (until a signed report replaces it, or it expires).
         const int before = int(updated.count());
-        feed.handleMessage(BrokerTopics::stationTopic(a, QStringLiteral("GB_2")), QByteArray());  // again: nothing
+        feed.handleMessage(stationAt(a, "GB_2"), QByteArray());
         QCOMPARE(updated.count(), before);
 
-        // Another aircraft, frames only.
-        feed.handleMessage(BrokerTopics::framesTopic(b),
-                           frame(QStringLiteral("GB_9"), FrameDirection::Sent, FrameStatus::NotChecked, kT0).toJson());
+        // Another aircraft, statistics only.
+        StatsReport nine;
+        nine.framesSent = 1;
+        say(statsAt(b, "GB_9"), nine.toJson());
         AircraftSummary other;
         other.aircraft = b;
         other.framesUp = 1;
@@ -465,27 +495,188 @@ private slots:
         QCOMPARE(feed.summary(a), std::optional<AircraftSummary>(expected));
         QCOMPARE(feed.summary(QStringLiteral("GB_999")), std::nullopt);
 
-        // Refused: not JSON, a wrong field, a topic outside the schema; what
-        // is not subscribed to (state, events) is ignored without a word.
+        // Refused: not JSON, a report published bare, a wrong field, a
+        // topic outside the schema; what is not subscribed to (frames,
+        // state, events) is ignored without a word.
         QCOMPARE(refused.count(), 0);
         const int updates = int(updated.count());
-        feed.handleMessage(framesA, QByteArray("{not json"));
-        QByteArray sideways =
-            frame(QStringLiteral("GB_1"), FrameDirection::Sent, FrameStatus::NotChecked, kT0).toJson();
-        sideways.replace("\"up\"", "\"sideways\"");
-        feed.handleMessage(framesA, sideways);
-        feed.handleMessage(QStringLiteral("other/GB_133/frames"), QByteArray("{}"));
-        feed.handleMessage(BrokerTopics::stateTopic(a), QByteArray("{}"));
-        QCOMPARE(refused.count(), 3);
-        QCOMPARE(feed.refusedPayloads(), 3u);
-        QCOMPARE(refused[2][0].toString(), QStringLiteral("other/GB_133/frames"));
-        QCOMPARE(refused[2][1].toString(), QStringLiteral("other/GB_133/frames: not a topic of the rcm schema"));
+        const QString statsA = statsAt(a, "GB_1");
+        feed.handleMessage(statsA, QByteArray("{not json"));
+        const QByteArray bare = one.toJson();
+        feed.handleMessage(statsA, bare);
+        QByteArray sideways = bare;
+        sideways.replace("\"waiting\"", "\"sideways\"");
+        say(statsA, sideways);
+        feed.handleMessage(QStringLiteral("other/GB_133/stats/GB_1"), QByteArray("{}"));
+        say(BrokerTopics::stateTopic(a, QStringLiteral("GB_1")), QByteArray("{}"));
+        say(BrokerTopics::framesTopic(a, QStringLiteral("GB_1")), QByteArray("{}"));
+        QCOMPARE(refused.count(), 4);
+        QCOMPARE(feed.refusedPayloads(), 4u);
+        QVERIFY2(
+            refused[0][1].toString().startsWith(QStringLiteral("malformed: rcm/GB_133/stats/GB_1: envelope: not JSON")),
+            qPrintable(refused[0][1].toString()));
         QCOMPARE(refused[1][1].toString(),
-                 QStringLiteral("frames: direction must be \"up\" or \"down\", not \"sideways\""));
-        QVERIFY2(refused[0][1].toString().startsWith(QStringLiteral("frames: not JSON")),
-                 qPrintable(refused[0][1].toString()));
+                 QStringLiteral("malformed: rcm/GB_133/stats/GB_1: envelope: v is missing: not an envelope (a "
+                                "report published bare is refused)"));
+        QCOMPARE(refused[2][1].toString(),
+                 QStringLiteral("unreadable: GB_1's statistics: stats: state must be \"closed\", \"waiting\", "
+                                "\"connected\" or \"lost\", not \"sideways\""));
+        QCOMPARE(refused[3][0].toString(), QStringLiteral("other/GB_133/stats/GB_1"));
+        QCOMPARE(refused[3][1].toString(),
+                 QStringLiteral("malformed: other/GB_133/stats/GB_1 is not a topic of the rcm schema"));
         QCOMPARE(updated.count(), updates);
-        QCOMPARE(frames.count(), 4);
+        QCOMPARE(statsSeen.count(), 4);
+    }
+
+    // What nobody trusted vouches for: forged, replayed, unsigned in a
+    // trusted station's name, or merely unverified. Forged and replayed
+    // messages change nothing and are counted; an unverified station is
+    // counted, never in control, its aircraft unverified.
+    void feedBelievesOnlyTrustedKeys()
+    {
+        FleetFeed feed(nullptr);
+        feed.setTrust(trusting({QStringLiteral("GB_1")}));
+        QSignalSpy updated(&feed, &FleetFeed::aircraftUpdated);
+        QSignalSpy refused(&feed, &FleetFeed::messageRefused);
+        const QString a = QStringLiteral("GB_133");
+        const QString topic = BrokerTopics::stationTopic(a, QStringLiteral("GB_1"));
+        const QByteArray genuine = signedOn(
+            topic,
+            station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0, QStringLiteral("GB_1")).toJson());
+        feed.handleMessage(topic, genuine);
+        QCOMPARE(feed.summary(a)->inControl, QStringLiteral("GB_1"));
+        QVERIFY(feed.summary(a)->verified());
+
+        // Someone else's key, in GB_1's name: forged.
+        EnvelopeWriter impostor(QStringLiteral("GB_1"), std::make_shared<const rcm::secure::StationSigningKey>(
+                                                            rcm::secure::StationSigningKey::generate()));
+        const QByteArray body =
+            station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0, QStringLiteral("GB_666")).toJson();
+        feed.handleMessage(topic, impostor.wrap(topic, body));
+        // No signature at all, in GB_1's name: refused too.
+        feed.handleMessage(topic, EnvelopeWriter(QStringLiteral("GB_1")).wrap(topic, body));
+        // A genuine message moved to another topic: its signature names the first.
+        const QString otherTopic = BrokerTopics::stationTopic(QStringLiteral("GB_134"), QStringLiteral("GB_1"));
+        feed.handleMessage(otherTopic, genuine);
+        // The genuine one again: a duplicate (a retained message sent anew),
+        // dropped; an older genuine one after a newer: replayed.
+        feed.handleMessage(topic, genuine);
+        const QByteArray newer = signedOn(
+            topic, station(QStringLiteral("GB_1"), true, LinkState::Lost, kT0 + kSecond, kT0, QStringLiteral("GB_1"))
+                       .toJson());
+        feed.handleMessage(topic, newer);
+        feed.handleMessage(topic, genuine);
+        QCOMPARE(refused.count(), 4);
+        QStringList reasons;
+        for (const QList<QVariant>& r : refused)
+            reasons << r[0].toString().section(QStringLiteral(": "), 0, 0);
+        QCOMPARE(reasons, (QStringList{"forged", "unsigned", "forged", "replayed"}));
+        QCOMPARE(refused[0][0].toString(),
+                 QStringLiteral("forged: GB_1's signature does not verify on rcm/GB_133/station/GB_1"));
+        QCOMPARE(feed.summary(a)->inControl, QStringLiteral("GB_1"));
+        QCOMPARE(feed.summary(a)->link, LinkState::Lost);
+        QCOMPARE(feed.aircraftCount(), 1);
+
+        // A station nobody here trusts, signed or not: unverified, counted,
+        // its word on who is in control not taken.
+        const QString gb7 = BrokerTopics::stationTopic(a, QStringLiteral("GB_7"));
+        feed.handleMessage(gb7, signedOn(gb7, station(QStringLiteral("GB_7"), true, LinkState::Connected,
+                                                      kT0 + 2 * kSecond, kT0, QStringLiteral("GB_7"))
+                                                  .toJson()));
+        QCOMPARE(feed.summary(a)->unverifiedStations, 1);
+        QCOMPARE(feed.summary(a)->stations, 1);
+        QCOMPARE(feed.summary(a)->inControl, QStringLiteral("GB_1"));
+        // 3,000 aircraft reported by nobody trusted: all unverified.
+        for (int i = 0; i < 3000; ++i) {
+            const QString t = BrokerTopics::stationTopic(name(i), QStringLiteral("AD_1"));
+            feed.handleMessage(t, EnvelopeWriter(QStringLiteral("AD_1"))
+                                      .wrap(t, station(QStringLiteral("AD_1"), true, LinkState::Connected, kT0, kT0,
+                                                       QStringLiteral("AD_1"))
+                                                   .toJson()));
+        }
+        QCOMPARE(feed.aircraftCount(), 3001);
+        const AircraftSummary fake = *feed.summary(name(7));
+        QVERIFY(!fake.verified());
+        QCOMPARE(fake.inControl, QString());
+        QCOMPARE(fake.unverifiedStations, 1);
+        QCOMPARE(refused.count(), 4);
+        // An empty retained message removes an unverified station.
+        feed.handleMessage(gb7, QByteArray());
+        QCOMPARE(feed.summary(a)->unverifiedStations, 0);
+    }
+
+    // An aircraft not heard of for the time to live goes, by the feed's
+    // clock; this console's own aircraft stays, and while the broker is
+    // unreachable nothing expires and only this console's link is known.
+    void feedExpiresAndKnowsItsOwnLink()
+    {
+        FleetFeed feed(nullptr);
+        feed.setTrust(trusting({QStringLiteral("GB_1"), QStringLiteral("GB_2")}));
+        qint64 now = kT0;
+        feed.setClock([&now] { return now; });
+        QSignalSpy removed(&feed, &FleetFeed::aircraftRemoved);
+        QSignalSpy updated(&feed, &FleetFeed::aircraftUpdated);
+        const QString a = QStringLiteral("GB_133");
+        const QString b = QStringLiteral("GB_134");
+        const QString other = BrokerTopics::stationTopic(b, QStringLiteral("GB_2"));
+        feed.handleMessage(other, signedOn(other, station(QStringLiteral("GB_2"), true, LinkState::Connected, kT0, kT0,
+                                                          QStringLiteral("GB_2"))
+                                                      .toJson()));
+        // This console flies GB_133 as GB_1, and publishes it: its own report
+        // comes back from the broker too, and counts once.
+        StationReport mine =
+            station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0, QStringLiteral("GB_1"));
+        feed.setLocalStation(a, mine);
+        const QString mineTopic = BrokerTopics::stationTopic(a, QStringLiteral("GB_1"));
+        feed.handleMessage(mineTopic, signedOn(mineTopic, mine.toJson()));
+        QCOMPARE(feed.summary(a)->stations, 1);
+        QVERIFY(feed.summary(a)->local);
+
+        // The broker dies: the other aircraft is not known now, ours is.
+        feed.setBrokerReachable(false);
+        const AircraftSummary ours = *feed.summary(a);
+        QCOMPARE(ours.link, LinkState::Connected);
+        QCOMPARE(ours.stationsOnline, 1);
+        QCOMPARE(ours.brokerReachable, false);
+        QCOMPARE(FleetModel::linkCellText(ours), QStringLiteral("Connected (this console)"));
+        const AircraftSummary theirs = *feed.summary(b);
+        QCOMPARE(theirs.stationsOnline, 0);
+        QCOMPARE(FleetModel::linkCellText(theirs), QStringLiteral("Unknown: broker unreachable"));
+        QCOMPARE(theirs.inControl, QStringLiteral("GB_2"));
+        now = kT0 + FleetFeed::kTimeToLiveMicros + kSecond;
+        feed.expireStale();
+        QCOMPARE(removed.count(), 0);
+
+        // Back, and still silent: gone after the time to live; ours stays.
+        feed.setBrokerReachable(true);
+        now = kT0 + FleetFeed::kTimeToLiveMicros;
+        feed.expireStale();
+        QCOMPARE(removed.count(), 0);
+        now += 1;
+        feed.expireStale();
+        QCOMPARE(removed.count(), 1);
+        QCOMPARE(removed[0][0].toString(), b);
+        QCOMPARE(feed.aircraftCount(), 1);
+        now += 10 * FleetFeed::kTimeToLiveMicros;
+        feed.expireStale();
+        QCOMPARE(removed.count(), 1);
+        // Gone from the model too.
+        FleetModel model;
+        connect(&feed, &FleetFeed::aircraftUpdated, &model, &FleetModel::update);
+        connect(&feed, &FleetFeed::aircraftRemoved, &model, &FleetModel::remove);
+        feed.handleMessage(other, signedOn(other, station(QStringLiteral("GB_2"), true, LinkState::Connected, kT0, kT0,
+                                                          QStringLiteral("GB_2"))
+                                                      .toJson()));
+        feed.setLocalStation(a, mine);
+        QTRY_COMPARE(model.rowCount(), 2);
+        QSignalSpy rowsRemoved(&model, &QAbstractItemModel::rowsRemoved);
+        now += FleetFeed::kTimeToLiveMicros + 1;
+        feed.expireStale();
+        QCOMPARE(rowsRemoved.count(), 1);
+        QCOMPARE(model.rowCount(), 1);
+        QCOMPARE(model.rowOf(a), 0);
+        QCOMPARE(model.rowOf(b), -1);
+        QCOMPARE(model.rowsIn(FleetModel::RowState::Live) + model.rowsIn(FleetModel::RowState::Stale), 1);
     }
 
     void viewSortsAndAsksToObserve()
@@ -547,6 +738,35 @@ private slots:
         QCOMPARE(observe.count(), 2);
         QCOMPARE(observe[1][0].toString(), QStringLiteral("GB_120"));
 
+        // An aircraft nobody trusted reports: hidden, counted; shown when asked.
+        AircraftSummary fake;
+        fake.aircraft = QStringLiteral("GB_110");
+        fake.unverifiedStations = 1;
+        model.update(fake);
+        QTRY_COMPARE(model.rowCount(), 5);
+        QCOMPARE(view.sorted()->rowCount(), 4);
+        QCOMPARE(view.summaryText(), QStringLiteral("Broker mqtt://127.0.0.1:1883, connected: 4 aircraft, 3 stale, "
+                                                    "1 offline; 1 unverified hidden"));
+        view.showUnverified()->setChecked(true);
+        QCOMPARE(view.sorted()->rowCount(), 5);
+        QCOMPARE(cell(*view.sorted(), 0, FleetModel::AircraftColumn), QStringLiteral("GB_100"));
+        QCOMPARE(rowTexts(*view.sorted(), 1), (QStringList{"GB_110", "Unverified", "\u2014", "\u2014",
+                                                           "0 of 0 online, 1 unverified", "\u2014", "0 up, 0 down"}));
+        QCOMPARE(view.sorted()
+                     ->data(view.sorted()->index(1, FleetModel::LinkColumn), Qt::BackgroundRole)
+                     .value<QBrush>()
+                     .color(),
+                 QColor(0xf8, 0xd7, 0xd7));
+        view.showUnverified()->setChecked(false);
+        QCOMPARE(view.sorted()->rowCount(), 4);
+
+        // The broker's state apart from any link's, with when it went.
+        view.setBrokerConnected(false, kT0);
+        view.setRefusedMessages(12);
+        QCOMPARE(view.summaryText(), QStringLiteral("Broker mqtt://127.0.0.1:1883, unreachable since 17:45:20 UTC: "
+                                                    "4 aircraft, 3 stale, 1 offline; 1 unverified hidden; "
+                                                    "12 messages refused"));
+
         view.hide();
         QVERIFY(!view.ageTimer()->isActive());
     }
@@ -577,56 +797,57 @@ private slots:
 
         const QString a = QStringLiteral("GB_133");
         const QString b = QStringLiteral("GB_134");
+        const auto publish = [](MqttClient& client, const QString& topic, const QByteArray& body, bool retain) {
+            return client.publish(topic, signedOn(topic, body), 1, retain);
+        };
         // Retained before the fleet subscribes: it sees them at once.
-        QVERIFY(first.publish(BrokerTopics::stationTopic(a, QStringLiteral("GB_1")),
-                              station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0 - kSecond,
-                                      QStringLiteral("GB_1"), QStringLiteral("GB_2"))
-                                  .toJson(),
-                              BrokerTopics::kStationQos, true));
-        QVERIFY(second.publish(BrokerTopics::stationTopic(b, QStringLiteral("GB_7")),
-                               station(QStringLiteral("GB_7"), true, LinkState::Waiting, kT0, 0).toJson(),
-                               BrokerTopics::kStationQos, true));
+        QVERIFY(publish(first, BrokerTopics::stationTopic(a, QStringLiteral("GB_1")),
+                        station(QStringLiteral("GB_1"), true, LinkState::Connected, kT0, kT0 - kSecond,
+                                QStringLiteral("GB_1"), QStringLiteral("GB_2"))
+                            .toJson(),
+                        true));
+        QVERIFY(publish(second, BrokerTopics::stationTopic(b, QStringLiteral("GB_7")),
+                        station(QStringLiteral("GB_7"), true, LinkState::Waiting, kT0, 0).toJson(), true));
         StatsReport stats;
         stats.framesSent = 1;
         stats.state = LinkState::Lost;
         stats.lastGoodFrameUtcMicros = kT0 - 5 * kSecond;
-        QVERIFY(second.publish(BrokerTopics::statsTopic(b), stats.toJson(), BrokerTopics::kStatsQos, true));
+        QVERIFY(publish(second, BrokerTopics::statsTopic(b, QStringLiteral("GB_7")), stats.toJson(), true));
 
         FleetModel model;
         model.setClock([] { return kT0 + 2 * kSecond; });
         FleetFeed feed(&fleet);
+        feed.setTrust(trusting({QStringLiteral("GB_1"), QStringLiteral("GB_7")}));
         connect(&feed, &FleetFeed::aircraftUpdated, &model, &FleetModel::update);
         QSignalSpy updated(&feed, &FleetFeed::aircraftUpdated);
         QSignalSpy refused(&feed, &FleetFeed::payloadRefused);
         fleet.start();
         QTRY_COMPARE(fleetUp.count(), 1);
         // The two station reports and the statistics, retained: the last
-        // subscription (statistics) is through, and so the frames' before it.
+        // subscription (statistics) is through.
         QTRY_COMPARE(updated.count(), 3);
         QTRY_COMPARE(model.rowCount(), 2);
 
-        // Frames are not retained: published once the fleet is subscribed.
-        for (int i = 0; i < 3; ++i) {
-            QVERIFY(first.publish(
-                BrokerTopics::framesTopic(a),
-                frame(QStringLiteral("GB_1"), FrameDirection::Sent, FrameStatus::NotChecked, kT0 + i * kSecond)
-                    .toJson(),
-                BrokerTopics::kFramesQos, false));
-            QVERIFY(first.publish(BrokerTopics::framesTopic(a),
-                                  frame(QStringLiteral("GB_1"), FrameDirection::Received, FrameStatus::Decoded,
-                                        kT0 + i * kSecond + 400'000)
-                                      .toJson(),
-                                  BrokerTopics::kFramesQos, false));
+        // GB_1's link counts its frames, once a second.
+        const QString statsA = BrokerTopics::statsTopic(a, QStringLiteral("GB_1"));
+        for (int i = 1; i <= 3; ++i) {
+            StatsReport counted;
+            counted.framesSent = quint64(i);
+            counted.framesReceived = quint64(i);
+            counted.lastGoodFrameUtcMicros = kT0 + (i - 1) * kSecond + 400'000;
+            counted.state = LinkState::Connected;
+            QVERIFY(publish(first, statsA, counted.toJson(), true));
         }
-        QVERIFY(
-            second.publish(BrokerTopics::framesTopic(b),
-                           frame(QStringLiteral("GB_7"), FrameDirection::Sent, FrameStatus::NotChecked, kT0).toJson(),
-                           BrokerTopics::kFramesQos, false));
+        // A forger publishes statistics in GB_1's name, unsigned: refused.
+        StatsReport forged;
+        forged.framesSent = 999;
+        QVERIFY(first.publish(statsA, EnvelopeWriter(QStringLiteral("GB_1")).wrap(statsA, forged.toJson()), 1, false));
         const auto rowOf = [&](const QString& aircraft) { return rowTexts(model, model.rowOf(aircraft)); };
         QTRY_COMPARE(rowOf(a),
                      (QStringList{"GB_133", "Connected", "GB_1", "GB_2", "1 of 1 online", "0 s", "3 up, 3 down"}));
         QTRY_COMPARE(rowOf(b),
                      (QStringList{"GB_134", "Waiting", "\u2014", "\u2014", "1 of 1 online", "7 s", "1 up, 0 down"}));
+        QTRY_COMPARE(refused.count(), 1);
         AircraftSummary expectedA;
         expectedA.aircraft = a;
         expectedA.inControl = QStringLiteral("GB_1");
@@ -641,14 +862,17 @@ private slots:
         QCOMPARE(model.rowState(model.rowOf(a)), FleetModel::RowState::Live);
         QCOMPARE(model.rowState(model.rowOf(b)), FleetModel::RowState::Stale);
 
+        QCOMPARE(refused[0][1].toString(),
+                 QStringLiteral("unsigned: a message in the name of GB_1, whose key is trusted, on "
+                                "rcm/GB_133/stats/GB_1"));
+
         // The second console says it is gone: its aircraft's row is offline.
-        QVERIFY(second.publish(BrokerTopics::stationTopic(b, QStringLiteral("GB_7")),
-                               station(QStringLiteral("GB_7"), false, LinkState::Closed, kT0 + kSecond, 0).toJson(),
-                               BrokerTopics::kStationQos, true));
+        QVERIFY(publish(second, BrokerTopics::stationTopic(b, QStringLiteral("GB_7")),
+                        station(QStringLiteral("GB_7"), false, LinkState::Closed, kT0 + kSecond, 0).toJson(), true));
         QTRY_COMPARE(model.rowState(model.rowOf(b)), FleetModel::RowState::Offline);
         QCOMPARE(rowOf(b),
                  (QStringList{"GB_134", "Not connected", "\u2014", "\u2014", "0 of 1 online", "7 s", "1 up, 0 down"}));
-        QCOMPARE(refused.count(), 0);
+        QCOMPARE(refused.count(), 1);
         QCOMPARE(model.rowCount(), 2);
 
         // Goodbyes before the broker goes with the test.

@@ -85,6 +85,14 @@ private slots:
         QCOMPARE(crc32({p + 4, 5}, crc32({p, 4})), 0xCBF43926u);
     }
 
+    // docs/protocol.md's 0x%08X, the one form a plan ID is shown in.
+    void planIdShownOneWay()
+    {
+        QCOMPARE(planIdText(0xDEADBEEF), std::string("0xDEADBEEF"));
+        QCOMPARE(planIdText(11), std::string("0x0000000B"));
+        QCOMPARE(planIdText(0x5245000D), std::string("0x5245000D"));
+    }
+
     void descriptorLayout()
     {
         const FlightPlanUploader up(0x01020304, randomPlan(300, 1));

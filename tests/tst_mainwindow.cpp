@@ -7,6 +7,7 @@
 // a broken build.
 
 #include "AnswerBox.h"
+#include "ResumeCommanding.h"
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -23,6 +24,7 @@
 #include "ui/plan/FlightPlanUpload.h"
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
+#include "ui/framelog/FrameLogView.h"
 #include "ui/framelog/ReplayControls.h"
 #include "link/session/LinkSettings.h"
 #include "link/simulation/SatelliteModemThread.h"
@@ -125,6 +127,8 @@ private slots:
     void importsTheSamplePlan();
     void planBytes();
     void refusesPlansItCannotSend();
+    void openedPlanIsBroughtForward();
+    void refusedPlanFileSaysWhyNotHow();
     void previewMarksChangedItems();
     void previewFollowsOncePerPass();
     void linkLostAlarm();
@@ -324,7 +328,7 @@ void TestMainWindow::importsTheSamplePlan()
     const MissionItem& takeoff = plan.items[0];
     QCOMPARE(takeoff.seq, quint16(0));
     QCOMPARE(takeoff.command, quint16(22));
-    QCOMPARE(takeoff.commandName(), QStringLiteral("NAV_TAKEOFF"));
+    QCOMPARE(takeoff.commandName(), QStringLiteral("TAKEOFF"));
     QCOMPARE(takeoff.frame, quint8(3));
     QCOMPARE(takeoff.params[0], 15.0);
     QVERIFY(std::isnan(takeoff.params[3]));  // null in the plan
@@ -338,15 +342,15 @@ void TestMainWindow::importsTheSamplePlan()
     QCOMPARE(speed.params[1], 25.0);
 
     const MissionItem& loiter = plan.items[5];
-    QCOMPARE(loiter.commandName(), QStringLiteral("NAV_LOITER_TIME"));
+    QCOMPARE(loiter.commandName(), QStringLiteral("LOITER_TIME"));
     QCOMPARE(loiter.params[0], 60.0);
     QCOMPARE(*loiter.altitude, 150.0);
-    QCOMPARE(plan.items[8].commandName(), QStringLiteral("NAV_RETURN_TO_LAUNCH"));
+    QCOMPARE(plan.items[8].commandName(), QStringLiteral("RETURN_TO_LAUNCH"));
     QCOMPARE(*plan.homeLatitude, 52.2076813);
     QCOMPARE(*plan.homeAltitude, 14.2);
 
     // The table shows what was read.
-    QCOMPARE(widget->table()->item(0, FlightPlanWidget::CommandColumn)->text(), QStringLiteral("NAV_TAKEOFF"));
+    QCOMPARE(widget->table()->item(0, FlightPlanWidget::CommandColumn)->text(), QStringLiteral("TAKEOFF"));
     QCOMPARE(widget->table()->item(1, FlightPlanWidget::LatitudeColumn)->text(), QStringLiteral("52.2151260"));
     QCOMPARE(widget->table()->item(1, FlightPlanWidget::AltitudeColumn)->text(), QStringLiteral("120.0"));
     QCOMPARE(widget->table()->item(2, FlightPlanWidget::LatitudeColumn)->text(), QStringLiteral("\u2014"));
@@ -401,8 +405,9 @@ void TestMainWindow::refusesPlansItCannotSend()
     };
     QCOMPARE(error(R"({"fileType": "Plan", "mission": {"items": [{"type": "ComplexItem",
              "complexItemType": "survey"}]}})"),
-             QStringLiteral("p.plan: mission item 1 is a survey (a ComplexItem); only simple items can be sent, so "
-                            "convert it to waypoints in QGroundControl first"));
+             QStringLiteral("p.plan: mission item 1 (a survey) has no \"TransectStyleComplexItem\" with the waypoints "
+                            "QGroundControl saved: it is in QGroundControl 3.3's layout; open the plan in a later "
+                            "QGroundControl and save it again"));
     QCOMPARE(error(R"({"fileType": "Fence"})"),
              QStringLiteral("p.plan: not a QGroundControl plan (its \"fileType\" is not \"Plan\")"));
     QCOMPARE(error(R"({"fileType": "Plan", "mission": {"items": [{"type": "SimpleItem", "command": 16,
@@ -414,6 +419,63 @@ void TestMainWindow::refusesPlansItCannotSend()
              QStringLiteral("p.plan: mission item 1: \"params\" must hold 7 values (numbers or null)"));
     QVERIFY2(error("{\n  not json").startsWith(QStringLiteral("p.plan: line 2, column ")),
              qPrintable(error("{\n  not json")));
+}
+
+// gcs --plan (and File > Open flight plan): the plan is what the window
+// shows, in front of the frame log it shares its place with, before the
+// first layout and after it.
+void TestMainWindow::openedPlanIsBroughtForward()
+{
+    // A dock behind another in its tabs stays "visible", moved out of sight:
+    // in front is what the window shows of it.
+    const auto inFront = [](QWidget* content) { return !content->visibleRegion().isEmpty(); };
+    {
+        MainWindow window(options());
+        QVERIFY(window.flightPlan()->loadPlan(kSamplePlan));
+        window.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&window));
+        QTRY_VERIFY(inFront(window.flightPlan()));
+        QVERIFY(!inFront(window.findChild<FrameLogView*>()));
+    }
+    MainWindow window(options());
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTRY_VERIFY(inFront(window.findChild<FrameLogView*>()));  // the frame log in front by default
+    QVERIFY(!inFront(window.flightPlan()));
+    QVERIFY(window.flightPlan()->loadPlan(kSamplePlan));
+    QTRY_VERIFY(inFront(window.flightPlan()));
+    QVERIFY(!inFront(window.findChild<FrameLogView*>()));
+}
+
+// A plan file gcs --plan cannot read: the file, the line and what is wrong,
+// and not the options' help, which was not what was wrong.
+void TestMainWindow::refusedPlanFileSaysWhyNotHow()
+{
+    const QString path = m_dir.filePath(QStringLiteral("broken.plan"));
+    QFile file(path);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write(
+        "{\"fileType\": \"Plan\", \"mission\": {\"items\": [\n"
+        "  {\"type\": \"SimpleItem\", \"command\": 16, \"frame\": 3,\n"
+        "   \"params\": [0, 0, 0, 0, 95, 0, 10]}]}}\n");
+    file.close();
+    QProcess gcs;
+    QProcessEnvironment environment = QProcessEnvironment::systemEnvironment();
+    environment.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
+    environment.insert(QStringLiteral("XDG_CONFIG_HOME"), m_dir.path());
+    gcs.setProcessEnvironment(environment);
+    QSignalSpy finished(&gcs, &QProcess::finished);
+    gcs.start(QStringLiteral(RCM_BIN_DIR "/gcs"), {QStringLiteral("--plan"), path});
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kProcessTimeoutMs);
+    QCOMPARE(gcs.exitCode(), 2);
+    const QString said = QString::fromUtf8(gcs.readAllStandardError());
+    QVERIFY2(said.contains(QStringLiteral("gcs: --plan: %1: line 2: mission item 1: latitude must be within +-90 and "
+                                          "longitude within +-180 degrees\n")
+                               .arg(path)),
+             qPrintable(said));
+    QVERIFY2(!said.contains(QStringLiteral("Usage:")) && !said.contains(QStringLiteral("--udp-remote")),
+             qPrintable(said));
+    QCOMPARE(gcs.readAllStandardOutput(), QByteArray());
 }
 
 void TestMainWindow::previewMarksChangedItems()
@@ -710,7 +772,10 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
     // Afterwards the console's own command, and its panels take clicks again.
     window.disconnectLink();
     QCOMPARE(command->message(), own);
+    rcm::test::SeenBox retracting;  // retracting a wheel is confirmed first
+    rcm::test::answerNextBox(&retracting, false);
     QTest::mouseClick(retract, Qt::LeftButton);
+    QVERIFY(retracting.shown);
     QVERIFY(command->message() != own);
 }
 
@@ -753,7 +818,9 @@ void TestMainWindow::rehearsalAgainstUasim()
     }
     QCOMPARE(directions.size(), std::size_t(2));
 
-    // The sample plan goes up in BLOCK 2 and the aircraft acknowledges it.
+    // The sample plan goes up in BLOCK 2 and the aircraft acknowledges it,
+    // once the operator commands.
+    QVERIFY(rcm::test::resumeCommanding(window, kLinkTimeoutMs));
     auto* upload = window.findChild<FlightPlanUpload*>();
     QVERIFY(upload);
     window.flightPlan()->uploadPlan();
@@ -926,6 +993,7 @@ void TestMainWindow::secureRehearsalWithMatchingKeys()
     QCOMPARE(window.statistics().refusedFor(rcm::Refusal::Forged), quint64(0));
 
     // The flight plan goes up in 199-byte sections and uasim acknowledges it.
+    QVERIFY(rcm::test::resumeCommanding(window, kLinkTimeoutMs));
     auto* upload = window.findChild<FlightPlanUpload*>();
     QVERIFY(upload);
     QCOMPARE(upload->sectionSize(), int(rcm::secure::kMaxFlightPlanData));
@@ -1144,9 +1212,16 @@ void TestMainWindow::controlAlarmsReachBannerAndEventLog()
     control->statusReceived(status(primary, backup));
     const EventLogModel* events = window.alerts()->model();
     QCOMPARE(events->event(events->rowCount() - 1).text,
-             QStringLiteral("This station is in control; backup GB_41251"));
+             QStringLiteral("The aircraft names this station in control: check what it reports, then Take control "
+                            "to command it"));
     QCOMPARE(events->event(events->rowCount() - 1).source, EventSource::Control);
-    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_backup)->second, 41251);
+    // Not taken yet: the frames name this station and claim nothing.
+    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_destination)->second, 30226);
+    QVERIFY(!window.command()->message().header.has(rcm::ItemId::ID_GCS_backup));
+    control->takeControl();
+    QCOMPARE(events->event(events->rowCount() - 1).text,
+             QStringLiteral("Taking control: the next frames claim control for this station"));
+    QCOMPARE(window.command()->message().header.find(rcm::ItemId::ID_GCS_backup)->second, 30226);
 
     control->statusReceived(status(backup, primary));
     const QString alarm = QStringLiteral(
@@ -1214,6 +1289,7 @@ void TestMainWindow::satelliteRoundTripIsNoMismatch()
     ReportedState* reported = window.reported();
     const UnitRef flaps{rcm::UnitKind::Flaps, 0};
     QTRY_VERIFY_WITH_TIMEOUT(reported->statusFrames() >= 2, 4 * kLinkTimeoutMs);
+    QVERIFY(rcm::test::resumeCommanding(window, kLinkTimeoutMs));
     ReportedState direct(window.command());
     connect(window.session()->controller(), &LinkController::messageReceived, &direct, &ReportedState::onReceived);
     int mostDirect = 0;

@@ -77,6 +77,11 @@ bool anyContains(const QSignalSpy& spy, const QString& text)
     return false;
 }
 
+bool startsWith(const QStringList& list, const QStringList& first)
+{
+    return list.mid(0, first.size()) == first;
+}
+
 QStringList texts(const QSignalSpy& spy)
 {
     QStringList all;
@@ -113,6 +118,12 @@ private slots:
     void sessionStopHangsUpWithoutWaiting();
     void voicePacingWaitsForFlowControl();
     void uasimAnswersTheConsolesCall();
+    void serviceLinesParsedLiberally();
+    void noDialWithoutServiceThenDials();
+    void iridiumIndicationsEndTheWait();
+    void staleCallIsEscapedBeforeInit();
+    void callsThatDropAtOnceCountAsFailures();
+    void profileSetUpRefusedIsSaid();
 };
 
 void TestModemLink::resultCodes()
@@ -127,6 +138,10 @@ void TestModemLink::resultCodes()
     QCOMPARE(modem::parseResult(" BUSY "), (Result{ResultCode::Busy, 0}));
     QVERIFY(!modem::parseResult("ATD881612345678"));
     QVERIFY(!modem::parseResult("CONNECTED"));
+    // Liberal in case and spaces.
+    QCOMPARE(modem::parseResult("ok"), (Result{ResultCode::Ok, 0}));
+    QCOMPARE(modem::parseResult("No  Carrier"), (Result{ResultCode::NoCarrier, 0}));
+    QCOMPARE(modem::parseResult("connect 9600"), (Result{ResultCode::Connect, 9600}));
     QCOMPARE(modem::resultLine({ResultCode::Connect, 9600}), QByteArray("\r\nCONNECT 9600\r\n"));
 }
 
@@ -264,6 +279,7 @@ void TestModemLink::closeHangsUp()
     QVERIFY2(model.open(&error), qPrintable(error));
     ModemLink::Options options = quickLink(kNumber);
     options.costPerMinute = 1.25;
+    options.costCurrency = QStringLiteral("GBP");
     auto ground = modemLink(model.device(SatelliteModem::Ground), options);
     auto aircraft = modemLink(model.device(SatelliteModem::Aircraft), quickLink(QString()));
     QSignalSpy status(ground.get(), &Link::statusChanged);
@@ -278,7 +294,7 @@ void TestModemLink::closeHangsUp()
     QCOMPARE(closed.count(), 1);
     QCOMPARE(ground->callState(), ModemLink::CallState::Closed);
     QVERIFY2(status.last().at(0).toString().startsWith(QStringLiteral("hung up: ")), qPrintable(texts(status).join('\n')));
-    QVERIFY2(status.last().at(0).toString().endsWith(QStringLiteral(" s, 1 min billed, cost 1.25")),
+    QVERIFY2(status.last().at(0).toString().endsWith(QStringLiteral(" s, 1 min billed at 1.25 GBP a minute, cost 1.25 GBP")),
              qPrintable(status.last().at(0).toString()));
     QTRY_COMPARE_WITH_TIMEOUT(model.hangUps.size(), 1, kWaitMs);
     QCOMPARE(model.hangUps.at(0), (QPair<int, QString>(SatelliteModem::Ground, QStringLiteral("ATH"))));
@@ -321,7 +337,8 @@ void TestModemLink::sessionStopHangsUpWithoutWaiting()
     settings.dialNumber = kNumber;
     settings.modemInit = QStringLiteral("ATE0V1&C1&D2S12=5");
     settings.callCostPerMinute = 2;
-    QCOMPARE(settings.summary(), QStringLiteral("serial %1 at 9600 bit/s, dialling 881612345678")
+    settings.callCurrency = QStringLiteral("EUR");
+    QCOMPARE(settings.summary(), QStringLiteral("serial %1 at 9600 bit/s, dialling 881612345678 (Generic (3GPP TS 27.007))")
                                      .arg(model.device(SatelliteModem::Ground)));
     session->connectWith(settings);
     QTRY_COMPARE_WITH_TIMEOUT(started.count(), 1, kWaitMs);
@@ -337,7 +354,7 @@ void TestModemLink::sessionStopHangsUpWithoutWaiting()
     QTRY_COMPARE_WITH_TIMEOUT(model.hangUps.size(), 1, kWaitMs);
     QCOMPARE(model.hangUps.at(0).second, QStringLiteral("ATH"));
     QTRY_VERIFY_WITH_TIMEOUT(anyContains(status, QStringLiteral("hung up: ")), kWaitMs);
-    QVERIFY(anyContains(status, QStringLiteral("1 min billed, cost 2.00")));
+    QVERIFY(anyContains(status, QStringLiteral("1 min billed at 2.00 EUR a minute, cost 2.00 EUR")));
 
     // Quit with a call up: the session's end hangs up before it returns.
     QTRY_COMPARE_WITH_TIMEOUT(aircraft->callState(), ModemLink::CallState::AwaitingCall, kWaitMs);
@@ -425,6 +442,241 @@ void TestModemLink::uasimAnswersTheConsolesCall()
     session.stop();
     uasim.terminate();
     QVERIFY(uasim.waitForFinished());
+}
+
+// What phones say of their service, in every form they say it.
+void TestModemLink::serviceLinesParsedLiberally()
+{
+    using modem::Registration;
+    using modem::SignalScale;
+    const auto creg = [](const char* line) {
+        modem::Service s;
+        return modem::parseServiceLine(line, SignalScale::Rssi27007, s) ? s.registration : Registration(-9);
+    };
+    QCOMPARE(creg("+CREG: 0,1"), Registration::Home);
+    QCOMPARE(creg("+creg:0,5"), Registration::Roaming);
+    QCOMPARE(creg(" +CREG : 2 , 2 "), Registration::Searching);
+    QCOMPARE(creg("+CREG: 1"), Registration::Home);  // unsolicited: <stat> alone
+    QCOMPARE(creg("+CREG: 0"), Registration::NotSearching);
+    QCOMPARE(creg("+CREG: 2,1,\"00A1\",\"1B2C\""), Registration::Home);
+    QCOMPARE(creg("+CREG: 1,\"00A1\",\"1B2C\""), Registration::Home);  // unsolicited with the location
+    QCOMPARE(creg("+CREG:000,001"), Registration::Home);              // Iridium's zero padding
+    QCOMPARE(creg("+CREG: 3"), Registration::Denied);
+    QCOMPARE(creg("+CREG: 0,9"), Registration(-9));
+    QCOMPARE(creg("+CREG:"), Registration(-9));
+    QCOMPARE(creg("OK"), Registration(-9));
+
+    const auto bars = [](const char* line, SignalScale scale) {
+        modem::Service s;
+        return modem::parseServiceLine(line, scale, s) ? s.bars : -9;
+    };
+    QCOMPARE(bars("+CSQ: 0,99", SignalScale::Rssi27007), 0);
+    QCOMPARE(bars("+CSQ: 99,99", SignalScale::Rssi27007), -1);
+    QCOMPARE(bars("+csq: 15, 0", SignalScale::Rssi27007), 3);
+    QCOMPARE(bars("+CSQ: 31,0", SignalScale::Rssi27007), 5);
+    QCOMPARE(bars("+CSQ: 1,0", SignalScale::Rssi27007), 1);
+    QCOMPARE(bars("+CSQ:4", SignalScale::Bars), 4);
+    QCOMPARE(bars("+CSQF:0", SignalScale::Bars), 0);
+    QCOMPARE(bars("+CIEV:0,3", SignalScale::Rssi27007), 3);  // Iridium's indicator is in bars whatever the profile
+    QCOMPARE(bars("+CIEV: 0 , 5", SignalScale::Bars), 5);
+    modem::Service s;
+    QVERIFY(modem::parseServiceLine("+CIEV:1,0", SignalScale::Bars, s));
+    QCOMPARE(s.available, std::optional<bool>(false));
+    QVERIFY(!s.canDial());
+    QVERIFY(modem::parseServiceLine("+ciev: 1,1", SignalScale::Bars, s));
+    QVERIFY(s.canDial());  // service available, signal not known: Iridium's indicator speaks for the network
+    QVERIFY(!modem::parseServiceLine("+CIEV:2,1", SignalScale::Bars, s));
+
+    // The model's answers read back as what it meant.
+    for (int b = 0; b <= 5; ++b) {
+        QCOMPARE(modem::barsFromSignal(modem::signalFromBars(b, SignalScale::Rssi27007), SignalScale::Rssi27007), b);
+        QCOMPARE(modem::barsFromSignal(modem::signalFromBars(b, SignalScale::Bars), SignalScale::Bars), b);
+    }
+    QCOMPARE(modem::Service{}.text(), QStringLiteral("registration not known, signal not known"));
+    QCOMPARE((modem::Service{Registration::Searching, 0, {}}.text()),
+             QStringLiteral("not registered, searching for the network, no signal"));
+    QCOMPARE((modem::Service{Registration::Home, 3, {}}.text()), QStringLiteral("registered, signal 3 of 5"));
+}
+
+// No registration and no signal: no ATD, said once as an error; the phone
+// asked again until it has service, then dialled at once.
+void TestModemLink::noDialWithoutServiceThenDials()
+{
+    ModemThread model(quickModem());
+    QString error;
+    QVERIFY2(model.open(&error), qPrintable(error));
+    model.setSignalBars(0);
+    QStringList commands;
+    connect(&model, &SatelliteModemThread::commandReceived, &model,
+            [&](int side, const QByteArray& line) {
+                if (side == SatelliteModem::Ground)
+                    commands << QString::fromLatin1(line);
+            });
+    ModemLink::Options options = quickLink(kNumber);
+    options.servicePollInterval = 100ms;
+    auto ground = modemLink(model.device(SatelliteModem::Ground), options);
+    auto aircraft = modemLink(model.device(SatelliteModem::Aircraft), quickLink(QString()));
+    QSignalSpy errors(ground.get(), &Link::errorOccurred);
+    QSignalSpy service(ground.get(), &Link::serviceChanged);
+    aircraft->open();
+    QTRY_COMPARE_WITH_TIMEOUT(aircraft->callState(), ModemLink::CallState::AwaitingCall, kWaitMs);
+    ground->open();
+    QTRY_COMPARE_WITH_TIMEOUT(ground->callState(), ModemLink::CallState::WaitingForService, kWaitMs);
+    // Asked again, more than once, and never dialled.
+    QTRY_VERIFY_WITH_TIMEOUT(commands.count(QStringLiteral("AT+CREG?")) >= 3, kWaitMs);
+    QCOMPARE(ground->dials(), 0);
+    for (const QString& c : commands)
+        QVERIFY2(!c.startsWith(QStringLiteral("ATD")), qPrintable(commands.join(' ')));
+    QCOMPARE(errors.count(), 1);
+    QCOMPARE(errors.at(0).at(0).toString(),
+             QStringLiteral("not dialling 881612345678: not registered, searching for the network, no signal; "
+                            "dialling as soon as the phone has service"));
+    QVERIFY(service.count() >= 1);
+    QCOMPARE(service.last().at(0).toInt(), 0);
+    QCOMPARE(service.last().at(1).toBool(), false);
+    QVERIFY(startsWith(commands, {QStringLiteral("AT"), QStringLiteral("ATE0V1&C1&D2S12=5"),
+                                 QStringLiteral("AT+CREG=1"), QStringLiteral("AT+CREG?"), QStringLiteral("AT+CSQ")}));
+
+    model.setSignalBars(3);
+    QTRY_VERIFY_WITH_TIMEOUT(ground->isOpen() && aircraft->isOpen(), kWaitMs);
+    QCOMPARE(ground->dials(), 1);
+    QCOMPARE(service.last().at(0).toInt(), 3);
+    QCOMPARE(service.last().at(1).toBool(), true);
+    QCOMPARE(service.last().at(2).toString(), QStringLiteral("registered, signal 3 of 5"));
+    QCOMPARE(errors.count(), 1);
+}
+
+// An Iridium phone says its service by itself (+CIEV): the wait ends with
+// the report, not the next poll.
+void TestModemLink::iridiumIndicationsEndTheWait()
+{
+    SatelliteModem::Options modelOptions = quickModem();
+    modelOptions.profile = *modem::findProfile(QStringLiteral("iridium-9523"));
+    ModemThread model(modelOptions);
+    QString error;
+    QVERIFY2(model.open(&error), qPrintable(error));
+    model.setSignalBars(0);
+    QStringList commands;
+    connect(&model, &SatelliteModemThread::commandReceived, &model, [&](int side, const QByteArray& line) {
+        if (side == SatelliteModem::Ground)
+            commands << QString::fromLatin1(line);
+    });
+    ModemLink::Options options = quickLink(kNumber);
+    options.profile = modelOptions.profile;
+    options.servicePollInterval = 3600s;  // only the phone's own report can end the wait
+    auto ground = modemLink(model.device(SatelliteModem::Ground), options);
+    auto aircraft = modemLink(model.device(SatelliteModem::Aircraft), quickLink(QString()));
+    QSignalSpy service(ground.get(), &Link::serviceChanged);
+    aircraft->open();
+    QTRY_COMPARE_WITH_TIMEOUT(aircraft->callState(), ModemLink::CallState::AwaitingCall, kWaitMs);
+    ground->open();
+    QTRY_COMPARE_WITH_TIMEOUT(ground->callState(), ModemLink::CallState::WaitingForService, kWaitMs);
+    QVERIFY(startsWith(commands, {QStringLiteral("AT"), QStringLiteral("ATE0V1&C1&D2S12=5"), QStringLiteral("AT&K3"),
+                                 QStringLiteral("AT+CBST=71,0,1"), QStringLiteral("AT+CIER=1,1,1"),
+                                 QStringLiteral("AT+CREG?"), QStringLiteral("AT+CSQ")}));
+    model.setSignalBars(2);
+    QTRY_VERIFY_WITH_TIMEOUT(ground->isOpen(), kWaitMs);
+    QCOMPARE(service.last().at(0).toInt(), 2);
+}
+
+// A modem still in a call from an earlier session (set to &D0, so the
+// console's going did not end it) answers no "AT": it is escaped with the
+// guard times and hung up before the init string, then dialled afresh.
+void TestModemLink::staleCallIsEscapedBeforeInit()
+{
+    ModemThread model(quickModem());
+    QString error;
+    QVERIFY2(model.open(&error), qPrintable(error));
+    QStringList commands;
+    connect(&model, &SatelliteModemThread::commandReceived, &model, [&](int side, const QByteArray& line) {
+        if (side == SatelliteModem::Ground)
+            commands << QString::fromLatin1(line);
+    });
+    // The aircraft stays in its call, and answers the next one.
+    auto aircraft = modemLink(model.device(SatelliteModem::Aircraft), quickLink(QString()));
+    aircraft->open();
+    QTRY_COMPARE_WITH_TIMEOUT(aircraft->callState(), ModemLink::CallState::AwaitingCall, kWaitMs);
+    {
+        // The earlier session: its call up, then gone without hanging up.
+        ModemLink::Options o = quickLink(kNumber);
+        o.initString = "ATE0V1&C1&D0S12=5";
+        auto earlier = modemLink(model.device(SatelliteModem::Ground), o);
+        earlier->open();
+        QTRY_VERIFY_WITH_TIMEOUT(earlier->isOpen(), kWaitMs);
+        // Killed: the port closes, with no +++ and no ATH.
+        static_cast<SerialLink*>(earlier->inner())->close();
+    }
+    QTest::qWait(300);  // the model's turn to see the port close: the call must stay up
+    QCOMPARE(model.callState(), SatelliteModem::CallState::Connected);
+    QCOMPARE(model.hangUps.size(), 0);
+    QVERIFY(aircraft->isOpen());
+
+    ModemLink::Options options = quickLink(kNumber);
+    options.probeTimeout = 400ms;
+    auto ground = modemLink(model.device(SatelliteModem::Ground), options);
+    QSignalSpy status(ground.get(), &Link::statusChanged);
+    const qsizetype before = commands.size();
+    ground->open();
+    QTRY_VERIFY_WITH_TIMEOUT(!model.hangUps.isEmpty(), kWaitMs);
+    QCOMPARE(model.hangUps.at(0), (QPair<int, QString>(SatelliteModem::Ground, QStringLiteral("ATH"))));
+    QVERIFY2(anyContains(status, QStringLiteral("taken to be still in a call, escaped (+++) and hung up (ATH)")),
+             qPrintable(texts(status).join('\n')));
+    // Hung up before the init string, then dialled afresh.
+    QTRY_VERIFY_WITH_TIMEOUT(ground->isOpen() && aircraft->isOpen(), kWaitMs);
+    const QStringList after = commands.mid(before);
+    QVERIFY2(startsWith(after, {QStringLiteral("ATH"), QStringLiteral("ATE0V1&C1&D2S12=5")}), qPrintable(after.join(' ')));
+    QCOMPARE(commands.count(QStringLiteral("ATD881612345678")), 2);
+    QCOMPARE(model.counters().calls, 2);
+}
+
+// A call that connects and drops at once is a failed attempt: the redials
+// run out and the link gives up, instead of dialling for ever.
+void TestModemLink::callsThatDropAtOnceCountAsFailures()
+{
+    SatelliteModem model(quickModem());
+    QString error;
+    QVERIFY2(model.open(&error), qPrintable(error));
+    connect(&model, &SatelliteModem::callStateChanged, &model, [&](SatelliteModem::CallState state) {
+        if (state == SatelliteModem::CallState::Connected)
+            QTimer::singleShot(50, &model, &SatelliteModem::dropCall);
+    });
+    ModemLink::Options options = quickLink(kNumber);
+    options.minimumCallDuration = 60s;
+    auto ground = modemLink(model.device(SatelliteModem::Ground), options);
+    auto aircraft = modemLink(model.device(SatelliteModem::Aircraft), quickLink(QString()));
+    QSignalSpy status(ground.get(), &Link::statusChanged);
+    QSignalSpy opened(ground.get(), &Link::opened);
+    aircraft->open();
+    QTRY_COMPARE_WITH_TIMEOUT(aircraft->callState(), ModemLink::CallState::AwaitingCall, kWaitMs);
+    ground->open();
+    QTRY_COMPARE_WITH_TIMEOUT(ground->callState(), ModemLink::CallState::GaveUp, 3 * kWaitMs);
+    QCOMPARE(opened.count(), 3);  // the first call and its two redials, all connected
+    QCOMPARE(model.counters().calls, 3);
+    QVERIFY2(anyContains(status, QStringLiteral("sooner than the 60 s a call must last to count as good")),
+             qPrintable(texts(status).join('\n')));
+    QVERIFY2(texts(status).last().contains(QStringLiteral("gave up after 3 attempts")),
+             qPrintable(texts(status).last()));
+}
+
+// A profile whose set-up the phone refuses does not dial; it says which command and why.
+void TestModemLink::profileSetUpRefusedIsSaid()
+{
+    SatelliteModem::Options modelOptions = quickModem();
+    modelOptions.profile = *modem::findProfile(QStringLiteral("hayes"));  // no +CBST
+    ModemThread model(modelOptions);
+    QString error;
+    QVERIFY2(model.open(&error), qPrintable(error));
+    ModemLink::Options options = quickLink(kNumber);
+    options.profile = *modem::findProfile(QStringLiteral("thuraya"));
+    auto ground = modemLink(model.device(SatelliteModem::Ground), options);
+    QSignalSpy errors(ground.get(), &Link::errorOccurred);
+    ground->open();
+    QTRY_COMPARE_WITH_TIMEOUT(ground->callState(), ModemLink::CallState::GaveUp, kWaitMs);
+    QCOMPARE(errors.count(), 1);
+    QVERIFY2(errors.at(0).at(0).toString().startsWith(
+                 QStringLiteral("the modem refused AT+CBST=7,0,1 (ERROR), part of the Thuraya profile's set-up")),
+             qPrintable(errors.at(0).at(0).toString()));
+    QCOMPARE(ground->dials(), 0);
 }
 
 QTEST_MAIN(TestModemLink)

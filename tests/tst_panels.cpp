@@ -12,6 +12,7 @@
 #include "codec/message/TextFormat.h"
 #include "link/simulation/SimulatedAircraft.h"
 #include "ui/panels/CameraPanel.h"
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/EnginePanel.h"
 #include "ui/panels/FieldButtonGroup.h"
@@ -190,14 +191,26 @@ private:
 
     CommandState m_command;
     ReportedState m_reported{&m_command};
+    // The large changes the panels asked about (CommandGate), and the answer they get.
+    QStringList m_questions;
+    bool m_answer = true;
 
 private slots:
     void init()
     {
         m_command.setAirframe(Airframe::wellEquipped());
+        m_command.replaceMessage(m_command.resting());  // another airframe carries values over
         m_command.editUnit({UnitKind::Header, 0}, [](Unit& header) { header = Unit(UnitKind::Header); });
         m_reported.clear();
+        m_questions.clear();
+        m_answer = true;
+        CommandGate::of(&m_command)->setAsker([this](const Confirmation& question, QWidget*) {
+            m_questions << question.text + QLatin1Char('\n') + question.informativeText;
+            return m_answer;
+        });
     }
+
+    void cleanup() { CommandGate::of(&m_command)->setAsker({}); }
 
     void startsAtRestAndEncodes()
     {
@@ -235,7 +248,12 @@ private slots:
         QVERIFY(card);
         auto* pitch = child<ItemSpinBox>(card, QStringLiteral("eng_prop_pitch"));
         QVERIFY(pitch);
-        QCOMPARE(pitch->toolTip(), QStringLiteral("Propeller pitch, 0.0..100.0 %"));
+        // The item's range first, then how the box sends and the item table's large-change rule.
+        QCOMPARE(
+            pitch->toolTip(),
+            QStringLiteral("Propeller pitch, 0.0..100.0 %\n"
+                           "Enter sends a typed or stepped value; leaving the field does not.\n"
+                           "Setting 0.0 % or 100.0 %, or a change of more than 20.0 % in one action, asks first."));
         QCOMPARE(pitch->suffix(), QStringLiteral(" %"));
         QCOMPARE(pitch->minimum(), 0.0);
         QCOMPARE(pitch->maximum(), 255.0);
@@ -250,7 +268,8 @@ private slots:
         auto camera = shown<CameraPanel>();
         auto* compass = child<ItemSpinBox>(camera.get(), QStringLiteral("cam_mag_compass"));
         QVERIFY(compass);
-        QCOMPARE(compass->toolTip(), QStringLiteral("Compass bearing, 0.00..359.99\u00b0"));
+        QCOMPARE(compass->toolTip().section(QLatin1Char('\n'), 0, 0),
+                 QStringLiteral("Compass bearing, 0.00..359.99\u00b0"));
         QCOMPARE(compass->maximum(), 35999.0);  // hundredths of a degree, as on the wire
         QCOMPARE(compass->suffix(), QStringLiteral("\u00b0"));
 
@@ -260,7 +279,7 @@ private slots:
         QCOMPARE(rx->suffix(), QStringLiteral(" MHz"));
         QCOMPARE(rx->textFromValue(127712), QStringLiteral("127.712"));
         auto* power = child<ItemSpinBox>(radios.get(), QStringLiteral("Tx_OP_power"));
-        QCOMPARE(power->toolTip(), QStringLiteral("Transmit power, 0..50 dBm"));
+        QCOMPARE(power->toolTip().section(QLatin1Char('\n'), 0, 0), QStringLiteral("Transmit power, 0..50 dBm"));
         QCOMPARE(power->maximum(), 50.0);
     }
 
@@ -361,7 +380,7 @@ private slots:
         QVERIFY(rudderSlider && rudderSpin);
         QCOMPARE(rudderSlider->minimum(), -127);
         QCOMPARE(rudderSlider->maximum(), 127);
-        QCOMPARE(rudderSpin->toolTip(), QStringLiteral("Rudder, -127..127\u00b0"));
+        QCOMPARE(rudderSpin->toolTip().section(QLatin1Char('\n'), 0, 0), QStringLiteral("Rudder, -127..127\u00b0"));
 
         // The handle dragged to the right.
         Message before = m_command.message();
@@ -416,6 +435,7 @@ private slots:
         QVERIFY(codeButton(panel.get(), QStringLiteral("land_wheels.NOSE"), QStringLiteral("OUT"))->isChecked());
         const Message before = m_command.message();
         QTest::mouseClick(retracted, Qt::LeftButton);
+        QCOMPARE(m_questions.size(), 1);  // retracting asks first (tst_commandcontrols)
         QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("SETTINGS land_wheels")});
         const Unit& settings = m_command.message().settings;
         QCOMPARE(fieldName(settings, land_wheels, 2), QStringLiteral("RETRACTED"));
@@ -450,12 +470,9 @@ private slots:
     void fuelDumpNeedsConfirmation()
     {
         auto panel = shown<FuelDumpPanel>();
-        QStringList questions;
-        bool answer = false;
-        panel->setConfirmer([&](QWidget*, const QString& question) {
-            questions << question;
-            return answer;
-        });
+        QStringList& questions = m_questions;
+        bool& answer = m_answer;
+        answer = false;
         auto* dump2 = codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.tank2"), QStringLiteral("DUMP"));
         auto* keep2 = codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.tank2"), QStringLiteral("NO_DUMP"));
         QVERIFY(dump2 && keep2);
@@ -465,7 +482,8 @@ private slots:
         Message before = m_command.message();
         QTest::mouseClick(dump2, Qt::LeftButton);
         QCOMPARE(questions.size(), 1);
-        QVERIFY2(questions.last().contains(QStringLiteral("Dump tank 2: Dump?")), qPrintable(questions.last()));
+        QVERIFY2(questions.last().startsWith(QStringLiteral("Dump tank 2 from Keep fuel to Dump?")),
+                 qPrintable(questions.last()));
         QCOMPARE(changed.count(), 0);
         QCOMPARE(changedItems(before, m_command.message()), QStringList{});
         QVERIFY(keep2->isChecked());
@@ -1015,8 +1033,15 @@ private slots:
         QCOMPARE(child<ReportedLabel>(uhf, QStringLiteral("reported:receiver_control.transmitter"))->text(),
                  QStringLiteral("On"));
 
-        // Back to the big one.
-        m_command.setAirframe(Airframe::wellEquipped());
+        // Back to the big one: engine 1 keeps what it was commanded, units
+        // the small one lacked come at rest, and none of the small one's is
+        // left but its radio UHF7 and camera SNY 4.
+        const std::vector<Unit> left = m_command.setAirframe(Airframe::wellEquipped());
+        QCOMPARE(m_command.message().engines.at(0).number(eng_prop_pitch), 107);
+        QCOMPARE(m_command.message().engines.at(1).number(eng_prop_pitch), 0);
+        QCOMPARE(left.size(), std::size_t(2));
+        QCOMPARE(describeUnit(left[0]), std::string("radio UHF7"));
+        QCOMPARE(describeUnit(left[1]), std::string("camera SNY 4"));
         QCOMPARE(engines->findChildren<UnitCard*>().size(), 3);
         QCOMPARE(radios->findChildren<UnitCard*>().size(), 3);
         QCOMPARE(cameras->findChildren<UnitCard*>().size(), 3);

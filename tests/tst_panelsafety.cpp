@@ -9,6 +9,7 @@
 #include "codec/message/MessageEncoder.h"
 #include "link/session/LinkWorker.h"
 #include "ui/panels/CameraPanel.h"
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/EnginePanel.h"
 #include "ui/panels/FieldButtonGroup.h"
@@ -126,6 +127,7 @@ class TestPanelSafety : public QObject {
 private:
     CommandState m_command;
     ReportedState m_reported{&m_command};
+    int m_asked = 0;  // large changes the panels asked about, all confirmed
 
     // The window focus can move in: key focus and focus-out need an active window.
     static bool activate(QWidget* window)
@@ -143,7 +145,14 @@ private slots:
             header.set(ID_UA_source, Value::station({44, 133}));
         });
         m_reported.clear();
+        m_asked = 0;
+        CommandGate::of(&m_command)->setAsker([this](const Confirmation&, QWidget*) {
+            ++m_asked;
+            return true;
+        });
     }
+
+    void cleanup() { CommandGate::of(&m_command)->setAsker({}); }
 
     // Issue 11: scrolling over Flaps set the right aileron to -6 degrees,
     // over Engines it changed a carburettor setting and a master/slave mode.
@@ -200,11 +209,9 @@ private slots:
     void commandControlsNeverTakeFocusFromTheWheel()
     {
         AllPanels panels(&m_command, &m_reported);
-        for (QWidget* w : panels.commandControls()) {
-            // A slider takes no focus at all: the spin box beside it takes the keyboard.
-            const Qt::FocusPolicy wanted = qobject_cast<ItemSlider*>(w) ? Qt::NoFocus : Qt::StrongFocus;
-            QVERIFY2(w->focusPolicy() == wanted, qPrintable(w->objectName()));
-        }
+        // Tab and clicks, never the wheel: a slider too, whose arrow keys are single steps.
+        for (QWidget* w : panels.commandControls())
+            QVERIFY2(w->focusPolicy() == Qt::StrongFocus, qPrintable(w->objectName()));
     }
 
     // A key pressed by mistake on a focused control: nothing goes out.
@@ -221,9 +228,13 @@ private slots:
             for (Qt::Key key : moves)
                 QTest::keyClick(combo, key);
         }
-        for (ItemSlider* slider : panels.all<ItemSlider>())
+        // A slider's arrow key is a deliberate single step (tst_commandcontrols); no other key moves it.
+        for (ItemSlider* slider : panels.all<ItemSlider>()) {
+            slider->setFocus();
             for (Qt::Key key : moves)
-                QTest::keyClick(slider, key);
+                if (key != Qt::Key_Up && key != Qt::Key_Down && key != Qt::Key_Left && key != Qt::Key_Right)
+                    QTest::keyClick(slider, key);
+        }
         for (FieldButtonGroup* group : panels.all<FieldButtonGroup>()) {
             for (QAbstractButton* button : group->findChildren<QAbstractButton*>()) {
                 button->setFocus();
@@ -251,6 +262,7 @@ private slots:
         auto* wheels = panels.area.widget()->findChild<FieldButtonGroup*>(QStringLiteral("land_wheels.NOSE"));
         wheels->button(2)->setFocus();
         QTest::keyClick(wheels->button(2), Qt::Key_Space);
+        QCOMPARE(m_asked, 1);  // retracting is confirmed first
         QCOMPARE(m_command.fieldCode({UnitKind::Settings, 0}, land_wheels, 2), 2u);
     }
 
@@ -291,7 +303,7 @@ private slots:
         QCOMPARE(changed.count(), 0);
         QCOMPARE(block1(m_command.message()), before);
 
-        // Complete and valid: sent on Enter, or when the field loses the focus.
+        // Complete and valid: sent on Enter, and only on Enter.
         rx->setFocus();
         QTest::keyClick(rx, Qt::Key_A, Qt::ControlModifier);
         QTest::keyClicks(rx, QStringLiteral("127.712"));
@@ -304,8 +316,12 @@ private slots:
         QTest::keyClick(tx, Qt::Key_A, Qt::ControlModifier);
         QTest::keyClicks(tx, QStringLiteral("118.1"));
         rx->setFocus();
-        QTRY_COMPARE(changed.count(), 2);
-        QCOMPARE(m_command.value(vhf1, Tx_freq)->number, 118100);
+        QTRY_VERIFY(!tx->hasFocus());
+        QCOMPARE(changed.count(), 1);
+        QCOMPARE(m_command.value(vhf1, Tx_freq)->number, 0);
+        QCOMPARE(tx->text(), QStringLiteral("0.000 MHz"));
+        QCOMPARE(tx->notSentText(),
+                 QStringLiteral("Not sent: '118.1 MHz' was left unsent; the command stays 0.000 MHz"));
     }
 
     // Issue 11: typing "GB" then Tab sent GB_0; the aircraft adopted it.

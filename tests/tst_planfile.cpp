@@ -3,6 +3,7 @@
 // tests/data/plans (tests/data/plans/README.md says where each comes from),
 // small broken ones inline.
 #include "link/plan/KmlFile.h"
+#include "link/plan/MavCommand.h"
 #include "link/plan/MissionPlan.h"
 #include "link/plan/PlanFile.h"
 #include "link/plan/QgcPlanFile.h"
@@ -15,6 +16,7 @@
 #include <QtTest>
 
 #include <cmath>
+#include <numbers>
 
 namespace {
 
@@ -128,6 +130,17 @@ private slots:
     void openFilterListsEveryFormat();
     void saveThenLoad();
     void fenceAndRallyGoToPlanBytes();
+    void qgcComplexItemsAsQgcFliesThem();
+    void qgcLandingPatternVersions();
+    void qgcComplexRefusals_data();
+    void qgcComplexRefusals();
+    void waypointsFenceOnly();
+    void waypointsRallyPoints();
+    void waypointsHomeAtZeroIsNoHome();
+    void waypointsFenceRefusals_data();
+    void waypointsFenceRefusals();
+    void commandsNamedAsPlannersNameThem();
+    void rallyPointsOutsideTheFenceFlagged();
 };
 
 void TestPlanFile::qgcParamsStyle()
@@ -746,6 +759,403 @@ void TestPlanFile::fenceAndRallyGoToPlanBytes()
         QCOMPARE(back->rallyPoints, plan.rallyPoints);
         QVERIFY(samePlan(*back, plan));
     }
+}
+
+// The plan bytes' fixed point (1e-7 degree): what the aircraft gets.
+qint64 steps(const std::optional<double>& degrees)
+{
+    return degrees ? qRound64(*degrees * MissionPlan::kDegreeSteps) : -1;
+}
+
+// A .plan in QGroundControl 4's layout with each complex item it writes:
+// the mission items are those QGroundControl uploads (QGroundControl's
+// LandingComplexItem, TransectStyleComplexItem and StructureScanComplexItem
+// appendMissionItems).
+void TestPlanFile::qgcComplexItemsAsQgcFliesThem()
+{
+    const MissionPlan plan = load(QStringLiteral("complex-items.plan"));
+    QCOMPARE(plan.items.size(), 43);
+    for (qsizetype i = 0; i < plan.items.size(); ++i)
+        QCOMPARE(plan.items[i].seq, quint16(i));
+    QCOMPARE(plan.items[0].command, quint16(22));
+
+    // The survey (items 2..15): the 14 items QGroundControl saved with it, as saved.
+    QCOMPARE(plan.items[1].command, quint16(16));
+    QCOMPARE(plan.items[1].latitude, 52.21);
+    QCOMPARE(plan.items[1].longitude, 0.119853);
+    QCOMPARE(plan.items[1].altitude, 50.0);
+    QVERIFY(std::isnan(plan.items[1].params[3]));
+    QCOMPARE(plan.items[2].command, quint16(206));
+    QCOMPARE(plan.items[2].params, (std::array<double, 4>{25, 0, 1, 0}));
+    QCOMPARE(plan.items[13].latitude, 52.2105);
+    QCOMPARE(plan.items[13].longitude, 0.121613);
+    QCOMPARE(plan.items[14].command, quint16(206));
+    QCOMPARE(plan.items[14].params[0], 0.0);
+
+    // The structure scan (items 16..33): the 20 m square moved 10 m out,
+    // entered at its first vertex at 40 m, two layers at 10 and 20 m (5 to
+    // 25 m in layers of 10), the camera every 15 m.
+    const qint64 flightLatitudes[4] = {522109102, 522112698, 522112698, 522109102};
+    const qint64 flightLongitudes[4] = {1148534, 1148534, 1154366, 1154366};
+    const auto isFlightVertex = [&](const MissionItem& item, int vertex, double altitude) {
+        return item.command == 16 && item.frame == 3 && steps(item.latitude) == flightLatitudes[vertex] &&
+               steps(item.longitude) == flightLongitudes[vertex] && item.altitude == altitude &&
+               std::isnan(item.params[3]);
+    };
+    QVERIFY(isFlightVertex(plan.items[15], 0, 40));
+    QCOMPARE(plan.items[16].command, quint16(196));  // DO_SET_ROI_WPNEXT_OFFSET
+    QCOMPARE(plan.items[16].frame, quint8(2));
+    QCOMPARE(plan.items[16].latitude, 0.0);   // param5: the gimbal pitch
+    QCOMPARE(plan.items[16].altitude, 90.0);  // param7: the yaw offset towards the structure
+    for (int layer = 0; layer < 2; ++layer) {
+        const int first = 17 + layer * 7;
+        const double altitude = 10 + 10 * layer;
+        QVERIFY(isFlightVertex(plan.items[first], 0, altitude));
+        QCOMPARE(plan.items[first + 1].command, quint16(206));
+        QCOMPARE(plan.items[first + 1].params, (std::array<double, 4>{15, 0, 1, 0}));
+        for (int v = 1; v <= 4; ++v)
+            QVERIFY2(isFlightVertex(plan.items[first + 1 + v], v % 4, altitude), qPrintable(QString::number(v)));
+        QCOMPARE(plan.items[first + 6].command, quint16(206));
+        QCOMPARE(plan.items[first + 6].params, (std::array<double, 4>{0, 0, 0, 0}));
+    }
+    QCOMPARE(plan.items[31].command, quint16(197));  // DO_SET_ROI_NONE
+    QVERIFY(isFlightVertex(plan.items[32], 0, 40));
+    // 10 m out from each side: the first vertex 10 m south and 10 m west of the structure's.
+    const double metresSouth = (52.211 - *plan.items[32].latitude) * 6371008.8 * std::numbers::pi / 180;
+    const double metresWest = (0.115 - *plan.items[32].longitude) * 6371008.8 * std::numbers::pi / 180 *
+                              std::cos(52.211 * std::numbers::pi / 180);
+    QVERIFY2(std::abs(metresSouth - 10) < 0.05 && std::abs(metresWest - 10) < 0.05,
+             qPrintable(QStringLiteral("%1 m south, %2 m west").arg(metresSouth).arg(metresWest)));
+
+    // The corridor scan (items 34..38), as saved.
+    QCOMPARE(plan.items[33].latitude, 52.2095);
+    QCOMPARE(plan.items[34].params[0], 20.0);
+    QCOMPARE(plan.items[37].command, quint16(206));
+
+    // The landing pattern (items 39..43): DO_LAND_START, stop taking photos,
+    // loiter down to the approach altitude anticlockwise, land.
+    const MissionItem& start = plan.items[38];
+    QCOMPARE(start.command, quint16(189));
+    QCOMPARE(start.frame, quint8(2));
+    QCOMPARE(start.params, (std::array<double, 4>{0, 0, 0, 0}));
+    QCOMPARE(start.latitude, 0.0);
+    QCOMPARE(start.altitude, 0.0);
+    QCOMPARE(plan.items[39].command, quint16(206));
+    QCOMPARE(plan.items[39].params, (std::array<double, 4>{0, 0, 0, 0}));
+    QCOMPARE(plan.items[40].command, quint16(2001));
+    QCOMPARE(plan.items[40].params[0], 0.0);
+    QVERIFY(std::isnan(plan.items[40].params[1]) && !plan.items[40].latitude && !plan.items[40].altitude);
+    const MissionItem& approach = plan.items[41];
+    QCOMPARE(approach.command, quint16(31));
+    QCOMPARE(approach.frame, quint8(3));
+    QCOMPARE(approach.params, (std::array<double, 4>{1, -75, 0, 1}));
+    QCOMPARE(approach.latitude, 52.208);
+    QCOMPARE(approach.longitude, 0.11);
+    QCOMPARE(approach.altitude, double(45.3f));  // QGroundControl gives it as a float
+    const MissionItem& land = plan.items[42];
+    QCOMPARE(land.command, quint16(21));
+    QCOMPARE(land.frame, quint8(3));
+    QCOMPARE(land.params, (std::array<double, 4>{0, 0, 0, 0}));
+    QCOMPARE(land.latitude, 52.208);
+    QCOMPARE(land.longitude, 0.114);
+    QCOMPARE(land.altitude, 0.0);
+
+    // Every one of them goes into the plan bytes.
+    QString error;
+    QVERIFY2(plan.encode(&error), qPrintable(error));
+}
+
+// Version 1 of the fixed-wing pattern (an altitude reference for each
+// point: both relative to home when they differ), a waypoint instead of the
+// loiter, video stopped; the VTOL pattern lands with VTOL_LAND, yaw unset.
+void TestPlanFile::qgcLandingPatternVersions()
+{
+    const auto plan = [](const QByteArray& item) {
+        QString error;
+        const auto read = QgcPlanFile::read(R"({"fileType": "Plan", "mission": {"items": [)" + item + "]}}",
+                                            QStringLiteral("l.plan"), &error);
+        if (!read)
+            qFatal("%s", qPrintable(error));
+        return *read;
+    };
+    const MissionPlan v1 = plan(R"({"type": "ComplexItem", "complexItemType": "fwLandingPattern", "version": 1,
+        "loiterAltitudeRelative": false, "landAltitudeRelative": false,
+        "loiterCoordinate": [-35.36, 149.16, 120.5], "landCoordinate": [-35.37, 149.17, 584],
+        "loiterRadius": 60, "loiterClockwise": true, "useLoiterToAlt": false, "stopVideoPhotos": true})");
+    QCOMPARE(v1.items.size(), 4);
+    QCOMPARE(v1.items[0].command, quint16(189));
+    QCOMPARE(v1.items[1].command, quint16(2501));  // VIDEO_STOP_CAPTURE
+    QCOMPARE(v1.items[2].command, quint16(16));
+    QCOMPARE(v1.items[2].frame, quint8(0));  // both absolute
+    QCOMPARE(v1.items[2].params[0], 0.0);
+    QVERIFY(std::isnan(v1.items[2].params[3]));
+    QCOMPARE(v1.items[2].altitude, 120.5);
+    QCOMPARE(v1.items[3].frame, quint8(0));
+    QCOMPARE(v1.items[3].altitude, 584.0);
+
+    const MissionPlan mixed = plan(R"({"type": "ComplexItem", "complexItemType": "fwLandingPattern", "version": 1,
+        "loiterAltitudeRelative": false, "landAltitudeRelative": true,
+        "loiterCoordinate": [-35.36, 149.16, 120], "landCoordinate": [-35.37, 149.17, 0],
+        "loiterRadius": 60, "loiterClockwise": true})");
+    QCOMPARE(mixed.items.size(), 3);
+    QCOMPARE(mixed.items[1].command, quint16(31));
+    QCOMPARE(mixed.items[1].params[1], 60.0);  // clockwise: positive
+    QCOMPARE(mixed.items[1].frame, quint8(3));
+    QCOMPARE(mixed.items[2].frame, quint8(3));
+
+    const MissionPlan vtol = plan(R"({"type": "ComplexItem", "complexItemType": "vtolLandingPattern", "version": 1,
+        "altitudesAreRelative": true, "landingApproachCoordinate": [47.1, 8.5, 30],
+        "landCoordinate": [47.101, 8.5, 0], "loiterRadius": 40, "loiterClockwise": true})");
+    QCOMPARE(vtol.items.size(), 3);
+    QCOMPARE(vtol.items[2].command, quint16(85));
+    QVERIFY(std::isnan(vtol.items[2].params[3]));
+    QCOMPARE(vtol.items[2].latitude, 47.101);
+}
+
+void TestPlanFile::qgcComplexRefusals_data()
+{
+    QTest::addColumn<QByteArray>("json");
+    QTest::addColumn<QString>("error");
+    QTest::newRow("unknown type") << QByteArray(R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "ComplexItem", "complexItemType": "Spiral"}]}})")
+                                  << QStringLiteral(
+                                         "p.plan: line 2: mission item 1 is a complex item of type \"Spiral\", "
+                                         "which this console does not read (it reads fwLandingPattern, "
+                                         "vtolLandingPattern, survey, CorridorScan and StructureScan)");
+    QTest::newRow("survey of QGroundControl 3.3") << QByteArray(R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "SimpleItem", "command": 22, "frame": 3, "params": [0, 0, 0, null, 1, 2, 30]},
+        {"type": "ComplexItem", "complexItemType": "survey", "version": 3, "grid": {}}]}})")
+                                                  << QStringLiteral(
+                                                         "p.plan: line 3: mission item 2 (a survey) has no "
+                                                         "\"TransectStyleComplexItem\" with the waypoints "
+                                                         "QGroundControl saved: it is in QGroundControl 3.3's "
+                                                         "layout; open the plan in a later QGroundControl and save "
+                                                         "it again");
+    QTest::newRow("survey item") << QByteArray(R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "ComplexItem", "complexItemType": "survey", "version": 5,
+         "TransectStyleComplexItem": {"version": 2, "Items": [
+            {"type": "SimpleItem", "command": 16, "frame": 3, "params": [0, 0, 0, null, 1, 2, 30]},
+            {"type": "SimpleItem", "command": 16, "frame": 3,
+             "params": [0, 0, 0, null, 1, 200, 30]}]}}]}})")
+                                 << QStringLiteral(
+                                        "p.plan: line 5: mission item 1 (a survey), its item 2: latitude must be "
+                                        "within +-90 and longitude within +-180 degrees");
+    QTest::newRow("corridor without items") << QByteArray(R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "ComplexItem", "complexItemType": "CorridorScan", "version": 3,
+         "TransectStyleComplexItem": {"version": 2,
+                                      "Items": []}}]}})")
+                                            << QStringLiteral(
+                                                   "p.plan: line 4: mission item 1 (a corridor scan) holds no "
+                                                   "waypoints (\"Items\"): QGroundControl saves them with a "
+                                                   "complete pattern; open the plan in QGroundControl, finish the "
+                                                   "pattern and save it again");
+    QTest::newRow("landing speed change") << QByteArray(R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "ComplexItem", "complexItemType": "fwLandingPattern", "version": 2, "altitudesAreRelative": true,
+         "useDoChangeSpeed": true, "finalApproachSpeed": 18}]}})")
+                                          << QStringLiteral(
+                                                 "p.plan: line 3: mission item 1 (a fixed-wing landing pattern) "
+                                                 "changes speed on the final approach (\"useDoChangeSpeed\"), a "
+                                                 "QGroundControl 5 option whose item this console cannot place as "
+                                                 "QGroundControl does; switch it off in QGroundControl, or put a "
+                                                 "DO_CHANGE_SPEED item before the pattern");
+    QTest::newRow("landing without radius") << QByteArray(R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "ComplexItem", "complexItemType": "fwLandingPattern", "version": 2, "altitudesAreRelative": true,
+         "landingApproachCoordinate": [1, 2, 3], "landCoordinate": [1, 2.01, 0],
+         "loiterClockwise": true}]}})")
+                                            << QStringLiteral(
+                                                   "p.plan: line 2: mission item 1 (a fixed-wing landing pattern): "
+                                                   "\"loiterRadius\" must be a number");
+    QTest::newRow("landing coordinate") << QByteArray(R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "ComplexItem", "complexItemType": "fwLandingPattern", "version": 2, "altitudesAreRelative": true,
+         "landingApproachCoordinate": [1, 2],
+         "landCoordinate": [1, 2.01, 0], "loiterRadius": 60, "loiterClockwise": true}]}})")
+                                        << QStringLiteral(
+                                               "p.plan: line 3: mission item 1 (a fixed-wing landing pattern): "
+                                               "\"landingApproachCoordinate\" must be [latitude, longitude, "
+                                               "altitude]");
+    QTest::newRow("landing version") << QByteArray(R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "ComplexItem", "complexItemType": "vtolLandingPattern",
+         "version": 2}]}})")
+                                     << QStringLiteral(
+                                            "p.plan: line 3: mission item 1 (a VTOL landing pattern) is in version 2, "
+                                            "which QGroundControl does not load");
+    const QByteArray structure = R"({"fileType": "Plan", "mission": {"items": [
+        {"type": "ComplexItem", "complexItemType": "StructureScan", "version": 3,
+         "CameraCalc": {"AdjustedFootprintFrontal": 10, "AdjustedFootprintSide": 15, "DistanceToSurface": 10},
+         "EntranceAltitude": 40, "GimbalPitch": 0, "ScanBottomAlt": 5, "StartFromTop": false, "StructureHeight": 25,
+         "polygon": [[52.211, 0.115], [52.21118, 0.115], [52.21136, 0.115],
+                     [52.211, 0.11529]]}]}})";
+    QTest::newRow("structure vertex in line")
+        << structure
+        << QStringLiteral(
+               "p.plan: line 5: mission item 1 (a structure scan): structure vertex 2 is in line with its "
+               "neighbours, so the flight path around the structure cannot be drawn (QGroundControl would fly the "
+               "structure's own outline); remove the vertex in QGroundControl");
+    QByteArray v2 = structure;
+    v2.replace(R"("version": 3)", R"("version": 2)");
+    QTest::newRow("structure version 2") << v2
+                                         << QStringLiteral(
+                                                "p.plan: line 2: mission item 1 (a structure scan) is in version 2; "
+                                                "QGroundControl loads only version 3: draw it again in "
+                                                "QGroundControl and save the plan");
+    QByteArray noCamera = structure;
+    noCamera.replace(R"("AdjustedFootprintFrontal": 10, )", "");
+    QTest::newRow("structure camera") << noCamera
+                                      << QStringLiteral(
+                                             "p.plan: line 3: mission item 1 (a structure scan): "
+                                             "\"AdjustedFootprintFrontal\" must be a number");
+}
+
+void TestPlanFile::qgcComplexRefusals()
+{
+    QFETCH(QByteArray, json);
+    QFETCH(QString, error);
+    QCOMPARE(readError(&QgcPlanFile::read, json, QStringLiteral("p.plan")), error);
+}
+
+// A fence saved on its own (MAVProxy's fence save; Mission Planner's fence
+// file): a fence, not a flight path; no home line.
+void TestPlanFile::waypointsFenceOnly()
+{
+    const MissionPlan plan = load(QStringLiteral("fence-only.waypoints"));
+    QVERIFY(plan.items.isEmpty());
+    QVERIFY(!plan.homeLatitude && !plan.home());
+    QCOMPARE(plan.fencePolygons.size(), 2);
+    QCOMPARE(plan.fencePolygons[0].inclusion, true);
+    QCOMPARE(plan.fencePolygons[0].vertices,
+             (QList<GeoPoint>{{52.2001, 0.1102}, {52.2203, 0.1105}, {52.2208, 0.1401}, {52.1999, 0.1398}}));
+    QCOMPARE(plan.fencePolygons[1].inclusion, false);
+    QCOMPARE(plan.fencePolygons[1].vertices,
+             (QList<GeoPoint>{{52.2101, 0.1201}, {52.2121, 0.1203}, {52.2111, 0.1222}}));
+    QCOMPARE(plan.fenceCircles.size(), 1);
+    QCOMPARE(plan.fenceCircles[0], (FenceCircle{false, {52.2079, 0.1312}, 150.5}));
+    QVERIFY(plan.rallyPoints.isEmpty());  // and the return point (5000) has no place in a plan
+    QCOMPARE(plan.format(), 2);
+}
+
+void TestPlanFile::waypointsRallyPoints()
+{
+    QString error;
+    const auto plan = WaypointsFile::read(
+        "QGC WPL 110\n"
+        "0\t0\t3\t5100\t0\t0\t0\t0\t52.21\t0.12\t80\t1\n"
+        "1\t0\t3\t5100\t0\t0\t0\t0\t52.22\t0.13\t100.5\t1\n",
+        QStringLiteral("r.waypoints"), &error);
+    QVERIFY2(plan, qPrintable(error));
+    QVERIFY(plan->items.isEmpty() && !plan->homeLatitude);
+    QCOMPARE(plan->rallyPoints, (QList<RallyPoint>{{{52.21, 0.12}, 80}, {{52.22, 0.13}, 100.5}}));
+}
+
+// Mission Planner writes a home of 0, 0 until it knows one: no home.
+void TestPlanFile::waypointsHomeAtZeroIsNoHome()
+{
+    QString error;
+    const auto plan = WaypointsFile::read(
+        "QGC WPL 110\n"
+        "0\t1\t0\t16\t0\t0\t0\t0\t0\t0\t0\t1\n"
+        "1\t0\t3\t22\t15\t0\t0\t0\t0\t0\t80\t1\n"
+        "2\t0\t3\t16\t0\t0\t0\t0\t52.21\t0.12\t100\t1\n",
+        QStringLiteral("m.waypoints"), &error);
+    QVERIFY2(plan, qPrintable(error));
+    QVERIFY(!plan->homeLatitude && !plan->homeLongitude && !plan->homeAltitude);
+    QVERIFY(!plan->home());
+    QCOMPARE(plan->items.size(), 2);
+    QVERIFY(!plan->items[0].hasPosition());  // the takeoff climbs where it is
+    QVERIFY(plan->items[0].hasAltitude());
+    QVERIFY(plan->items[1].hasPosition());
+    // A real home stays one.
+    const MissionPlan planner = load(QStringLiteral("MissionPlanner.waypoints"));
+    QCOMPARE(planner.home(), (std::optional<GeoPoint>(GeoPoint{47.660459, -122.103167})));
+}
+
+void TestPlanFile::waypointsFenceRefusals_data()
+{
+    QTest::addColumn<QByteArray>("text");
+    QTest::addColumn<QString>("error");
+    QTest::newRow("polygon cut short") << QByteArray(
+                                              "QGC WPL 110\n"
+                                              "0\t0\t0\t5001\t4\t0\t0\t0\t52.20\t0.11\t0\t1\n"
+                                              "1\t0\t0\t5001\t4\t0\t0\t0\t52.22\t0.11\t0\t1\n"
+                                              "2\t0\t0\t5001\t4\t0\t0\t0\t52.22\t0.14\t0\t1\n"
+                                              "3\t0\t0\t5002\t3\t0\t0\t0\t52.21\t0.12\t0\t1\n")
+                                       << QStringLiteral(
+                                              "f.waypoints: line 5: fence polygon 1 (from line 2) has 3 of the 4 "
+                                              "vertices its lines give as param1; a polygon's vertices follow one "
+                                              "another");
+    QTest::newRow("polygon at the end") << QByteArray(
+                                               "QGC WPL 110\n"
+                                               "0\t0\t0\t5002\t3\t0\t0\t0\t52.20\t0.11\t0\t1\n"
+                                               "1\t0\t0\t5002\t3\t0\t0\t0\t52.22\t0.11\t0\t1\n")
+                                        << QStringLiteral(
+                                               "f.waypoints: fence polygon 1 (from line 2) has 2 of the 3 vertices "
+                                               "its lines give as param1; a polygon's vertices follow one another");
+    QTest::newRow("two vertices") << QByteArray(
+                                         "QGC WPL 110\n"
+                                         "0\t0\t0\t5001\t2\t0\t0\t0\t52.20\t0.11\t0\t1\n")
+                                  << QStringLiteral(
+                                         "f.waypoints: line 2, field 5 (param1): a fence polygon's vertex count is "
+                                         "2; it must be a whole number, 3 or more");
+    QTest::newRow("circle radius") << QByteArray(
+                                          "QGC WPL 110\n"
+                                          "0\t0\t0\t5003\t0\t0\t0\t0\t52.20\t0.11\t0\t1\n")
+                                   << QStringLiteral(
+                                          "f.waypoints: line 2, field 5 (param1): a fence circle's radius is 0 m; it "
+                                          "must be more than 0 and at most 4294 km");
+    QTest::newRow("vertex off the globe")
+        << QByteArray(
+               "QGC WPL 110\n"
+               "0\t0\t2\t5001\t3\t0\t0\t0\t95\t0.11\t0\t1\n")
+        << QStringLiteral("f.waypoints: line 2, field 9 (latitude): 95 is outside \u00b190");
+}
+
+void TestPlanFile::waypointsFenceRefusals()
+{
+    QFETCH(QByteArray, text);
+    QFETCH(QString, error);
+    QCOMPARE(readError(&WaypointsFile::read, text, QStringLiteral("f.waypoints")), error);
+}
+
+// Mission Planner's names (MAVLink's without MAV_CMD_ and NAV_), and which
+// fields each command uses.
+void TestPlanFile::commandsNamedAsPlannersNameThem()
+{
+    MissionItem item;
+    item.frame = 3;
+    item.latitude = 52.2;
+    item.longitude = 0.12;
+    item.altitude = 80;
+    const auto named = [&](int command) {
+        item.command = quint16(command);
+        return item.commandName();
+    };
+    QCOMPARE(named(205), QStringLiteral("DO_MOUNT_CONTROL"));
+    QCOMPARE(named(16), QStringLiteral("WAYPOINT"));
+    QCOMPARE(named(20), QStringLiteral("RETURN_TO_LAUNCH"));
+    QCOMPARE(named(22), QStringLiteral("TAKEOFF"));
+    QCOMPARE(named(2000), QStringLiteral("IMAGE_START_CAPTURE"));
+    QCOMPARE(named(31000), QStringLiteral("MAV_CMD 31000"));
+    QCOMPARE(MavCommand::mavlinkNameOf(205), QStringLiteral("MAV_CMD_DO_MOUNT_CONTROL (205)"));
+    QCOMPARE(MavCommand::mavlinkNameOf(21), QStringLiteral("MAV_CMD_NAV_LAND (21)"));
+    // A RETURN_TO_LAUNCH in a global frame has neither place nor altitude;
+    // a DO_LAND_START a place and no altitude; a command not known, what its frame says.
+    item.command = 20;
+    QVERIFY(!item.hasPosition() && !item.hasAltitude());
+    item.command = 189;
+    QVERIFY(item.hasPosition() && !item.hasAltitude());
+    item.command = 31000;
+    QVERIFY(item.hasPosition() && item.hasAltitude());
+    item.frame = 2;
+    QVERIFY(!item.hasPosition() && !item.hasAltitude());
+}
+
+void TestPlanFile::rallyPointsOutsideTheFenceFlagged()
+{
+    MissionPlan plan = load(QStringLiteral("fence-rally.plan"));
+    QCOMPARE(plan.fenceViolations(), QStringList());
+    plan.rallyPoints.append({{52.25, 0.12}, 60});      // north of the inclusion polygon
+    plan.rallyPoints.append({{52.2079, 0.1312}, 60});  // in the exclusion circle
+    QCOMPARE(plan.fenceViolations(), (QStringList{QStringLiteral("rally point 3 is outside every inclusion area"),
+                                                  QStringLiteral("rally point 4 is inside exclusion circle 1")}));
 }
 
 QTEST_GUILESS_MAIN(TestPlanFile)

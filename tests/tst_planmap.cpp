@@ -274,9 +274,12 @@ private slots:
         MissionPlan one;
         one.items = {waypoint(0, 16, 47.0, 8.0, 100)};
         view.setPlan(&one);
-        QCOMPARE(view.zoom(), PlanMapView::kMaxFitZoom);
+        // One point: 50 m each way (kMinFitExtent) in the 216 px left of 300
+        // between the margins, 36 px above and 48 px below (clear of the scale bar).
+        QCOMPARE(view.zoom(), std::log2(216 / (PlanMapView::kMinFitExtent / WebMercator::metresPerPixel(47.0, 0))));
         const QPointF pos = view.posOf(itemPoint(one, 0));
-        QVERIFY(std::abs(pos.x() - 200) < 1e-6 && std::abs(pos.y() - 150) < 1e-6);
+        QVERIFY2(std::abs(pos.x() - 200) < 1e-6 && std::abs(pos.y() - 144) < 1e-6,
+                 qPrintable(QStringLiteral("%1, %2").arg(pos.x()).arg(pos.y())));
         // A new, empty plan: the view stays where the operator looks.
         wheel(&view, QPointF(50, 60), -240);
         const double zoom = view.zoom();
@@ -287,6 +290,60 @@ private slots:
         QCOMPARE(view.centre(), centre);
         view.fitToPlan();
         QCOMPARE(view.zoom(), zoom);
+    }
+
+    // A 100 m by 60 m survey fills the view: its height takes the whole room
+    // between the margins, its width nearly all (kMaxFitZoom of 17 left it
+    // 132 px wide).
+    void fitFillsTheViewWithASmallPlan()
+    {
+        PlanMapView view;
+        view.resize(600, 400);
+        MissionPlan survey;
+        survey.items = {waypoint(0, 16, 52.21, 0.12, 50), waypoint(1, 16, 52.21, 0.121466, 50),
+                        waypoint(2, 16, 52.21054, 0.121466, 50), waypoint(3, 16, 52.21054, 0.12, 50)};
+        view.setPlan(&survey);
+        const double width = view.posOf({52.21, 0.121466}).x() - view.posOf({52.21, 0.12}).x();
+        const double height = view.posOf({52.21, 0.12}).y() - view.posOf({52.21054, 0.12}).y();
+        QVERIFY2(std::abs(height - (400 - 36 - 48)) < 1e-6, qPrintable(QString::number(height)));
+        QVERIFY2(width > 520 && width < 600 - 72, qPrintable(QString::number(width)));
+        QVERIFY(view.zoom() < PlanMapView::kMaxZoom);
+    }
+
+    // A map squeezed to 100 px high keeps the plan as large as it can: 15 px
+    // above (a marker and a little), 25 px below (a quarter of the height,
+    // towards the scale bar's 48), not 36 px each side that left it 28 px.
+    void fitOnASmallMap()
+    {
+        PlanMapView view;
+        view.resize(400, 100);
+        MissionPlan square;
+        square.items = {waypoint(0, 16, 52.20, 0.12, 50), waypoint(1, 16, 52.21, 0.12, 50)};
+        view.setPlan(&square);
+        QVERIFY2(std::abs(view.posOf({52.21, 0.12}).y() - 15) < 1e-6,
+                 qPrintable(QString::number(view.posOf({52.21, 0.12}).y())));
+        QVERIFY2(std::abs(view.posOf({52.20, 0.12}).y() - 75) < 1e-6,
+                 qPrintable(QString::number(view.posOf({52.20, 0.12}).y())));
+    }
+
+    // Mission Planner's home at 0, 0 is no home: the view fits the waypoints,
+    // not the world between them and the Gulf of Guinea.
+    void homeAtZeroIsNotFitted()
+    {
+        MissionPlan plan;
+        plan.items = {waypoint(0, 16, 52.2151260, 0.1302118, 120), waypoint(1, 16, 52.2236903, 0.1468470, 120)};
+        PlanMapView homeless;
+        homeless.resize(600, 400);
+        homeless.setPlan(&plan);
+        plan.homeLatitude = 0;
+        plan.homeLongitude = 0;
+        plan.homeAltitude = 0;
+        PlanMapView view;
+        view.resize(600, 400);
+        view.setPlan(&plan);
+        QCOMPARE(view.zoom(), homeless.zoom());
+        QCOMPARE(view.centre(), homeless.centre());
+        QVERIFY(view.zoom() > 12);
     }
 
     void clickSelectsAMarker()

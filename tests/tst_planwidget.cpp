@@ -11,12 +11,15 @@
 #include "ui/plan/PlanMapView.h"
 #include "ui/window/MainWindow.h"
 
+#include "ResumeCommanding.h"
+
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QSettings>
 #include <QSignalSpy>
 #include <QTableWidget>
@@ -75,6 +78,8 @@ private slots:
     void fenceOnlyPlanCanBeSent();
     void strayKeysAfterAClickPressNothing();
     void aircraftReportsFenceAndRally();
+    void tableSpeaksAsThePlannersDo();
+    void oneSectionIsOneSection();
 
 private:
     QTemporaryDir m_dir;
@@ -220,7 +225,7 @@ void TestPlanWidget::altitudeTypedInTheTable()
     QCOMPARE(*widget.plan()->items[4].altitude, 135.5);
     QCOMPARE(problems.count(), 1);
     QCOMPARE(problems.at(0).at(0).toString(),
-             QStringLiteral("Mission item 4: altitude \"12o\" is not a number of metres from -500 to 20000; it "
+             QStringLiteral("Mission item 5: altitude \"12o\" is not a number of metres from -500 to 20000; it "
                             "stays 135.5 m"));
     QCOMPARE(widget.table()->item(4, FlightPlanWidget::AltitudeColumn)->text(), QStringLiteral("135.5"));
 }
@@ -284,7 +289,8 @@ void TestPlanWidget::progressSaysWhatIsLeft()
     QVERIFY(widget.loadPlan(kSamplePlan));
     widget.setLinkReady(true);
     widget.uploadPlan();
-    QVERIFY(widget.uploadState().startsWith(QStringLiteral("Plan ")));
+    QCOMPARE(widget.uploadState(), QStringLiteral("Flight plan %1: waiting for the next frame")
+                                       .arg(QString::fromStdString(rcm::planIdText(upload.progress().planId))));
     QVERIFY(upload.next());
     QCOMPARE(widget.uploadState(),
              QStringLiteral("Pass 1 of 5: 1 of 2 sections, 1 s left in this pass (a section a frame)"));
@@ -377,21 +383,21 @@ void TestPlanWidget::fenceForbidsAWaypoint()
     widget.moveItem(4, {52.2110, 0.1565});
     widget.moveItem(3, {52.2300, 0.1468});
     QCOMPARE(widget.plan()->fenceViolations(),
-             (QStringList{QStringLiteral("mission item 3 is outside every inclusion area"),
-                          QStringLiteral("mission item 4 is inside exclusion circle 1")}));
+             (QStringList{QStringLiteral("mission item 4 is outside every inclusion area"),
+                          QStringLiteral("mission item 5 is inside exclusion circle 1")}));
     QStringList asked;
     widget.setConfirm([&](const QString& text, const QString&) {
         asked << text;
         return false;
     });
     widget.uploadPlan();
-    QCOMPARE(asked, QStringList{QStringLiteral("The plan's own fence forbids where it goes: mission item 3 is outside "
-                                               "every inclusion area; mission item 4 is inside exclusion circle 1. "
+    QCOMPARE(asked, QStringList{QStringLiteral("The plan's own fence forbids where it goes: mission item 4 is outside "
+                                               "every inclusion area; mission item 5 is inside exclusion circle 1. "
                                                "Upload it anyway?")});
     QCOMPARE(upload.progress().state, FlightPlanUpload::State::Idle);
     const auto labels = widget.findChildren<QLabel*>();
     QVERIFY(std::any_of(labels.begin(), labels.end(), [](const QLabel* l) {
-        return l->text().contains(QStringLiteral("Fence: mission item 3 is outside every inclusion area"));
+        return l->text().contains(QStringLiteral("Fence: mission item 4 is outside every inclusion area"));
     }));
 
     // 0 N 0 E is "no position" (Mission Planner writes it for DO_LAND_START): not on the map, not a violation.
@@ -521,6 +527,7 @@ void TestPlanWidget::aircraftReportsFenceAndRally()
     QVERIFY(window.flightPlan()->loadPlan(kFencedPlan));
     window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
     QTRY_VERIFY_WITH_TIMEOUT(window.isLinkRunning(), kLinkTimeoutMs);
+    QVERIFY(rcm::test::resumeCommanding(window, kLinkTimeoutMs));
     auto* upload = window.findChild<FlightPlanUpload*>();
     QVERIFY(upload);
     QSignalSpy problems(window.flightPlan(), &FlightPlanWidget::problem);
@@ -534,6 +541,75 @@ void TestPlanWidget::aircraftReportsFenceAndRally()
         kLinkTimeoutMs);
     QCOMPARE(problems.count(), 0);
     window.disconnectLink();
+}
+
+// Items numbered from 1, commands by Mission Planner's names, a dash where a
+// command has no position (RETURN_TO_LAUNCH, a TAKEOFF written at 0, 0) or
+// no altitude.
+void TestPlanWidget::tableSpeaksAsThePlannersDo()
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("mp.waypoints"));
+    QFile file(path);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write(
+        "QGC WPL 110\n"
+        "0\t1\t0\t16\t0\t0\t0\t0\t52.2076813\t0.1155201\t14.2\t1\n"
+        "1\t0\t3\t22\t15\t0\t0\t0\t0\t0\t60\t1\n"
+        "2\t0\t3\t16\t0\t0\t0\t0\t52.2151260\t0.1302118\t120\t1\n"
+        "3\t0\t2\t205\t-45\t0\t90\t0\t0\t0\t0\t1\n"
+        "4\t0\t3\t20\t0\t0\t0\t0\t0\t0\t0\t1\n");
+    file.close();
+    FlightPlanUpload upload;
+    FlightPlanWidget widget(&upload);
+    QString error;
+    QVERIFY2(widget.loadPlan(path, &error), qPrintable(error));
+    const auto row = [&](int r) {
+        QStringList cells;
+        for (int c = 0; c <= FlightPlanWidget::AltitudeColumn; ++c)
+            cells << widget.table()->item(r, c)->text();
+        return cells.join(QLatin1Char('|'));
+    };
+    QCOMPARE(row(0), QStringLiteral("1|TAKEOFF|above home|\u2014|\u2014|60.0"));
+    QCOMPARE(row(1), QStringLiteral("2|WAYPOINT|above home|52.2151260|0.1302118|120.0"));
+    QCOMPARE(row(2), QStringLiteral("3|DO_MOUNT_CONTROL|mission|\u2014|\u2014|\u2014"));
+    QCOMPARE(row(3), QStringLiteral("4|RETURN_TO_LAUNCH|above home|\u2014|\u2014|\u2014"));
+    QCOMPARE(widget.table()->item(2, FlightPlanWidget::CommandColumn)->toolTip(),
+             QStringLiteral("MAV_CMD_DO_MOUNT_CONTROL (205)"));
+    QCOMPARE(widget.table()->item(2, FlightPlanWidget::Param1Column)->text(), QStringLiteral("-45"));
+    // The takeoff's altitude is the one field of its position that can be edited.
+    widget.setEditing(true);
+    QVERIFY(widget.table()->item(0, FlightPlanWidget::AltitudeColumn)->flags() & Qt::ItemIsEditable);
+    QVERIFY(!(widget.table()->item(3, FlightPlanWidget::AltitudeColumn)->flags() & Qt::ItemIsEditable));
+}
+
+// "1 BLOCK 2 section", "0 of 1 section", and the plan ID one way (0x%08X)
+// in the event log's lines and beside the progress bar.
+void TestPlanWidget::oneSectionIsOneSection()
+{
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("one.waypoints"));
+    QFile file(path);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("QGC WPL 110\n1\t0\t3\t16\t0\t0\t0\t0\t52.2151260\t0.1302118\t120\t1\n");
+    file.close();
+    FlightPlanUpload upload;
+    FlightPlanWidget widget(&upload);
+    QSignalSpy messages(&widget, &FlightPlanWidget::message);
+    QVERIFY(widget.loadPlan(path));
+    QCOMPARE(widget.summary(), QStringLiteral("1 mission item, 50 bytes, 1 BLOCK 2 section, 1 s a pass"));
+    auto* bar = widget.findChild<QProgressBar*>();
+    QCOMPARE(bar->text(), QStringLiteral("0 of 1 section"));
+    widget.setLinkReady(true);
+    widget.uploadPlan();
+    const QString id = QString::fromStdString(rcm::planIdText(upload.progress().planId));
+    QVERIFY2(QRegularExpression(QStringLiteral("^0x[0-9A-F]{8}$")).match(id).hasMatch(), qPrintable(id));
+    QCOMPARE(messages.constLast().at(0).toString(),
+             QStringLiteral("Uploading flight plan %1 (one.waypoints): 1 BLOCK 2 section").arg(id));
+    QCOMPARE(widget.uploadState(), QStringLiteral("Flight plan %1: waiting for the next frame").arg(id));
+    QVERIFY(upload.next());
+    QCOMPARE(widget.uploadState(), QStringLiteral("Pass 1 of 5 sent: waiting for the aircraft's acknowledgement"));
+    QCOMPARE(bar->text(), QStringLiteral("1 of 1 section"));
 }
 
 QTEST_MAIN(TestPlanWidget)

@@ -353,7 +353,7 @@ void TestReceive::plausibility()
     QCOMPARE(send(command(102, 0)).refusal, std::optional<Refusal>(Refusal::TimeStep));  // before the last
     f = send(command(102, 5));  // 4 s after the last, one message later: at most 1 + 2 s
     QCOMPARE(f.refusal, std::optional<Refusal>(Refusal::TimeStep));
-    QCOMPARE(f.detail, std::string("time_UTC is 4 s after the last accepted, 1 messages later"));
+    QCOMPARE(f.detail, std::string("time_UTC is 4 s after the last accepted, 1 message later"));
 
     c.nowMicros += 40'000'000;  // the receiver's clock 40 s on: outside the 30 s window
     f = send(command(102, 2));
@@ -448,12 +448,12 @@ void TestReceive::flightPlanSections()
     QVERIFY(!send(0xA, 4));
     QVERIFY(!send(0xA, 0, 2));  // the next pass, section 5 lost
     QCOMPARE(send(0xA, 5), std::optional<Refusal>(Refusal::PlanSection));
-    QCOMPARE(c.frames.back().detail, std::string("flight plan 10 section 5 does not follow section 0 1 messages later"));
+    QCOMPARE(c.frames.back().detail, std::string("flight plan 0x0000000A section 5 does not follow section 0 1 message later"));
     QCOMPARE(send(0xA, 0), std::optional<Refusal>(Refusal::PlanSection));  // the same section again
     QVERIFY(!send(0xA, 3, 1));  // three messages after section 0: sections 1 .. 3 may have been sent
     QCOMPARE(send(0xB, 1), std::optional<Refusal>(Refusal::PlanSection));
     QCOMPARE(c.frames.back().detail,
-             std::string("flight plan 11 section 1 does not follow any plan being sent 1 messages later"));
+             std::string("flight plan 0x0000000B section 1 does not follow any plan being sent 1 message later"));
     QVERIFY(!send(0xB, 0));  // a new plan starts at 0
     QVERIFY(!send(0xC, 1, 2));  // ... which may have been lost
     QVERIFY(!send(0xC, kAcknowledgementSectionId));  // link control fits anywhere
@@ -480,7 +480,7 @@ void TestReceive::planDescriptorBindsItsSections()
     longer.data.push_back(0);
     QCOMPARE(send(longer), std::optional<Refusal>(Refusal::PlanSection));
     QCOMPARE(c.frames.back().detail,
-             std::string("flight plan 10 section 2 carries 13 bytes; its plan's descriptor makes it 12"));
+             std::string("flight plan 0x0000000A section 2 carries 13 bytes; its plan's descriptor makes it 12"));
     QVERIFY(!send(sixSectionPlan(0xA, 2)));
     QVERIFY(!send(sixSectionPlan(0xA, 3)));
     QVERIFY(!send(sixSectionPlan(0xA, 4)));
@@ -490,7 +490,7 @@ void TestReceive::planDescriptorBindsItsSections()
     QVERIFY(!send(sixSectionPlan(0xA, 5)));
     FlightPlanSection beyond = sixSectionPlan(0xA, 6);
     QCOMPARE(send(beyond), std::optional<Refusal>(Refusal::PlanSection));
-    QCOMPARE(c.frames.back().detail, std::string("flight plan 10 section 6: the plan has 6 sections"));
+    QCOMPARE(c.frames.back().detail, std::string("flight plan 0x0000000A section 6: the plan has 6 sections"));
     QVERIFY(!send(sixSectionPlan(0xA, 0)));  // the next pass
 
     // A section 0 whose descriptor its own size contradicts: 6 sections of
@@ -500,7 +500,7 @@ void TestReceive::planDescriptorBindsItsSections()
         std::span<std::uint8_t, FlightPlanDescriptor::kSize>(wrong.data.data(), FlightPlanDescriptor::kSize));
     QCOMPARE(send(wrong), std::optional<Refusal>(Refusal::PlanSection));
     QCOMPARE(c.frames.back().detail,
-             std::string("flight plan 13 section 0: its descriptor does not fit a section of 12 bytes"));
+             std::string("flight plan 0x0000000D section 0: its descriptor does not fit a section of 12 bytes"));
 }
 
 void TestReceive::keyedLink()
@@ -694,7 +694,7 @@ void TestReceive::firstFrameAfterAnOutageDelivered()
     QVERIFY(c.frames[1].delivered());
     c.receiver.receive(datagramOf(command(104, 22)));  // 6 s later, 1 message: too far
     QCOMPARE(c.frames[2].refusal, std::optional<Refusal>(Refusal::TimeStep));
-    QCOMPARE(c.frames[2].detail, std::string("time_UTC is 6 s after the last accepted, 1 messages later"));
+    QCOMPARE(c.frames[2].detail, std::string("time_UTC is 6 s after the last accepted, 1 message later"));
 }
 
 // The predictions' work is paid from a budget that refills with the clock:

@@ -65,9 +65,14 @@ private slots:
     void samplesHold();
     void failedStepNamedInBothReports();
     void malformedScenarioExitsTwo();
+    void scenarioByName();
     void dialogShowsTheRun();
     void dialogSaysWhereTheScenarioIsWrong();
     void uasimEndsWithTheConsole();
+    void withinBesideExpect();
+    void unexpectedAlarmFailsTheRun();
+    void reportPlotHasTimeAndFaults();
+    void oneSectionIsOneSection();
 };
 
 void TestRehearsal::issueExampleParses()
@@ -176,6 +181,17 @@ void TestRehearsal::wrongScenariosSayWhere_data()
     QTest::newRow("the modem faster than real time")
         << QByteArray("{\"transport\": \"modem\", \"speed\": 10, \"duration\": 5, \"steps\": []}")
         << QStringLiteral("s.json:1:33: the modem transport runs at speed 1: the modem model keeps real time");
+    QTest::newRow("within on a set")
+        << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"set\": \"F_elev_set 3\", \"within\": 5}]}")
+        << QStringLiteral("s.json:2:45: step 1: within goes with expect: the seconds after \"at\" it may take to hold");
+    QTest::newRow("within twice")
+        << QByteArray(
+               "{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"expect\": {\"alarm\": \"link-lost\", \"within\": 3},"
+               " \"within\": 3}]}")
+        << QStringLiteral("s.json:2:69: step 1: within is given twice, beside expect and in it; give it once");
+    QTest::newRow("within over the whole run")
+        << QByteArray("{\"duration\": 5, \"steps\": [\n {\"expect\": {\"wrong-frames\": 0}, \"within\": 3}]}")
+        << QStringLiteral("s.json:2:44: step 1: wrong-frames holds over the whole run: no \"within\"");
     QTest::newRow("missing plan")
         << QByteArray("{\"duration\": 5, \"steps\": [\n {\"at\": 0, \"upload\": \"nowhere.plan\"}]}")
         << QStringLiteral("s.json:2:22: step 1: /nonexistent/nowhere.plan: No such file or directory");
@@ -445,7 +461,16 @@ void TestRehearsal::failedStepNamedInBothReports()
     QCOMPARE(expectations[2].toObject().value(QStringLiteral("result")).toString(), QStringLiteral("held"));
 
     const QString html = readText(dir.filePath(QStringLiteral("report.html")));
-    QVERIFY(html.contains(QStringLiteral("<p class=\"verdict fail\">FAILED: 2 of 3 expectations failed</p>")));
+    // The outage raised the link-loss alarm, which no step expected: a failure too.
+    QVERIFY(html.contains(
+        QStringLiteral("<p class=\"verdict fail\">FAILED: 2 of 3 expectations failed; 1 alarm no step expected</p>")));
+    QVERIFY(
+        run.err.contains("gcs: rehearsal \"expectations that cannot hold\": 2 of 3 expectations failed; 1 alarm no "
+                         "step expected; report in "));
+    QVERIFY(run.err.contains("gcs: failed: link-lost alarm at 23.0 s, which no step expected\n"));
+    QCOMPARE(
+        report.value(QStringLiteral("alarms")).toArray().at(0).toObject().value(QStringLiteral("result")).toString(),
+        QStringLiteral("unexpected"));
     QVERIFY(
         html.contains(QStringLiteral("<tr><td>2</td><td>step 2 at 0 s: expect &quot;engine 1: eng_prop_pitch "
                                      "150&quot; reported within 10 s</td><td class=\"failed\">failed</td>")));
@@ -465,6 +490,30 @@ void TestRehearsal::malformedScenarioExitsTwo()
         run.err.contains(QStringLiteral("gcs: %1:7:22: step 2: the aircraft has no engine 7\n").arg(path).toUtf8()),
         run.err.constData());
     QVERIFY(!QFile::exists(dir.filePath(QStringLiteral("report.json"))));
+}
+
+// A name that is no file is one of the scenarios that come with gcs, in
+// share/rcm-gcs/scenarios beside its bin folder: /usr/share/rcm-gcs installed,
+// in the build tree a link to resources/ (cmake/Packaging.cmake).
+void TestRehearsal::scenarioByName()
+{
+    QTemporaryDir dir;
+    const QString shipped = QDir::cleanPath(QStringLiteral(RCM_BIN_DIR "/../share/rcm-gcs/scenarios/malformed.json"));
+    QCOMPARE(QFileInfo(shipped).canonicalFilePath(),
+             QFileInfo(kScenarios + QStringLiteral("malformed.json")).canonicalFilePath());
+    const auto run = rcm::test::runProgram(
+        QStringLiteral("gcs"),
+        {QStringLiteral("--rehearse"), QStringLiteral("malformed"), QStringLiteral("--report"), dir.path()});
+    QCOMPARE(run.exitCode, 2);
+    QVERIFY2(
+        run.err.contains(QStringLiteral("gcs: %1:7:22: step 2: the aircraft has no engine 7\n").arg(shipped).toUtf8()),
+        run.err.constData());
+
+    const auto unknown = rcm::test::runProgram(
+        QStringLiteral("gcs"),
+        {QStringLiteral("--rehearse"), QStringLiteral("no-such-scenario"), QStringLiteral("--report"), dir.path()});
+    QCOMPARE(unknown.exitCode, 2);
+    QVERIFY2(unknown.err.contains("gcs: no-such-scenario:0:0: cannot read: "), unknown.err.constData());
 }
 
 void TestRehearsal::dialogShowsTheRun()
@@ -543,6 +592,168 @@ void TestRehearsal::uasimEndsWithTheConsole()
     gcs.kill();
     QVERIFY(gcs.waitForFinished());
     QTRY_VERIFY_WITH_TIMEOUT(hasEnded(children.first()), 30000);
+}
+
+// docs/rehearsal.md writes "within" beside "expect"; the samples inside it.
+void TestRehearsal::withinBesideExpect()
+{
+    ScenarioError error;
+    const auto s = Scenario::fromJson(R"({"duration": 60, "steps": [
+        {"at": 10, "expect": {"alarm": "link-lost"}, "within": 6},
+        {"at": 20, "expect": {"reported": "F_elev_set 12", "within": 5}},
+        {"at": 30, "expect": {"plan": "acknowledged"}, "within": 15}]})",
+                                      QStringLiteral("w.json"), RehearsalCommandLine::planLoader(), &error);
+    QVERIFY2(s, qPrintable(error.text()));
+    QCOMPARE(s->steps[0].within, 6.0);
+    QCOMPARE(s->steps[1].within, 5.0);
+    QCOMPARE(s->steps[2].within, 15.0);
+    QCOMPARE(s->steps[0].describe(), QStringLiteral("step 1 at 10 s: expect alarm link-lost within 6 s"));
+}
+
+// A 20 s outage and no step that expects the link-loss alarm it raises: the
+// run fails, however well every expectation held, and says why.
+void TestRehearsal::unexpectedAlarmFailsTheRun()
+{
+    ScenarioError error;
+    const auto s = Scenario::fromJson(R"({"name": "an outage nobody expected", "speed": 60, "duration": 60, "steps": [
+        {"at": 0, "set": "camera 1: cam_zoom_set 40"},
+        {"at": 0, "expect": {"reported": "camera 1: cam_zoom_set 40"}, "within": 5},
+        {"at": 20, "fault": {"outage": 20}},
+        {"at": 40, "expect": {"alarm": "link-regained"}, "within": 3}]})",
+                                      QStringLiteral("u.json"), RehearsalCommandLine::planLoader(), &error);
+    QVERIFY2(s, qPrintable(error.text()));
+    ScenarioRunner runner(*s, QString());
+    runner.runToEnd();
+    const RehearsalReport& r = runner.report();
+    QVERIFY(std::all_of(r.expectations.begin(), r.expectations.end(), [](const auto& e) { return e.held; }));
+    QVERIFY(!r.passed());
+    QCOMPARE(r.alarms.size(), std::size_t(2));
+    QCOMPARE(r.alarms[0].time, 23.0);
+    QCOMPARE(r.alarms[0].name, QStringLiteral("link-lost"));
+    QCOMPARE(r.alarms[0].expectedBy, 0);
+    QCOMPARE(r.alarms[1].name, QStringLiteral("link-regained"));
+    QCOMPARE(r.alarms[1].expectedBy, 4);
+    QCOMPARE(r.verdict(), QStringLiteral("1 alarm no step expected"));
+    QCOMPARE(r.failures(), QStringList{QStringLiteral("link-lost alarm at 23.0 s, which no step expected")});
+    const QJsonObject json = QJsonDocument::fromJson(r.toJson()).object();
+    QCOMPARE(json.value(QStringLiteral("verdict")).toString(), QStringLiteral("failed"));
+    const QJsonArray alarms = json.value(QStringLiteral("alarms")).toArray();
+    QCOMPARE(alarms[0].toObject().value(QStringLiteral("result")).toString(), QStringLiteral("unexpected"));
+    QVERIFY(alarms[0].toObject().value(QStringLiteral("expected-by")).isNull());
+    QCOMPARE(alarms[1].toObject().value(QStringLiteral("expected-by")).toInt(), 4);
+    const QString html = r.toHtml();
+    QVERIFY(html.contains(QStringLiteral("<p class=\"verdict fail\">FAILED: 1 alarm no step expected</p>")));
+    QVERIFY(
+        html.contains(QStringLiteral("<tr><td>23.0</td><td>link-lost</td><td class=\"failed\">by no step</td></tr>")));
+    QVERIFY(html.contains(QStringLiteral("<tr><td>41.0</td><td>link-regained</td><td>by step 4</td></tr>")));
+    // Marked on the plot, red.
+    QVERIFY(
+        html.contains(QStringLiteral("stroke=\"#b00\" stroke-width=\"2\" stroke-dasharray=\"4 3\"><title>link-lost at "
+                                     "23.0 s, which no step expected</title>")));
+    bool said = false;
+    for (const auto& t : r.timeline)
+        said |= t.kind == QLatin1String("alarm") && t.text == QLatin1String("link-lost: no step expected it");
+    QVERIFY(said);
+
+    // A scenario that allows link losses over the run expects them, up to its count.
+    for (int allowed : {1, 0}) {
+        const auto allowing = Scenario::fromJson(QStringLiteral(R"({"speed": 60, "duration": 60, "steps": [
+            {"at": 20, "fault": {"outage": 20}},
+            {"expect": {"link-lost-at-most": %1}}]})")
+                                                     .arg(allowed)
+                                                     .toUtf8(),
+                                                 QStringLiteral("a.json"), RehearsalCommandLine::planLoader(), &error);
+        QVERIFY2(allowing, qPrintable(error.text()));
+        ScenarioRunner run(*allowing, QString());
+        run.runToEnd();
+        QCOMPARE(run.report().alarms[0].expectedBy, 2);
+        QCOMPARE(run.report().expectations[0].description,
+                 QStringLiteral("step 2 over the whole run: expect the link-loss alarm at most %1 %2")
+                     .arg(allowed)
+                     .arg(allowed == 1 ? QStringLiteral("time") : QStringLiteral("times")));
+        QCOMPARE(run.report().expectations[0].detail, QStringLiteral("raised 1 time"));
+        QCOMPARE(run.report().passed(), allowed == 1);
+    }
+}
+
+// The link quality plot: a time axis with round ticks, each fault's period
+// shaded; the expectations in four columns, what was seen said once.
+void TestRehearsal::reportPlotHasTimeAndFaults()
+{
+    ScenarioRunner runner(load(QStringLiteral("outage.json")), QString());
+    runner.runToEnd();
+    const RehearsalReport& r = runner.report();
+    QVERIFY(r.passed());
+    QCOMPARE(r.faults.size(), std::size_t(1));
+    QCOMPARE(r.faults[0].start, 30.0);
+    QCOMPARE(r.faults[0].end, 50.0);
+    QCOMPARE(r.faults[0].text, QStringLiteral("fault outage 20"));
+    const QString html = r.toHtml();
+    QStringList ticks;
+    static const QRegularExpression tick(QStringLiteral("<line class=\"tick\"[^>]*/><text[^>]*>([^<]*)</text>"));
+    for (auto it = tick.globalMatch(html); it.hasNext();)
+        ticks << it.next().captured(1);
+    QCOMPARE(ticks,
+             (QStringList{QStringLiteral("0"), QStringLiteral("10 s"), QStringLiteral("20 s"), QStringLiteral("30 s"),
+                          QStringLiteral("40 s"), QStringLiteral("50 s"), QStringLiteral("60 s"),
+                          QStringLiteral("70 s"), QStringLiteral("80 s"), QStringLiteral("90 s")}));
+    // 30 s to 50 s of 90 on 730 px from x = 40: 283.3 to 445.6; shaded, and named under the axis.
+    QVERIFY2(html.contains(QStringLiteral("<rect class=\"fault\" x=\"283.3\" y=\"10\" width=\"162.2\" height=\"170\" "
+                                          "fill=\"#f0a030\" fill-opacity=\"0.25\"><title>fault outage 20 (30.0 s to "
+                                          "50.0 s)</title></rect>")),
+             qPrintable(html));
+    QVERIFY(
+        html.contains(QStringLiteral("<text x=\"286.3\" y=\"235.0\" font-size=\"11\">fault outage 20 (30.0 s to "
+                                     "50.0 s)</text>")));
+    QVERIFY(html.contains(
+        QStringLiteral("<tr><th>Step</th><th>Expectation</th><th>Result</th><th>What was seen</th></tr>")));
+    QVERIFY(!html.contains(QStringLiteral("Measured")));
+    QVERIFY(html.contains(QStringLiteral("<td class=\"held\">held</td><td>after 2 s</td></tr>")));
+    QVERIFY(html.contains(QStringLiteral("<td class=\"held\">held</td><td>0 wrong frames</td></tr>")));
+
+    // An hour: ticks every 10 minutes.
+    RehearsalReport empty;
+    empty.duration = 3600;
+    QStringList minutes;
+    const QString hourHtml = empty.toHtml();
+    for (auto it = tick.globalMatch(hourHtml); it.hasNext();)
+        minutes << it.next().captured(1);
+    QCOMPARE(minutes, (QStringList{QStringLiteral("0"), QStringLiteral("10 min"), QStringLiteral("20 min"),
+                                   QStringLiteral("30 min"), QStringLiteral("40 min"), QStringLiteral("50 min"),
+                                   QStringLiteral("60 min")}));
+}
+
+// A plan of one item goes in one section: "1 section", in the step and in
+// the aircraft's word that it has it.
+void TestRehearsal::oneSectionIsOneSection()
+{
+    QTemporaryDir dir;
+    QFile plan(dir.filePath(QStringLiteral("one.waypoints")));
+    QVERIFY(plan.open(QIODevice::WriteOnly));
+    plan.write("QGC WPL 110\n1\t0\t3\t16\t0\t0\t0\t0\t52.2151260\t0.1302118\t120\t1\n");
+    plan.close();
+    ScenarioError error;
+    const auto s =
+        Scenario::fromJson(R"({"speed": 60, "duration": 10, "steps": [
+        {"at": 1, "upload": "one.waypoints"},
+        {"at": 1, "expect": {"plan": "acknowledged"}, "within": 5}]})",
+                           dir.filePath(QStringLiteral("one.json")), RehearsalCommandLine::planLoader(), &error);
+    QVERIFY2(s, qPrintable(error.text()));
+    ScenarioRunner runner(*s, QString());
+    runner.runToEnd();
+    QVERIFY(runner.report().passed());
+    QStringList said;
+    for (const auto& t : runner.report().timeline)
+        said << t.text;
+    QVERIFY2(said.contains(QStringLiteral("step 1 at 1 s: upload one.waypoints (flight plan 0x52450001, 1 section)")),
+             qPrintable(said.join(QLatin1Char('\n'))));
+    QVERIFY2(std::any_of(said.begin(), said.end(),
+                         [](const QString& t) {
+                             return t.endsWith(QStringLiteral(
+                                 "flight plan 0x52450001 complete: 50 bytes in 1 section: 1 mission item, no fence, "
+                                 "no rally points"));
+                         }),
+             qPrintable(said.join(QLatin1Char('\n'))));
 }
 
 QTEST_MAIN(TestRehearsal)

@@ -5,8 +5,11 @@
 #include "QuickSatellite.h"
 #include "link/simulation/SatelliteModem.h"
 
+#include <QFileInfo>
+#include <QProcess>
 #include <QSerialPort>
 #include <QSignalSpy>
+#include <QTemporaryDir>
 #include <QtTest>
 
 #include <memory>
@@ -440,6 +443,173 @@ private slots:
         QCOMPARE(b.aircraft->all, bytes);
         QVERIFY(b.modem.counters().flowControlStops[SatelliteModem::Ground] >= 1);
         QTRY_COMPARE_WITH_TIMEOUT(flow.last().at(1).toBool(), false, kWaitMs);
+    }
+
+    // Iridium's dialect: the V.110 bearer, +CSQ in bars without a space, the
+    // +CIER indicator events (the state at once when turned on, then each
+    // change), registration lost and found, and no dial without it.
+    void iridiumDialect()
+    {
+        SatelliteModem::Options options = quickOptions();
+        options.profile = *modem::findProfile(QStringLiteral("iridium-9522b"));
+        Bench b(options);
+        QVERIFY(b.open());
+        b.ground->send("ATE0\r");
+        WAIT_HEARD(*b.ground, kOk);
+        b.ground->forget();
+        b.ground->send("AT&K3+CBST=71,0,1\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, kOk, kWaitMs);
+        b.ground->forget();
+        b.ground->send("AT+CBST?\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CBST:71,0,1\r\n" + kOk, kWaitMs);
+        b.ground->forget();
+        b.ground->send("AT+CSQ\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CSQ:4\r\n" + kOk, kWaitMs);
+        b.ground->forget();
+        b.ground->send("AT+CIER=1,1,1\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, kOk + "\r\n+CIEV:0,4\r\n\r\n+CIEV:1,1\r\n", kWaitMs);
+        b.ground->forget();
+        b.modem.setSignalBars(0);
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CIEV:0,0\r\n\r\n+CIEV:1,0\r\n", kWaitMs);
+        b.ground->forget();
+        b.ground->send("AT+CREG?\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CREG:0,2\r\n" + kOk, kWaitMs);
+        b.ground->forget();
+        b.ground->send("ATD8816\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\nNO DIALTONE\r\n", kWaitMs);
+        b.ground->forget();
+        b.modem.setSignalBars(3);
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CIEV:0,3\r\n\r\n+CIEV:1,1\r\n", kWaitMs);
+        b.ground->forget();
+        b.ground->send("AT+CSQ\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CSQ:3\r\n" + kOk, kWaitMs);
+        b.ground->forget();
+        // The GSM family's unsolicited +CREG is not Iridium's way, but it has it too.
+        b.ground->send("AT+CIER=0,0,0\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, kOk, kWaitMs);
+    }
+
+    // The GSM family (3GPP TS 27.007): +CREG: n,stat, the unsolicited
+    // +CREG: stat after AT+CREG=1, +CSQ: rssi,ber on 0..31; no +CIER.
+    void gsmFamilyDialect()
+    {
+        Bench b;  // the default profile
+        QVERIFY(b.open());
+        b.ground->send("ATE0\r");
+        WAIT_HEARD(*b.ground, kOk);
+        b.ground->forget();
+        b.ground->send("AT+CSQ\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CSQ: 22,99\r\n" + kOk, kWaitMs);
+        b.ground->forget();
+        b.ground->send("AT+CIER=1,1,1\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, kError, kWaitMs);
+        b.ground->forget();
+        b.ground->send("AT+CREG=1;+CREG?\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CREG: 1,1\r\n" + kOk, kWaitMs);
+        b.ground->forget();
+        b.modem.setSignalBars(0);
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CREG: 2\r\n", kWaitMs);
+        b.ground->forget();
+        b.modem.setSignalBars(5);
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CREG: 1\r\n", kWaitMs);
+        b.ground->forget();
+        b.ground->send("at+csq\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, "\r\n+CSQ: 28,99\r\n" + kOk, kWaitMs);
+    }
+
+    void modemWithoutANetworkHasNoNetworkCommands()
+    {
+        SatelliteModem::Options options = quickOptions();
+        options.profile = *modem::findProfile(QStringLiteral("hayes"));
+        Bench b(options);
+        QVERIFY(b.open());
+        b.ground->send("ATE0\r");
+        WAIT_HEARD(*b.ground, kOk);
+        b.ground->forget();
+        b.ground->send("AT+CSQ\r");
+        QTRY_COMPARE_WITH_TIMEOUT(b.ground->all, kError, kWaitMs);
+    }
+
+    // The service script, in time order, and a call that loses its signal drops.
+    void serviceScriptAndSignalLoss()
+    {
+        QString error;
+        QVERIFY(!SatelliteModem::parseService(QStringLiteral("0:0,10"), &error));
+        QVERIFY2(error.contains(QStringLiteral("\"10\"")), qPrintable(error));
+        QVERIFY(!SatelliteModem::parseService(QStringLiteral("5:1,2:3"), &error));
+        QVERIFY(!SatelliteModem::parseService(QStringLiteral("0:6"), &error));
+        const auto parsed = SatelliteModem::parseService(QStringLiteral("0:0, 0.3:2"), &error);
+        QVERIFY2(parsed, qPrintable(error));
+        QCOMPARE(parsed->size(), std::size_t(2));
+        QCOMPARE(parsed->at(1).at, 300ms);
+        QCOMPARE(parsed->at(1).bars, 2);
+
+        SatelliteModem::Options options = quickOptions();
+        options.service = *parsed;
+        Bench b(options);
+        QSignalSpy signal(&b.modem, &SatelliteModem::signalChanged);
+        QVERIFY(b.open());
+        QTRY_COMPARE_WITH_TIMEOUT(signal.count(), 2, kWaitMs);
+        QCOMPARE(signal.at(0).at(0).toInt(), 0);
+        QCOMPARE(signal.at(1).at(0).toInt(), 2);
+        CHECKED(connectCall(b));
+        b.modem.setSignalBars(0);
+        WAIT_HEARD(*b.ground, kNoCarrier);
+        WAIT_HEARD(*b.aircraft, kNoCarrier);
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Idle);
+    }
+
+    // With &D0 the modem ignores DTR: the program goes, the call stays up,
+    // and the next program finds the modem in data mode.
+    void callOutlivesTheProgramWithAmpersandD0()
+    {
+        Bench b;
+        QVERIFY(b.open());
+        QSignalSpy hungUp(&b.modem, &SatelliteModem::hungUp);
+        b.ground->send("AT&D0\r");
+        WAIT_HEARD(*b.ground, kOk);
+        CHECKED(connectCall(b));
+        b.ground->close();
+        b.aircraft->send("still there?");
+        QTest::qWait(kSilenceMs);  // the model's turn to see the close: it must not hang up
+        QCOMPARE(b.modem.callState(), SatelliteModem::CallState::Connected);
+        QCOMPARE(hungUp.count(), 0);
+        QVERIFY(b.ground->open());
+        b.aircraft->send("yes");
+        WAIT_HEARD(*b.ground, "yes");
+    }
+
+    // satmodem makes a missing --link-dir; a directory it cannot make is said with the reason.
+    void satmodemMakesItsLinkDirectory()
+    {
+        QTemporaryDir dir;
+        QVERIFY(dir.isValid());
+        const QString links = dir.filePath(QStringLiteral("not/yet"));
+        QProcess satmodem;
+        satmodem.start(QStringLiteral(RCM_BIN_DIR "/satmodem"), {QStringLiteral("--link-dir"), links});
+        QVERIFY2(satmodem.waitForStarted(), "build satmodem first");
+        QTRY_VERIFY_WITH_TIMEOUT(satmodem.readAllStandardOutput().contains("aircraft: /dev/pts/") ||
+                                     QFileInfo(links + QStringLiteral("/aircraft")).isSymLink(),
+                                 kWaitMs);
+        QVERIFY(QFileInfo(links + QStringLiteral("/ground")).isSymLink());
+        QVERIFY(QFileInfo(links + QStringLiteral("/aircraft")).isSymLink());
+        satmodem.terminate();
+        QVERIFY(satmodem.waitForFinished(kWaitMs));
+        QCOMPARE(satmodem.exitCode(), 0);
+        QVERIFY(!QFileInfo::exists(links + QStringLiteral("/ground")));
+
+        QFile blocker(dir.filePath(QStringLiteral("file")));
+        QVERIFY(blocker.open(QIODevice::WriteOnly));
+        blocker.close();
+        QProcess refused;
+        refused.start(QStringLiteral(RCM_BIN_DIR "/satmodem"),
+                      {QStringLiteral("--link-dir"), blocker.fileName() + QStringLiteral("/sub")});
+        QVERIFY(refused.waitForFinished(kWaitMs));
+        QCOMPARE(refused.exitCode(), 1);
+        const QString said = QString::fromLocal8Bit(refused.readAllStandardError());
+        QVERIFY2(said.contains(QStringLiteral("cannot make the directory")) &&
+                     said.contains(QStringLiteral("Not a directory")),
+                 qPrintable(said));
     }
 };
 

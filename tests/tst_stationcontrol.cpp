@@ -76,33 +76,52 @@ private slots:
         QCOMPARE(named(control, command), Named("FR_7", "GB_41251"));
         QCOMPARE(roles.count(), 0);
         QCOMPARE(control.describe(), QString());
+        // Never a claim: only Take control, which follows control, sends one.
+        QCOMPARE(named(control, status(kOther, kOther)), Named("FR_7", "-"));
     }
 
-    void beforeAnyStatusTheStationNamesItself()
+    // Until the aircraft says who is in control, the frames name nobody:
+    // not a command, and no backup changed.
+    void beforeAnyStatusTheStationNamesNobody()
     {
         StationControl control;
         control.setStation(kPrimary);
-        QCOMPARE(named(control), Named("GB_30226", "-"));
-        // The backup the operator set in the header stays.
-        QCOMPARE(named(control, status(kOther, kBackup)), Named("GB_30226", "GB_41251"));
+        QCOMPARE(named(control), Named("-", "-"));
+        QCOMPARE(named(control, status(kOther, kBackup)), Named("-", "-"));
         QVERIFY(!control.canHandOver());
         QVERIFY(!control.canTakeControl());
     }
 
-    void inControlFollowsTheReportedBackup()
+    // Named in control by the aircraft (its start-up configuration here):
+    // the station names itself, claims nothing, until its operator takes
+    // control; then every frame is the claim.
+    void inControlOnlyOnceTaken()
     {
         StationControl control;
         control.setStation(kPrimary);
         QSignalSpy events(&control, &StationControl::event);
         QSignalSpy alarms(&control, &StationControl::alarm);
         control.statusReceived(status(kPrimary, kBackup));
-        QCOMPARE(control.role(), Role::InControl);
-        QCOMPARE(named(control, status(kOther, kOther)), Named("GB_30226", "GB_41251"));
+        QCOMPARE(control.role(), Role::Offered);
+        QCOMPARE(named(control, status(kOther, kOther)), Named("GB_30226", "-"));
         QCOMPARE(events.count(), 1);
-        QCOMPARE(events.at(0).at(0).toString(), QStringLiteral("This station is in control; backup GB_41251"));
+        QCOMPARE(events.at(0).at(0).toString(),
+                 QStringLiteral("The aircraft names this station in control: check what it reports, then Take "
+                                "control to command it"));
         QCOMPARE(alarms.count(), 0);
+        QVERIFY(control.canTakeControl());
+        QVERIFY(!control.canHandOver());
+
+        control.takeControl();
+        QCOMPARE(control.role(), Role::InControl);
+        QCOMPARE(events.at(1).at(0).toString(),
+                 QStringLiteral("Taking control: the next frames claim control for this station"));
+        QCOMPARE(named(control, status(kOther, kOther)), Named("GB_30226", "GB_30226"));
         QCOMPARE(control.describe(), QStringLiteral("GB_30226: in control, backup GB_41251"));
         QVERIFY(control.canHandOver());
+        control.statusReceived(status(kPrimary, kBackup));
+        QCOMPARE(control.role(), Role::InControl);
+        QCOMPARE(alarms.count(), 0);
     }
 
     void startingAsBackupNamesTheStationInControl()
@@ -124,6 +143,7 @@ private slots:
         StationControl control;
         control.setStation(kPrimary);
         control.statusReceived(status(kPrimary, kBackup));
+        control.takeControl();
         QSignalSpy alarms(&control, &StationControl::alarm);
         control.statusReceived(status(kBackup, kPrimary));
         QCOMPARE(control.role(), Role::Backup);
@@ -135,6 +155,10 @@ private slots:
         // The same status again says nothing more.
         control.statusReceived(status(kBackup, kPrimary));
         QCOMPARE(alarms.count(), 1);
+        // Given control back, it claims nothing until taken again.
+        control.statusReceived(status(kPrimary, kBackup));
+        QCOMPARE(control.role(), Role::Offered);
+        QCOMPARE(named(control), Named("GB_30226", "-"));
     }
 
     void givenControlWaitsForTheOperator()
@@ -152,15 +176,15 @@ private slots:
                  QStringLiteral("The aircraft gave control to this station (GB_30226 was in control): check what it "
                                 "reports, then Take control to command it"));
         QCOMPARE(header.count(), 1);
-        // Not naming itself: the aircraft acts on none of it yet.
-        QCOMPARE(named(control), Named("GB_30226", "GB_41251"));
+        // Naming itself without claiming: the aircraft acts on none of it yet.
+        QCOMPARE(named(control), Named("GB_41251", "-"));
         QVERIFY(control.canTakeControl());
         QVERIFY(!control.canHandOver());
 
         control.takeControl();
         QCOMPARE(control.role(), Role::InControl);
         QCOMPARE(header.count(), 2);
-        QCOMPARE(named(control), Named("GB_41251", "GB_30226"));
+        QCOMPARE(named(control), Named("GB_41251", "GB_41251"));
         control.statusReceived(status(kBackup, kPrimary));
         QCOMPARE(control.role(), Role::InControl);
         QCOMPARE(alarms.count(), 1);
@@ -171,6 +195,7 @@ private slots:
         StationControl control;
         control.setStation(kPrimary);
         control.statusReceived(status(kPrimary, kBackup));
+        control.takeControl();
         QSignalSpy alarms(&control, &StationControl::alarm);
         QSignalSpy events(&control, &StationControl::event);
         control.handOver();
@@ -190,6 +215,7 @@ private slots:
         control.statusReceived(status(kPrimary, kBackup));
         QCOMPARE(control.role(), Role::Offered);
         QCOMPARE(alarms.count(), 1);
+        QCOMPARE(named(control), Named("GB_30226", "-"));
         // Not taken here either: it goes on to the backup again.
         control.statusReceived(status(kBackup, kPrimary));
         QCOMPARE(control.role(), Role::Backup);
@@ -204,10 +230,11 @@ private slots:
         StationControl control;
         control.setStation(kPrimary);
         control.statusReceived(status(kPrimary, std::nullopt));
+        control.takeControl();
         QVERIFY(!control.canHandOver());
         control.handOver();
         QCOMPARE(control.role(), Role::InControl);
-        QCOMPARE(named(control), Named("GB_30226", "-"));
+        QCOMPARE(named(control), Named("GB_30226", "GB_30226"));
     }
 
     void observingAThirdStation()
@@ -228,10 +255,10 @@ private slots:
         control.statusReceived(status(kBackup, kPrimary));  // given control, not taken
         control.reset();                                    // the link drops and comes back
         QCOMPARE(control.role(), Role::Unknown);
-        QCOMPARE(named(control), Named("GB_30226", "GB_41251"));
+        QCOMPARE(named(control), Named("-", "-"));
         control.statusReceived(status(kBackup, kPrimary));
         QCOMPARE(control.role(), Role::Offered);
-        QCOMPARE(named(control), Named("GB_30226", "GB_41251"));
+        QCOMPARE(named(control), Named("GB_41251", "-"));
     }
 
     void aNewLinkFindingAnotherInControlIsAnAlarm()
@@ -239,6 +266,7 @@ private slots:
         StationControl control;
         control.setStation(kPrimary);
         control.statusReceived(status(kPrimary, kBackup));
+        control.takeControl();
         control.reset();  // the link drops; the aircraft fails over meanwhile
         QSignalSpy alarms(&control, &StationControl::alarm);
         control.statusReceived(status(kBackup, kPrimary));
@@ -247,15 +275,25 @@ private slots:
         QCOMPARE(named(control), Named("GB_41251", "GB_30226"));
     }
 
-    void aNewLinkKeepsControlThatWasTaken()
+    // Control taken on one link is taken again on the next: a console
+    // reconnected (or restarted) never claims by itself.
+    void aNewLinkNeedsTakeControlAgain()
     {
         StationControl control;
         control.setStation(kPrimary);
         control.statusReceived(status(kPrimary, kBackup));
+        control.takeControl();
         control.reset();
-        QCOMPARE(named(control), Named("GB_30226", "-"));
+        QCOMPARE(named(control), Named("-", "-"));
+        QSignalSpy events(&control, &StationControl::event);
+        QSignalSpy alarms(&control, &StationControl::alarm);
         control.statusReceived(status(kPrimary, kBackup));
-        QCOMPARE(control.role(), Role::InControl);
+        QCOMPARE(control.role(), Role::Offered);
+        QCOMPARE(named(control), Named("GB_30226", "-"));
+        QCOMPARE(events.at(0).at(0).toString(),
+                 QStringLiteral("The aircraft still names this station in control: check what it reports, then Take "
+                                "control to command it again"));
+        QCOMPARE(alarms.count(), 0);
     }
 };
 

@@ -13,6 +13,7 @@
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTest>
+#include <QVBoxLayout>
 
 using namespace rcm;
 using Role = StationControl::Role;
@@ -76,6 +77,7 @@ private slots:
         widget.show();
         widget.setStationText(QStringLiteral("GB_30226"));
         control.statusReceived(status(kPrimary, kBackup));
+        control.takeControl();
         QCOMPARE(widget.roleLabel()->text(), QStringLiteral("GB_30226: in control, backup GB_41251"));
         QVERIFY(widget.handOverButton()->isEnabled());
         QVERIFY(!widget.takeControlButton()->isEnabled());
@@ -96,11 +98,14 @@ private slots:
         QVERIFY(!widget.handOverButton()->isEnabled());
     }
 
-    void takeControlAsksOnlyWhenGivenControl()
+    // Take control resumes commanding: the console asks where it holds the
+    // command (CommandHoldBar, tst_mainwindow), so the button only asks for it.
+    void takeControlOnlyWhenGivenControl()
     {
         StationControl control;
         StationControlWidget widget(&control);
         widget.show();
+        QSignalSpy requested(&widget, &StationControlWidget::takeControlRequested);
         widget.setStationText(QStringLiteral("GB_41251"));
         control.statusReceived(status(kPrimary, kBackup));
         QCOMPARE(widget.roleLabel()->text(), QStringLiteral("GB_41251: backup, GB_30226 in control"));
@@ -111,18 +116,46 @@ private slots:
                  QStringLiteral("GB_41251: given control, not taken: Take control to command"));
         QVERIFY(widget.takeControlButton()->isEnabled());
 
-        SeenBox seen;
-        answerNextBox(&seen, true);
         widget.takeControlButton()->click();
-        QVERIFY(seen.shown);
-        QCOMPARE(seen.text, QStringLiteral("Command the aircraft from this console?"));
-        QVERIFY(seen.cancelIsDefault);
-        QCOMPARE(control.role(), Role::Offered);
+        QCOMPARE(requested.count(), 1);
+        QCOMPARE(control.role(), Role::Offered);  // nothing taken by the click alone
 
-        answerNextBox(&seen, false);
-        widget.takeControlButton()->click();
+        control.takeControl();
         QCOMPARE(control.role(), Role::InControl);
         QVERIFY(!widget.takeControlButton()->isEnabled());
+    }
+
+    // Typed and left without Enter (GB_30 of GB_30226): not applied, the
+    // field shows the station in force again and says so.
+    void stationAppliedOnEnterOnly()
+    {
+        StationControl control;
+        QWidget window;
+        auto* widget = new StationControlWidget(&control, &window);
+        auto* elsewhere = new QLineEdit(&window);
+        auto* layout = new QVBoxLayout(&window);
+        layout->addWidget(widget);
+        layout->addWidget(elsewhere);
+        window.show();
+        window.activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(&window));
+        widget->setStationText(QStringLiteral("GB_30226"));
+        auto* field = widget->findChild<QLineEdit*>();
+        field->setFocus();
+        field->selectAll();
+        QTest::keyClicks(field, QStringLiteral("GB_30"));
+        elsewhere->setFocus();
+        QTRY_VERIFY(!field->hasFocus());
+        QCOMPARE(control.station(), std::optional<StationId>(kPrimary));
+        QCOMPARE(field->text(), QStringLiteral("GB_30226"));
+        QCOMPARE(field->toolTip(),
+                 QStringLiteral("Not applied: 'GB_30' was left without Enter; this station stays GB_30226"));
+
+        field->setFocus();
+        field->selectAll();
+        QTest::keyClicks(field, QStringLiteral("GB_41251"));
+        QTest::keyClick(field, Qt::Key_Return);
+        QCOMPARE(control.station(), std::optional<StationId>(kBackup));
     }
 
     void stationNotEditableWhileALinkRuns()

@@ -12,9 +12,14 @@
 #include "codec/message/Airframe.h"
 #include "codec/message/ItemTable.h"
 #include "codec/message/TextFormat.h"
+#include "codec/receive/LoggedFrameReading.h"
 #include "codec/secure/SecureCodec.h"
+#include "codec/secure/StationSigningKey.h"
+#include "link/broker/BrokerEnvelope.h"
 #include "link/broker/BrokerObservation.h"
 #include "link/broker/BrokerSettings.h"
+#include "link/broker/BrokerTrust.h"
+#include "link/broker/MqttClient.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkController.h"
@@ -125,7 +130,9 @@ QStringList aircraftOptions(int failoverSeconds = kFailoverSeconds)
 // settings and frame logs in `home`.
 class PrimaryConsole {
 public:
-    PrimaryConsole(const QString& home, quint16 port, const QString& keyPath, quint16 brokerPort) : m_home(home)
+    PrimaryConsole(const QString& home, quint16 port, const QString& keyPath, quint16 brokerPort,
+                   const QString& brokerKeyPath)
+        : m_home(home)
     {
         QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
         env.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
@@ -136,7 +143,8 @@ public:
         m_process.setProgram(QStringLiteral(RCM_BIN_DIR "/gcs"));
         m_process.setArguments({QStringLiteral("--udp-remote"), QStringLiteral("127.0.0.1:%1").arg(port),
                                 QStringLiteral("--key"), keyPath, QStringLiteral("--station"), kPrimaryText,
-                                QStringLiteral("--broker"), QStringLiteral("mqtt://127.0.0.1:%1").arg(brokerPort)});
+                                QStringLiteral("--broker"), QStringLiteral("mqtt://127.0.0.1:%1").arg(brokerPort),
+                                QStringLiteral("--broker-key"), brokerKeyPath});
         m_process.setProcessChannelMode(QProcess::ForwardedErrorChannel);
     }
     ~PrimaryConsole()
@@ -196,11 +204,30 @@ private slots:
         test::UasimProcess aircraft(test::kTwoStations, aircraftOptions(), {primaryKey, backupKey});
         QVERIFY(aircraft.start());
 
+        // The primary signs what it publishes; the observer trusts its key,
+        // and holds the aircraft's key for the primary's station, which
+        // opens its sealed session.
+        const QString primaryBrokerKey = dir.filePath(QStringLiteral("primary-broker.key"));
+        const rcm::secure::StationSigningKey signing = rcm::secure::StationSigningKey::generate();
+        std::string keyError;
+        QVERIFY2(signing.writeFile(primaryBrokerKey.toStdString(), keyError), keyError.c_str());
+        auto trust = std::make_shared<BrokerTrust>();
+        trust->trustStation(kPrimaryText, signing.publicKey());
+        trust->addLinkKey(*LogKey::open(primaryKey.toStdString(), keyError));
         BrokerSettings brokerSettings;
         brokerSettings.host = QStringLiteral("127.0.0.1");
         brokerSettings.port = broker.port();
         brokerSettings.aircraft = QStringLiteral("GB_133");
+        brokerSettings.trust = trust;
         BrokerObservation observer(brokerSettings);
+        QSignalSpy refused(&observer, &BrokerObservation::messageRefused);
+        // And everything the broker carries, as anyone on it reads it.
+        BrokerSettings anyone = brokerSettings;
+        anyone.trust.reset();
+        MqttClient wiretap(anyone);
+        QSignalSpy carried(&wiretap, &MqttClient::messageReceived);
+        wiretap.subscribe(QStringLiteral("rcm/#"), 1);
+        wiretap.start();
         std::set<FrameKey> observed;
         connect(&observer, &LinkEvents::frameLogged, this, [&](const LoggedFrame& f) {
             observed.insert({int(f.entry.direction), f.entry.utcMicros, f.bytes});
@@ -209,8 +236,8 @@ private slots:
         // Frames are not retained: the observer is there before the first one.
         QTRY_VERIFY_WITH_TIMEOUT(observer.isConnected(), kPatience);
 
-        PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.ports[0], primaryKey,
-                               broker.port());
+        PrimaryConsole primary(dir.filePath(QStringLiteral("primary")), aircraft.ports[0], primaryKey, broker.port(),
+                               primaryBrokerKey);
         QVERIFY(primary.start());
 
         // The backup commands the gear up all along; the primary, at rest, down.
@@ -249,6 +276,27 @@ private slots:
                                                  .arg(missing().join(QStringLiteral(", ")))),
                                   kPatience);
 
+        QCOMPARE(refused.count(), 0);
+        // The keyed session put nothing readable on the broker: every message
+        // is an envelope signed by the primary, its report sealed under the
+        // aircraft's key (the frames inside it are the enciphered bytes the
+        // frame log holds, compared above).
+        QVERIFY(carried.count() >= logged.size());
+        for (const QList<QVariant>& m : std::as_const(carried)) {
+            const QString topic = m.at(0).toString();
+            const QByteArray payload = m.at(1).toByteArray();
+            if (payload.isEmpty())
+                continue;  // a retained report cleared
+            QString error;
+            const std::optional<BrokerEnvelope> e = BrokerEnvelope::fromJson(payload, &error);
+            QVERIFY2(e, qPrintable(topic + QStringLiteral(": ") + error));
+            QVERIFY2(e->sealed, qPrintable(topic + QStringLiteral(": not sealed: ") + QString::fromUtf8(payload)));
+            QCOMPARE(e->station, kPrimaryText);
+            QCOMPARE(e->signature.size(), 64);
+            for (const char* plain : {"ID_msg", "GB_41251", "\"text\"", "\"bytes\"", "land_wheels", "online"})
+                QVERIFY2(!payload.contains(plain), qPrintable(topic + QStringLiteral(" carries ") + plain));
+        }
+
         // The primary's process dies: the backup is given control, and told.
         QSignalSpy alarms(backup.control(), &StationControl::alarm);
         QElapsedTimer sinceKill;
@@ -264,14 +312,20 @@ private slots:
                                 "reports, then Take control to command it"));
         QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("failover"), kPatience);
 
-        // Given control is not taken: the gear stays down until the operator takes it.
+        // Given control is not taken: the gear stays down until the operator
+        // takes it, and its panels, which held the gear up, now hold the
+        // aircraft's report: taking control changes nothing by itself.
         const qsizetype offered = backup.statuses.size();
         QTRY_VERIFY_WITH_TIMEOUT(backup.statuses.size() >= offered + 3, kPatience);
         QVERIFY(backup.allGear(offered, code::kOut));
-        backup.control()->takeControl();
+        QCOMPARE(reportedGear(*backup.session.command()), code::kOut);
+        QVERIFY(backup.session.resumeCommanding());
+        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_41251"), kPatience);
+        QCOMPARE(backup.role(), Role::InControl);
+        // Then the operator raises the gear.
+        backup.session.setCommand(gearCommand(code::kRetracted));
         QTRY_VERIFY_WITH_TIMEOUT(!backup.statuses.isEmpty() && reportedGear(backup.statuses.last()) == code::kRetracted,
                                  kPatience);
-        QCOMPARE(backup.role(), Role::InControl);
 
         // The broker says the primary is gone: its will.
         QTRY_VERIFY_WITH_TIMEOUT(
@@ -292,7 +346,10 @@ private slots:
         primary.start(kPrimary, gearCommand(code::kOut), aircraft.ports[0], primaryKey);
         Station backup(dir.filePath(QStringLiteral("backup-logs")));
         backup.start(kBackup, gearCommand(code::kRetracted), aircraft.ports[1], backupKey);
-        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::InControl, kPatience);
+        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Offered, kPatience);
+        QVERIFY(primary.session.resumeCommanding());  // Take control
+        QCOMPARE(primary.role(), Role::InControl);
+        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_30226"), kPatience);
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
         QVERIFY(primary.control()->canHandOver());
 
@@ -306,7 +363,8 @@ private slots:
                  QStringLiteral("Handed over: GB_41251 is in control, this station is its backup"));
         QVERIFY(reportedGear(backup.statuses.last()) == code::kOut);
 
-        backup.control()->takeControl();
+        QVERIFY(backup.session.resumeCommanding());  // Take control
+        backup.session.setCommand(gearCommand(code::kRetracted));
         QTRY_VERIFY_WITH_TIMEOUT(reportedGear(primary.statuses.last()) == code::kRetracted, kPatience);
         QCOMPARE(backup.role(), Role::InControl);
         QCOMPARE(primary.role(), Role::Backup);
@@ -327,7 +385,8 @@ private slots:
         primary.start(kPrimary, gearCommand(code::kOut), aircraft.ports[0], primaryKey);
         Station backup(dir.filePath(QStringLiteral("backup-logs")));
         backup.start(kBackup, gearCommand(code::kOut), aircraft.ports[1], backupKey);
-        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::InControl, kPatience);
+        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Offered, kPatience);
+        QVERIFY(primary.session.resumeCommanding());  // Take control
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
 
         QSignalSpy primaryAlarms(primary.control(), &StationControl::alarm);
@@ -335,7 +394,7 @@ private slots:
         primary.session.stop();
         QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Offered, kFailoverBoundMs);
         QCOMPARE(backupAlarms.count(), 1);
-        backup.control()->takeControl();
+        QVERIFY(backup.session.resumeCommanding());  // Take control
         QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_41251"), kPatience);
 
         primary.connectTo(aircraft.ports[0], primaryKey);

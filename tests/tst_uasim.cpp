@@ -683,7 +683,7 @@ private slots:
                  uasim.stderrText().constData());
 
         StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
-        primary.command(kGb30226, kGb41251, kOut);
+        primary.command(kGb30226, kGb30226, kOut);  // its claim: Take control
         // The backup's console before any status: it names itself, commands
         // the gear up and uploads a flight plan.
         backup.command(kGb41251, kGb30226, kRetracted);
@@ -731,8 +731,8 @@ private slots:
         backup.worker.stop();
         QVERIFY(uasim.stop(kPatienceMs));
         const QByteArray said = uasim.stderrText();
-        QVERIFY(said.contains("GB_30226: command ") && said.contains("flight plan 160 section"));
-        QVERIFY(!said.contains("flight plan 176"));
+        QVERIFY(said.contains("GB_30226: command ") && said.contains("flight plan 0x000000A0 section"));
+        QVERIFY(!said.contains("flight plan 0x000000B0"));
         QCOMPARE(notInControlSaid(said, "GB_30226"), 0);
         QVERIFY2(notInControlSaid(said, "GB_41251") >= 3, said.constData());
         QVERIFY(!said.contains("handover") && !said.contains("failover:"));
@@ -756,7 +756,7 @@ private slots:
         QVERIFY(uasim.start());
         QTRY_VERIFY2_WITH_TIMEOUT(uasim.listening(), uasim.stderrText().constData(), kPatienceMs);
         StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
-        primary.command(kGb30226, kGb41251);
+        primary.command(kGb30226, kGb30226);  // its claim: Take control
         backup.command(kGb30226, kGb41251);  // the backup, observing
         primary.worker.start();
         backup.worker.start();
@@ -775,8 +775,9 @@ private slots:
         QTRY_VERIFY_WITH_TIMEOUT(uasim.said("not acted on: control not yet taken up (names GB_30226 as destination)\n"),
                                  kPatienceMs);
         QCOMPARE(backup.latestWingLight(), kOff);
-        // Taking up control: it names itself; the light goes on.
-        backup.command(kGb41251, kGb30226, kOut, kOn);
+        // Naming itself is not enough: only its operator's claim (itself as
+        // destination and backup) takes control up; the light goes on.
+        backup.command(kGb41251, kGb41251, kOut, kOn);
         QTRY_VERIFY_WITH_TIMEOUT(uasim.said("taken up: GB_41251 in control, GB_30226 backup\n"), kPatienceMs);
         QTRY_VERIFY_WITH_TIMEOUT(primary.latestWingLight() == kOn && backup.latestWingLight() == kOn, kPatienceMs);
         QVERIFY(primary.latestNames(kGb41251, kGb30226) && backup.latestNames(kGb41251, kGb30226));
@@ -801,7 +802,7 @@ private slots:
         QTRY_VERIFY2_WITH_TIMEOUT(uasim.listening(), uasim.stderrText().constData(), kPatienceMs);
         QVERIFY(uasim.said("; failover after 2 s\n"));
         StationClient primary(uasim.ports[0]), backup(uasim.ports[1]);
-        primary.command(kGb30226, kGb41251);
+        primary.command(kGb30226, kGb30226);  // its claim: Take control
         backup.command(kGb30226, kGb41251);
         primary.worker.start();
         backup.worker.start();
@@ -814,7 +815,7 @@ private slots:
             kPatienceMs);
         QTRY_VERIFY_WITH_TIMEOUT(backup.latestNames(kGb41251, kGb30226), kPatienceMs);
         // Not acted on until the new station in control takes it up.
-        backup.command(kGb41251, kGb30226, kOut, kOn);
+        backup.command(kGb41251, kGb41251, kOut, kOn);
         QTRY_VERIFY_WITH_TIMEOUT(uasim.said("taken up: GB_41251 in control, GB_30226 backup\n"), kPatienceMs);
         QTRY_VERIFY_WITH_TIMEOUT(backup.latestWingLight() == kOn, kPatienceMs);
         backup.worker.stop();
@@ -844,7 +845,7 @@ private slots:
 
         // Each station with its own key: status frames both can read.
         StationClient primary(uasim.ports[0], keyA), backup(uasim.ports[1], keyB);
-        primary.command(kGb30226, kGb41251);
+        primary.command(kGb30226, kGb30226);  // its claim: Take control
         backup.command(kGb30226, kGb41251);
         primary.worker.start();
         backup.worker.start();

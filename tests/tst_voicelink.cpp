@@ -9,6 +9,7 @@
 
 #include "BandEnergy.h"
 #include "CommandFrame.h"
+#include "UasimProcess.h"
 
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -152,9 +153,8 @@ std::pair<std::size_t, std::size_t> soundingSlots(const Pcm& pcm)
 
 // The phrase came out as long as it went in (whole frames), in one piece,
 // with its energy in the same bands.
-void verifyPhrase(const Pcm& out)
+void verifyPhrase(const Pcm& out, const Pcm& in = phrase())
 {
-    const Pcm in = phrase();
     const auto [first, end] = soundingSlots(out);
     QCOMPARE(end - first, phraseFrames());
     const Pcm speech(out.begin() + std::ptrdiff_t(first * rcm::voice::kFrameSamples),
@@ -268,6 +268,8 @@ private slots:
     void voiceDatagramFormat();
     void phraseOverUdpBesideCommands();
     void uasimRecordsThePhraseAndSpeaksBack();
+    void uasimOverUdpSpeaksFromTheFirstCommand();
+    void uasimEchoesWhatItHears();
 };
 
 // Four frames written at once go out back to back: their preambles stand
@@ -533,6 +535,78 @@ void TestVoiceLink::uasimRecordsThePhraseAndSpeaksBack()
     QVERIFY2(heard, error.c_str());
     QCOMPARE(heard->sampleRate, rcm::voice::kSampleRate);
     verifyPhrase(heard->samples);
+}
+
+// uasim over UDP learns where to send from the console's first command: its
+// --voice-in waits for that, so the console hears the whole phrase however
+// late its first command comes (here, a second after uasim was ready).
+void TestVoiceLink::uasimOverUdpSpeaksFromTheFirstCommand()
+{
+    rcm::test::UasimProcess uasim(
+        {QStringLiteral("--voice-in"), QStringLiteral(RCM_SOURCE_DIR "/resources/voice/phrase.wav")});
+    QVERIFY2(uasim.start(), "build uasim first");
+    QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatience);
+    QTest::qWait(1000);  // the console comes late: this is what is being tested, not a wait for something
+
+    Pcm heard;
+    auto sink = std::make_shared<VoiceDecoderSink>(
+        [&](std::span<const std::int16_t> pcm) { heard.insert(heard.end(), pcm.begin(), pcm.end()); });
+    LinkWorker worker(std::make_unique<VoiceUdpLink>(
+                          std::make_unique<UdpLink>(QHostAddress::LocalHost, 0, QHostAddress::LocalHost, uasim.port()),
+                          std::make_shared<VoiceEncoderSource>(), sink),
+                      nullptr);
+    rcm::Message command;
+    command.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
+    worker.setCommand(command);
+    worker.start();
+    QTRY_COMPARE_WITH_TIMEOUT(sink->speechFrames(), std::uint64_t(phraseFrames()), kPatience);
+    const std::uint64_t enough = sink->samplesOut() + 2 * rcm::voice::kFrameSamples;
+    QTRY_VERIFY_WITH_TIMEOUT(sink->samplesOut() >= enough, kPatience);
+    QCOMPARE(sink->stats().lostFrames, std::uint64_t(0));
+    verifyPhrase(heard);
+    worker.stop();
+}
+
+// uasim --voice-echo (what gcs --rehearsal starts when the console has
+// voice) says back what it hears: the console hears its own phrase.
+void TestVoiceLink::uasimEchoesWhatItHears()
+{
+    rcm::test::UasimProcess uasim({QStringLiteral("--voice-echo")});
+    QVERIFY2(uasim.start(), "build uasim first");
+    QTRY_VERIFY_WITH_TIMEOUT(uasim.listening(), kPatience);
+    Pcm heard;
+    auto sink = std::make_shared<VoiceDecoderSink>(
+        [&](std::span<const std::int16_t> pcm) { heard.insert(heard.end(), pcm.begin(), pcm.end()); });
+    auto source = std::make_shared<VoiceEncoderSource>(0ms);
+    LinkWorker worker(std::make_unique<VoiceUdpLink>(
+                          std::make_unique<UdpLink>(QHostAddress::LocalHost, 0, QHostAddress::LocalHost, uasim.port()),
+                          source, sink),
+                      nullptr);
+    rcm::Message command;
+    command.header.set(rcm::ItemId::ID_UA_source, rcm::Value::pair(44, 133));
+    worker.setCommand(command);
+    QSignalSpy replies(&worker, &LinkWorker::messageReceived);
+    worker.start();
+    QTRY_VERIFY_WITH_TIMEOUT(replies.count() >= 1, kPatience);  // uasim knows where to answer
+    source->pushPcm(phrase());
+    source->endTalk();
+    QTRY_COMPARE_WITH_TIMEOUT(sink->speechFrames(), std::uint64_t(phraseFrames()), kPatience);
+    const std::uint64_t enough = sink->samplesOut() + 2 * rcm::voice::kFrameSamples;
+    QTRY_VERIFY_WITH_TIMEOUT(sink->samplesOut() >= enough, kPatience);
+    // Through Codec 2 twice (tandem coding), which takes more from the high
+    // bands than once: compared with the phrase coded twice here.
+    const auto coded = [](const Pcm& pcm) {
+        rcm::voice::VoiceEncoder encoder;
+        std::vector<std::uint8_t> bytes;
+        encoder.encode(pcm, bytes);
+        encoder.finish(bytes);
+        rcm::voice::VoiceDecoder decoder;
+        Pcm out;
+        decoder.decode(bytes, out);
+        return out;
+    };
+    verifyPhrase(heard, coded(coded(phrase())));
+    worker.stop();
 }
 
 QTEST_GUILESS_MAIN(TestVoiceLink)

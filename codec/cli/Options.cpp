@@ -12,6 +12,7 @@ const char* const kHelp = R"(Usage:
   rcm decode [FILE] [--datagram] [--summary]
              [--key KEYFILE [--direction DIR] [--replay-state STATE [--window SECONDS]]]
   rcm keygen KEYFILE
+  rcm stationkey STATION KEYFILE
   rcm dissector
   rcm --help
 
@@ -73,6 +74,17 @@ keygen  writes a new random key to KEYFILE with mode 0600 (never over an
         without revealing it; give the same file to the console and to the
         aircraft.
 
+stationkey  writes a new Ed25519 signing key for STATION (its ID as the
+        console names it, e.g. GB_30226) to KEYFILE with mode 0600, never
+        over an existing file, and prints the station's trust line, its name
+        and public key:
+          GB_30226 3d4017c3e843895a92b70aa74d1b7ebc9c982ccf2ec4968cc0cd55f12af4660c
+        The console signs what it publishes on a broker with KEYFILE
+        (gcs --station GB_30226 --broker-key KEYFILE); observers and fleet
+        views trust the lines gathered in a file (gcs --broker-trust FILE).
+        Given a KEYFILE that exists, it prints that key's trust line and
+        changes nothing. docs/security.md, "The broker".
+
 dissector  prints the Wireshark Lua dissector generated from the item table
         (the copy in resources/wireshark/rcm.lua is this output):
           tshark -X lua_script:resources/wireshark/rcm.lua -r session.pcapng -V
@@ -105,9 +117,12 @@ std::string checkCombination(const Options& o)
         return "--summary applies to decode only";
     if (o.command == "keygen" && (o.file.empty() || o.datagram || o.summary))
         return "keygen takes one argument, the key file to create";
+    if (o.command == "stationkey" && (o.file.empty() || o.station.empty() || o.datagram || o.summary))
+        return "stationkey takes two arguments, the station and the key file";
     if (o.command == "dissector" && (!o.file.empty() || o.datagram || o.summary))
         return "dissector takes no arguments";
-    if (o.command != "encode" && o.command != "decode" && o.command != "keygen" && o.command != "dissector")
+    if (o.command != "encode" && o.command != "decode" && o.command != "keygen" && o.command != "stationkey" &&
+        o.command != "dissector")
         return "unknown command " + o.command;
     return {};
 }
@@ -176,13 +191,18 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
         misuse = "no command given";
         return std::nullopt;
     }
-    if (positional.size() > 2) {
-        misuse = "too many arguments: " + positional[2];
+    const std::size_t most = positional[0] == "stationkey" ? 3 : 2;
+    if (positional.size() > most) {
+        misuse = "too many arguments: " + positional[most];
         return std::nullopt;
     }
     o.command = positional[0];
-    if (positional.size() == 2)
+    if (o.command == "stationkey" && positional.size() == 3) {
+        o.station = positional[1];
+        o.file = positional[2];
+    } else if (positional.size() >= 2) {
         o.file = positional[1];
+    }
     misuse = checkCombination(o);
     if (!misuse.empty())
         return std::nullopt;

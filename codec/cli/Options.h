@@ -14,8 +14,9 @@ constexpr int kExitFailed = 1;
 constexpr int kExitMisuse = 2;
 
 struct Options {
-    std::string command;  // encode, decode, keygen, dissector, help
+    std::string command;  // encode, decode, keygen, stationkey, dissector, help
     std::string file;
+    std::string station;  // stationkey: the station the key signs for
     bool datagram = false;
     bool summary = false;
     std::string key;  // --key: the secure link

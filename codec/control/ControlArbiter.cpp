@@ -30,6 +30,11 @@ std::string seconds(std::chrono::microseconds time)
 
 }  // namespace
 
+bool ControlArbiter::isClaim(StationId sender, std::optional<StationId> destination, std::optional<StationId> backup)
+{
+    return destination == sender && backup == sender;
+}
+
 ControlArbiter::ControlArbiter(std::vector<StationId> stations, std::chrono::microseconds failover)
     : m_failover(failover)
 {
@@ -78,7 +83,8 @@ ControlArbiter::Decision ControlArbiter::single(std::optional<StationId> destina
     // As before there were several stations: the frame says who commands.
     if (destination)
         m_controller = destination;
-    if (backup)
+    // A take-control claim names its sender twice: the backup stays as it was.
+    if (backup && backup != destination)
         m_backup = backup;
     return Decision{true, {}, {}};
 }
@@ -107,6 +113,14 @@ ControlArbiter::Decision ControlArbiter::onFrame(StationId sender, std::optional
                                                                       "'s frames are not acted on; " +
                                                                       name(*m_controller) + " in control"});
         }
+        return decision;
+    }
+    if (destination == sender && !m_takenUp && !isClaim(sender, destination, backup)) {
+        // Naming itself is what any frame of a station that thinks it is in
+        // control does, a console just restarted among them: only its
+        // operator's confirmed Take control, the claim, takes control up.
+        decision.notActedOn =
+            "control not yet taken up (" + name(sender) + " in control, waiting for its operator's Take control)";
         return decision;
     }
     if (destination == sender) {

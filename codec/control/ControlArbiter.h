@@ -31,7 +31,7 @@ public:
 
     struct Event {
         enum class Kind {
-            TakenUp,        // the station in control named itself: its commands are acted on
+            TakenUp,        // the station in control claimed control (isClaim): its commands are acted on
             Handover,       // the station in control gave control to the backup
             Failover,       // the station in control fell silent; the backup has control
             BackupChanged,  // the station in control named another backup
@@ -69,6 +69,12 @@ public:
     // if heard, so that a station that does not answer the offer does not
     // leave the aircraft acting on nobody.
     std::optional<Event> tick(std::int64_t nowMicros);
+
+    // The frame a console sends once its operator confirmed Take control:
+    // it names its sender both as ID_GCS_destination and as ID_GCS_backup
+    // (docs/protocol.md section 10). No other frame a console sends names
+    // one station twice, so only that action takes control up.
+    static bool isClaim(StationId sender, std::optional<StationId> destination, std::optional<StationId> backup);
 
     bool singleStation() const { return m_stations.size() < 2; }
     const std::vector<StationId>& stations() const { return m_stations; }

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 namespace rcm {
 namespace {
@@ -34,7 +35,22 @@ void writeU32(std::uint8_t* p, std::uint32_t v)
     p[3] = static_cast<std::uint8_t>(v);
 }
 
+// "1 section", "3 sections".
+std::string sectionsText(std::uint64_t n)
+{
+    return std::to_string(n) + (n == 1 ? " section" : " sections");
+}
+
 }  // namespace
+
+std::string planIdText(std::uint32_t planId)
+{
+    static constexpr char kDigits[] = "0123456789ABCDEF";
+    std::string text = "0x00000000";
+    for (int i = 0; i < 8; ++i)
+        text[std::size_t(9 - i)] = kDigits[(planId >> (4 * i)) & 0xF];
+    return text;
+}
 
 std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc)
 {
@@ -100,7 +116,7 @@ FlightPlanUploader::FlightPlanUploader(std::uint32_t planId, std::span<const std
     const std::size_t count = (streamBytes + sectionSize - 1) / sectionSize;
     if (count > kMaxFlightPlanSections)
         throw std::invalid_argument("flight plan of " + std::to_string(plan.size()) + " bytes needs " +
-                                    std::to_string(count) + " sections of " + std::to_string(sectionSize) +
+                                    sectionsText(count) + " of " + std::to_string(sectionSize) +
                                     " bytes, more than the " + std::to_string(kMaxFlightPlanSections) +
                                     " section IDs available");
 
@@ -200,7 +216,7 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
     using Kind = Result::Kind;
     const auto fail = [this](std::string what) {
         Result r = progress(Kind::Error);
-        r.error = "flight plan " + std::to_string(m_planId) + ": " + std::move(what);
+        r.error = "flight plan " + planIdText(m_planId) + ": " + std::move(what);
         return r;
     };
 
@@ -243,14 +259,14 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
         const std::uint64_t streamBytes = FlightPlanDescriptor::kSize + std::uint64_t{d.totalBytes};
         std::string wrong;
         if (d.sectionCount == 0 || d.sectionCount > kMaxFlightPlanSections)
-            wrong = std::to_string(d.sectionCount) + " sections, outside 1.." + std::to_string(kMaxFlightPlanSections);
+            wrong = sectionsText(d.sectionCount) + ", outside 1.." + std::to_string(kMaxFlightPlanSections);
         else if (d.totalBytes > m_maxPlanBytes)
             wrong = std::to_string(d.totalBytes) + " bytes, more than the " + std::to_string(m_maxPlanBytes) +
                     " this receiver holds";
         else if (streamBytes < d.sectionCount ||
                  streamBytes > std::uint64_t{d.sectionCount} * FlightPlanSection::kMaxData)
-            wrong = std::to_string(d.totalBytes) + " bytes cannot make " + std::to_string(d.sectionCount) +
-                    " sections of 1.." + std::to_string(FlightPlanSection::kMaxData) + " bytes";
+            wrong = std::to_string(d.totalBytes) + " bytes cannot make " + sectionsText(d.sectionCount) + " of 1.." +
+                    std::to_string(FlightPlanSection::kMaxData) + " bytes";
         else if (d.sectionCount == 1 && section.data.size() != streamBytes)
             wrong = "one section of " + std::to_string(d.totalBytes) + " plan bytes, but section 0 holds " +
                     std::to_string(section.data.size() - FlightPlanDescriptor::kSize);
@@ -262,12 +278,12 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
             const std::uint16_t first = beyond->first;
             m_sections.erase(beyond, m_sections.end());
             m_sections.emplace(id, section.data);
-            return fail("held section " + std::to_string(first) + " lies beyond the " + std::to_string(d.sectionCount) +
-                        " sections the descriptor announces; dropped");
+            return fail("held section " + std::to_string(first) + " lies beyond the " + sectionsText(d.sectionCount) +
+                        " the descriptor announces; dropped");
         }
     } else if (m_descriptor && id >= m_descriptor->sectionCount) {
-        return fail("section " + std::to_string(id) + " lies beyond the " + std::to_string(m_descriptor->sectionCount) +
-                    " sections the descriptor announces");
+        return fail("section " + std::to_string(id) + " lies beyond the " + sectionsText(m_descriptor->sectionCount) +
+                    " the descriptor announces");
     }
 
     // Sections the cycle order says the sender sent since the previous one.

@@ -74,6 +74,10 @@ namespace rcm {
 // CRC-32 (IEEE 802.3, as zlib computes it); `crc` continues a running value.
 std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0);
 
+// A flight_plan_ID as people read it, wherever it is shown: "0x5245000D"
+// (docs/protocol.md's 0x%08X, the dissector's and the event log's form).
+std::string planIdText(std::uint32_t planId);
+
 inline constexpr std::uint16_t kFirstControlSectionId = 0xFFF0;
 inline constexpr std::uint16_t kAcknowledgementSectionId = 0xFFFF;
 inline constexpr std::size_t kMaxFlightPlanSections = kFirstControlSectionId;

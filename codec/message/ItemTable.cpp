@@ -44,6 +44,36 @@ constexpr Presentation kMegahertz{"MHz", 1000, 1, 3};
 // encoder still take 0..255, as the profile does.
 constexpr Presentation kTransmitPower{"dBm", 1, 1, 0, 0, 50};
 
+// Changes one action makes only once the operator confirms (ItemTable.h,
+// LargeChange; docs/protocol.md section 2 lists them).
+// A control surface: more than 5 degrees at once. Single steps of a degree
+// (a slider's arrow key) and small trims go as they are.
+constexpr LargeChange surfaceChange(std::string_view action)
+{
+    return {5, false, action, {}, "A surface moved far in one step can upset the aircraft."};
+}
+// An engine setting: more than 20 % of its range (51 of 255) at once, or to
+// either extreme (0 or 255), however small the step there.
+constexpr LargeChange engineChange(std::string_view action)
+{
+    return {51, true, action, {}, "A large or full change of an engine setting changes thrust at once."};
+}
+constexpr LargeChange kGearRetraction{kAnyStep, false, "",
+                                      {{{code::kRetracted, "Retract left wheel"},
+                                        {code::kRetracted, "Retract right wheel"},
+                                        {code::kRetracted, "Retract nose wheel"},
+                                        {code::kRetracted, "Retract tail wheel"}}},
+                                      "A retracted wheel cannot carry the aircraft on the ground."};
+constexpr LargeChange kFuelDumping{kAnyStep, false, "",
+                                   {{{code::kEnabled, "Enable fuel dump"},
+                                     {code::kDump, "Dump tank 1"},
+                                     {code::kDump, "Dump tank 2"},
+                                     {code::kDump, "Dump tank 3"}}},
+                                   "Dumped fuel cannot be recovered."};
+constexpr LargeChange kTransmitterOn{kAnyStep, false, "",
+                                     {{{}, {code::kOn, "Switch transmitter on"}}},
+                                     "The transmitter radiates at its frequency and power as soon as it is on."};
+
 constexpr FieldInfo kEngStatus[] = {
     {"control", kControl, "Control source", kControlWords},
     {"slave", kSlave, "Master engine 1 + slave engine 3", kSlaveWords},
@@ -97,25 +127,36 @@ constexpr ItemInfo kItems[] = {
 
     {eng_ID, "eng_ID", 1, Unsigned, 0, 255, 1, "", Engine, "Engine ID", {}, true},
     {eng_status, "eng_status", 1, Fields, 0, 255, 1, "", Engine, "Engine status", kEngStatus},
-    {eng_prop_pitch, "eng_prop_pitch", 1, Unsigned, 0, 255, 1, "", Engine, "Propeller pitch", {}, false, kPercent},
-    {eng_carb_SET, "eng_carb_SET", 1, Unsigned, 0, 255, 1, "", Engine, "Carburettor setting", {}, false, kPercent},
+    {eng_prop_pitch, "eng_prop_pitch", 1, Unsigned, 0, 255, 1, "", Engine, "Propeller pitch", {}, false, kPercent,
+     engineChange("Set propeller pitch")},
+    {eng_carb_SET, "eng_carb_SET", 1, Unsigned, 0, 255, 1, "", Engine, "Carburettor setting", {}, false, kPercent,
+     engineChange("Set carburettor")},
 
     {FLAP_status, "FLAP_status", 1, Fields, 0, 255, 1, "", Flaps, "Flaps status", kFlapStatus},
-    {F_aileron_LHS_set, "F_aileron_LHS_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Left aileron", {}},
-    {F_aileron_RHS_set, "F_aileron_RHS_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Right aileron", {}},
-    {F_lift_set, "F_lift_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Lift flaps", {}},
-    {F_rudder_set, "F_rudder_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Rudder", {}},
-    {F_elev_set, "F_elev_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Elevator", {}},
-    {F_airbrake_set, "F_airbrake_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Airbrake", {}},
+    {F_aileron_LHS_set, "F_aileron_LHS_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Left aileron", {}, false, std::nullopt,
+     surfaceChange("Move left aileron")},
+    {F_aileron_RHS_set, "F_aileron_RHS_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Right aileron", {}, false, std::nullopt,
+     surfaceChange("Move right aileron")},
+    {F_lift_set, "F_lift_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Lift flaps", {}, false, std::nullopt,
+     surfaceChange("Move lift flaps")},
+    {F_rudder_set, "F_rudder_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Rudder", {}, false, std::nullopt,
+     surfaceChange("Move rudder")},
+    {F_elev_set, "F_elev_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Elevator", {}, false, std::nullopt,
+     surfaceChange("Move elevator")},
+    {F_airbrake_set, "F_airbrake_set", 1, Signed, -127, 127, 1, "deg", Flaps, "Airbrake", {}, false, std::nullopt,
+     surfaceChange("Move airbrake")},
 
-    {ENABLE_fuel_dump, "ENABLE_fuel_dump", 1, Fields, 0, 255, 1, "", FcuGeneral, "Fuel dump", kFuelDump},
+    {ENABLE_fuel_dump, "ENABLE_fuel_dump", 1, Fields, 0, 255, 1, "", FcuGeneral, "Fuel dump", kFuelDump, false,
+     std::nullopt, kFuelDumping},
 
-    {land_wheels, "land_wheels", 1, Fields, 0, 255, 1, "", Settings, "Landing gear", kWheels},
+    {land_wheels, "land_wheels", 1, Fields, 0, 255, 1, "", Settings, "Landing gear", kWheels, false, std::nullopt,
+     kGearRetraction},
     {lights, "lights", 1, Fields, 0, 255, 1, "", Settings, "Lights and wheel brake", kLights},
     {setting_72, "setting_72", 1, Raw, 0, 255, 1, "", Settings, "Reserved setting 72", {}},
 
     {system_ID, "system_ID", 8, Text, 0, 8, 1, "", Radio, "System ID", {}, true},
-    {receiver_control, "receiver_control", 1, Fields, 0, 255, 1, "", Radio, "Receiver and transmitter", kRadioControl},
+    {receiver_control, "receiver_control", 1, Fields, 0, 255, 1, "", Radio, "Receiver and transmitter", kRadioControl,
+     false, std::nullopt, kTransmitterOn},
     {Rx_freq, "Rx_freq", 4, Unsigned, 0, 0xFFFFFFFF, 1, "kHz", Radio, "Receive frequency", {}, false, kMegahertz},
     {Tx_freq, "Tx_freq", 4, Unsigned, 0, 0xFFFFFFFF, 1, "kHz", Radio, "Transmit frequency", {}, false, kMegahertz},
     {Tx_OP_power, "Tx_OP_power", 1, Unsigned, 0, 255, 1, "dBm", Radio, "Transmit power", {}, false, kTransmitPower},
@@ -147,6 +188,26 @@ constexpr bool itemsAre(UnitKind owner, ValueKind kind, const std::array<ItemId,
 }
 static_assert(itemsAre(Flaps, Signed, kFlapSurfaces));
 static_assert(itemsAre(Sense, Unsigned, kSenseAndAvoidZooms));
+
+// Every large-change rule names its button, and a field's code that asks is
+// one the field has.
+constexpr bool largeChangesNamed()
+{
+    for (const ItemInfo& info : kItems) {
+        const LargeChange& large = info.largeChange;
+        if ((large.step != kAnyStep || large.extremes) && large.action.empty())
+            return false;
+        for (std::size_t f = 0; f < large.fields.size(); ++f) {
+            const FieldConfirmation& field = large.fields[f];
+            if (field.code == 0)
+                continue;
+            if (f >= info.fields.size() || info.fields[f].codes[field.code & 3u].empty() || field.action.empty())
+                return false;
+        }
+    }
+    return true;
+}
+static_assert(largeChangesNamed());
 
 // Item_ID -> index in kItems, -1 for bytes that are not items; built at
 // compile time because the decoder consults it for every byte it reads.

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -61,6 +62,11 @@ inline constexpr std::array<ItemId, 6> kFlapSurfaces{ItemId::F_aileron_LHS_set, 
                                                      ItemId::F_elev_set,        ItemId::F_airbrake_set};
 inline constexpr std::array<ItemId, 3> kSenseAndAvoidZooms{ItemId::SA_zoom_LHS_cam, ItemId::SA_zoom_FWD_cam,
                                                            ItemId::SA_zoom_RHS_cam};
+
+// Items that command something once (a photograph): sent in one frame, then
+// back to the resting value; never taken from a report, which says what
+// happened, not what to do again.
+inline constexpr std::array<ItemId, 1> kOneShotItems{ItemId::take_one_photo};
 
 // Two-bit field codes by meaning (PROFILE.md section 2); the table names
 // each field's codes by these. A code no field names means data corruption.
@@ -123,6 +129,24 @@ struct Presentation {
     std::int64_t max = -1;  // below min: the item's own range
 };
 
+// What one action of the operator may change of an item before the console
+// asks first (docs/protocol.md section 2): a change from the value in force
+// by more than `step` (wire units), to either end of the item's range when
+// `extremes`, or of a field to the code named for it. A change in the other
+// direction (gear out, fuel kept, a transmitter off) never asks.
+inline constexpr std::int64_t kAnyStep = std::numeric_limits<std::int64_t>::max();
+struct FieldConfirmation {
+    std::uint8_t code = 0;    // the code that asks; 0 (corrupt in every field): none
+    std::string_view action;  // the button that confirms it: "Retract nose wheel"
+};
+struct LargeChange {
+    std::int64_t step = kAnyStep;               // numbers: the largest change made without asking
+    bool extremes = false;                      // numbers: a change to min or max asks
+    std::string_view action;                    // numbers: the button that confirms it: "Move left aileron"
+    std::array<FieldConfirmation, 4> fields{};  // Fields: per field, most significant first
+    std::string_view note;                      // why it asks, for people; may be empty
+};
+
 struct ItemInfo {
     ItemId id;
     std::string_view name;   // the name in the text format, unique within its unit
@@ -137,6 +161,7 @@ struct ItemInfo {
     std::span<const FieldInfo> fields;  // Fields kind only, most significant first
     bool key = false;        // starts a repeated unit
     std::optional<Presentation> presentation{};  // nothing: unit and scale as above
+    LargeChange largeChange{};                   // by default no change asks
 };
 
 // All items in canonical order: the order an encoder emits them in.

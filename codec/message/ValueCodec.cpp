@@ -158,6 +158,38 @@ std::string checkValue(const ItemInfo& item, const Value& value)
     return {};
 }
 
+std::optional<LargeChangeFound> findLargeChange(const ItemInfo& item, const Value* from, const Value& to)
+{
+    using Rule = LargeChangeFound::Rule;
+    const LargeChange& rule = item.largeChange;
+    if (from && *from == to)
+        return std::nullopt;
+    switch (item.kind) {
+        case ValueKind::Unsigned:
+        case ValueKind::Signed:
+            if (rule.extremes && (to.number == item.min || to.number == item.max))
+                return LargeChangeFound{Rule::Extreme, -1, rule.action};
+            // Values are at most 32 bits wide: the difference cannot overflow.
+            if (from && rule.step != kAnyStep &&
+                (to.number > from->number + rule.step || to.number < from->number - rule.step))
+                return LargeChangeFound{Rule::Step, -1, rule.action};
+            return std::nullopt;
+        case ValueKind::Fields:
+            for (int f = 0; f < static_cast<int>(item.fields.size()); ++f) {
+                const FieldConfirmation& field = rule.fields[static_cast<std::size_t>(f)];
+                if (field.code == 0)
+                    continue;
+                const unsigned now = fieldCode(static_cast<std::uint8_t>(to.number), f);
+                const bool was = from && fieldCode(static_cast<std::uint8_t>(from->number), f) == field.code;
+                if (now == field.code && !was)
+                    return LargeChangeFound{Rule::FieldCode, f, field.action};
+            }
+            return std::nullopt;
+        default:
+            return std::nullopt;
+    }
+}
+
 void packValue(const ItemInfo& item, const Value& value, std::uint8_t* out)
 {
     auto putBE = [](std::uint8_t* p, std::uint64_t v, int n) {

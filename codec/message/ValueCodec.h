@@ -5,13 +5,28 @@
 #include "codec/message/Message.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace rcm {
 
 // Empty when `value` is valid for `item`; otherwise what is wrong and by how
 // much ("300 is above the maximum 255 by 45").
 std::string checkValue(const ItemInfo& item, const Value& value);
+
+// A change of `item` from `from` (nullptr: not commanded) to `to` that its
+// LargeChange rule says the operator confirms first: which part of the rule,
+// the field for a Fields item, and the button that confirms it. Nothing when
+// one action may make the change without asking. A Fields change asks when
+// any field moves to the code named for it; of several, the first is named.
+struct LargeChangeFound {
+    enum class Rule { Step, Extreme, FieldCode };
+    Rule rule = Rule::Step;
+    int field = -1;
+    std::string_view action;
+};
+std::optional<LargeChangeFound> findLargeChange(const ItemInfo& item, const Value* from, const Value& to);
 
 // Writes item.size bytes. The value must have passed checkValue.
 void packValue(const ItemInfo& item, const Value& value, std::uint8_t* out);

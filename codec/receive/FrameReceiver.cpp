@@ -122,9 +122,15 @@ std::optional<std::int64_t> stampOf(const Message& m)
                                 static_cast<std::uint32_t>(m.header.number(ItemId::date_UTC)));
 }
 
+// "1 message later", "3 messages later".
+std::string messagesLater(std::uint32_t step)
+{
+    return std::to_string(step) + (step == 1 ? " message later" : " messages later");
+}
+
 std::string planName(const FlightPlanSection& s)
 {
-    return "flight plan " + std::to_string(s.planId) + " section " + std::to_string(s.sectionId);
+    return "flight plan " + rcm::planIdText(s.planId) + " section " + std::to_string(s.sectionId);
 }
 
 // The data bytes section `id` of a plan with this descriptor carries, or
@@ -150,8 +156,7 @@ Verdict planFits(const SenderHistory& h, std::uint32_t id, std::uint32_t step, c
         // A new plan starts at section 0; the first step - 1 frames of it may have been lost.
         if (s.sectionId < step)
             return {};
-        return refuse(Refusal::PlanSection, planName(s) + " does not follow any plan being sent " +
-                                                std::to_string(step) + " messages later");
+        return refuse(Refusal::PlanSection, planName(s) + " does not follow any plan being sent " + messagesLater(step));
     }
     // Counted from the frame that carried the last section: frames between
     // may have carried none.
@@ -177,8 +182,8 @@ Verdict planFits(const SenderHistory& h, std::uint32_t id, std::uint32_t step, c
     } else if ((s.sectionId > p.section && s.sectionId <= std::uint32_t{p.section} + planStep) || s.sectionId < planStep) {
         return {};
     }
-    return refuse(Refusal::PlanSection, planName(s) + " does not follow section " + std::to_string(p.section) + " " +
-                                            std::to_string(planStep) + " messages later");
+    return refuse(Refusal::PlanSection,
+                  planName(s) + " does not follow section " + std::to_string(p.section) + " " + messagesLater(planStep));
 }
 
 // Does a frame (ID `id`, stamp `seconds`, section `s`) follow `h`?
@@ -199,7 +204,7 @@ Verdict follows(const SenderHistory& h, std::uint32_t id, std::int64_t seconds, 
     const std::int64_t elapsed = seconds - h.stampSeconds;
     if (elapsed < 0 || elapsed > std::max<std::int64_t>(step, outage) + kTimeStepSlackSeconds)
         return refuse(Refusal::TimeStep, "time_UTC is " + std::to_string(elapsed) + " s after the last accepted, " +
-                                             std::to_string(step) + " messages later" +
+                                             messagesLater(step) +
                                              (outage > step ? " and " + std::to_string(outage) + " s" : std::string()));
     return planFits(h, id, step, s);
 }

@@ -1,6 +1,7 @@
 #include "codec/receive/LoggedFrameReading.h"
 
 #include "codec/message/MessageDecoder.h"
+#include "codec/secure/BrokerSeal.h"
 
 namespace rcm {
 
@@ -8,7 +9,8 @@ LogKey::LogKey(const secure::SecretKey& psk)
     : m_up(psk, secure::Direction::GcsToUa),
       m_down(psk, secure::Direction::UaToGcs),
       m_codecs{&m_up, &m_down},
-      m_fingerprint(secure::fingerprint(psk))
+      m_fingerprint(secure::fingerprint(psk)),
+      m_brokerKey(secure::deriveBrokerKey(psk))
 {
 }
 

@@ -56,12 +56,15 @@ public:
 
     const std::vector<const secure::SecureCodec*>& codecs() const { return m_codecs; }
     const std::string& fingerprint() const { return m_fingerprint; }
+    // What the session publishes on a broker is sealed with (BrokerSeal.h).
+    const secure::SecretKey& brokerKey() const { return m_brokerKey; }
 
 private:
     secure::SecureCodec m_up;
     secure::SecureCodec m_down;
     std::vector<const secure::SecureCodec*> m_codecs;
     std::string m_fingerprint;
+    secure::SecretKey m_brokerKey;
 };
 
 // `enciphered`: the log says the frame went over a keyed link. `codecs`: one

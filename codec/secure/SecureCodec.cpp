@@ -182,6 +182,24 @@ bool hkdfSha256(std::span<const std::uint8_t> salt, std::span<const std::uint8_t
 
 std::string_view keyInfo(Direction d) { return d == Direction::GcsToUa ? kInfoGcsToUa : kInfoUaToGcs; }
 
+std::string voiceKeyInfo(Direction d, bool mac)
+{
+    return std::string("RCM-GCS v1 voice ") + (mac ? "HMAC-SHA256 " : "AES-256-CTR ") + std::string(directionName(d));
+}
+
+VoiceKeys deriveVoiceKeys(const SecretKey& psk, Direction d)
+{
+    VoiceKeys keys;
+    keys.direction = d;
+    for (const bool mac : {false, true}) {
+        const std::string info = voiceKeyInfo(d, mac);
+        SecretKey& key = mac ? keys.mac : keys.cipher;
+        if (!hkdfSha256({}, psk.bytes(), bytesOf(info), key.mutableBytes()))
+            throw std::runtime_error("OpenSSL HKDF-SHA256 failed: no voice key derived");
+    }
+    return keys;
+}
+
 SecretKey deriveDirectionKey(const SecretKey& psk, Direction d)
 {
     SecretKey key;
@@ -685,6 +703,8 @@ std::unique_ptr<SecureEndpoint> SecureEndpoint::fromKey(const SecretKey& psk, Di
         e->fingerprint = secure::fingerprint(psk);
         e->sender = std::make_unique<SecureCodec>(psk, sends);
         e->receiver = std::make_unique<SecureCodec>(psk, opposite(sends));
+        e->voiceSend = std::make_shared<const VoiceKeys>(deriveVoiceKeys(psk, sends));
+        e->voiceReceive = std::make_shared<const VoiceKeys>(deriveVoiceKeys(psk, opposite(sends)));
         ReplayGuard::Options g;
         g.windowSeconds = options.windowSeconds;
         g.keyFingerprint = e->fingerprint;

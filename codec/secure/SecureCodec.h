@@ -126,6 +126,19 @@ bool hkdfSha256(std::span<const std::uint8_t> salt, std::span<const std::uint8_t
 std::string_view keyInfo(Direction d);
 SecretKey deriveDirectionKey(const SecretKey& psk, Direction d);
 
+// The voice channel's keys of one direction (docs/security.md section 8):
+//     K_cipher = HKDF-SHA256(IKM = PSK, info = "RCM-GCS v1 voice AES-256-CTR GCS->UA" | "... UA->GCS", 32 bytes)
+//     K_mac    = HKDF-SHA256(IKM = PSK, info = "RCM-GCS v1 voice HMAC-SHA256 GCS->UA" | "... UA->GCS", 32 bytes)
+// Each domain (frames, voice, cipher, MAC, direction) has its own info, so no
+// key serves two purposes.
+struct VoiceKeys {
+    Direction direction = Direction::GcsToUa;
+    SecretKey cipher;
+    SecretKey mac;
+};
+std::string voiceKeyInfo(Direction d, bool mac);
+VoiceKeys deriveVoiceKeys(const SecretKey& psk, Direction d);
+
 // 16 hex digits naming a key without revealing it, for logs and for checking
 // that both ends hold the same key: the first 8 bytes of
 // HKDF-SHA256(IKM = PSK, info = "RCM-GCS v1 key fingerprint").
@@ -389,6 +402,9 @@ struct SecureEndpoint {
     std::unique_ptr<SecureCodec> receiver;
     std::unique_ptr<ReplayGuard> guard;
     std::unique_ptr<MessageCounter> counter;
+    // The voice channel's keys: for the voice this end sends, and for what it receives.
+    std::shared_ptr<const VoiceKeys> voiceSend;
+    std::shared_ptr<const VoiceKeys> voiceReceive;
 };
 
 // Writes `content` to `path` atomically: temporary file in the same

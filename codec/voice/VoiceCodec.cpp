@@ -45,23 +45,25 @@ constexpr Field kField;
 constexpr std::uint8_t kG1 = kField.exp[1] ^ kField.exp[2];
 constexpr std::uint8_t kG0 = kField.exp[3];
 
-// Bytes 10, 11: the remainder of data(x) x^2 modulo the generator, byte 0
-// the highest power.
-void addParity(FrameSpan frame)
+}  // namespace
+
+// The last two bytes: the remainder of data(x) x^2 modulo the generator,
+// byte 0 the highest power.
+void addParity(std::span<std::uint8_t> frame)
 {
+    const std::size_t data = frame.size() - 2;
     std::uint8_t r1 = 0;
     std::uint8_t r0 = 0;
-    for (std::size_t i = 0; i < kDataBytes; ++i) {
+    for (std::size_t i = 0; i < data; ++i) {
         const std::uint8_t feedback = frame[i] ^ r1;
         r1 = r0 ^ kField.mul(feedback, kG1);
         r0 = kField.mul(feedback, kG0);
     }
-    frame[kDataBytes] = r1;
-    frame[kDataBytes + 1] = r0;
+    frame[data] = r1;
+    frame[data + 1] = r0;
 }
 
-// Corrects one wrong byte: -1 when the syndromes show more.
-int correct(std::array<std::uint8_t, kFrameBytes>& cw)
+int correctOneByte(std::span<std::uint8_t> cw)
 {
     std::uint8_t s1 = 0;  // cw(a)
     std::uint8_t s2 = 0;  // cw(a^2)
@@ -75,12 +77,14 @@ int correct(std::array<std::uint8_t, kFrameBytes>& cw)
         return -1;
     // One error e at power i: s1 = e a^i, s2 = e a^2i, so a^i = s2 / s1.
     const int i = (kField.log[s2] - kField.log[s1] + 255) % 255;
-    if (i >= static_cast<int>(kFrameBytes))
+    if (i >= static_cast<int>(cw.size()))
         return -1;
     const std::uint8_t e = kField.exp[static_cast<std::size_t>((kField.log[s1] - i + 255) % 255)];
-    cw[kFrameBytes - 1 - static_cast<std::size_t>(i)] ^= e;
+    cw[cw.size() - 1 - static_cast<std::size_t>(i)] ^= e;
     return 1;
 }
+
+namespace {
 
 CODEC2* createCodec2()
 {
@@ -96,7 +100,7 @@ bool parseFrame(std::span<const std::uint8_t, kFrameBytes> bytes, VoiceFrame& fr
 {
     std::array<std::uint8_t, kFrameBytes> cw;
     std::memcpy(cw.data(), bytes.data(), kFrameBytes);
-    const int corrected = correct(cw);
+    const int corrected = correctOneByte(cw);
     if (corrected < 0 || cw[0] != kSyncByte)
         return false;
     const auto kind = static_cast<std::uint8_t>(cw[1] & kKindMask);
@@ -113,12 +117,18 @@ VoiceEncoder::VoiceEncoder() : m_codec2(createCodec2(), codec2_destroy) {}
 
 VoiceEncoder::~VoiceEncoder() = default;
 
-void VoiceEncoder::frame(FrameKind kind, const std::uint8_t* payload, FrameSpan out)
+void buildFrame(FrameKind kind, std::uint8_t sequence, std::span<const std::uint8_t, kCodec2Bytes> payload,
+                FrameSpan out)
 {
     out[0] = kSyncByte;
-    out[1] = static_cast<std::uint8_t>(kind) | m_sequence;
-    std::memcpy(out.data() + 2, payload, kCodec2Bytes);
+    out[1] = static_cast<std::uint8_t>(kind) | (sequence & kSequenceMask);
+    std::memcpy(out.data() + 2, payload.data(), kCodec2Bytes);
     addParity(out);
+}
+
+void VoiceEncoder::frame(FrameKind kind, const std::uint8_t* payload, FrameSpan out)
+{
+    buildFrame(kind, m_sequence, std::span<const std::uint8_t, kCodec2Bytes>(payload, kCodec2Bytes), out);
     m_sequence = (m_sequence + 1) & kSequenceMask;
 }
 

@@ -65,6 +65,17 @@ struct VoiceFrame {
 
 // The frame at `bytes` (12 of them) after RS correction, if it is one.
 bool parseFrame(std::span<const std::uint8_t, kFrameBytes> bytes, VoiceFrame& frame);
+// A frame's 12 bytes, parity included: what VoiceEncoder writes.
+void buildFrame(FrameKind kind, std::uint8_t sequence, std::span<const std::uint8_t, kCodec2Bytes> payload,
+                FrameSpan out);
+
+// The voice frames' Reed-Solomon code, for any frame length up to 255: the
+// generator (x + a)(x + a^2) over GF(256) (0x11D), systematic, parity in
+// the last two bytes, byte 0 the highest power. addParity() writes them;
+// correctOneByte() corrects one wrong byte in place and says 0 (none
+// wrong), 1 (one corrected) or -1 (more than one: beyond correction).
+void addParity(std::span<std::uint8_t> frame);
+int correctOneByte(std::span<std::uint8_t> frame);
 
 class VoiceEncoder {
 public:

@@ -1,17 +1,40 @@
 #include "link/broker/BrokerObservation.h"
 
 #include "codec/message/TextFormat.h"
+#include "link/broker/BrokerTrust.h"
 #include "link/broker/MqttClient.h"
 
-BrokerObservation::BrokerObservation(const BrokerSettings& settings, QObject* parent)
-    : LinkEvents(parent),
-      m_client(new MqttClient(settings, this)),
-      m_aircraft(settings.aircraft.isEmpty() ? BrokerTopics::kUnknownAircraft : settings.aircraft)
+#include <QRandomGenerator>
+
+namespace {
+
+BrokerSettings observerSettings(BrokerSettings settings, const QString& aircraft)
 {
-    connect(m_client, &MqttClient::messageReceived, this, &BrokerObservation::messageArrived);
+    // A persistent session, under a name of its own: the broker keeps what
+    // comes for the observer while either is away.
+    if (settings.clientId.isEmpty())
+        settings.clientId = QStringLiteral("rcm-observer-%1-%2")
+                                .arg(aircraft)
+                                .arg(QRandomGenerator::global()->generate(), 8, 16, QLatin1Char('0'));
+    settings.persistentSession = true;
+    return settings;
+}
+
+}  // namespace
+
+BrokerObservation::BrokerObservation(const BrokerSettings& settings, QObject* parent)
+    : LinkEvents(parent), m_aircraft(settings.aircraft.isEmpty() ? BrokerTopics::kUnknownAircraft : settings.aircraft)
+{
+    m_client = new MqttClient(observerSettings(settings, m_aircraft), this);
+    m_client->setTrust(settings.trust ? settings.trust : std::make_shared<const BrokerTrust>());
+    connect(m_client, &MqttClient::messageOpened, this, &BrokerObservation::messageOpened);
     connect(m_client, &MqttClient::connected, this, &BrokerObservation::brokerConnected);
     connect(m_client, &MqttClient::disconnected, this, &BrokerObservation::brokerDisconnected);
     connect(m_client, &MqttClient::errorOccurred, this, &BrokerObservation::errorOccurred);
+    connect(m_client, &MqttClient::setupFailed, this, &BrokerObservation::errorOccurred);
+    connect(m_client, &MqttClient::refusedByBroker, this, &BrokerObservation::errorOccurred);
+    connect(m_client, &MqttClient::restored, this,
+            [this](const QString& message) { emit transportStatusChanged(message); });
     m_client->subscribe(BrokerTopics::aircraftPattern(m_aircraft), 1);
 }
 
@@ -47,9 +70,17 @@ const BrokerSettings& BrokerObservation::settings() const
     return m_client->settings();
 }
 
+QStringList BrokerObservation::unverifiedStations() const
+{
+    QStringList names(m_unverified.cbegin(), m_unverified.cend());
+    names.sort();
+    return names;
+}
+
 void BrokerObservation::followStation(const QString& station)
 {
     m_followed = station;
+    followedChanged();
 }
 
 QString BrokerObservation::followedStation() const
@@ -62,28 +93,84 @@ QString BrokerObservation::followedStation() const
     return m_firstFrameFrom;
 }
 
-void BrokerObservation::messageArrived(const QString& topic, const QByteArray& payload)
+void BrokerObservation::refuse(const QString& reasonAndDetail)
 {
-    const std::optional<BrokerTopics::Topic> t = BrokerTopics::parseTopic(topic);
-    if (!t || t->aircraft != m_aircraft)
+    ++m_refused;
+    emit messageRefused(reasonAndDetail);
+}
+
+void BrokerObservation::messageOpened(const OpenedMessage& message)
+{
+    if (message.refused()) {
+        refuse(message.refusal);
         return;
-    switch (t->kind) {
-        case BrokerTopics::Kind::Station:
-            stationReported(t->station, payload);
-            break;
-        case BrokerTopics::Kind::Frames:
-            frameReported(payload);
-            break;
-        case BrokerTopics::Kind::State:
-            stateReported(payload);
-            break;
-        case BrokerTopics::Kind::Stats:
-            statsReported(payload);
-            break;
-        case BrokerTopics::Kind::Events:
-            eventArrived(payload);
+    }
+    if (!message.where || message.where->aircraft != m_aircraft)
+        return;
+    const QString& station = message.station;
+    if (message.cleared) {
+        // Nobody can sign an empty message: a verified station's report
+        // stays until a signed one replaces it; an unverified one goes.
+        if (!m_stations.contains(station) && m_unverified.remove(station))
+            emit stationsChanged();
+        return;
+    }
+    if (!message.verified()) {
+        noteUnverified(station);
+        return;
+    }
+    switch (m_sequence.check(message)) {
+        case SequenceCheck::Result::Duplicate:
+            return;
+        case SequenceCheck::Result::Replayed:
+            refuse(SequenceCheck::refusal(message, m_sequence.newest(message.topic)));
+            return;
+        case SequenceCheck::Result::Fresh:
             break;
     }
+    if (!message.opened) {
+        noteSealed(station, message.keyFingerprint);
+        return;
+    }
+    switch (message.where->kind) {
+        case BrokerTopics::Kind::Station:
+            stationReported(message);
+            break;
+        case BrokerTopics::Kind::Frames:
+            frameReported(message);
+            break;
+        case BrokerTopics::Kind::State:
+            stateReported(message);
+            break;
+        case BrokerTopics::Kind::Stats:
+            statsReported(message);
+            break;
+        case BrokerTopics::Kind::Events:
+            eventArrived(message);
+            break;
+    }
+}
+
+void BrokerObservation::noteUnverified(const QString& station)
+{
+    if (m_unverified.contains(station))
+        return;
+    m_unverified.insert(station);
+    emit stationsChanged();
+    emit warning(QStringLiteral("broker: %1 publishes for %2 unverified (its key is not trusted here): not shown; "
+                                "trust its key (--broker-trust) to observe it")
+                     .arg(station, m_aircraft));
+}
+
+void BrokerObservation::noteSealed(const QString& station, const QString& fingerprint)
+{
+    if (m_sealed.value(station) == fingerprint)
+        return;
+    m_sealed.insert(station, fingerprint);
+    emit stationsChanged();
+    emit warning(QStringLiteral("broker: %1's session with %2 is keyed and sealed (key fingerprint %3): give that "
+                                "key (--key) to observe it")
+                     .arg(station, m_aircraft, fingerprint));
 }
 
 void BrokerObservation::brokerConnected()
@@ -99,48 +186,74 @@ void BrokerObservation::brokerDisconnected()
     setLinkState(LinkState::Lost);
 }
 
-void BrokerObservation::stationReported(const QString& station, const QByteArray& payload)
+void BrokerObservation::stationReported(const OpenedMessage& message)
 {
-    // An empty retained message removes a report.
-    if (payload.isEmpty()) {
-        if (m_stations.remove(station))
-            emit stationsChanged();
-        return;
-    }
     QString error;
-    const std::optional<StationReport> r = StationReport::fromJson(payload, &error);
-    if (!r) {
-        reportError(QStringLiteral("broker: station %1's report unreadable: %2").arg(station, error));
+    const std::optional<StationReport> r = StationReport::fromJson(message.body, &error);
+    if (!r || r->station != message.station) {
+        refuse(QStringLiteral("unreadable: %1's station report: %2")
+                   .arg(message.station, r ? QStringLiteral("it names %1").arg(r->station) : error));
         return;
     }
-    const bool wasFollowed = followedStation() == station;
-    m_stations.insert(station, *r);
+    const bool wasFollowed = followedStation() == message.station;
+    m_sealed.remove(message.station);
+    m_stations.insert(message.station, *r);
     emit stationsChanged();
     // The followed station gone (its will, or its goodbye): its link is lost
     // to us, whatever it last said.
     if (wasFollowed && !r->online)
         setLinkState(LinkState::Lost);
+    followedChanged();
 }
 
-void BrokerObservation::frameReported(const QByteArray& payload)
+void BrokerObservation::followedChanged()
+{
+    const QString followed = followedStation();
+    if (followed == m_lastFollowed)
+        return;
+    m_lastFollowed = followed;
+    if (followed.isEmpty())
+        return;
+    // What the newly followed station said last, which was kept aside.
+    if (const auto stats = m_stats.constFind(followed); stats != m_stats.cend())
+        applyStats(*stats);
+    if (const auto state = m_states.constFind(followed); state != m_states.cend())
+        applyState(*state);
+}
+
+void BrokerObservation::frameReported(const OpenedMessage& message)
 {
     QString error;
-    const std::optional<FrameReport> r = FrameReport::fromJson(payload, &error);
+    const std::optional<FrameReport> r = FrameReport::fromJson(message.body, &error);
     if (!r) {
-        reportError(QStringLiteral("broker: frame unreadable: ") + error);
+        refuse(QStringLiteral("unreadable: %1's frame: %2").arg(message.station, error));
         return;
     }
-    if (m_firstFrameFrom.isEmpty())
-        m_firstFrameFrom = r->station;
-    if (r->station != followedStation())
+    if (m_firstFrameFrom.isEmpty()) {
+        m_firstFrameFrom = message.station;
+        followedChanged();
+    }
+    if (message.station != followedStation())
         return;
     // A frame published again after its session ended unacknowledged, or
-    // resent by the client library, is told once: a station publishes its
-    // frames in order, each way.
-    qint64& last = m_lastFrameUtc[r->station + QLatin1Char(r->direction == FrameDirection::Sent ? '>' : '<')];
-    if (r->utcMicros <= last)
-        return;
-    last = r->utcMicros;
+    // delivered twice, is told once; frames that never came are said.
+    FrameRun& run = m_frameRuns[message.station];
+    if (r->seq != 0) {
+        if (r->session == run.session && r->seq <= run.last)
+            return;
+        if (r->session == run.session && r->seq > run.last + 1) {
+            const quint64 missed = r->seq - run.last - 1;
+            m_missedFrames += missed;
+            emit warning(QStringLiteral("broker: missed %1 frame%2 of %3 (its frames %4 to %5 never came)")
+                             .arg(missed)
+                             .arg(missed == 1 ? QString() : QStringLiteral("s"))
+                             .arg(message.station)
+                             .arg(run.last + 1)
+                             .arg(r->seq - 1));
+        }
+        run.session = r->session;
+        run.last = r->seq;
+    }
 
     LoggedFrame frame;
     frame.entry.utcMicros = r->utcMicros;
@@ -167,49 +280,62 @@ void BrokerObservation::frameReported(const QByteArray& payload)
         corrected.block1 = r->corrected[0];
         corrected.block2 = r->corrected[1];
     }
-    emitMessage(r->text, r->utcMicros, corrected, r->transport, QStringLiteral("frame from ") + r->station);
+    emitMessage(r->text, r->utcMicros, corrected, r->transport, QStringLiteral("frame from ") + message.station);
 }
 
-void BrokerObservation::stateReported(const QByteArray& payload)
+void BrokerObservation::stateReported(const OpenedMessage& message)
 {
-    if (payload.isEmpty())
-        return;
     QString error;
-    const std::optional<StateReport> r = StateReport::fromJson(payload, &error);
+    const std::optional<StateReport> r = StateReport::fromJson(message.body, &error);
     if (!r) {
-        reportError(QStringLiteral("broker: state unreadable: ") + error);
+        refuse(QStringLiteral("unreadable: %1's state: %2").arg(message.station, error));
         return;
     }
+    m_states.insert(message.station, *r);
+    if (message.station == followedStation())
+        applyState(*r);
+}
+
+void BrokerObservation::applyState(const StateReport& state)
+{
     // Usually the status its frame told already; news on joining.
-    emitMessage(r->text, r->utcMicros, {}, FrameTransport::Replay, QStringLiteral("last status"));
+    emitMessage(state.text, state.utcMicros, {}, FrameTransport::Replay, QStringLiteral("last status"));
 }
 
-void BrokerObservation::statsReported(const QByteArray& payload)
+void BrokerObservation::statsReported(const OpenedMessage& message)
 {
-    if (payload.isEmpty())
-        return;
     QString error;
-    const std::optional<StatsReport> r = StatsReport::fromJson(payload, &error);
+    const std::optional<StatsReport> r = StatsReport::fromJson(message.body, &error);
     if (!r) {
-        reportError(QStringLiteral("broker: statistics unreadable: ") + error);
+        refuse(QStringLiteral("unreadable: %1's statistics: %2").arg(message.station, error));
         return;
     }
-    m_statistics = r->toStatistics();
-    setLinkState(r->state);
+    m_stats.insert(message.station, *r);
+    if (message.station == followedStation())
+        applyStats(*r);
+}
+
+void BrokerObservation::applyStats(const StatsReport& stats)
+{
+    m_statistics = stats.toStatistics();
+    setLinkState(stats.state);
     emit statisticsChanged(*m_statistics);
 }
 
-void BrokerObservation::eventArrived(const QByteArray& payload)
+void BrokerObservation::eventArrived(const OpenedMessage& message)
 {
     QString error;
-    const std::optional<EventReport> r = EventReport::fromJson(payload, &error);
+    std::optional<EventReport> r = EventReport::fromJson(message.body, &error);
     if (!r) {
-        reportError(QStringLiteral("broker: event unreadable: ") + error);
+        refuse(QStringLiteral("unreadable: %1's event: %2").arg(message.station, error));
         return;
     }
+    // The event is its signer's, whatever its text says.
+    r->station = message.station;
     emit eventReported(*r);
-    const QString text = r->station.isEmpty() ? r->text : r->station + QStringLiteral(": ") + r->text;
-    if (r->severity == QLatin1String("error") || r->severity == QLatin1String("alarm"))
+    const QString text = r->station + QStringLiteral(": ") + r->text;
+    const bool followed = message.station == followedStation();
+    if (followed && (r->severity == QLatin1String("error") || r->severity == QLatin1String("alarm")))
         emit errorOccurred(text);
     else
         emit transportStatusChanged(text);

@@ -7,7 +7,13 @@
 
 #include <QString>
 
+#include <memory>
 #include <optional>
+
+class BrokerTrust;
+namespace rcm::secure {
+class StationSigningKey;
+}
 
 struct BrokerSettings {
     static constexpr quint16 kDefaultPort = 1883;
@@ -23,16 +29,32 @@ struct BrokerSettings {
     QString user;
     QString password;
     // TLS (mqtts://): the CA that signed the broker's certificate, and
-    // optionally this client's own certificate and key.
+    // optionally this client's own certificate and key. No CA file: the
+    // system's CA certificates (kSystemCaPath) are trusted.
+    static inline const QString kSystemCaPath = QStringLiteral("/etc/ssl/certs");
     bool tls = false;
     QString caFile;
     QString certFile;
     QString keyFile;
     // Empty: the library makes up one for each connection.
     QString clientId;
+    // The broker keeps our subscriptions and queues what comes for them
+    // while we are away, for sessionExpirySeconds (MQTT 5, clean start
+    // off): an observer misses nothing over a short outage. Needs a
+    // clientId that stays the same across reconnections.
+    bool persistentSession = false;
+    int sessionExpirySeconds = 600;
+    // The largest MQTT packet we take (BrokerTopics::kMaxPacketBytes); 0: any.
+    int maxPacketBytes = 64 * 1024;
     // How long the broker waits without a word from us before it calls us
     // gone and sends our will (at 1.5 times this), and we ping it.
     int keepAliveSeconds = 10;
+
+    // Whom this console believes and which sealed sessions it can read
+    // (null: nobody, none), and the key this station signs with (null:
+    // it publishes unsigned). docs/security.md, "The broker".
+    std::shared_ptr<const BrokerTrust> trust;
+    std::shared_ptr<const rcm::secure::StationSigningKey> signingKey;
 
     // "mqtt://HOST[:PORT][/AIRCRAFT]" or "mqtts://..." (TLS, default port
     // 8883); a user may stand before the host ("mqtt://ops@HOST"), a password
@@ -43,6 +65,10 @@ struct BrokerSettings {
     QString url() const;
     // "127.0.0.1:1883", as errors name the broker.
     QString hostAndPort() const;
+
+    // The first line of a password file, which must be readable by its
+    // owner only (as a key file): nothing, with the reason and the fix, else.
+    static std::optional<QString> readPasswordFile(const QString& path, QString* error);
 
     friend bool operator==(const BrokerSettings&, const BrokerSettings&) = default;
 };

@@ -317,6 +317,10 @@ QByteArray FrameReport::toJson() const
         o.insert(QStringLiteral("text"), text);
     if (enciphered)
         o.insert(QStringLiteral("enciphered"), true);
+    if (session)
+        o.insert(QStringLiteral("session"), session);
+    if (seq)
+        o.insert(QStringLiteral("seq"), qint64(seq));
     return compact(o);
 }
 
@@ -344,6 +348,8 @@ std::optional<FrameReport> FrameReport::fromJson(const QByteArray& json, QString
     r.text = f.string("text", false);
     r.transport = f.named("transport", kFrameTransports, FrameTransport::Serial, false);
     r.enciphered = f.boolean("enciphered", false);
+    r.session = f.time("session", false);
+    r.seq = quint64(f.integer("seq", 0, std::numeric_limits<qint64>::max(), false));
     if (!f.report(error))
         return std::nullopt;
     return r;
@@ -464,43 +470,68 @@ namespace BrokerTopics {
 
 namespace {
 
-const QString kStation = QStringLiteral("station");
-const QString kFrames = QStringLiteral("frames");
-const QString kState = QStringLiteral("state");
-const QString kStats = QStringLiteral("stats");
-const QString kEvents = QStringLiteral("events");
-
-QString aircraftTopic(const QString& aircraft, const QString& kind)
-{
-    return kRoot + u'/' + aircraft + u'/' + kind;
-}
+constexpr std::array<std::pair<Kind, const char*>, 5> kKinds{{
+    {Kind::Station, "station"},
+    {Kind::Frames, "frames"},
+    {Kind::State, "state"},
+    {Kind::Stats, "stats"},
+    {Kind::Events, "events"},
+}};
 
 }  // namespace
 
+qsizetype maxPayloadBytes(Kind kind)
+{
+    switch (kind) {
+        case Kind::Station:
+        case Kind::Stats:
+            return 4 * 1024;
+        case Kind::Events:
+            return 8 * 1024;
+        case Kind::Frames:
+        case Kind::State:
+            break;
+    }
+    return 16 * 1024;
+}
+
+QString kindName(Kind kind)
+{
+    return nameIn(kKinds, kind);
+}
+
+QString topic(const QString& aircraft, Kind kind, const QString& station)
+{
+    return kRoot + u'/' + aircraft + u'/' + kindName(kind) + u'/' + station;
+}
 QString stationTopic(const QString& aircraft, const QString& station)
 {
-    return aircraftTopic(aircraft, kStation) + u'/' + station;
+    return topic(aircraft, Kind::Station, station);
 }
-QString framesTopic(const QString& aircraft)
+QString framesTopic(const QString& aircraft, const QString& station)
 {
-    return aircraftTopic(aircraft, kFrames);
+    return topic(aircraft, Kind::Frames, station);
 }
-QString stateTopic(const QString& aircraft)
+QString stateTopic(const QString& aircraft, const QString& station)
 {
-    return aircraftTopic(aircraft, kState);
+    return topic(aircraft, Kind::State, station);
 }
-QString statsTopic(const QString& aircraft)
+QString statsTopic(const QString& aircraft, const QString& station)
 {
-    return aircraftTopic(aircraft, kStats);
+    return topic(aircraft, Kind::Stats, station);
 }
-QString eventsTopic(const QString& aircraft)
+QString eventsTopic(const QString& aircraft, const QString& station)
 {
-    return aircraftTopic(aircraft, kEvents);
+    return topic(aircraft, Kind::Events, station);
 }
 
 QString allStationsPattern()
 {
-    return kRoot + QStringLiteral("/+/") + kStation + QStringLiteral("/+");
+    return allPattern(Kind::Station);
+}
+QString allPattern(Kind kind)
+{
+    return kRoot + QStringLiteral("/+/") + kindName(kind) + QStringLiteral("/+");
 }
 QString aircraftPattern(const QString& aircraft)
 {
@@ -510,31 +541,12 @@ QString aircraftPattern(const QString& aircraft)
 std::optional<Topic> parseTopic(const QString& topic)
 {
     const QStringList levels = topic.split(u'/');
-    if (levels.size() < 3 || levels[0] != kRoot || !isTopicLevel(levels[1]))
+    if (levels.size() != 4 || levels[0] != kRoot || !isTopicLevel(levels[1]) || !isTopicLevel(levels[3]))
         return std::nullopt;
-    Topic t;
-    t.aircraft = levels[1];
-    const QString& kind = levels[2];
-    if (kind == kStation) {
-        if (levels.size() != 4 || !isTopicLevel(levels[3]))
-            return std::nullopt;
-        t.kind = Kind::Station;
-        t.station = levels[3];
-        return t;
-    }
-    if (levels.size() != 3)
+    const std::optional<Kind> kind = valueIn(kKinds, levels[2]);
+    if (!kind)
         return std::nullopt;
-    if (kind == kFrames)
-        t.kind = Kind::Frames;
-    else if (kind == kState)
-        t.kind = Kind::State;
-    else if (kind == kStats)
-        t.kind = Kind::Stats;
-    else if (kind == kEvents)
-        t.kind = Kind::Events;
-    else
-        return std::nullopt;
-    return t;
+    return Topic{levels[1], *kind, levels[3]};
 }
 
 bool isTopicLevel(const QString& name)

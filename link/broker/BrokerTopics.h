@@ -1,20 +1,28 @@
 #pragma once
 
 // The one place that names what a console says on an MQTT broker: the topics,
-// per aircraft, and the JSON of each payload. The publisher (SessionPublisher),
-// the read-only observer (BrokerObservation) and the fleet view all read this
-// header, so a topic level or a field name is never spelled twice.
+// per aircraft and per station, and the JSON of each report. The publisher
+// (SessionPublisher), the read-only observer (BrokerObservation) and the
+// fleet view all read this header, so a topic level or a field name is never
+// spelled twice.
 //
 //   rcm/<aircraft>/station/<station>  retained  StationReport (also the will, online=false)
-//   rcm/<aircraft>/frames             QoS 1     FrameReport, one per frame logged, both ways
-//   rcm/<aircraft>/state              retained  StateReport, the last status received
-//   rcm/<aircraft>/stats              retained  StatsReport, a LinkStatistics subset
-//   rcm/<aircraft>/events             QoS 1     EventReport
+//   rcm/<aircraft>/frames/<station>   QoS 1     FrameReport, one per frame logged, both ways
+//   rcm/<aircraft>/state/<station>    retained  StateReport, the last status received
+//   rcm/<aircraft>/stats/<station>    retained  StatsReport, a LinkStatistics subset
+//   rcm/<aircraft>/events/<station>   QoS 1     EventReport
 //
 // <aircraft> is the aircraft's ID_UA_source in the text format's form
 // ("GB_133"), "unknown" until a status has said it; <station> the publishing
-// console's station ID in the same form. Times are microseconds since
-// 1970-01-01T00:00:00Z, as everywhere in the link layer.
+// console's station ID in the same form. Every topic ends with the station
+// that publishes on it, so that a broker's ACL can let each station write its
+// own topics only (resources/mosquitto/rcm.acl), and two stations flying one
+// aircraft never overwrite each other's retained reports. Times are
+// microseconds since 1970-01-01T00:00:00Z, as everywhere in the link layer.
+//
+// Each report goes on the broker inside a BrokerEnvelope (BrokerEnvelope.h):
+// signed by its station, and sealed when the session is keyed. What follows
+// is the report, the envelope's body.
 //
 // Every fromJson() reads what toJson() writes, exactly; it refuses a payload
 // with an error that names the field ("frames: direction must be \"up\" or
@@ -73,6 +81,12 @@ struct FrameReport {
     // "simulated"), and "enciphered" (absent when false: the bytes are plain).
     FrameTransport transport = FrameTransport::Serial;
     bool enciphered = false;
+    // The publisher's frames are numbered 1, 2, 3 ... within its session (a
+    // publisher's start, in UTC microseconds), one number for every frame
+    // its link logged, published or not: a reader finds the frames it
+    // missed by the numbers skipped. JSON "session", "seq"; absent: 0.
+    qint64 session = 0;
+    quint64 seq = 0;
 
     QByteArray toJson() const;
     static std::optional<FrameReport> fromJson(const QByteArray& json, QString* error);
@@ -126,7 +140,7 @@ namespace BrokerTopics {
 
 enum class Kind : quint8 { Station, Frames, State, Stats, Events };
 
-// What a topic names; station only for Kind::Station.
+// What a topic names: whose report of which kind, about which aircraft.
 struct Topic {
     QString aircraft;
     Kind kind = Kind::Station;
@@ -143,19 +157,38 @@ inline constexpr int kStateQos = 1;
 inline constexpr int kStatsQos = 1;
 inline constexpr int kEventsQos = 1;
 
-QString stationTopic(const QString& aircraft, const QString& station);  // rcm/A/station/S
-QString framesTopic(const QString& aircraft);                           // rcm/A/frames
-QString stateTopic(const QString& aircraft);                            // rcm/A/state
-QString statsTopic(const QString& aircraft);                            // rcm/A/stats
-QString eventsTopic(const QString& aircraft);                           // rcm/A/events
+// The largest payload, envelope and all, a reader takes on each kind of
+// topic; a larger one is dropped before it is read, and counted. About four
+// times the largest a console publishes (a sealed frame down with its text
+// is under 5 KB).
+qsizetype maxPayloadBytes(Kind kind);
+// The largest MQTT packet a console accepts at all (MQTT 5's Maximum Packet
+// Size, told the broker on connecting): the broker does not send it anything
+// larger, so a huge message costs a console no memory.
+inline constexpr int kMaxPacketBytes = 64 * 1024;
+// Retained reports, and messages queued for an observer away, expire on the
+// broker after this long (MQTT 5's message expiry): an aircraft whose
+// stations stopped reporting leaves the broker by itself. A live station
+// restates its report well within it (SessionPublisher).
+inline constexpr int kMessageExpirySeconds = 600;
+
+QString topic(const QString& aircraft, Kind kind, const QString& station);  // rcm/A/<kind>/S
+QString stationTopic(const QString& aircraft, const QString& station);      // rcm/A/station/S
+QString framesTopic(const QString& aircraft, const QString& station);       // rcm/A/frames/S
+QString stateTopic(const QString& aircraft, const QString& station);        // rcm/A/state/S
+QString statsTopic(const QString& aircraft, const QString& station);        // rcm/A/stats/S
+QString eventsTopic(const QString& aircraft, const QString& station);       // rcm/A/events/S
+QString kindName(Kind kind);                                                // "station", "frames" ...
 
 // Subscription patterns: every station report of every aircraft (the fleet
-// view), and everything of one aircraft (an observer).
+// view), every station's frames or statistics of every aircraft, and
+// everything of one aircraft (an observer).
 QString allStationsPattern();                      // rcm/+/station/+
+QString allPattern(Kind kind);                     // rcm/+/<kind>/+
 QString aircraftPattern(const QString& aircraft);  // rcm/A/#
 
 // Nothing for a topic outside this schema (another prefix, a kind not listed,
-// an empty level, a station level where none belongs).
+// an empty level, a level more or less).
 std::optional<Topic> parseTopic(const QString& topic);
 
 // A name fit to be one topic level: not empty, no '/', '+', '#' or NUL.

@@ -1,6 +1,10 @@
 #include "link/broker/FleetFeed.h"
 
+#include "link/broker/BrokerTrust.h"
 #include "link/broker/MqttClient.h"
+
+#include <QDateTime>
+#include <QTimer>
 
 #include <algorithm>
 #include <tuple>
@@ -32,26 +36,45 @@ bool isGood(FrameStatus status)
 
 }  // namespace
 
-FleetFeed::FleetFeed(MqttClient* client, QObject* parent) : QObject(parent), m_client(client)
+FleetFeed::FleetFeed(MqttClient* client, QObject* parent)
+    : QObject(parent),
+      m_client(client),
+      m_trust(std::make_shared<const BrokerTrust>()),
+      m_clock([] { return QDateTime::currentMSecsSinceEpoch() * 1000; }),
+      m_expiryTimer(new QTimer(this))
 {
+    m_expiryTimer->setInterval(kExpiryIntervalMs);
+    connect(m_expiryTimer, &QTimer::timeout, this, &FleetFeed::expireStale);
+    m_expiryTimer->start();
     if (!m_client)
         return;
-    connect(m_client, &MqttClient::messageReceived, this, &FleetFeed::handleMessage);
+    m_client->setTrust(m_trust);
+    connect(m_client, &MqttClient::messageOpened, this, &FleetFeed::handleOpened);
     // The client keeps its subscriptions and sends them again on every
     // reconnection: asking once is enough.
     const QStringList wanted = patterns();
-    const int qos[] = {BrokerTopics::kStationQos, BrokerTopics::kFramesQos, BrokerTopics::kStatsQos};
+    const int qos[] = {BrokerTopics::kStationQos, BrokerTopics::kStatsQos};
     for (qsizetype i = 0; i < wanted.size(); ++i)
         m_client->subscribe(wanted[i], qos[i]);
 }
 
 FleetFeed::~FleetFeed() = default;
 
+void FleetFeed::setTrust(std::shared_ptr<const BrokerTrust> trust)
+{
+    m_trust = trust ? std::move(trust) : std::make_shared<const BrokerTrust>();
+    if (m_client)
+        m_client->setTrust(m_trust);
+}
+
+void FleetFeed::setClock(Clock clock)
+{
+    m_clock = std::move(clock);
+}
+
 QStringList FleetFeed::patterns()
 {
-    const QString anyAircraft = QStringLiteral("+");
-    return {BrokerTopics::allStationsPattern(), BrokerTopics::framesTopic(anyAircraft),
-            BrokerTopics::statsTopic(anyAircraft)};
+    return {BrokerTopics::allStationsPattern(), BrokerTopics::allPattern(BrokerTopics::Kind::Stats)};
 }
 
 std::optional<AircraftSummary> FleetFeed::summary(const QString& aircraft) const
@@ -77,91 +100,176 @@ void FleetFeed::refuse(const QString& topic, const QString& error)
 {
     ++m_refused;
     emit payloadRefused(topic, error);
+    emit messageRefused(error);
+}
+
+void FleetFeed::updated(const QString& aircraft)
+{
+    emit aircraftUpdated(summarise(aircraft, m_aircraft[aircraft]));
 }
 
 void FleetFeed::handleMessage(const QString& topic, const QByteArray& payload)
 {
-    const std::optional<BrokerTopics::Topic> parsed = BrokerTopics::parseTopic(topic);
-    if (!parsed) {
-        refuse(topic, tr("%1: not a topic of the rcm schema").arg(topic));
+    const std::optional<BrokerTopics::Topic> where = BrokerTopics::parseTopic(topic);
+    if (where && payload.size() > BrokerTopics::maxPayloadBytes(where->kind)) {
+        // As the client does: not even copied.
+        OpenedMessage m;
+        m.topic = topic;
+        m.where = where;
+        m.refuse(QStringLiteral("too large: %1 bytes on %2, at most %3")
+                     .arg(payload.size())
+                     .arg(topic)
+                     .arg(BrokerTopics::maxPayloadBytes(where->kind)));
+        handleOpened(m);
+        return;
+    }
+    handleOpened(m_trust->open(topic, payload, false));
+}
+
+void FleetFeed::handleOpened(const OpenedMessage& m)
+{
+    if (m.refused()) {
+        refuse(m.topic, m.refusal);
         return;
     }
     // A session that has not yet heard which aircraft it talks to: not an
     // aircraft of the fleet (it moves to its aircraft's topics once it knows).
-    if (parsed->aircraft == BrokerTopics::kUnknownAircraft)
+    if (m.where->aircraft == BrokerTopics::kUnknownAircraft)
         return;
-    QString error;
-    switch (parsed->kind) {
-        case BrokerTopics::Kind::Station: {
-            if (payload.isEmpty()) {
-                // A retained report cleared: the station is gone for good.
-                const auto found = m_aircraft.find(parsed->aircraft);
-                if (found == m_aircraft.end() || found->stations.erase(parsed->station) == 0)
-                    return;
+    const QString& name = m.where->aircraft;
+    if (m.cleared) {
+        const auto found = m_aircraft.find(name);
+        if (found == m_aircraft.end() || m.where->kind != BrokerTopics::Kind::Station)
+            return;
+        // Nobody can sign an empty message: only an unverified station goes.
+        const auto station = found->stations.find(m.station);
+        if (station == found->stations.end() || station->second.verified)
+            return;
+        found->stations.erase(station);
+        updated(name);
+        return;
+    }
+    if (m.verified()) {
+        switch (m_sequence.check(m)) {
+            case SequenceCheck::Result::Duplicate:
+                return;
+            case SequenceCheck::Result::Replayed:
+                refuse(m.topic, SequenceCheck::refusal(m, m_sequence.newest(m.topic)));
+                return;
+            case SequenceCheck::Result::Fresh:
                 break;
-            }
-            std::optional<StationReport> report = StationReport::fromJson(payload, &error);
-            if (!report) {
-                refuse(topic, error);
-                return;
-            }
-            // Keyed by the topic: it is what the broker replaces a retained report by.
-            m_aircraft[parsed->aircraft].stations[parsed->station] = std::move(*report);
-            break;
         }
-        case BrokerTopics::Kind::Frames: {
-            std::optional<FrameReport> frame = FrameReport::fromJson(payload, &error);
-            if (!frame) {
-                refuse(topic, error);
-                return;
+    }
+    QString error;
+    switch (m.where->kind) {
+        case BrokerTopics::Kind::Station: {
+            Station station;
+            station.verified = m.verified();
+            station.sealed = m.verified() && !m.opened;
+            if (m.opened) {
+                std::optional<StationReport> report = StationReport::fromJson(m.body, &error);
+                const bool readable = report && report->station == m.station;
+                if (!readable && m.verified()) {
+                    refuse(m.topic,
+                           QStringLiteral("unreadable: %1's station report: %2")
+                               .arg(m.station, report ? QStringLiteral("it names %1").arg(report->station) : error));
+                    return;
+                }
+                // Unverified and unreadable: still a station heard of.
+                if (readable)
+                    station.report = std::move(*report);
             }
-            Aircraft& aircraft = m_aircraft[parsed->aircraft];
-            if (frame->direction == FrameDirection::Sent) {
-                ++aircraft.framesUp;
-            } else {
-                ++aircraft.framesDown;
-                if (isGood(frame->status))
-                    aircraft.lastDownUtcMicros = std::max(aircraft.lastDownUtcMicros, frame->utcMicros);
-            }
-            emit frameReported(parsed->aircraft, *frame);
+            station.report.station = m.station;
+            // Keyed by the topic: it is what the broker replaces a retained report by.
+            Aircraft& aircraft = m_aircraft[name];
+            aircraft.stations[m.station] = std::move(station);
+            aircraft.heardMicros = m_clock();
             break;
         }
         case BrokerTopics::Kind::Stats: {
-            if (payload.isEmpty())
-                return;  // a retained statistics message cleared: nothing to tell
-            std::optional<StatsReport> stats = StatsReport::fromJson(payload, &error);
+            if (!m.verified() || !m.opened)
+                return;
+            std::optional<StatsReport> stats = StatsReport::fromJson(m.body, &error);
             if (!stats) {
-                refuse(topic, error);
+                refuse(m.topic, QStringLiteral("unreadable: %1's statistics: %2").arg(m.station, error));
                 return;
             }
-            m_aircraft[parsed->aircraft].stats = std::move(*stats);
+            Aircraft& aircraft = m_aircraft[name];
+            aircraft.stats[m.station] = *stats;
+            aircraft.heardMicros = m_clock();
+            emit statsReported(name, *stats, m.seq);
             break;
         }
+        case BrokerTopics::Kind::Frames:
         case BrokerTopics::Kind::State:
         case BrokerTopics::Kind::Events:
             // Not subscribed to: what one aircraft's observer reads, not the fleet.
             return;
     }
-    emit aircraftUpdated(summarise(parsed->aircraft, m_aircraft[parsed->aircraft]));
+    updated(name);
 }
 
-AircraftSummary FleetFeed::summarise(const QString& name, const Aircraft& aircraft)
+void FleetFeed::setLocalStation(const QString& aircraft, const StationReport& report)
+{
+    const QString before = m_localAircraft;
+    m_localAircraft = aircraft == BrokerTopics::kUnknownAircraft ? QString() : aircraft;
+    m_local = report;
+    if (!before.isEmpty() && before != m_localAircraft && m_aircraft.contains(before))
+        updated(before);
+    if (m_localAircraft.isEmpty())
+        return;
+    m_aircraft[m_localAircraft].heardMicros = m_clock();
+    updated(m_localAircraft);
+}
+
+void FleetFeed::setBrokerReachable(bool reachable)
+{
+    if (reachable == m_brokerReachable)
+        return;
+    m_brokerReachable = reachable;
+    QStringList names = m_aircraft.keys();
+    names.sort();
+    for (const QString& name : names)
+        updated(name);
+}
+
+void FleetFeed::expireStale()
+{
+    // While the broker is away nothing is heard of anyone: not their fault.
+    if (!m_brokerReachable)
+        return;
+    const qint64 now = m_clock();
+    QStringList gone;
+    for (auto it = m_aircraft.cbegin(); it != m_aircraft.cend(); ++it)
+        if (it.key() != m_localAircraft && now - it->heardMicros > kTimeToLiveMicros)
+            gone.append(it.key());
+    gone.sort();
+    for (const QString& name : gone) {
+        m_aircraft.remove(name);
+        emit aircraftRemoved(name);
+    }
+}
+
+AircraftSummary FleetFeed::summarise(const QString& name, const Aircraft& aircraft) const
 {
     AircraftSummary s;
     s.aircraft = name;
-    s.framesUp = aircraft.framesUp;
-    s.framesDown = aircraft.framesDown;
-    s.lastFrameUtcMicros = aircraft.lastDownUtcMicros;
-    if (aircraft.stats)
-        s.lastFrameUtcMicros = std::max(s.lastFrameUtcMicros, aircraft.stats->lastGoodFrameUtcMicros);
-    // Who is in control is what the aircraft said last: the newest report
-    // that knew it, an online station's before any gone one's.
+    s.brokerReachable = m_brokerReachable;
+    for (const auto& [station, stats] : aircraft.stats) {
+        s.lastFrameUtcMicros = std::max(s.lastFrameUtcMicros, stats.lastGoodFrameUtcMicros);
+        s.framesUp += stats.framesSent;
+        s.framesDown += stats.framesReceived;
+    }
+    const bool local = m_local && name == m_localAircraft;
+    s.local = local;
+    // Who is in control is what the aircraft said last: the newest verified
+    // report that knew it, an online station's before any gone one's.
     const StationReport* newest = nullptr;
     const auto rank = [](const StationReport& r) { return std::tuple(r.online, r.utcMicros); };
-    for (const auto& [station, report] : aircraft.stations) {
+    const auto consider = [&](const StationReport& report, bool online) {
         ++s.stations;
         s.lastFrameUtcMicros = std::max(s.lastFrameUtcMicros, report.lastFrameUtcMicros);
-        if (report.online) {
+        if (online) {
             ++s.stationsOnline;
             if (linkRank(report.link) > linkRank(s.link))
                 s.link = report.link;
@@ -169,7 +277,24 @@ AircraftSummary FleetFeed::summarise(const QString& name, const Aircraft& aircra
         const bool knows = !report.destination.isEmpty() || !report.backup.isEmpty();
         if (knows && (!newest || rank(report) > rank(*newest)))
             newest = &report;
+    };
+    for (const auto& [station, entry] : aircraft.stations) {
+        // This console's own report comes back from the broker too: ours is the newer.
+        if (local && station == m_local->station)
+            continue;
+        if (!entry.verified) {
+            ++s.unverifiedStations;
+            continue;
+        }
+        if (entry.sealed) {
+            ++s.sealedStations;
+            continue;
+        }
+        // With the broker away, nobody else's link is known now.
+        consider(entry.report, entry.report.online && m_brokerReachable);
     }
+    if (local)
+        consider(*m_local, m_local->online);
     if (newest) {
         s.inControl = newest->destination;
         s.backup = newest->backup;

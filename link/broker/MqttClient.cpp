@@ -1,8 +1,12 @@
 #include "link/broker/MqttClient.h"
 
+#include "link/broker/BrokerTrust.h"
+
+#include <QFileInfo>
 #include <QMetaObject>
 
 #include <mosquitto.h>
+#include <mqtt_protocol.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -61,10 +65,49 @@ QString resultReason(int rc)
     }
 }
 
-// "Connection Refused: not authorised." -> "connection refused: not authorised"
+// MQTT 5's reason codes, as the broker refused us:
+// "connection refused: bad user name or password"
 QString connackReason(int code)
 {
-    return forPeople(mosquitto_connack_string(code)).toLower();
+    return QStringLiteral("connection refused: ") + forPeople(mosquitto_reason_string(code)).toLower();
+}
+
+// Refusals that no reconnection mends: credentials, authorisation, a client
+// ID or protocol the broker will not take.
+bool refusalIsSetup(int code)
+{
+    switch (code) {
+        case MQTT_RC_BAD_USERNAME_OR_PASSWORD:
+        case MQTT_RC_NOT_AUTHORIZED:
+        case MQTT_RC_CLIENTID_NOT_VALID:
+        case MQTT_RC_BANNED:
+        case MQTT_RC_BAD_AUTHENTICATION_METHOD:
+        case MQTT_RC_UNSUPPORTED_PROTOCOL_VERSION:
+            return true;
+        default:
+            return false;
+    }
+}
+
+// The properties of every CONNECT: the largest packet we take, and how long
+// the broker keeps a persistent session. Kept by libmosquitto for its own
+// reconnections.
+mosquitto_property* connectProperties(const BrokerSettings& s)
+{
+    mosquitto_property* properties = nullptr;
+    if (s.maxPacketBytes > 0)
+        mosquitto_property_add_int32(&properties, MQTT_PROP_MAXIMUM_PACKET_SIZE, uint32_t(s.maxPacketBytes));
+    if (s.persistentSession && s.sessionExpirySeconds > 0)
+        mosquitto_property_add_int32(&properties, MQTT_PROP_SESSION_EXPIRY_INTERVAL, uint32_t(s.sessionExpirySeconds));
+    return properties;
+}
+
+mosquitto_property* expiryProperty(int expirySeconds)
+{
+    mosquitto_property* properties = nullptr;
+    if (expirySeconds > 0)
+        mosquitto_property_add_int32(&properties, MQTT_PROP_MESSAGE_EXPIRY_INTERVAL, uint32_t(expirySeconds));
+    return properties;
 }
 
 // "OpenSSL Error[0]: error:0A000086:SSL routines::certificate verify failed"
@@ -118,6 +161,7 @@ struct MqttClient::Core {
     bool stopRequested = false;    // guarded by mutex
     bool goodbyePending = false;   // guarded by mutex: DISCONNECT queued, not yet written
     int inFlight = 0;              // guarded by mutex: messages published, not yet acknowledged
+    std::shared_ptr<const BrokerTrust> trust;  // guarded by mutex: null, messages come raw
     // Connects and starts libmosquitto's loop, off the owner's thread. Each
     // one joins the one before it, so they never overlap.
     std::thread starter;
@@ -160,12 +204,21 @@ struct MqttClient::Core {
     // will; and a loop stopped before its next turn never writes the goodbye.
     void endSession()
     {
+        bool last = false;
         {
             std::unique_lock lock(mutex);
             wake.wait_for(lock, kGoodbyeTimeout, [this] { return inFlight <= 0; });
             goodbyePending = true;
+            last = stopRequested;
         }
-        if (mosquitto_disconnect(mosq) == MOSQ_ERR_SUCCESS) {
+        // The client's last goodbye ends a persistent session too: the broker
+        // keeps nothing for a client that is not coming back.
+        mosquitto_property* properties = nullptr;
+        if (last)
+            mosquitto_property_add_int32(&properties, MQTT_PROP_SESSION_EXPIRY_INTERVAL, 0);
+        const int rc = mosquitto_disconnect_v5(mosq, MQTT_RC_NORMAL_DISCONNECTION, properties);
+        mosquitto_property_free_all(&properties);
+        if (rc == MOSQ_ERR_SUCCESS) {
             std::unique_lock lock(mutex);
             wake.wait_for(lock, kGoodbyeTimeout, [this] { return !goodbyePending; });
         }
@@ -194,13 +247,13 @@ struct MqttClient::Core {
     }
 
     // In libmosquitto's thread.
-    static void onConnect(mosquitto*, void* userdata, int resultCode)
+    static void onConnect(mosquitto*, void* userdata, int resultCode, int, const mosquitto_property*)
     {
         const QString reason = resultCode ? connackReason(resultCode) : QString();
         static_cast<Core*>(userdata)->post([resultCode, reason](MqttClient* c) { c->onConnect(resultCode, reason); });
     }
 
-    static void onDisconnect(mosquitto*, void* userdata, int resultCode)
+    static void onDisconnect(mosquitto*, void* userdata, int resultCode, const mosquitto_property*)
     {
         const int error = errno;
         const QString reason = resultCode == MOSQ_ERR_ERRNO ? errnoReason(error) : resultReason(resultCode);
@@ -211,7 +264,7 @@ struct MqttClient::Core {
         core->post([reason, expected, restart](MqttClient* c) { c->onDisconnect(reason, expected, restart); });
     }
 
-    static void onPublish(mosquitto*, void* userdata, int messageId)
+    static void onPublish(mosquitto*, void* userdata, int messageId, int reasonCode, const mosquitto_property*)
     {
         auto* core = static_cast<Core*>(userdata);
         {
@@ -221,16 +274,51 @@ struct MqttClient::Core {
                 --core->inFlight;
         }
         core->wake.notify_all();
-        core->post([messageId](MqttClient* c) { emit c->published(messageId); });
+        core->post([messageId, reasonCode](MqttClient* c) { c->onPublished(messageId, reasonCode); });
     }
 
-    static void onMessage(mosquitto*, void* userdata, const mosquitto_message* message)
+    static void onSubscribe(mosquitto*, void* userdata, int messageId, int count, const int* granted,
+                            const mosquitto_property*)
     {
+        QList<int> codes(granted, granted + std::max(count, 0));
+        static_cast<Core*>(userdata)->post(
+            [messageId, codes = std::move(codes)](MqttClient* c) { c->onSubscribed(messageId, codes); });
+    }
+
+    // The payload is looked at only after its size: one larger than its
+    // kind allows (and than any we publish) is refused without a copy.
+    static void onMessage(mosquitto*, void* userdata, const mosquitto_message* message, const mosquitto_property*)
+    {
+        auto* core = static_cast<Core*>(userdata);
         QString topic = QString::fromUtf8(message->topic);
-        QByteArray payload(static_cast<const char*>(message->payload), message->payloadlen);
-        static_cast<Core*>(userdata)->post([topic = std::move(topic), payload = std::move(payload)](MqttClient* c) {
-            emit c->messageReceived(topic, payload);
-        });
+        std::shared_ptr<const BrokerTrust> trust;
+        {
+            std::lock_guard lock(core->mutex);
+            trust = core->trust;
+        }
+        if (!trust) {
+            QByteArray payload(static_cast<const char*>(message->payload), message->payloadlen);
+            core->post([topic = std::move(topic), payload = std::move(payload)](MqttClient* c) {
+                emit c->messageReceived(topic, payload);
+            });
+            return;
+        }
+        OpenedMessage opened;
+        const std::optional<BrokerTopics::Topic> where = BrokerTopics::parseTopic(topic);
+        const qsizetype limit = where ? BrokerTopics::maxPayloadBytes(where->kind) : 0;
+        if (where && message->payloadlen > limit) {
+            opened.topic = topic;
+            opened.where = where;
+            opened.station = where->station;
+            opened.retained = message->retain;
+            opened.refuse(
+                QStringLiteral("too large: %1 bytes on %2, at most %3").arg(message->payloadlen).arg(topic).arg(limit));
+        } else {
+            const QByteArray payload =
+                where ? QByteArray(static_cast<const char*>(message->payload), message->payloadlen) : QByteArray();
+            opened = trust->open(topic, payload, message->retain);
+        }
+        core->post([opened = std::move(opened)](MqttClient* c) { emit c->messageOpened(opened); });
     }
 
     // A failed TLS handshake is said only here, and ends libmosquitto's loop
@@ -240,7 +328,10 @@ struct MqttClient::Core {
         if (!(level & MOSQ_LOG_ERR) || !text || std::strncmp(text, "OpenSSL Error[0]", 16) != 0)
             return;
         const QString reason = QStringLiteral("TLS failed: ") + tlsReason(QString::fromUtf8(text));
-        static_cast<Core*>(userdata)->post([reason](MqttClient* c) { c->onDisconnect(reason, false, true); });
+        static_cast<Core*>(userdata)->post([reason](MqttClient* c) {
+            c->reportSetupFailure(reason);
+            c->onDisconnect(reason, false, true);
+        });
     }
 };
 
@@ -249,16 +340,20 @@ MqttClient::MqttClient(BrokerSettings settings, QObject* parent)
 {
     initLibraryOnce();
     const QByteArray id = m_settings.clientId.toUtf8();
-    // Clean sessions: the broker keeps nothing for us between connections,
-    // and the client restates its subscriptions itself.
-    m_core->mosq = mosquitto_new(id.isEmpty() ? nullptr : id.constData(), true, m_core.get());
+    // Clean sessions unless asked (the broker then keeps our subscriptions
+    // and what came for them while we were away); the client restates its
+    // subscriptions itself either way.
+    const bool clean = !m_settings.persistentSession || id.isEmpty();
+    m_core->mosq = mosquitto_new(id.isEmpty() ? nullptr : id.constData(), clean, m_core.get());
     m_core->owner = this;
     if (!m_core->mosq)
         return;
-    mosquitto_connect_callback_set(m_core->mosq, &Core::onConnect);
-    mosquitto_disconnect_callback_set(m_core->mosq, &Core::onDisconnect);
-    mosquitto_message_callback_set(m_core->mosq, &Core::onMessage);
-    mosquitto_publish_callback_set(m_core->mosq, &Core::onPublish);
+    mosquitto_int_option(m_core->mosq, MOSQ_OPT_PROTOCOL_VERSION, MQTT_PROTOCOL_V5);
+    mosquitto_connect_v5_callback_set(m_core->mosq, &Core::onConnect);
+    mosquitto_disconnect_v5_callback_set(m_core->mosq, &Core::onDisconnect);
+    mosquitto_message_v5_callback_set(m_core->mosq, &Core::onMessage);
+    mosquitto_publish_v5_callback_set(m_core->mosq, &Core::onPublish);
+    mosquitto_subscribe_v5_callback_set(m_core->mosq, &Core::onSubscribe);
     mosquitto_log_callback_set(m_core->mosq, &Core::onLog);
     mosquitto_reconnect_delay_set(m_core->mosq, kFirstDelaySeconds, kMaxDelaySeconds, false);
 }
@@ -283,14 +378,32 @@ MqttClient::~MqttClient()
     }).detach();
 }
 
-void MqttClient::setWill(const QString& topic, const QByteArray& payload, bool retain)
+namespace {
+
+void setWillOf(mosquitto* mosq, const QByteArray& topic, const QByteArray& payload, bool retain, int expirySeconds)
+{
+    // Takes the properties when it succeeds.
+    mosquitto_property* properties = expiryProperty(expirySeconds);
+    if (mosquitto_will_set_v5(mosq, topic.constData(), int(payload.size()), payload.constData(), 1, retain,
+                              properties) != MOSQ_ERR_SUCCESS)
+        mosquitto_property_free_all(&properties);
+}
+
+}  // namespace
+
+void MqttClient::setTrust(std::shared_ptr<const BrokerTrust> trust)
+{
+    std::lock_guard lock(m_core->mutex);
+    m_core->trust = std::move(trust);
+}
+
+void MqttClient::setWill(const QString& topic, const QByteArray& payload, bool retain, int expirySeconds)
 {
     if (!m_core->mosq || m_stopping)
         return;
-    Will will{topic.toUtf8(), payload, retain};
+    Will will{topic.toUtf8(), payload, retain, expirySeconds};
     if (!m_started) {
-        mosquitto_will_set(m_core->mosq, will.topic.constData(), int(will.payload.size()), will.payload.constData(), 1,
-                           will.retain);
+        setWillOf(m_core->mosq, will.topic, will.payload, will.retain, will.expirySeconds);
         return;
     }
     // libmosquitto's thread reads the will when it connects: it is changed
@@ -304,8 +417,15 @@ void MqttClient::start()
     if (m_started)
         return;
     m_started = true;
+    // Said in the next pass of the event loop, as every other outcome is:
+    // whoever connects to the client just after start() hears it.
+    const auto fail = [this](const QString& reason, bool setup) {
+        QMetaObject::invokeMethod(
+            this, [this, reason, setup] { setup ? reportSetupFailure(reason) : reportError(reason); },
+            Qt::QueuedConnection);
+    };
     if (!m_core->mosq) {
-        reportError(QStringLiteral("cannot create a client: ") + errnoReason(errno));
+        fail(QStringLiteral("cannot create a client: ") + errnoReason(errno), false);
         return;
     }
     if (!m_settings.user.isEmpty()) {
@@ -315,23 +435,52 @@ void MqttClient::start()
                                   m_settings.password.isEmpty() ? nullptr : password.constData());
     }
     if (m_settings.tls) {
+        // No CA file named: the system's CA certificates, as a browser would.
+        const QString caPath = m_settings.caFile.isEmpty() ? BrokerSettings::kSystemCaPath : QString();
+        for (const QString& file : {m_settings.caFile, m_settings.certFile, m_settings.keyFile}) {
+            const QFileInfo info(file);
+            if (!file.isEmpty() && (!info.isFile() || !info.isReadable())) {
+                fail(QStringLiteral("TLS: cannot read \"%1\": %2")
+                         .arg(file,
+                              info.exists() ? QStringLiteral("not a readable file") : QStringLiteral("no such file")),
+                     true);
+                return;
+            }
+        }
+        if (!caPath.isEmpty() && !QFileInfo(caPath).isDir()) {
+            fail(QStringLiteral("TLS: no CA file given and no system CA certificates in %1: give --broker-cafile")
+                     .arg(caPath),
+                 true);
+            return;
+        }
         const QByteArray ca = m_settings.caFile.toLocal8Bit();
+        const QByteArray capath = caPath.toLocal8Bit();
         const QByteArray cert = m_settings.certFile.toLocal8Bit();
         const QByteArray key = m_settings.keyFile.toLocal8Bit();
-        const int rc = mosquitto_tls_set(m_core->mosq, ca.isEmpty() ? nullptr : ca.constData(), nullptr,
-                                         cert.isEmpty() ? nullptr : cert.constData(),
-                                         key.isEmpty() ? nullptr : key.constData(), nullptr);
+        const int rc = mosquitto_tls_set(
+            m_core->mosq, ca.isEmpty() ? nullptr : ca.constData(), capath.isEmpty() ? nullptr : capath.constData(),
+            cert.isEmpty() ? nullptr : cert.constData(), key.isEmpty() ? nullptr : key.constData(), nullptr);
         if (rc != MOSQ_ERR_SUCCESS) {
-            // libmosquitto checks that the files can be opened, nothing more.
-            reportError(QStringLiteral("TLS: cannot read the CA file \"%1\"%2")
-                            .arg(m_settings.caFile, cert.isEmpty()
-                                                        ? QString()
-                                                        : QStringLiteral(" or the certificate \"%1\" and key \"%2\"")
-                                                              .arg(m_settings.certFile, m_settings.keyFile)));
+            fail(QStringLiteral("TLS: cannot use the CA \"%1\"%2: %3")
+                     .arg(ca.isEmpty() ? caPath : m_settings.caFile,
+                          cert.isEmpty() ? QString()
+                                         : QStringLiteral(" or the certificate \"%1\" and key \"%2\"")
+                                               .arg(m_settings.certFile, m_settings.keyFile),
+                          resultReason(rc)),
+                 true);
             return;
         }
     }
     connectInThread(false, std::nullopt, std::chrono::seconds(0));
+}
+
+void MqttClient::reportSetupFailure(const QString& reason)
+{
+    markOutage();
+    if (m_errorReported)
+        return;
+    m_errorReported = true;
+    emit setupFailed(QStringLiteral("broker %1: %2").arg(m_settings.hostAndPort(), reason));
 }
 
 void MqttClient::connectInThread(bool restart, std::optional<Will> will, std::chrono::seconds delay)
@@ -347,27 +496,37 @@ void MqttClient::connectInThread(bool restart, std::optional<Will> will, std::ch
     const std::string host = m_settings.host.toStdString();
     const int port = m_settings.port;
     const int keepAlive = m_settings.keepAliveSeconds;
+    // MQTT 5's CONNECT properties go only with libmosquitto's blocking
+    // connect, which then keeps them for its own reconnections: it runs
+    // here, off the owner's thread, as the asynchronous one would.
+    std::shared_ptr<mosquitto_property> properties(connectProperties(m_settings),
+                                                   [](mosquitto_property* p) { mosquitto_property_free_all(&p); });
     Core* core = m_core.get();
-    core->starter = std::thread([core, host, port, keepAlive, restart, will = std::move(will), delay,
+    core->starter = std::thread([core, host, port, keepAlive, restart, will = std::move(will), delay, properties,
                                  before = std::move(core->starter)]() mutable {
         if (before.joinable())
             before.join();
         if (restart)
             core->endSession();
         if (will)
-            mosquitto_will_set(core->mosq, will->topic.constData(), int(will->payload.size()),
-                               will->payload.constData(), 1, will->retain);
+            setWillOf(core->mosq, will->topic, will->payload, will->retain, will->expirySeconds);
         if (delay.count() > 0 && !core->pause(delay))
             return;
         for (int attempt = 1;; ++attempt) {
             if (core->stopping())
                 return;
             errno = 0;
-            const int rc = mosquitto_connect_async(core->mosq, host.c_str(), port, keepAlive);
+            const int rc =
+                mosquitto_connect_bind_v5(core->mosq, host.c_str(), port, keepAlive, nullptr, properties.get());
             if (rc == MOSQ_ERR_SUCCESS)
                 break;
-            const QString reason = rc == MOSQ_ERR_ERRNO ? errnoReason(errno) : resultReason(rc);
-            core->post([reason](MqttClient* c) { c->reportError(reason); });
+            const int error = errno;
+            const QString reason = rc == MOSQ_ERR_ERRNO ? errnoReason(error) : resultReason(rc);
+            if (rc == MOSQ_ERR_TLS)
+                // The handshake failed in the connect itself; onLog said why.
+                core->post([reason](MqttClient* c) { c->reportSetupFailure(QStringLiteral("TLS failed: ") + reason); });
+            else
+                core->post([reason](MqttClient* c) { c->reportError(reason); });
             if (!core->pause(delayBefore(attempt)))
                 return;
         }
@@ -399,7 +558,8 @@ void MqttClient::stop()
     }
 }
 
-bool MqttClient::publish(const QString& topic, const QByteArray& payload, int qos, bool retain, int* messageId)
+bool MqttClient::publish(const QString& topic, const QByteArray& payload, int qos, bool retain, int* messageId,
+                         int expirySeconds)
 {
     if (!m_connected || m_stopping)
         return false;
@@ -409,10 +569,18 @@ bool MqttClient::publish(const QString& topic, const QByteArray& payload, int qo
         std::lock_guard lock(m_core->mutex);
         ++m_core->inFlight;
     }
-    const int rc = mosquitto_publish(m_core->mosq, messageId, t.constData(), int(payload.size()), payload.constData(),
-                                     qos, retain);
-    if (rc == MOSQ_ERR_SUCCESS)
+    int id = 0;
+    mosquitto_property* properties = expiryProperty(expirySeconds);
+    const int rc = mosquitto_publish_v5(m_core->mosq, &id, t.constData(), int(payload.size()), payload.constData(), qos,
+                                        retain, properties);
+    mosquitto_property_free_all(&properties);
+    if (messageId)
+        *messageId = id;
+    if (rc == MOSQ_ERR_SUCCESS) {
+        if (qos > 0)
+            m_unanswered.insert(id, topic);
         return true;
+    }
     if (qos > 0) {
         std::lock_guard lock(m_core->mutex);
         --m_core->inFlight;
@@ -428,7 +596,9 @@ void MqttClient::subscribe(const QString& pattern, int qos)
     m_subscriptions.append({pattern, qos});
     if (m_connected) {
         const QByteArray p = pattern.toUtf8();
-        mosquitto_subscribe(m_core->mosq, nullptr, p.constData(), qos);
+        int id = 0;
+        if (mosquitto_subscribe_v5(m_core->mosq, &id, p.constData(), qos, 0, nullptr) == MOSQ_ERR_SUCCESS)
+            m_unanswered.insert(id, pattern);
     }
 }
 
@@ -438,20 +608,74 @@ void MqttClient::onConnect(int resultCode, const QString& reason)
         return;
     if (resultCode != 0) {
         // Refused by the broker (a wrong password): the loop tries again.
-        reportError(reason);
+        if (refusalIsSetup(resultCode))
+            reportSetupFailure(reason);
+        else
+            reportError(reason);
+        markOutage();
         return;
     }
     m_connected = true;
     m_errorReported = false;
     m_restarts = 0;
+    m_unanswered.clear();
+    const bool everConnected = m_everConnected;
+    m_everConnected = true;
+    if (m_outage.isValid()) {
+        const qint64 ms = m_outage.elapsed();
+        m_outage.invalidate();
+        const qint64 seconds = (ms + 500) / 1000;
+        const QString length =
+            seconds < 60 ? QStringLiteral("%1 s").arg(seconds)
+                         : QStringLiteral("%1 min %2 s").arg(seconds / 60).arg(seconds % 60, 2, 10, QLatin1Char('0'));
+        emit restored(
+            QStringLiteral("broker %1: %2 %3")
+                .arg(m_settings.hostAndPort(),
+                     everConnected ? QStringLiteral("back after") : QStringLiteral("reached after trying for"), length),
+            ms);
+    }
     sendSubscriptions();
     emit connected();
+}
+
+void MqttClient::markOutage()
+{
+    if (!m_outage.isValid())
+        m_outage.start();
+}
+
+void MqttClient::onPublished(int messageId, int reasonCode)
+{
+    const QString topic = m_unanswered.take(messageId);
+    // MQTT 5: 0 accepted, 16 accepted with no subscriber; 128 and above refused.
+    if (reasonCode >= 128 && !m_refusalsSaid.contains(topic)) {
+        m_refusalsSaid.insert(topic, true);
+        emit refusedByBroker(
+            QStringLiteral("broker %1 refused a message on %2: %3")
+                .arg(m_settings.hostAndPort(), topic, forPeople(mosquitto_reason_string(reasonCode)).toLower()));
+    }
+    emit published(messageId);
+}
+
+void MqttClient::onSubscribed(int messageId, QList<int> granted)
+{
+    const QString pattern = m_unanswered.take(messageId);
+    if (!granted.isEmpty() && granted.first() < 128)
+        emit subscribed(pattern);
+    for (const int code : granted)
+        if (code >= 128 && !m_refusalsSaid.contains(pattern)) {
+            m_refusalsSaid.insert(pattern, true);
+            emit refusedByBroker(
+                QStringLiteral("broker %1 refused the subscription to %2: %3")
+                    .arg(m_settings.hostAndPort(), pattern, forPeople(mosquitto_reason_string(code)).toLower()));
+        }
 }
 
 void MqttClient::onDisconnect(const QString& reason, bool expected, bool restart)
 {
     if (m_stopping || expected)
         return;
+    markOutage();
     // A refused connection was reported with its broker's reason already.
     reportError(reason);
     if (m_connected) {
@@ -466,6 +690,7 @@ void MqttClient::onDisconnect(const QString& reason, bool expected, bool restart
 
 void MqttClient::reportError(const QString& reason)
 {
+    markOutage();
     if (m_errorReported)
         return;
     m_errorReported = true;
@@ -476,6 +701,8 @@ void MqttClient::sendSubscriptions()
 {
     for (const Subscription& s : std::as_const(m_subscriptions)) {
         const QByteArray p = s.pattern.toUtf8();
-        mosquitto_subscribe(m_core->mosq, nullptr, p.constData(), s.qos);
+        int id = 0;
+        if (mosquitto_subscribe_v5(m_core->mosq, &id, p.constData(), s.qos, 0, nullptr) == MOSQ_ERR_SUCCESS)
+            m_unanswered.insert(id, s.pattern);
     }
 }

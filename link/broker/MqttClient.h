@@ -13,15 +13,24 @@
 // each connection it subscribes again to every pattern it was asked for and
 // says connected(), upon which a publisher republishes its retained state.
 // An outage is reported once by errorOccurred(), whatever the number of
-// attempts it takes.
+// attempts it takes, and its end by restored(), with its length.
+//
+// MQTT 5: the client tells the broker the largest packet it takes
+// (settings.maxPacketBytes: BrokerTopics::kMaxPacketBytes), so a huge message
+// on the broker costs it nothing; with a trust set (setTrust), each message
+// is also judged in the network thread, its size against its kind's limit
+// before it is copied, and comes as messageOpened().
 //
 // Not to be restarted: start() once, stop() (or destruction) once. The will
 // may change while connected (MQTT 3.1.1 takes it only with CONNECT): the
 // client then says goodbye and connects anew with it.
 
+#include "link/broker/BrokerEnvelope.h"
 #include "link/broker/BrokerSettings.h"
 
 #include <QByteArray>
+#include <QElapsedTimer>
+#include <QHash>
 #include <QList>
 #include <QObject>
 #include <QString>
@@ -46,7 +55,13 @@ public:
     // client disconnects gracefully (so the old will is dropped, not sent)
     // and connects again carrying the new one: disconnected() is not said,
     // connected() is, as after any reconnection.
-    void setWill(const QString& topic, const QByteArray& payload, bool retain);
+    void setWill(const QString& topic, const QByteArray& payload, bool retain, int expirySeconds = 0);
+
+    // From now on each message is judged by `trust` (BrokerTrust::open) in
+    // the network thread and said by messageOpened(), not messageReceived();
+    // one larger than its kind allows is refused there, before it is copied.
+    // May change at any time (a new link key to open sessions with).
+    void setTrust(std::shared_ptr<const BrokerTrust> trust);
 
     // Connects asynchronously; connected() or errorOccurred() tells how it went.
     void start();
@@ -57,8 +72,13 @@ public:
     // the publisher restates its retained state on connected(), and a
     // session's frames while the broker is away are in its frame log.
     // `messageId`, when given, gets the ID that published() will name.
-    bool publish(const QString& topic, const QByteArray& payload, int qos, bool retain, int* messageId = nullptr);
-    // Kept, and sent again after every reconnection (sessions are clean).
+    // `expirySeconds` > 0: the broker drops the message after that long
+    // (MQTT 5 message expiry), retained or queued for a client away.
+    bool publish(const QString& topic, const QByteArray& payload, int qos, bool retain, int* messageId = nullptr,
+                 int expirySeconds = 0);
+    // Kept, and sent again after every reconnection (a clean session keeps
+    // none; a persistent one would not need them, and a retained message
+    // sent again is a duplicate its reader drops).
     void subscribe(const QString& pattern, int qos);
 
     bool isConnected() const { return m_connected; }
@@ -68,12 +88,27 @@ signals:
     void connected();
     // After a connection that had been made; `reason` for people.
     void disconnected(const QString& reason);
+    // Without a trust: each message as it came.
     void messageReceived(const QString& topic, const QByteArray& payload);
+    // With a trust: each message judged.
+    void messageOpened(const OpenedMessage& message);
+    // The broker took a subscription (its SUBACK), on each connection.
+    void subscribed(const QString& pattern);
     // The broker has the message publish() gave this ID (QoS 1: its PUBACK).
     // A message whose session ended first may never be named here.
     void published(int messageId);
     // Once per outage: "broker 127.0.0.1:1884: connection refused".
     void errorOccurred(const QString& message);
+    // Instead of errorOccurred(), once per outage too, trouble that will not
+    // mend by waiting: a TLS set-up or handshake that failed, credentials
+    // refused, a CA file missing. For the banner, not only the event log.
+    void setupFailed(const QString& message);
+    // Connected again after an outage: "broker 127.0.0.1:1884: back after 15 s".
+    void restored(const QString& message, qint64 outageMs);
+    // The broker refused a message we published or a subscription (MQTT 5
+    // reason codes: an ACL, a size limit), once per topic:
+    // "broker 127.0.0.1:1884 refused a message on rcm/A/frames/S: not authorized".
+    void refusedByBroker(const QString& message);
 
 private:
     struct Core;
@@ -85,16 +120,21 @@ private:
         QByteArray topic;
         QByteArray payload;
         bool retain = false;
+        int expirySeconds = 0;
     };
 
     // Called in this object's thread, queued from libmosquitto's.
     void onConnect(int resultCode, const QString& reason);
+    void onPublished(int messageId, int reasonCode);
+    void onSubscribed(int messageId, QList<int> granted);
+    void reportSetupFailure(const QString& reason);
     // `restart`: libmosquitto's loop has ended (TLS and protocol failures)
     // and is started again after a pause.
     void onDisconnect(const QString& reason, bool expected, bool restart);
     void reportError(const QString& reason);
     void sendSubscriptions();
     void connectInThread(bool restart, std::optional<Will> will, std::chrono::seconds delay);
+    void markOutage();
 
     BrokerSettings m_settings;
     std::shared_ptr<Core> m_core;
@@ -105,4 +145,12 @@ private:
     // Set when an outage has been reported; cleared by the next connection.
     bool m_errorReported = false;
     int m_restarts = 0;  // in a row, since the last connection
+    // Since the outage began (the first error or the connection lost); not
+    // valid while connected or before the first connection was tried.
+    QElapsedTimer m_outage;
+    bool m_everConnected = false;
+    // Topics and patterns of messages and subscriptions not yet answered,
+    // to name them when the broker refuses one; each refusal said once.
+    QHash<int, QString> m_unanswered;
+    QHash<QString, bool> m_refusalsSaid;
 };

@@ -1,6 +1,8 @@
 #include "link/broker/SessionBroadcast.h"
 
 #include "codec/message/TextFormat.h"
+#include "codec/receive/LoggedFrameReading.h"
+#include "link/broker/EnvelopeWriter.h"
 #include "link/broker/MqttClient.h"
 #include "link/broker/SessionPublisher.h"
 #include "link/eventlog/EventLog.h"
@@ -37,9 +39,12 @@ QString brokerRole(StationControl::Role role)
 }  // namespace
 
 SessionBroadcast::SessionBroadcast(ConsoleSession* session, const BrokerSettings& settings, QObject* parent)
-    : QObject(parent), m_session(session), m_client(new MqttClient(settings, this))
+    : QObject(parent), m_session(session), m_settings(settings), m_client(new MqttClient(settings, this))
 {
     connect(m_client, &MqttClient::errorOccurred, this, &SessionBroadcast::errorOccurred);
+    connect(m_client, &MqttClient::setupFailed, this, &SessionBroadcast::setupFailed);
+    connect(m_client, &MqttClient::restored, this, [this](const QString& message) { emit restored(message); });
+    connect(m_client, &MqttClient::refusedByBroker, this, &SessionBroadcast::refusedByBroker);
     connect(m_session, &ConsoleSession::linkStarted, this, &SessionBroadcast::linkStarted);
     connect(m_session, &ConsoleSession::linkStopped, this, &SessionBroadcast::linkStopped);
     StationControl* control = m_session->stationControl();
@@ -76,7 +81,12 @@ QString SessionBroadcast::stationName() const
 void SessionBroadcast::linkStarted(const LinkController* controller)
 {
     delete m_publisher;
-    m_publisher = new SessionPublisher(m_client, stationName(), controller, this);
+    EnvelopeWriter envelopes(stationName(), m_settings.signingKey);
+    // A keyed link: what goes on the broker is sealed for its key's holders.
+    if (const std::shared_ptr<const rcm::LogKey> key = m_session->logKey())
+        envelopes.setSealKey(key->brokerKey(), QString::fromStdString(key->fingerprint()));
+    m_publisher = new SessionPublisher(m_client, std::move(envelopes), controller, this);
+    connect(m_publisher.data(), &SessionPublisher::stationReportChanged, this, &SessionBroadcast::stationReportChanged);
     m_publisher->setDescription(m_session->description());
     // Gone with the link: a publisher must not outlive the events it follows.
     connect(controller, &QObject::destroyed, m_publisher.data(), &QObject::deleteLater);

@@ -29,13 +29,26 @@ bool waitsForMessage(const FrameReport& r)
 
 SessionPublisher::SessionPublisher(MqttClient* client, const QString& station, const LinkEvents* events,
                                    QObject* parent)
+    : SessionPublisher(client, EnvelopeWriter(station), events, parent)
+{
+}
+
+SessionPublisher::SessionPublisher(MqttClient* client, EnvelopeWriter envelopes, const LinkEvents* events,
+                                   QObject* parent)
     : QObject(parent),
       m_client(client),
-      m_station(station),
+      m_envelopes(std::move(envelopes)),
       m_frameBytes([](const LoggedFrame& frame) { return frame.bytes; }),
+      m_frameSession(QDateTime::currentMSecsSinceEpoch() * 1000),
       m_pendingTimer(new QTimer(this)),
-      m_statsTimer(new QTimer(this))
+      m_statsTimer(new QTimer(this)),
+      m_restateTimer(new QTimer(this))
 {
+    // While the session lives its report is restated, well before the
+    // broker lets the retained one expire.
+    m_restateTimer->setInterval(kRestateIntervalMs);
+    connect(m_restateTimer, &QTimer::timeout, this, &SessionPublisher::publishStation);
+    m_restateTimer->start();
     m_pendingTimer->setSingleShot(true);
     m_pendingTimer->setInterval(kPendingFrameMs);
     connect(m_pendingTimer, &QTimer::timeout, this, &SessionPublisher::flushPendingFrame);
@@ -101,13 +114,14 @@ void SessionPublisher::setAircraft(const QString& aircraft)
     if (aircraft == m_aircraft || !BrokerTopics::isTopicLevel(aircraft))
         return;
     // This station's retained reports under the old name would describe it
-    // there for ever: an empty retained message removes them.
+    // there until they expire: an empty retained message removes them.
     if (m_client) {
-        m_client->publish(BrokerTopics::stationTopic(m_aircraft, m_station), {}, BrokerTopics::kStationQos, true);
+        const QString station = m_envelopes.station();
+        m_client->publish(BrokerTopics::stationTopic(m_aircraft, station), {}, BrokerTopics::kStationQos, true);
         if (m_statistics)
-            m_client->publish(BrokerTopics::statsTopic(m_aircraft), {}, BrokerTopics::kStatsQos, true);
+            m_client->publish(BrokerTopics::statsTopic(m_aircraft, station), {}, BrokerTopics::kStatsQos, true);
         if (m_state)
-            m_client->publish(BrokerTopics::stateTopic(m_aircraft), {}, BrokerTopics::kStateQos, true);
+            m_client->publish(BrokerTopics::stateTopic(m_aircraft, station), {}, BrokerTopics::kStateQos, true);
     }
     m_aircraft = aircraft;
     setWill();
@@ -123,9 +137,9 @@ void SessionPublisher::publishEvent(const QString& severity, const QString& text
     EventReport e;
     e.utcMicros = nowMicros();
     e.severity = BrokerTopics::isEventSeverity(severity) ? severity : QStringLiteral("info");
-    e.text = text;
-    e.station = m_station;
-    m_client->publish(BrokerTopics::eventsTopic(m_aircraft), e.toJson(), BrokerTopics::kEventsQos, false);
+    e.text = text.size() > kMaxEventText ? text.left(kMaxEventText - 1) + QChar(0x2026) : text;
+    e.station = m_envelopes.station();
+    publishReport(BrokerTopics::Kind::Events, e.toJson(), BrokerTopics::kEventsQos, false);
 }
 
 void SessionPublisher::finish()
@@ -138,19 +152,20 @@ void SessionPublisher::finish()
         publishStats();
     }
     m_finished = true;
+    m_restateTimer->stop();
+    emit stationReportChanged(m_aircraft, stationReport());
     if (!m_client)
         return;
     // The same report as the will, said before the goodbye, which makes the
     // broker drop the will.
-    m_client->publish(BrokerTopics::stationTopic(m_aircraft, m_station), stationReport().toJson(),
-                      BrokerTopics::kStationQos, true);
+    publishReport(BrokerTopics::Kind::Station, stationReport().toJson(), BrokerTopics::kStationQos, true);
     m_client->stop();
 }
 
 StationReport SessionPublisher::stationReport() const
 {
     StationReport r;
-    r.station = m_station;
+    r.station = m_envelopes.station();
     r.role = m_role;
     r.link = m_linkState;
     r.description = m_description;
@@ -198,7 +213,10 @@ void SessionPublisher::frameLogged(const LoggedFrame& frame)
 {
     flushPendingFrame();
     FrameReport r;
-    r.station = m_station;
+    r.station = m_envelopes.station();
+    r.session = m_frameSession;
+    // Numbered when logged, published or not: a reader sees what it missed.
+    r.seq = ++m_frameSeq;
     r.direction = frame.entry.direction;
     r.status = frame.entry.status;
     r.utcMicros = frame.entry.utcMicros;
@@ -207,6 +225,12 @@ void SessionPublisher::frameLogged(const LoggedFrame& frame)
     r.bytes = m_frameBytes(frame);
     r.transport = frame.entry.transport;
     r.enciphered = frame.entry.enciphered;
+    if (r.enciphered && !m_envelopes.seals()) {
+        // A keyed link and nothing to seal with: nothing decrypted goes out,
+        // only the frame as it went on the air.
+        m_unsealedKeyedLink = true;
+        r.messageId.reset();
+    }
     if (waitsForMessage(r)) {
         m_pendingFrame = std::move(r);
         m_pendingTimer->start();
@@ -232,6 +256,8 @@ void SessionPublisher::messageReceived(const ReceivedMessage& received)
     if (m_pendingFrame && m_pendingFrame->messageId == quint32(m.header.number(rcm::ItemId::ID_msg)))
         m_pendingFrame->text = text;
     flushPendingFrame();
+    if (m_unsealedKeyedLink)
+        return;
 
     const QString destination = BrokerTopics::stationText(m, rcm::ItemId::ID_GCS_destination);
     const QString backup = BrokerTopics::stationText(m, rcm::ItemId::ID_GCS_backup);
@@ -306,8 +332,10 @@ void SessionPublisher::sendBacklog()
     if (!m_client || (!m_aircraftSet && m_aircraft == BrokerTopics::kUnknownAircraft))
         return;
     int messageId = 0;
-    while (!m_backlog.empty() && m_client->publish(BrokerTopics::framesTopic(m_aircraft), m_backlog.front().toJson(),
-                                                   BrokerTopics::kFramesQos, false, &messageId)) {
+    // Each goes in a new envelope, with a new number, even when it goes
+    // again: a reader takes a station's messages in increasing number only.
+    while (!m_backlog.empty() && publishReport(BrokerTopics::Kind::Frames, m_backlog.front().toJson(),
+                                               BrokerTopics::kFramesQos, false, &messageId)) {
         m_unacknowledged.emplace_back(messageId, std::move(m_backlog.front()));
         m_backlog.pop_front();
     }
@@ -327,8 +355,7 @@ void SessionPublisher::publishStats()
     m_sinceStats.start();
     if (!m_client)
         return;
-    m_client->publish(BrokerTopics::statsTopic(m_aircraft), StatsReport::of(*m_statistics).toJson(),
-                      BrokerTopics::kStatsQos, true);
+    publishReport(BrokerTopics::Kind::Stats, StatsReport::of(*m_statistics).toJson(), BrokerTopics::kStatsQos, true);
     // The station report says when the last good frame came: kept as fresh
     // as the statistics, for a fleet view that reads only the reports.
     if (m_statistics->lastGoodFrameUtcMicros != m_stationLastFrame)
@@ -337,18 +364,31 @@ void SessionPublisher::publishStats()
 
 void SessionPublisher::publishStation()
 {
-    if (!m_client || m_finished)
+    if (m_finished)
         return;
     const StationReport r = stationReport();
-    if (m_client->publish(BrokerTopics::stationTopic(m_aircraft, m_station), r.toJson(), BrokerTopics::kStationQos,
-                          true))
+    emit stationReportChanged(m_aircraft, r);
+    if (m_client && publishReport(BrokerTopics::Kind::Station, r.toJson(), BrokerTopics::kStationQos, true))
         m_stationLastFrame = r.lastFrameUtcMicros;
 }
 
 void SessionPublisher::publishState()
 {
     if (m_client && m_state && !m_finished)
-        m_client->publish(BrokerTopics::stateTopic(m_aircraft), m_state->toJson(), BrokerTopics::kStateQos, true);
+        publishReport(BrokerTopics::Kind::State, m_state->toJson(), BrokerTopics::kStateQos, true);
+}
+
+bool SessionPublisher::publishReport(BrokerTopics::Kind kind, const QByteArray& body, int qos, bool retain,
+                                     int* messageId)
+{
+    if (!m_client || !m_client->isConnected())
+        return false;
+    const QString topic = BrokerTopics::topic(m_aircraft, kind, m_envelopes.station());
+    // Station reports say which will is set now, so that a reader takes it
+    // when the broker publishes it, and no older one.
+    const qint64 willSeq = kind == BrokerTopics::Kind::Station ? m_willSeq : 0;
+    return m_client->publish(topic, m_envelopes.wrap(topic, body, false, willSeq), qos, retain, messageId,
+                             BrokerTopics::kMessageExpirySeconds);
 }
 
 void SessionPublisher::willChanged()
@@ -366,7 +406,10 @@ void SessionPublisher::setWill()
         return;
     StationReport will = stationReport();
     will.online = false;
-    m_client->setWill(BrokerTopics::stationTopic(m_aircraft, m_station), will.toJson(), true);
+    const QString topic = BrokerTopics::stationTopic(m_aircraft, m_envelopes.station());
+    m_willSeq = m_envelopes.nextSeq();
+    m_client->setWill(topic, m_envelopes.wrapNumbered(topic, will.toJson(), m_willSeq, true, 0), true,
+                      BrokerTopics::kMessageExpirySeconds);
 }
 
 qint64 SessionPublisher::nowMicros() const

@@ -14,8 +14,18 @@
 // and description set. An aircraft learned later from the first status
 // moves the reports to its topics: the old retained ones are cleared, and
 // the client connects anew with the will on the new topic.
+//
+// Every message goes in an envelope (EnvelopeWriter): signed when the
+// station has a signing key, sealed when the link is keyed, so that a keyed
+// session puts nothing readable on the broker: its frames are the
+// enciphered bytes as they went on the air, its state, statistics, events
+// and station report are sealed for the holders of the aircraft's key.
+// Retained reports expire on the broker (BrokerTopics::kMessageExpirySeconds)
+// and the station report is restated well within that while the session
+// lives, so a console gone leaves no report behind for ever.
 
 #include "link/broker/BrokerTopics.h"
+#include "link/broker/EnvelopeWriter.h"
 #include "link/session/LoggedFrame.h"
 #include "link/session/ReceivedMessage.h"
 
@@ -41,9 +51,17 @@ public:
     // frame in no file) reads them back from the frame log here.
     using FrameBytesReader = std::function<QByteArray(const LoggedFrame&)>;
 
+    // The station report is restated this often while the session lives.
+    static constexpr int kRestateIntervalMs = 60'000;
+    // An event's text is cut to this many characters.
+    static constexpr int kMaxEventText = 1000;
+
     // `client` and `events` must outlive the publisher (or be destroyed with
-    // it); `station` is this console's station ID in text form ("GB_30226").
+    // it); `station` is this console's station ID in text form ("GB_30226"):
+    // its messages go unsigned and unsealed.
     SessionPublisher(MqttClient* client, const QString& station, const LinkEvents* events, QObject* parent = nullptr);
+    // The same, with what signs and seals them.
+    SessionPublisher(MqttClient* client, EnvelopeWriter envelopes, const LinkEvents* events, QObject* parent = nullptr);
     ~SessionPublisher() override;
 
     // Default: LoggedFrame::bytes.
@@ -60,7 +78,8 @@ public:
     // Changing it clears this station's retained reports under the old name.
     void setAircraft(const QString& aircraft);
     QString aircraft() const { return m_aircraft; }
-    QString station() const { return m_station; }
+    QString station() const { return m_envelopes.station(); }
+    const EnvelopeWriter& envelopes() const { return m_envelopes; }
 
     // An event of this console's own: severity "info", "warning", "error" or
     // "alarm" (anything else is published as "info").
@@ -72,6 +91,11 @@ public:
 
     // What the publisher would put in the station report now.
     StationReport stationReport() const;
+
+signals:
+    // The station report changed, whether or not the broker heard it: what
+    // this console's own Fleet row shows, broker or no broker.
+    void stationReportChanged(const QString& aircraft, const StationReport& report);
 
 private:
     void clientConnected();
@@ -88,12 +112,15 @@ private:
     void publishStats();
     void publishStation();
     void publishState();
+    // Wrapped in this station's envelope.
+    bool publishReport(BrokerTopics::Kind kind, const QByteArray& body, int qos, bool retain, int* messageId = nullptr);
     void setWill();
     void willChanged();
     qint64 nowMicros() const;
 
     QPointer<MqttClient> m_client;
-    QString m_station;
+    EnvelopeWriter m_envelopes;
+    qint64 m_willSeq = 0;  // the will's number, announced in every station report
     QString m_aircraft = BrokerTopics::kUnknownAircraft;
     bool m_aircraftSet = false;  // by setAircraft(), not learned
     FrameBytesReader m_frameBytes;
@@ -104,6 +131,9 @@ private:
     QString m_backup;
     LinkState m_linkState = LinkState::Closed;
     bool m_finished = false;
+    // A keyed link's frames came and there is no key to seal with: no text,
+    // no state, no station in control is published.
+    bool m_unsealedKeyedLink = false;
 
     // A good frame received waits for the message decoded from it, which the
     // link says just after, so that its report carries the text.
@@ -117,6 +147,9 @@ private:
     std::deque<FrameReport> m_backlog;
     std::deque<std::pair<int, FrameReport>> m_unacknowledged;  // by message ID
     quint64 m_backlogDropped = 0;
+    // This session's frames: its start and the number of the last one logged.
+    qint64 m_frameSession = 0;
+    quint64 m_frameSeq = 0;
     QTimer* m_pendingTimer = nullptr;
 
     std::optional<LinkStatistics> m_statistics;
@@ -124,6 +157,7 @@ private:
     // Statistics go out at most once a second: the latest, when the second is up.
     QElapsedTimer m_sinceStats;
     QTimer* m_statsTimer = nullptr;
+    QTimer* m_restateTimer = nullptr;
     // lastFrameUtcMicros of the station report last published.
     qint64 m_stationLastFrame = -1;
 };

@@ -87,6 +87,8 @@ QString eventSourceName(EventSource source)
         return QStringLiteral("console");
     case EventSource::Control:
         return QStringLiteral("control");
+    case EventSource::Command:
+        return QStringLiteral("command");
     }
     return {};
 }

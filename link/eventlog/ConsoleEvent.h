@@ -24,9 +24,11 @@ enum class EventSource : quint8 {
     Alarm,    // the link-loss alarm: lost, silenced, regained
     Console,  // the rest: airframe files, exports
     Control,  // control between stations: taken, handed over, failover
+    Command,  // the command: each change, sent, confirmed or not by the aircraft; held and resumed
 };
-inline constexpr EventSource kEventSources[] = {EventSource::Link,  EventSource::Key,     EventSource::Plan,
-                                                EventSource::Alarm, EventSource::Console, EventSource::Control};
+inline constexpr EventSource kEventSources[] = {EventSource::Link,    EventSource::Key,     EventSource::Plan,
+                                                EventSource::Alarm,   EventSource::Console, EventSource::Control,
+                                                EventSource::Command};
 
 struct ConsoleEvent {
     qint64 utcMicros = 0;  // microseconds since 1970-01-01T00:00:00Z
@@ -38,7 +40,7 @@ struct ConsoleEvent {
 };
 
 QString eventSeverityName(EventSeverity severity);  // "info", "warning", "error"
-QString eventSourceName(EventSource source);        // "link", "key", "plan", "alarm", "console", "control"
+QString eventSourceName(EventSource source);        // "link", "key", "plan", "alarm", "console", "control", "command"
 
 // One line of the event log file, without its newline:
 // "2026-11-23T17:45:20.123Z<TAB>error<TAB>link<TAB>text", the text's

@@ -1,6 +1,7 @@
 #include "link/plan/MissionPlan.h"
 
 #include "codec/plan/PlanContents.h"
+#include "link/plan/MavCommand.h"
 
 #include <bit>
 #include <cmath>
@@ -88,47 +89,7 @@ GeoPoint toGeo(const rcm::plan::Position& p)
 
 QString MissionItem::commandName() const
 {
-    switch (command) {
-        case 16:
-            return QStringLiteral("NAV_WAYPOINT");
-        case 17:
-            return QStringLiteral("NAV_LOITER_UNLIM");
-        case 18:
-            return QStringLiteral("NAV_LOITER_TURNS");
-        case 19:
-            return QStringLiteral("NAV_LOITER_TIME");
-        case 20:
-            return QStringLiteral("NAV_RETURN_TO_LAUNCH");
-        case 21:
-            return QStringLiteral("NAV_LAND");
-        case 22:
-            return QStringLiteral("NAV_TAKEOFF");
-        case 31:
-            return QStringLiteral("NAV_LOITER_TO_ALT");
-        case 84:
-            return QStringLiteral("NAV_VTOL_TAKEOFF");
-        case 85:
-            return QStringLiteral("NAV_VTOL_LAND");
-        case 112:
-            return QStringLiteral("CONDITION_DELAY");
-        case 177:
-            return QStringLiteral("DO_JUMP");
-        case 178:
-            return QStringLiteral("DO_CHANGE_SPEED");
-        case 189:
-            return QStringLiteral("DO_LAND_START");
-        case 201:
-            return QStringLiteral("DO_SET_ROI");
-        case 203:
-            return QStringLiteral("DO_DIGICAM_CONTROL");
-        case 206:
-            return QStringLiteral("DO_SET_CAM_TRIGG_DIST");
-        case 2000:
-            return QStringLiteral("IMAGE_START_CAPTURE");
-        case 2001:
-            return QStringLiteral("IMAGE_STOP_CAPTURE");
-    }
-    return QStringLiteral("MAV_CMD %1").arg(command);
+    return MavCommand::nameOf(command);
 }
 
 QString MissionItem::frameName() const
@@ -159,7 +120,15 @@ bool MissionItem::isGlobalFrame(int frame)
 
 bool MissionItem::hasPosition() const
 {
-    return isGlobalFrame(frame) && latitude && longitude && !(*latitude == 0 && *longitude == 0);
+    const MavCommand* known = MavCommand::find(command);
+    return (!known || known->position) && isGlobalFrame(frame) && latitude && longitude &&
+           !(*latitude == 0 && *longitude == 0);
+}
+
+bool MissionItem::hasAltitude() const
+{
+    const MavCommand* known = MavCommand::find(command);
+    return (known ? known->altitude : isGlobalFrame(frame)) && altitude.has_value();
 }
 
 bool MissionPlan::fitsField(double value, double steps)
@@ -170,6 +139,13 @@ bool MissionPlan::fitsField(double value, double steps)
 int MissionPlan::format() const
 {
     return fencePolygons.isEmpty() && fenceCircles.isEmpty() && rallyPoints.isEmpty() ? 1 : 2;
+}
+
+std::optional<GeoPoint> MissionPlan::home() const
+{
+    if (!homeLatitude || !homeLongitude || (*homeLatitude == 0 && *homeLongitude == 0))
+        return std::nullopt;
+    return GeoPoint{*homeLatitude, *homeLongitude};
 }
 
 void MissionPlan::renumber()
@@ -191,7 +167,7 @@ std::optional<QByteArray> MissionPlan::encode(QString* error) const
     contents.homeLongitude = c.fixed(homeLongitude, kDegreeSteps, QStringLiteral("home longitude"));
     contents.homeAltitude = c.fixed(homeAltitude, kMillimetres, QStringLiteral("home altitude"));
     for (const MissionItem& item : items) {
-        const QString name = QStringLiteral("mission item %1").arg(item.seq);
+        const QString name = QStringLiteral("mission item %1").arg(item.seq + 1);
         rcm::plan::Item out;
         out.seq = item.seq;
         out.command = item.command;
@@ -299,11 +275,7 @@ QStringList MissionPlan::fenceViolations() const
         anyInclusion |= p.inclusion;
     for (const FenceCircle& c : fenceCircles)
         anyInclusion |= c.inclusion;
-    for (const MissionItem& item : items) {
-        if (!item.hasPosition())
-            continue;
-        const GeoPoint at{*item.latitude, *item.longitude};
-        const QString name = QStringLiteral("mission item %1").arg(item.seq);
+    const auto check = [&](const GeoPoint& at, const QString& name) {
         bool included = false;
         QString excluded;
         for (qsizetype i = 0; i < fencePolygons.size(); ++i) {
@@ -324,6 +296,14 @@ QStringList MissionPlan::fenceViolations() const
             found << QStringLiteral("%1 is inside %2").arg(name, excluded);
         else if (anyInclusion && !included)
             found << QStringLiteral("%1 is outside every inclusion area").arg(name);
+    };
+    for (const MissionItem& item : items) {
+        if (item.hasPosition())
+            check({*item.latitude, *item.longitude}, QStringLiteral("mission item %1").arg(item.seq + 1));
     }
+    // A rally point is where the aircraft goes when the mission is given up:
+    // one the fence forbids would breach it on the way home.
+    for (qsizetype i = 0; i < rallyPoints.size(); ++i)
+        check(rallyPoints[i].position, QStringLiteral("rally point %1").arg(i + 1));
     return found;
 }

@@ -27,15 +27,21 @@ struct MissionItem {
     std::optional<double> longitude;  // degrees
     std::optional<double> altitude;   // metres, in the item's frame
 
-    // "NAV_WAYPOINT" for the commands a console shows often, else "MAV_CMD 1234".
+    // Mission Planner's name: "WAYPOINT", "DO_MOUNT_CONTROL"; "MAV_CMD 1234"
+    // for a command link/plan/MavCommand.h does not know.
     QString commandName() const;
     QString frameName() const;
     // MAV_FRAMEs whose x and y are a latitude and a longitude.
     static bool isGlobalFrame(int frame);
-    // A global frame with both latitude and longitude: a place on the map.
-    // 0 degrees north, 0 east is not: MAVLink planners write it for "no
-    // position" in items such as DO_LAND_START.
+    // A global frame with both latitude and longitude, in a command that
+    // takes a position (link/plan/MavCommand.h; any command it does not
+    // know): a place on the map. 0 degrees north, 0 east is not: MAVLink
+    // planners write it for "no position" in items such as DO_LAND_START
+    // and a TAKEOFF that climbs where it is.
     bool hasPosition() const;
+    // The altitude, when the command uses one (any command MavCommand does
+    // not know, in a global frame): a TAKEOFF's yes, a RETURN_TO_LAUNCH's no.
+    bool hasAltitude() const;
     friend bool operator==(const MissionItem&, const MissionItem&) = default;
 };
 
@@ -87,14 +93,20 @@ public:
 
     // 1 without fence and rally points, else 2.
     int format() const;
+    // Home as a place on the map: nothing without one, or at 0 degrees north,
+    // 0 east, which Mission Planner writes for a home it does not know.
+    std::optional<GeoPoint> home() const;
     bool hasFence() const { return !fencePolygons.isEmpty() || !fenceCircles.isEmpty(); }
-    // Renumbers seq 0 .. N-1 after an edit.
+    // Renumbers seq 0 .. N-1 after an edit. People count the items from 1,
+    // as QGroundControl and Mission Planner do: item seq is "mission item
+    // seq + 1" in every message.
     void renumber();
-    // Each mission item with a position that the fence forbids, for people:
-    // "mission item 4 is inside exclusion circle 1", "mission item 3 is
-    // outside every inclusion area". Distances on a sphere of the Earth's mean
-    // radius; polygon edges as straight lines in latitude and longitude,
-    // which is what a fence a few kilometres across is drawn as.
+    // Each mission item with a position, and each rally point, that the
+    // fence forbids, for people: "mission item 4 is inside exclusion circle
+    // 1", "rally point 2 is outside every inclusion area". Distances on a
+    // sphere of the Earth's mean radius; polygon edges as straight lines in
+    // latitude and longitude, which is what a fence a few kilometres across
+    // is drawn as.
     QStringList fenceViolations() const;
 
     QList<MissionItem> items;

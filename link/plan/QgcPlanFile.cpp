@@ -1,5 +1,7 @@
 #include "link/plan/QgcPlanFile.h"
 
+#include "link/plan/QgcComplexItemReader.h"
+
 #include "link/simulation/JsonPosition.h"
 
 #include <QJsonArray>
@@ -272,12 +274,27 @@ private:
         if (mission.contains(homeKey) && !readHome(mission.value(homeKey), path + QStringList{homeKey}, plan))
             return false;
         const QStringList itemsPath = path + QStringList{QStringLiteral("items")};
+        QgcComplexItemReader complex([this](const QStringList& at, const QString& what) { return fail(at, what); },
+                                     [this](const QJsonValue& value, const QString& where, const QStringList& at,
+                                            MissionItem& item) { return readItem(value, where, at, item); });
         for (qsizetype i = 0; i < items.size(); ++i) {
-            MissionItem item;
-            if (!readItem(items[i], i, itemsPath + QStringList{QString::number(i)}, item))
-                return false;
-            plan.items.append(item);
+            const QString where = QStringLiteral("mission item %1").arg(i + 1);
+            const QStringList itemPath = itemsPath + QStringList{QString::number(i)};
+            if (items[i].toObject().value(QStringLiteral("type")) == QLatin1String("ComplexItem")) {
+                if (!complex.read(items[i].toObject(), where, itemPath, plan.items))
+                    return false;
+            } else {
+                MissionItem item;
+                if (!readItem(items[i], where, itemPath, item))
+                    return false;
+                plan.items.append(item);
+            }
+            if (plan.items.size() > std::numeric_limits<quint16>::max())
+                return fail(itemPath, QStringLiteral("%1 makes the mission more than 65535 items, the most a plan "
+                                                     "holds")
+                                          .arg(where));
         }
+        plan.renumber();
         return true;
     }
 
@@ -333,17 +350,13 @@ private:
         return true;
     }
 
-    bool readItem(const QJsonValue& value, qsizetype index, const QStringList& path, MissionItem& item)
+    // One simple item; a complex item's are read by QgcComplexItemReader.
+    bool readItem(const QJsonValue& value, const QString& where, const QStringList& path, MissionItem& item)
     {
-        const QString where = QStringLiteral("mission item %1").arg(index + 1);
         if (!value.isObject())
             return fail(path, QStringLiteral("%1 is not a JSON object").arg(where));
         const QJsonObject o = value.toObject();
         const QString type = o.value(QStringLiteral("type")).toString();
-        if (type == QLatin1String("ComplexItem"))
-            return fail(path, QStringLiteral("%1 is a %2 (a ComplexItem); only simple items can be sent, so convert "
-                                             "it to waypoints in QGroundControl first")
-                                  .arg(where, o.value(QStringLiteral("complexItemType")).toString()));
         // "missionItem": the first style's name for a simple item.
         if (type != QLatin1String("SimpleItem") && type != QLatin1String("missionItem"))
             return fail(path, QStringLiteral("%1 has type \"%2\", not SimpleItem").arg(where, type));
@@ -359,7 +372,6 @@ private:
         if (params.size() != 7)
             return fail(path, QStringLiteral("%1: \"params\" must hold 7 values (numbers or null)").arg(where));
 
-        item.seq = quint16(index);
         item.command = quint16(command.toInt());
         item.frame = quint8(frame.toInt());
         item.autoContinue = o.value(QStringLiteral("autoContinue")).toBool(true);

@@ -7,8 +7,9 @@
 // Mission items come in three styles, all still loaded by QGroundControl:
 // "params" with 7 values; "params" with 4 values and "coordinate":
 // [latitude, longitude, altitude]; and "param1".."param4" with "coordinate".
-// Complex items (surveys, corridor scans) are refused: they are expanded
-// into simple items only by QGroundControl.
+// Complex items (landing patterns, surveys, corridor and structure scans)
+// are read into the simple items QGroundControl uploads for them
+// (link/plan/QgcComplexItemReader.h).
 //
 // The geofence is read from version 2 ("polygons" and "circles"), the rally
 // points from version 2 ("points"), and from those keys without a "version"

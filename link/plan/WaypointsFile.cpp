@@ -15,6 +15,15 @@ constexpr int kFieldCount = 12;
 const char* const kFieldNames[kFieldCount] = {"index",  "current", "frame",    "command",   "param1",   "param2",
                                               "param3", "param4",  "latitude", "longitude", "altitude", "autocontinue"};
 enum Field { Index, Current, Frame, Command, Param1, Latitude = 8, Longitude, Altitude, AutoContinue };
+// MAV_CMD of the fence and rally items (MAV_MISSION_TYPE_FENCE and _RALLY).
+constexpr int kFenceReturnPoint = 5000;
+constexpr int kFenceVertexInclusion = 5001;
+constexpr int kFenceVertexExclusion = 5002;
+constexpr int kFenceCircleInclusion = 5003;
+constexpr int kFenceCircleExclusion = 5004;
+constexpr int kRallyPoint = 5100;
+// The largest radius the plan bytes hold: a uint32 of millimetres.
+constexpr double kMaxRadius = 4294967.295;
 
 QString number(double value)
 {
@@ -53,15 +62,28 @@ public:
             const auto index = wholeNumber(line, Index, 0, std::numeric_limits<int>::max());
             if (!index)
                 return std::nullopt;
-            const bool isHome = first && *index == 0;
+            // A fence or rally file (Mission Planner's and MAVProxy's) has no
+            // home line: its index 0 is the first vertex or point.
+            const auto command = wholeNumber(line, Command, 0, 65535);
+            if (!command)
+                return std::nullopt;
+            const bool isHome = first && *index == 0 && !isFenceOrRally(int(*command));
             first = false;
             MissionItem item;
-            if (!readItem(line, isHome, item))
+            if (!readItem(line, isHome || isFenceOrRally(int(*command)), item))
                 return std::nullopt;
             if (isHome) {
-                plan.homeLatitude = item.latitude;
-                plan.homeLongitude = item.longitude;
-                plan.homeAltitude = item.altitude;
+                // 0 north, 0 east: Mission Planner's home before it knew one.
+                if (item.latitude != 0.0 || item.longitude != 0.0) {
+                    plan.homeLatitude = item.latitude;
+                    plan.homeLongitude = item.longitude;
+                    plan.homeAltitude = item.altitude;
+                }
+                continue;
+            }
+            if (isFenceOrRally(item.command)) {
+                if (!readFenceOrRally(line, item, plan))
+                    return std::nullopt;
                 continue;
             }
             if (plan.items.size() == std::numeric_limits<quint16>::max()) {
@@ -70,6 +92,10 @@ public:
             }
             item.seq = quint16(plan.items.size());
             plan.items.append(item);
+        }
+        if (m_polygon) {
+            failPolygon();
+            return std::nullopt;
         }
         return plan;
     }
@@ -159,8 +185,77 @@ private:
         return true;
     }
 
-    // Every field of a line, the home's as well as an item's. The home is a
-    // place on the globe whatever its frame says.
+    static bool isFenceOrRally(int command)
+    {
+        return (command >= kFenceReturnPoint && command <= kFenceCircleExclusion) || command == kRallyPoint;
+    }
+
+    // A polygon's vertices come one a line, each saying how many the polygon
+    // has (param1); the polygon ends when that many have come.
+    bool readFenceOrRally(const Line& line, const MissionItem& item, MissionPlan& plan)
+    {
+        const GeoPoint at{item.latitude.value_or(0), item.longitude.value_or(0)};
+        const double count = item.params[0];
+        const bool vertex = item.command == kFenceVertexInclusion || item.command == kFenceVertexExclusion;
+        if (m_polygon && (!vertex || item.command != m_polygon->command || count != m_polygon->count))
+            return failPolygon(line.number);
+        if (vertex) {
+            if (!m_polygon) {
+                if (!(count >= 3 && count <= std::numeric_limits<quint16>::max() && count == std::floor(count)))
+                    return failField(line, Param1,
+                                     QStringLiteral("a fence polygon's vertex count is %1; it must be a whole "
+                                                    "number, 3 or more")
+                                         .arg(number(count)));
+                m_polygon = OpenPolygon{item.command, count, line.number, int(plan.fencePolygons.size()) + 1, 0};
+                plan.fencePolygons.append(FencePolygon{item.command == kFenceVertexInclusion, {}});
+            }
+            plan.fencePolygons.back().vertices.append(at);
+            if (++m_polygon->seen == qsizetype(count))
+                m_polygon.reset();
+            return true;
+        }
+        switch (item.command) {
+            case kFenceCircleInclusion:
+            case kFenceCircleExclusion:
+                if (!(count > 0 && count <= kMaxRadius))
+                    return failField(line, Param1,
+                                     QStringLiteral("a fence circle's radius is %1 m; it must be more than 0 and at "
+                                                    "most 4294 km")
+                                         .arg(number(count)));
+                plan.fenceCircles.append({item.command == kFenceCircleInclusion, at, count});
+                return true;
+            case kRallyPoint:
+                plan.rallyPoints.append({at, item.altitude.value_or(0)});
+                return true;
+            default:
+                // FENCE_RETURN_POINT: where ArduPilot flies on a breach; a
+                // MissionPlan has no place for it (nor for QGroundControl's
+                // breach return point).
+                return true;
+        }
+    }
+
+    // The open polygon ended before it had its vertices: at `lineNumber`, or
+    // (0) at the end of the file.
+    bool failPolygon(int lineNumber = 0)
+    {
+        const QString what = QStringLiteral(
+                                 "fence polygon %1 (from line %2) has %3 of the %4 vertices its lines "
+                                 "give as param1; a polygon's vertices follow one another")
+                                 .arg(m_polygon->number)
+                                 .arg(m_polygon->line)
+                                 .arg(m_polygon->seen)
+                                 .arg(number(m_polygon->count));
+        if (lineNumber == 0) {
+            m_error = QStringLiteral("%1: %2").arg(m_source, what);
+            return false;
+        }
+        return fail(lineNumber, what);
+    }
+
+    // Every field of a line, the home's as well as an item's. The home, and
+    // a fence's or rally point's position, is a place on the globe whatever
+    // its frame says.
     bool readItem(const Line& line, bool isHome, MissionItem& item)
     {
         const auto current = wholeNumber(line, Current, 0, 1);
@@ -192,8 +287,18 @@ private:
         return true;
     }
 
+    // A fence polygon whose vertices are still coming.
+    struct OpenPolygon {
+        quint16 command = 0;
+        double count = 0;  // param1 of its lines
+        int line = 0;      // its first
+        int number = 0;    // 1-based, among the plan's polygons
+        qsizetype seen = 0;
+    };
+
     const QString& m_source;
     QString m_error;
+    std::optional<OpenPolygon> m_polygon;
 };
 
 QByteArray field(double value)

@@ -8,8 +8,19 @@
 //   LONGITUDE ALTITUDE AUTOCONTINUE
 //
 // The line with index 0, when it comes first, is the home position, as in
-// every file Mission Planner writes: its latitude, longitude and altitude
-// become the plan's home and it is not a mission item. Blank lines, CRLF
+// every mission file Mission Planner writes: its latitude, longitude and
+// altitude become the plan's home and it is not a mission item. A home at
+// 0 degrees north, 0 east (what Mission Planner writes before it knows one)
+// is no home.
+//
+// The fence and rally items of MAVLink's fence and rally missions, as
+// Mission Planner and MAVProxy save them (no home line: index 0 is the
+// first vertex), go to the plan's geofence and rally points, wherever they
+// are in the file: FENCE_POLYGON_VERTEX_INCLUSION / _EXCLUSION (5001, 5002;
+// param1 the polygon's vertex count, its vertices on consecutive lines),
+// FENCE_CIRCLE_INCLUSION / _EXCLUSION (5003, 5004; param1 the radius in
+// metres), RALLY_POINT (5100; the altitude above home). FENCE_RETURN_POINT
+// (5000) has no place in a MissionPlan and is passed over. Blank lines, CRLF
 // line ends and lines starting with '#' (ArduPilot's test missions carry such
 // comments) are passed over. "QGC WPL 120", QGroundControl's format before
 // 2016 with no home line, is refused: a .plan carries the same and more.

@@ -7,6 +7,7 @@
 #include <QJsonObject>
 
 #include <algorithm>
+#include <cmath>
 
 namespace {
 
@@ -20,36 +21,105 @@ QJsonValue optionalNumber(const std::optional<double>& value)
     return value ? QJsonValue(*value) : QJsonValue(QJsonValue::Null);
 }
 
-// Link quality for each direction, 0-100 % against scenario time.
-QString qualityPlot(const std::vector<RehearsalReport::QualitySample>& samples, double duration)
+QString plural(qsizetype n, const QString& one, const QString& many)
 {
-    constexpr int width = 800, height = 200, left = 40, bottom = 20;
-    const auto x = [&](double t) { return left + (width - left - 10) * t / std::max(duration, 1.0); };
-    const auto y = [&](double q) { return 10 + (height - bottom - 10) * (1.0 - q); };
+    return QStringLiteral("%1 %2").arg(n).arg(n == 1 ? one : many);
+}
+
+// Seconds between the time axis' ticks: no more than ten of them, on
+// round seconds or whole minutes.
+double tickStep(double duration)
+{
+    static constexpr double kSteps[] = {1, 2, 5, 10, 15, 30, 60, 120, 300, 600, 900, 1200, 1800, 3600, 7200, 14400};
+    for (double step : kSteps) {
+        if (duration / step <= 10)
+            return step;
+    }
+    return std::ceil(duration / 10 / 3600) * 3600;
+}
+
+QString tickLabel(double t, double step)
+{
+    if (t == 0)
+        return QStringLiteral("0");
+    if (step < 60)
+        return QStringLiteral("%1 s").arg(t);
+    return QStringLiteral("%1 min").arg(t / 60);
+}
+
+// Link quality for each direction, 0-100 % against scenario time: a time
+// axis with ticks, the faults' periods shaded (and named, one row each,
+// under the axis), the link-loss alarms marked (red when no step expected
+// them).
+QString qualityPlot(const RehearsalReport& report)
+{
+    constexpr int width = 800, left = 40, right = 30, top = 10, plotHeight = 170, faultRow = 16;
+    const double plotBottom = top + plotHeight;
+    const double faultsTop = plotBottom + 44;
+    const int height = int(faultsTop) + faultRow * int(report.faults.size()) + 4;
+    const double duration = std::max(report.duration, 1.0);
+    const auto x = [&](double t) { return left + (width - left - right) * std::clamp(t, 0.0, duration) / duration; };
+    const auto y = [&](double q) { return top + plotHeight * (1.0 - q); };
     QString svg = QStringLiteral(
                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%1\" height=\"%2\" "
-                      "role=\"img\" aria-label=\"link quality\">\n")
+                      "role=\"img\" aria-label=\"link quality against scenario time\">\n")
                       .arg(width)
                       .arg(height);
+    for (std::size_t i = 0; i < report.faults.size(); ++i) {
+        const RehearsalReport::FaultPeriod& f = report.faults[i];
+        const QString title =
+            QStringLiteral("%1 (%2 s to %3 s)").arg(f.text.toHtmlEscaped(), seconds(f.start), seconds(f.end));
+        const double span = std::max(1.0, x(f.end) - x(f.start));
+        svg += QStringLiteral(
+                   "<rect class=\"fault\" x=\"%1\" y=\"%2\" width=\"%3\" height=\"%4\" fill=\"#f0a030\" "
+                   "fill-opacity=\"0.25\"><title>%5</title></rect>\n")
+                   .arg(x(f.start), 0, 'f', 1)
+                   .arg(top)
+                   .arg(span, 0, 'f', 1)
+                   .arg(plotHeight)
+                   .arg(title);
+        const double rowTop = faultsTop + faultRow * double(i);
+        svg += QStringLiteral(
+                   "<rect x=\"%1\" y=\"%2\" width=\"%3\" height=\"%4\" fill=\"#f0a030\" fill-opacity=\"0.6\"/>"
+                   "<text x=\"%5\" y=\"%6\" font-size=\"11\">%7</text>\n")
+                   .arg(x(f.start), 0, 'f', 1)
+                   .arg(rowTop + 2, 0, 'f', 1)
+                   .arg(span, 0, 'f', 1)
+                   .arg(faultRow - 4)
+                   .arg(x(f.start) + 3, 0, 'f', 1)
+                   .arg(rowTop + 11, 0, 'f', 1)
+                   .arg(title);
+    }
     for (int percent : {0, 50, 100})
         svg += QStringLiteral(
                    "<line x1=\"%1\" x2=\"%2\" y1=\"%3\" y2=\"%3\" stroke=\"#ccc\"/>"
                    "<text x=\"2\" y=\"%4\" font-size=\"11\">%5%</text>\n")
                    .arg(left)
-                   .arg(width - 10)
+                   .arg(width - right)
                    .arg(y(percent / 100.0), 0, 'f', 1)
                    .arg(y(percent / 100.0) + 4, 0, 'f', 1)
                    .arg(percent);
+    const double step = tickStep(duration);
+    for (double t = 0; t <= duration + 1e-9; t += step)
+        svg += QStringLiteral(
+                   "<line class=\"tick\" x1=\"%1\" x2=\"%1\" y1=\"%2\" y2=\"%3\" stroke=\"#888\"/>"
+                   "<text x=\"%1\" y=\"%4\" font-size=\"11\" text-anchor=\"middle\">%5</text>\n")
+                   .arg(x(t), 0, 'f', 1)
+                   .arg(plotBottom, 0, 'f', 1)
+                   .arg(plotBottom + 5, 0, 'f', 1)
+                   .arg(plotBottom + 18, 0, 'f', 1)
+                   .arg(tickLabel(t, step));
     svg += QStringLiteral(
-               "<text x=\"%1\" y=\"%2\" font-size=\"11\">0 s</text><text x=\"%3\" y=\"%2\" "
-               "font-size=\"11\">%4 s</text>\n")
+               "<line x1=\"%1\" x2=\"%2\" y1=\"%3\" y2=\"%3\" stroke=\"#888\"/>"
+               "<text x=\"%4\" y=\"%5\" font-size=\"11\" text-anchor=\"middle\">scenario time</text>\n")
                .arg(left)
-               .arg(height - 4)
-               .arg(width - 50)
-               .arg(seconds(duration));
+               .arg(width - right)
+               .arg(plotBottom, 0, 'f', 1)
+               .arg((left + width - right) / 2)
+               .arg(plotBottom + 34, 0, 'f', 1);
     const auto line = [&](auto member, const char* colour, const char* name) {
         QString points;
-        for (const auto& s : samples)
+        for (const auto& s : report.quality)
             points += QStringLiteral("%1,%2 ").arg(x(s.time), 0, 'f', 1).arg(y(s.*member), 0, 'f', 1);
         return QStringLiteral(
                    "<polyline fill=\"none\" stroke=\"%1\" stroke-width=\"1.5\" points=\"%2\">"
@@ -58,6 +128,20 @@ QString qualityPlot(const std::vector<RehearsalReport::QualitySample>& samples, 
     };
     svg += line(&RehearsalReport::QualitySample::up, "#1f77b4", "up (to the aircraft)");
     svg += line(&RehearsalReport::QualitySample::down, "#d62728", "down (to the console)");
+    for (const RehearsalReport::Alarm& a : report.alarms) {
+        if (!a.raised())
+            continue;
+        svg += QStringLiteral(
+                   "<line class=\"alarm\" x1=\"%1\" x2=\"%1\" y1=\"%2\" y2=\"%3\" stroke=\"%4\" "
+                   "stroke-width=\"2\" stroke-dasharray=\"4 3\"><title>%5 at %6 s%7</title></line>\n")
+                   .arg(x(a.time), 0, 'f', 1)
+                   .arg(top)
+                   .arg(plotBottom, 0, 'f', 1)
+                   .arg(a.unexpected() ? QStringLiteral("#b00") : QStringLiteral("#555"))
+                   .arg(a.name, seconds(a.time))
+                   .arg(a.unexpected() ? QStringLiteral(", which no step expected")
+                                       : QStringLiteral(", expected by step %1").arg(a.expectedBy));
+    }
     return svg + QStringLiteral("</svg>\n");
 }
 
@@ -108,7 +192,38 @@ QString latencyPlot(const std::vector<RehearsalReport::Latency>& latencies)
 
 bool RehearsalReport::passed() const
 {
-    return std::all_of(expectations.begin(), expectations.end(), [](const Expectation& e) { return e.held; });
+    return std::all_of(expectations.begin(), expectations.end(), [](const Expectation& e) { return e.held; }) &&
+           std::none_of(alarms.begin(), alarms.end(), [](const Alarm& a) { return a.unexpected(); });
+}
+
+QString RehearsalReport::verdict() const
+{
+    const auto failed = std::count_if(expectations.begin(), expectations.end(), [](const auto& e) { return !e.held; });
+    const auto unexpected = std::count_if(alarms.begin(), alarms.end(), [](const auto& a) { return a.unexpected(); });
+    if (failed == 0 && unexpected == 0)
+        return QStringLiteral("every expectation held (%1)").arg(expectations.size());
+    QStringList parts;
+    if (failed > 0)
+        parts << QStringLiteral("%1 of %2 failed")
+                     .arg(failed)
+                     .arg(plural(qsizetype(expectations.size()), QStringLiteral("expectation"),
+                                 QStringLiteral("expectations")));
+    if (unexpected > 0)
+        parts << plural(unexpected, QStringLiteral("alarm"), QStringLiteral("alarms")) +
+                     QStringLiteral(" no step expected");
+    return parts.join(QStringLiteral("; "));
+}
+
+QStringList RehearsalReport::failures() const
+{
+    QStringList lines;
+    for (const Expectation& e : expectations)
+        if (!e.held)
+            lines << QStringLiteral("%1 (%2)").arg(e.description, e.detail);
+    for (const Alarm& a : alarms)
+        if (a.unexpected())
+            lines << QStringLiteral("%1 alarm at %2 s, which no step expected").arg(a.name, seconds(a.time));
+    return lines;
 }
 
 QByteArray RehearsalReport::toJson() const
@@ -136,6 +251,19 @@ QByteArray RehearsalReport::toJson() const
                                                       {QStringLiteral("damaged"), frames.damaged},
                                                       {QStringLiteral("lost"), frames.lost},
                                                       {QStringLiteral("wrong"), frames.wrong}});
+    QJsonArray alarmsJson;
+    for (const Alarm& a : alarms)
+        alarmsJson.append(QJsonObject{
+            {QStringLiteral("time"), a.time},
+            {QStringLiteral("alarm"), a.name},
+            {QStringLiteral("expected-by"), a.expectedBy > 0 ? QJsonValue(a.expectedBy) : QJsonValue(QJsonValue::Null)},
+            {QStringLiteral("result"), a.unexpected() ? QStringLiteral("unexpected") : QStringLiteral("expected")}});
+    root.insert(QStringLiteral("alarms"), alarmsJson);
+    QJsonArray faultsJson;
+    for (const FaultPeriod& f : faults)
+        faultsJson.append(QJsonObject{
+            {QStringLiteral("start"), f.start}, {QStringLiteral("end"), f.end}, {QStringLiteral("fault"), f.text}});
+    root.insert(QStringLiteral("faults"), faultsJson);
     QJsonArray timelineJson;
     for (const TimelineEntry& t : timeline)
         timelineJson.append(QJsonObject{
@@ -165,26 +293,35 @@ QString RehearsalReport::toHtml() const
                        ".failed{color:#b00;font-weight:bold}.verdict{font-size:1.6em;padding:.4em;border-radius:4px}"
                        ".pass{background:#dfd}.fail{background:#fdd}</style></head><body>\n")
                        .arg(e(scenarioName));
-    int failed = 0;
-    for (const Expectation& x : expectations)
-        failed += x.held ? 0 : 1;
     html += QStringLiteral("<p class=\"verdict %1\">%2: %3</p>\n")
                 .arg(ok ? QStringLiteral("pass") : QStringLiteral("fail"),
-                     ok ? QStringLiteral("PASSED") : QStringLiteral("FAILED"),
-                     ok ? QStringLiteral("every expectation held (%1)").arg(expectations.size())
-                        : QStringLiteral("%1 of %2 expectations failed").arg(failed).arg(expectations.size()));
+                     ok ? QStringLiteral("PASSED") : QStringLiteral("FAILED"), e(verdict()));
     html += QStringLiteral("<h1>%1</h1>\n<p>%2 &middot; %3 s of scenario time &middot; %4</p>\n")
                 .arg(e(scenarioName), e(scenarioPath), seconds(duration), e(transport));
+    // What was seen says the measured time or count in words: one column.
     html += QStringLiteral(
         "<h2>Expectations</h2>\n<table><tr><th>Step</th><th>Expectation</th><th>Result</th>"
-        "<th>Measured</th><th>Detail</th></tr>\n");
+        "<th>What was seen</th></tr>\n");
     for (const Expectation& x : expectations)
-        html += QStringLiteral("<tr><td>%1</td><td>%2</td><td class=\"%3\">%3</td><td>%4</td><td>%5</td></tr>\n")
+        html += QStringLiteral("<tr><td>%1</td><td>%2</td><td class=\"%3\">%3</td><td>%4</td></tr>\n")
                     .arg(x.step)
-                    .arg(e(x.description), x.held ? QStringLiteral("held") : QStringLiteral("failed"),
-                         x.measured ? QString::number(*x.measured) : QStringLiteral("&mdash;"), e(x.detail));
+                    .arg(e(x.description), x.held ? QStringLiteral("held") : QStringLiteral("failed"), e(x.detail));
+    html += QStringLiteral("</table>\n<h2>Alarms</h2>\n");
+    if (alarms.empty()) {
+        html += QStringLiteral("<p>None.</p>\n");
+    } else {
+        html += QStringLiteral("<table><tr><th>Time (s)</th><th>Alarm</th><th>Expected</th></tr>\n");
+        for (const Alarm& a : alarms)
+            html +=
+                QStringLiteral("<tr><td>%1</td><td>%2</td><td%3>%4</td></tr>\n")
+                    .arg(seconds(a.time), e(a.name), a.unexpected() ? QStringLiteral(" class=\"failed\"") : QString(),
+                         a.expectedBy > 0 ? QStringLiteral("by step %1").arg(a.expectedBy)
+                         : a.raised()     ? QStringLiteral("by no step")
+                                          : QStringLiteral("&mdash; (the alarm clearing)"));
+        html += QStringLiteral("</table>\n");
+    }
     html += QStringLiteral(
-                "</table>\n<h2>Frames</h2>\n<p>Up (to the aircraft): %1 sent, %2 received good. Down: %3 "
+                "<h2>Frames</h2>\n<p>Up (to the aircraft): %1 sent, %2 received good. Down: %3 "
                 "sent, %4 received good. %5 lost to outages, %6 damaged by faults, %7 lost, %8 wrong.</p>\n")
                 .arg(frames.sentUp)
                 .arg(frames.receivedUp)
@@ -196,8 +333,10 @@ QString RehearsalReport::toHtml() const
                 .arg(frames.wrong);
     html += QStringLiteral(
         "<h2>Link quality</h2>\n<p>Good frames received per frame sent over the last 10 s: "
-        "<span style=\"color:#1f77b4\">up</span>, <span style=\"color:#d62728\">down</span>.</p>\n");
-    html += qualityPlot(quality, duration);
+        "<span style=\"color:#1f77b4\">up</span>, <span style=\"color:#d62728\">down</span>; "
+        "<span style=\"background:#fbe3bd\">shaded</span> while a fault acted; dashed lines where the link-loss "
+        "alarm was raised (<span style=\"color:#b00\">red</span>: no step expected it).</p>\n");
+    html += qualityPlot(*this);
     html += QStringLiteral("<h2>Command to report latency</h2>\n") + latencyPlot(latencies);
     html += QStringLiteral("<h2>Timeline</h2>\n<table><tr><th>Time (s)</th><th>Kind</th><th>What</th></tr>\n");
     for (const TimelineEntry& t : timeline)

@@ -13,6 +13,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
@@ -265,10 +266,19 @@ QString ScenarioStep::describe() const
             what = QStringLiteral("expect plan acknowledged within %1 s").arg(within);
             break;
         case Kind::ExpectWrongFrames:
-            what = QStringLiteral("expect %1 wrong frames").arg(count);
+            what = QStringLiteral("expect %1 wrong %2")
+                       .arg(count)
+                       .arg(count == 1 ? QStringLiteral("frame") : QStringLiteral("frames"));
             break;
         case Kind::ExpectFramesLost:
-            what = QStringLiteral("expect at most %1 frames lost").arg(count);
+            what = QStringLiteral("expect at most %1 %2 lost")
+                       .arg(count)
+                       .arg(count == 1 ? QStringLiteral("frame") : QStringLiteral("frames"));
+            break;
+        case Kind::ExpectLinkLostAtMost:
+            what = QStringLiteral("expect the link-loss alarm at most %1 %2")
+                       .arg(count)
+                       .arg(count == 1 ? QStringLiteral("time") : QStringLiteral("times"));
             break;
     }
     const QString when = at ? QStringLiteral(" at %1 s").arg(*at) : QStringLiteral(" over the whole run");
@@ -380,8 +390,9 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
         for (auto it = object.begin(); it != object.end(); ++it) {
             if (actions.contains(it.key()))
                 found << it.key();
-            else if (it.key() != QLatin1String("at"))
-                return fail(it.key(), QStringLiteral("unknown member \"%1\" (a step has at and one of %2)")
+            else if (it.key() != QLatin1String("at") && it.key() != QLatin1String("within"))
+                return fail(it.key(), QStringLiteral("unknown member \"%1\" (a step has at, one of %2, and within "
+                                                     "with expect)")
                                           .arg(it.key(), actions.join(QStringLiteral(", "))));
         }
         if (found.size() != 1)
@@ -390,6 +401,11 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
         const QJsonValue value = object.value(action);
         if (action != QLatin1String("expect") && !step.at)
             return fail(QString(), QStringLiteral("%1 needs \"at\"").arg(action));
+        // "within" belongs to an expectation: beside "expect", as
+        // docs/rehearsal.md writes it, or inside it.
+        if (object.contains(QStringLiteral("within")) && action != QLatin1String("expect"))
+            return fail(QStringLiteral("within"),
+                        QStringLiteral("within goes with expect: the seconds after \"at\" it may take to hold"));
 
         if (action == QLatin1String("set")) {
             step.kind = ScenarioStep::Kind::Set;
@@ -454,8 +470,14 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
             if (!value.isObject())
                 return fail(action, QStringLiteral("expect is an object"));
             const QJsonObject expect = value.toObject();
+            const bool withinBeside = object.contains(QStringLiteral("within"));
+            if (withinBeside && expect.contains(QStringLiteral("within")))
+                return fail(QStringLiteral("within"),
+                            QStringLiteral("within is given twice, beside expect and in it; give it once"));
+            const QJsonValue withinValue =
+                withinBeside ? object.value(QStringLiteral("within")) : expect.value(QStringLiteral("within"));
             const auto within = [&]() -> bool {
-                step.within = expect.value(QStringLiteral("within")).toDouble(-1);
+                step.within = withinValue.toDouble(-1);
                 return step.at && step.within >= 0;
             };
             const QString needsWithin = QStringLiteral("this expectation needs \"at\" and \"within\" (seconds)");
@@ -485,10 +507,18 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
                 if (!within())
                     return fail(action, needsWithin);
             } else if (expect.contains(QStringLiteral("wrong-frames")) ||
-                       expect.contains(QStringLiteral("frames-lost-at-most"))) {
-                const bool wrong = expect.contains(QStringLiteral("wrong-frames"));
-                const QString member = wrong ? QStringLiteral("wrong-frames") : QStringLiteral("frames-lost-at-most");
-                step.kind = wrong ? ScenarioStep::Kind::ExpectWrongFrames : ScenarioStep::Kind::ExpectFramesLost;
+                       expect.contains(QStringLiteral("frames-lost-at-most")) ||
+                       expect.contains(QStringLiteral("link-lost-at-most"))) {
+                static const QStringList counts = {QStringLiteral("wrong-frames"),
+                                                   QStringLiteral("frames-lost-at-most"),
+                                                   QStringLiteral("link-lost-at-most")};
+                static const ScenarioStep::Kind kinds[] = {ScenarioStep::Kind::ExpectWrongFrames,
+                                                           ScenarioStep::Kind::ExpectFramesLost,
+                                                           ScenarioStep::Kind::ExpectLinkLostAtMost};
+                const auto found =
+                    std::find_if(counts.begin(), counts.end(), [&](const QString& c) { return expect.contains(c); });
+                const QString member = *found;
+                step.kind = kinds[found - counts.begin()];
                 const double count = expect.value(member).toDouble(-1);
                 if (!isInteger(count) || count < 0)
                     return fail(QStringLiteral("expect/") + member,
@@ -497,9 +527,12 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
                 if (step.at)
                     return fail(QStringLiteral("at"),
                                 QStringLiteral("%1 holds over the whole run: no \"at\"").arg(member));
+                if (!withinValue.isUndefined())
+                    return fail(withinBeside ? QStringLiteral("within") : QStringLiteral("expect/within"),
+                                QStringLiteral("%1 holds over the whole run: no \"within\"").arg(member));
             } else {
-                return fail(action,
-                            QStringLiteral("expect one of reported, alarm, plan, wrong-frames, frames-lost-at-most"));
+                return fail(action, QStringLiteral("expect one of reported, alarm, plan, wrong-frames, "
+                                                   "frames-lost-at-most, link-lost-at-most"));
             }
         }
         scenario.steps.push_back(std::move(step));

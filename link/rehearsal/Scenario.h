@@ -18,10 +18,14 @@
 //                        with probability p, 20-60 consecutive bytes are garbled.
 //                        "direction": "up" (to the aircraft) or "down" limits it;
 //                        both when absent. "clear" ends every fault.
-//   "expect"             {"reported": line, "within": s}, {"alarm": "link-lost" |
-//                        "link-regained", "within": s}, {"plan": "acknowledged",
-//                        "within": s}; without "at" over the whole run:
-//                        {"wrong-frames": n} (exactly n), {"frames-lost-at-most": n}.
+//   "expect"             {"reported": line}, {"alarm": "link-lost" | "link-regained"},
+//                        {"plan": "acknowledged"}, each with "within": s beside
+//                        "expect" in the step (as docs/rehearsal.md writes it) or
+//                        inside it; without "at" over the whole run:
+//                        {"wrong-frames": n} (exactly n), {"frames-lost-at-most": n},
+//                        {"link-lost-at-most": n} (the link-loss alarm raised at
+//                        most n times: a scenario whose faults lose the link now
+//                        and then says so, else each loss fails the run).
 
 #include "codec/message/Airframe.h"
 #include "codec/message/Message.h"
@@ -66,7 +70,8 @@ struct ScenarioStep {
         ExpectAlarm,
         ExpectPlan,
         ExpectWrongFrames,
-        ExpectFramesLost
+        ExpectFramesLost,
+        ExpectLinkLostAtMost
     };
 
     Kind kind = Kind::Set;
@@ -79,7 +84,7 @@ struct ScenarioStep {
     rcm::Message items;        // Set and ExpectReported: the items of the line
     FaultSpec fault;
     QByteArray plan;   // Upload: the plan's bytes
-    qint64 count = 0;  // ExpectWrongFrames, ExpectFramesLost
+    qint64 count = 0;  // ExpectWrongFrames, ExpectFramesLost, ExpectLinkLostAtMost
 
     bool isExpectation() const { return kind >= Kind::ExpectReported; }
     // "step 5: expect engine 2: eng_prop_pitch 140 reported within 5 s of 0 s"

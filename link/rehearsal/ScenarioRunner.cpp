@@ -144,8 +144,8 @@ void ScenarioRunner::makeConsole(std::unique_ptr<Link> link)
     consoleOptions.block2Reply = [this](const rcm::FlightPlanSection& reply) {
         if (!m_upload || m_upload->state() != rcm::FlightPlanUploader::State::Sending || !m_upload->handleReply(reply))
             return;
-        note(QStringLiteral("event"),
-             QStringLiteral("flight plan 0x%1 acknowledged").arg(m_upload->planId(), 8, 16, QLatin1Char('0')));
+        note(QStringLiteral("event"), QStringLiteral("flight plan %1 acknowledged")
+                                          .arg(QString::fromStdString(rcm::planIdText(m_upload->planId()))));
         for (Pending& p : m_pending)
             if (!p.decided && p.step->kind == ScenarioStep::Kind::ExpectPlan && now() >= *p.step->at &&
                 now() <= p.deadline())
@@ -234,6 +234,7 @@ void ScenarioRunner::applyStep(const ScenarioStep& step)
                 m_modem->dropCall();
             else
                 m_channel.apply(step.fault, now());
+            recordFault(step);
             note(QStringLiteral("fault"), step.describe());
             break;
         case ScenarioStep::Kind::Upload:
@@ -242,7 +243,11 @@ void ScenarioRunner::applyStep(const ScenarioStep& step)
                 std::span(reinterpret_cast<const std::uint8_t*>(step.plan.constData()), std::size_t(step.plan.size())),
                 m_scenario.key ? rcm::secure::kMaxFlightPlanData : rcm::FlightPlanSection::kMaxData, kUploadPasses);
             note(QStringLiteral("step"),
-                 step.describe() + QStringLiteral(" (%1 sections)").arg(m_upload->sections().size()));
+                 step.describe() + QStringLiteral(" (flight plan %1, %2 %3)")
+                                       .arg(QString::fromStdString(rcm::planIdText(m_upload->planId())))
+                                       .arg(m_upload->sections().size())
+                                       .arg(m_upload->sections().size() == 1 ? QStringLiteral("section")
+                                                                             : QStringLiteral("sections")));
             break;
         default:
             note(QStringLiteral("step"), step.describe());
@@ -281,10 +286,54 @@ void ScenarioRunner::statusReceived(const rcm::Message& status)
     }
 }
 
+void ScenarioRunner::recordFault(const ScenarioStep& step)
+{
+    const double t = now();
+    const FaultSpec& fault = step.fault;
+    const auto overlaps = [](FaultDirection a, FaultDirection b) {
+        return a == FaultDirection::Both || b == FaultDirection::Both || a == b;
+    };
+    // As RehearsalChannel::apply: clear ends every fault, an outage too; a
+    // fault of the same kind replaces one acting the same way.
+    for (OpenFault& open : m_openFaults) {
+        const bool replaced = open.kind == fault.kind && fault.kind != FaultSpec::Kind::Outage &&
+                              fault.kind != FaultSpec::Kind::CallDrop && overlaps(open.direction, fault.direction);
+        if (fault.kind == FaultSpec::Kind::Clear || replaced)
+            m_report.faults[open.index].end = std::min(m_report.faults[open.index].end, t);
+    }
+    std::erase_if(m_openFaults, [&](const OpenFault& open) { return m_report.faults[open.index].end <= t; });
+    if (fault.kind == FaultSpec::Kind::Clear ||
+        (fault.kind != FaultSpec::Kind::Outage && fault.kind != FaultSpec::Kind::CallDrop && fault.value <= 0))
+        return;
+    const double seconds = fault.kind == FaultSpec::Kind::Outage     ? fault.value
+                           : fault.kind == FaultSpec::Kind::CallDrop ? Scenario::kCallDropOutage
+                                                                     : m_scenario.duration - t;
+    QString text = step.describe();
+    text = text.mid(text.indexOf(QStringLiteral(": ")) + 2);  // without "step 5 at 40 s: "
+    m_report.faults.push_back({t, std::min(t + seconds, m_scenario.duration), text});
+    m_openFaults.push_back({fault.kind, fault.direction, m_report.faults.size() - 1});
+}
+
 void ScenarioRunner::alarm(const QString& name)
 {
     const double t = now();
-    note(QStringLiteral("alarm"), name);
+    // Expected by the first step that expects this alarm around now, else
+    // by one that allows link losses over the whole run (which fails when
+    // they are more than it allows).
+    int expectedBy = 0;
+    for (const ScenarioStep& step : m_scenario.steps)
+        if (step.kind == ScenarioStep::Kind::ExpectAlarm && step.text == name && t >= *step.at - 1e-9 &&
+            t <= *step.at + step.within + 1e-9) {
+            expectedBy = step.number;
+            break;
+        }
+    for (const ScenarioStep& step : m_scenario.steps)
+        if (expectedBy == 0 && step.kind == ScenarioStep::Kind::ExpectLinkLostAtMost &&
+            name == QLatin1String("link-lost"))
+            expectedBy = step.number;
+    const RehearsalReport::Alarm raised{t, name, expectedBy};
+    m_report.alarms.push_back(raised);
+    note(QStringLiteral("alarm"), raised.unexpected() ? name + QStringLiteral(": no step expected it") : name);
     for (Pending& p : m_pending)
         if (!p.decided && p.step->kind == ScenarioStep::Kind::ExpectAlarm && p.step->text == name && t >= *p.step->at &&
             t <= p.deadline())
@@ -383,13 +432,23 @@ void ScenarioRunner::finish()
         if (!step.isExpectation())
             continue;
         RehearsalReport::Expectation e{step.number, step.describe(), false, std::nullopt, {}};
-        if (step.kind == ScenarioStep::Kind::ExpectWrongFrames || step.kind == ScenarioStep::Kind::ExpectFramesLost) {
+        if (step.kind == ScenarioStep::Kind::ExpectLinkLostAtMost) {
+            const auto count = std::count_if(m_report.alarms.begin(), m_report.alarms.end(),
+                                             [](const RehearsalReport::Alarm& a) { return a.raised(); });
+            e.held = count <= step.count;
+            e.measured = double(count);
+            e.detail = QStringLiteral("raised %1 %2")
+                           .arg(count)
+                           .arg(count == 1 ? QStringLiteral("time") : QStringLiteral("times"));
+        } else if (step.kind == ScenarioStep::Kind::ExpectWrongFrames ||
+                   step.kind == ScenarioStep::Kind::ExpectFramesLost) {
             const qint64 count = step.kind == ScenarioStep::Kind::ExpectWrongFrames ? frames.wrong : frames.lost;
             e.held = step.kind == ScenarioStep::Kind::ExpectWrongFrames ? count == step.count : count <= step.count;
             e.measured = double(count);
-            e.detail = QStringLiteral("%1 %2").arg(count).arg(step.kind == ScenarioStep::Kind::ExpectWrongFrames
-                                                                  ? QStringLiteral("wrong frames")
-                                                                  : QStringLiteral("frames lost"));
+            const QString frame = count == 1 ? QStringLiteral("frame") : QStringLiteral("frames");
+            e.detail = step.kind == ScenarioStep::Kind::ExpectWrongFrames
+                           ? QStringLiteral("%1 wrong %2").arg(count).arg(frame)
+                           : QStringLiteral("%1 %2 lost").arg(count).arg(frame);
         } else {
             const Pending& p = *pendingOf(step);
             e.held = p.held;
@@ -407,6 +466,7 @@ void ScenarioRunner::finish()
     for (const auto& e : m_report.expectations)
         if (!e.held)
             note(QStringLiteral("expectation"), QStringLiteral("failed: ") + e.description);
+    m_openFaults.clear();
     std::stable_sort(m_report.timeline.begin(), m_report.timeline.end(),
                      [](const auto& a, const auto& b) { return a.time < b.time; });
     emit finished();

@@ -84,6 +84,7 @@ private:
     void received(RehearsalChannel::End sender, const rcm::Message& message);
     void statusReceived(const rcm::Message& status);
     void alarm(const QString& name);
+    void recordFault(const ScenarioStep& step);
     void note(const QString& kind, const QString& text);
     void judgeDeadlines();
     void sampleQuality();
@@ -121,6 +122,13 @@ private:
     std::array<std::unique_ptr<rcm::secure::SecureCodec>, 2> m_ciphers;
     rcm::Message m_command;
     std::vector<Pending> m_pending;  // one per timed expectation
+    // A fault acting now: its period in the report ends when it does.
+    struct OpenFault {
+        FaultSpec::Kind kind;
+        FaultDirection direction;
+        std::size_t index;  // into m_report.faults
+    };
+    std::vector<OpenFault> m_openFaults;
     std::size_t m_nextStep = 0;      // steps are applied in order of "at"
     std::vector<std::size_t> m_order;
     std::array<qint64, 2> m_goodReceived{};          // by sender

@@ -4,6 +4,8 @@
 #include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLog.h"
 
+#include "codec/message/TextFormat.h"
+
 #include <QDateTime>
 #include <QDir>
 #include <QFileInfo>
@@ -50,10 +52,19 @@ ConsoleSession::ConsoleSession(const QString& frameLogDirectory, QObject* parent
     : QObject(parent),
       m_frameLogDirectory(frameLogDirectory),
       m_rehearsal(new RehearsalLauncher(this)),
-      m_control(new StationControl(this))
+      m_control(new StationControl(this)),
+      m_hold(new CommandHold(this))
 {
     LinkWorker::registerMetaTypes();
     connect(m_control, &StationControl::headerChanged, this, &ConsoleSession::sendCommand);
+    connect(m_control, &StationControl::roleChanged, this, [this](StationControl::Role role) {
+        using Role = StationControl::Role;
+        if (role == Role::Offered && !(m_hold->holding() && m_hold->reason() == CommandHold::Reason::NewLink &&
+                                       !m_hold->reportHeard()))
+            hold(CommandHold::Reason::ControlGiven, true);
+        else if ((role == Role::Backup || role == Role::Observing || role == Role::HandingOver) && commanding())
+            hold(CommandHold::Reason::NotInControl, true);
+    });
     connect(m_rehearsal, &RehearsalLauncher::ready, this, &ConsoleSession::rehearsalReady);
     connect(m_rehearsal, &RehearsalLauncher::failed, this, &ConsoleSession::rehearsalFailed);
 }
@@ -275,16 +286,23 @@ void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, cons
     if (m_filterOptions)
         options = m_filterOptions(std::move(options));
     if (m_wrapLink)
-        link = m_wrapLink(std::move(link));
+        link = m_wrapLink(std::move(link), options.secure.get());
     m_controller = std::make_unique<LinkController>(std::move(link), std::move(opened.log), std::move(options));
     if (kind == Kind::Rehearsal)
         // Frames came back: from now on an exit of uasim is a failure, not a port clash.
         connect(m_controller.get(), &LinkController::messageReceived, m_rehearsal, [this] { m_rehearsal->confirm(); });
     m_control->reset();
-    if (kind != Kind::Replay)
+    m_hold->forgetReports();
+    m_checkAfterRegain = false;
+    if (kind != Kind::Replay) {
+        // Nothing the panels hold goes out before the aircraft is heard and
+        // the operator resumes.
+        hold(CommandHold::Reason::NewLink, true);
         // Who is in control is what the aircraft says now, not what a log said.
-        connect(m_controller.get(), &LinkController::messageReceived, m_control,
-                [this](const ReceivedMessage& received) { m_control->statusReceived(received.message); });
+        connect(m_controller.get(), &LinkController::messageReceived, this,
+                [this](const ReceivedMessage& received) { statusReceived(received.message); });
+        connect(m_controller.get(), &LinkController::linkRegained, this, [this] { m_checkAfterRegain = true; });
+    }
     sendCommand();
     emit linkStarted(m_controller.get());
     m_controller->start();
@@ -326,9 +344,88 @@ void ConsoleSession::sendCommand()
 {
     if (!m_controller || !m_command)
         return;
-    rcm::Message named = *m_command;
+    const bool held = m_hold->holding();
+    rcm::Message named = held ? rcm::heldCommand(*m_command) : *m_command;
     m_control->applyTo(named);
-    m_controller->setCommand(named);
+    // A flight plan section is a command too: none while held.
+    m_controller->setCommand(named, !held);
+}
+
+void ConsoleSession::hold(CommandHold::Reason reason, bool adopt)
+{
+    m_hold->hold(reason, adopt);
+    emit commandEvent(tr("Commands held: %1; the frames carry none until the operator resumes")
+                          .arg(CommandHold::reasonText(reason)));
+    sendCommand();
+}
+
+void ConsoleSession::holdCommand(CommandHold::Reason reason)
+{
+    hold(reason, true);
+}
+
+bool ConsoleSession::resumeCommanding(QString* whyNot)
+{
+    using Role = StationControl::Role;
+    const auto refuse = [whyNot](const QString& reason) {
+        if (whyNot)
+            *whyNot = reason;
+        return false;
+    };
+    if (!m_command)
+        return refuse(tr("there is no command to send"));
+    if (m_control->station()) {
+        switch (m_control->role()) {
+            case Role::Offered:
+                m_control->takeControl();
+                break;
+            case Role::InControl:
+                break;
+            case Role::Unknown:
+                return refuse(tr("the aircraft has not said yet which station is in control"));
+            case Role::HandingOver:
+                return refuse(tr("this station is handing control over"));
+            case Role::Backup:
+            case Role::Observing:
+                return refuse(tr("%1 is in control, not this station")
+                                  .arg(QString::fromStdString(rcm::formatStation(*m_control->reportedControl()))));
+        }
+    }
+    if (!m_hold->holding())
+        return true;
+    m_hold->resume();
+    emit commandEvent(m_hold->reportHeard() || m_hold->lastReport()
+                          ? tr("Commanding resumed: the frames carry the panels' command")
+                          : tr("Commanding resumed before any report from the aircraft: the frames carry the panels' "
+                               "command"));
+    sendCommand();
+    return true;
+}
+
+void ConsoleSession::statusReceived(const rcm::Message& status)
+{
+    m_control->statusReceived(status);
+    if (!m_command)
+        return;
+    if (std::exchange(m_checkAfterRegain, false) && !m_hold->holding()) {
+        // Back after a loss (an outage, a redial): the command goes on only
+        // if the aircraft still does what it says.
+        const std::vector<rcm::ItemChange> changes = rcm::commandChanges(*m_command, status);
+        if (changes.empty())
+            emit commandEvent(tr("Link back: the aircraft's report agrees with the command; commanding goes on"));
+        else
+            hold(CommandHold::Reason::LinkRegained, false);
+    }
+    if (std::optional<rcm::Message> adopted = m_hold->statusReceived(status, *m_command)) {
+        const std::size_t differences = m_hold->differences().size();
+        m_command = std::move(*adopted);
+        emit commandAdopted(*m_command);
+        emit commandEvent(differences == 0
+                              ? tr("The aircraft's report is in the panels: it agreed with them")
+                              : tr("The aircraft's report is in the panels: %n item(s) differed from what they held",
+                                   nullptr, int(differences)));
+        sendCommand();
+    }
 }
 
 void ConsoleSession::setReplayPaused(bool paused)

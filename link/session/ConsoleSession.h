@@ -17,6 +17,7 @@
 #include "codec/message/Message.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/framelog/ReplayLink.h"
+#include "link/session/CommandHold.h"
 #include "link/session/LinkController.h"
 #include "link/session/LinkSettings.h"
 #include "link/session/LinkStatistics.h"
@@ -48,8 +49,10 @@ public:
     Q_ENUM(Kind)
 
     // Wraps each transport before it goes to the worker (the console's voice
-    // beside the commands); unset, the transport goes as it is.
-    using LinkWrapper = std::function<std::unique_ptr<Link>(std::unique_ptr<Link>)>;
+    // beside the commands, under the link's key when it has one: null for
+    // the plain link); unset, the transport goes as it is.
+    using LinkWrapper =
+        std::function<std::unique_ptr<Link>(std::unique_ptr<Link>, const rcm::secure::SecureEndpoint* key)>;
     // Completes the worker's options for each link, the secure endpoint set
     // already (the flight plan upload's BLOCK 2 hooks, sized for that link).
     using OptionsFilter = std::function<LinkWorker::Options(LinkWorker::Options)>;
@@ -112,6 +115,15 @@ public:
     // status frames of a live link, applied to every command sent. Set its
     // station to follow control; hand over and take control through it.
     StationControl* stationControl() const { return m_control; }
+    // Whether the frames carry the command or hold it back until the
+    // operator resumes: held on every new link, after a loss when the
+    // aircraft's report differs, on another airframe, when given control.
+    const CommandHold* commandHold() const { return m_hold; }
+    bool commanding() const { return !m_hold->holding(); }
+    // The command as the console holds it (its panels'), sent or held.
+    const std::optional<rcm::Message>& command() const { return m_command; }
+    // What starts uasim for a rehearsal, to set it up (its voice) before startRehearsal().
+    RehearsalLauncher* rehearsalLauncher() const { return m_rehearsal; }
 
 public slots:
     // Opens the key file (if the settings name one) off the GUI thread, then
@@ -131,6 +143,14 @@ public slots:
 
     // The state to command, now and for every link started later.
     void setCommand(const rcm::Message& command);
+    // Holds the command back from now on (another airframe is being
+    // loaded): the next status frame is adopted, as on a new link.
+    void holdCommand(CommandHold::Reason reason);
+    // The operator confirmed: the frames carry the command from the next one
+    // on. Following control, this station must be the one the aircraft names
+    // in control: its Take control is sent with it. False, with the reason
+    // for people, when it cannot resume.
+    bool resumeCommanding(QString* whyNot = nullptr);
 
     void setReplayPaused(bool paused);
     // 0.25 to 10 times the logged pace; kept for the next replay.
@@ -153,6 +173,12 @@ signals:
     void warning(const QString& message);
     // A log opened for replay is indexed; takeReplayIndex() has it.
     void replayIndexed(const QString& path);
+    // The aircraft's report became the command (the first status frame of a
+    // hold that adopts it): command() holds it; the panels show it.
+    void commandAdopted(const rcm::Message& command);
+    // What happened to the command's hold, for the event log: held, resumed,
+    // the report adopted and how it differed.
+    void commandEvent(const QString& text);
 
 private:
     struct Opened;
@@ -169,14 +195,22 @@ private:
     void startReplay(const QString& path, quint64 request, std::shared_ptr<Opened> opened);
     void rehearsalReady(quint16 port);
     void rehearsalFailed(const QString& reason);
-    // The command as control wants it named, to the running link.
+    // The command as control wants it named, to the running link; its
+    // header alone while it is held.
     void sendCommand();
+    // A status frame delivered on the live link.
+    void statusReceived(const rcm::Message& status);
+    void hold(CommandHold::Reason reason, bool adopt);
 
     QString m_frameLogDirectory;
     LinkWrapper m_wrapLink;
     OptionsFilter m_filterOptions;
     RehearsalLauncher* m_rehearsal;
     StationControl* m_control;
+    CommandHold* m_hold;
+    // The link came back: the next status frame says whether the command
+    // still agrees with the aircraft.
+    bool m_checkAfterRegain = false;
     std::unique_ptr<LinkController> m_controller;
     std::unique_ptr<Link> m_preparedLink;  // the transport waiting for its key and log
     QPointer<ReplayLink> m_replay;  // lives in the link thread; only queued calls

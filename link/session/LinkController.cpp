@@ -81,8 +81,9 @@ void LinkController::stop()
     QMetaObject::invokeMethod(m_worker, &LinkWorker::stop, Qt::QueuedConnection);
 }
 
-void LinkController::setCommand(const rcm::Message& command)
+void LinkController::setCommand(const rcm::Message& command, bool withPlanSections)
 {
     QMetaObject::invokeMethod(
-        m_worker, [worker = m_worker, command] { worker->setCommand(command); }, Qt::QueuedConnection);
+        m_worker, [worker = m_worker, command, withPlanSections] { worker->setCommand(command, withPlanSections); },
+        Qt::QueuedConnection);
 }

@@ -52,8 +52,9 @@ public:
 public slots:
     void start();
     void stop();
-    // Copied and queued: the worker picks it up for its next frame.
-    void setCommand(const rcm::Message& command);
+    // Copied and queued: the worker picks it up for its next frame (see
+    // LinkWorker::setCommand).
+    void setCommand(const rcm::Message& command, bool withPlanSections = true);
 
 private:
     QThread* m_thread;     // owned; let go, to delete itself, if it will not end in time

@@ -37,6 +37,9 @@ signals:
     // What the transport itself is doing, for the status bar and the event
     // log: a modem dialling, connected, redialling; see Link::statusChanged.
     void transportStatusChanged(const QString& status);
+    // A satellite phone's service, for the status bar's signal bars; see
+    // Link::serviceChanged.
+    void modemServiceChanged(int signalBars, bool registered, const QString& text);
     void commandRejected(const QString& reasons);
     // Secure link: a frame that decoded was refused; "forged: ..." and so on.
     void frameRejected(const QString& reason);

@@ -5,7 +5,26 @@
 #include "link/transport/UdpLink.h"
 
 #include <QHostAddress>
+#include <QLocale>
 #include <QSettings>
+
+QString LinkSettings::defaultCurrency()
+{
+    // The C locale knows none: a satellite call is billed in US dollars most often.
+    const QString code = QLocale::system().currencySymbol(QLocale::CurrencyIsoCode);
+    return code.isEmpty() ? QStringLiteral("USD") : code;
+}
+
+bool LinkSettings::setModemProfile(const QString& name, QString* error)
+{
+    const std::optional<modem::Profile> profile = modem::findProfile(name);
+    if (profile)
+        modemProfile = profile->name;
+    else if (error)
+        *error = QObject::tr("no modem profile is called \"%1\"; there are %2")
+                     .arg(name, modem::profileNames().join(QStringLiteral(", ")));
+    return profile.has_value();
+}
 
 std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
 {
@@ -23,12 +42,18 @@ std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
             return std::make_unique<SerialLink>(serialPort.trimmed(), baudRate);
         if (!modemInit.trimmed().toUpper().startsWith(QLatin1String("AT")))
             return fail(QObject::tr("The modem's init string must start with AT: \"%1\"").arg(modemInit));
+        const std::optional<modem::Profile> profile = modem::findProfile(modemProfile);
+        if (!profile)
+            return fail(QObject::tr("No modem profile is called \"%1\"; there are %2")
+                            .arg(modemProfile, modem::profileNames().join(QStringLiteral(", "))));
         auto port = std::make_unique<SerialLink>(serialPort.trimmed(), baudRate,
                                                  rtsCts ? SerialLink::FlowControl::RtsCts : SerialLink::FlowControl::None);
         ModemLink::Options modem;
         modem.number = dialNumber.trimmed();
         modem.initString = modemInit.trimmed().toLatin1();
+        modem.profile = *profile;
         modem.costPerMinute = callCostPerMinute;
+        modem.costCurrency = callCurrency.trimmed();
         return std::make_unique<ModemLink>(std::move(port), modem);
     }
     const QHostAddress local(localAddress.trimmed());
@@ -46,8 +71,11 @@ QString LinkSettings::summary() const
 {
     QString where = transport == Transport::Serial ? QObject::tr("serial %1 at %2 bit/s").arg(serialPort).arg(baudRate)
                                                    : QObject::tr("UDP %1:%2").arg(remoteAddress).arg(remotePort);
-    if (dialsModem())
-        where = QObject::tr("%1, dialling %2").arg(where, dialNumber.trimmed());
+    if (dialsModem()) {
+        const std::optional<modem::Profile> profile = modem::findProfile(modemProfile);
+        where = QObject::tr("%1, dialling %2 (%3)")
+                    .arg(where, dialNumber.trimmed(), profile ? profile->title : modemProfile);
+    }
     return keyPath.isEmpty() ? where : QObject::tr("%1, encrypted").arg(where);
 }
 
@@ -97,6 +125,8 @@ void LinkSettings::save(QSettings& settings) const
     settings.setValue(QStringLiteral("keyPath"), keyPath);  // where the key is; the key stays in its file
     settings.setValue(QStringLiteral("dialNumber"), dialNumber);
     settings.setValue(QStringLiteral("modemInit"), modemInit);
+    settings.setValue(QStringLiteral("modemProfile"), modemProfile);
+    settings.setValue(QStringLiteral("callCurrency"), callCurrency);
     settings.setValue(QStringLiteral("rtsCts"), rtsCts);
     settings.setValue(QStringLiteral("callCostPerMinute"), callCostPerMinute);
     settings.setValue(QStringLiteral("satelliteDelayMs"), satelliteDelayMs);
@@ -121,6 +151,8 @@ LinkSettings LinkSettings::load(const QSettings& settings)
     s.keyPath = value("keyPath", defaults.keyPath).toString();
     s.dialNumber = value("dialNumber", defaults.dialNumber).toString();
     s.modemInit = value("modemInit", defaults.modemInit).toString();
+    s.modemProfile = value("modemProfile", defaults.modemProfile).toString();
+    s.callCurrency = value("callCurrency", defaults.callCurrency).toString();
     s.rtsCts = value("rtsCts", defaults.rtsCts).toBool();
     s.callCostPerMinute = value("callCostPerMinute", defaults.callCostPerMinute).toDouble();
     s.satelliteDelayMs = value("satelliteDelayMs", defaults.satelliteDelayMs).toInt();

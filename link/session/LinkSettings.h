@@ -35,9 +35,17 @@ struct LinkSettings {
     // for a modem unless the operator turns it off.
     QString dialNumber;
     QString modemInit = QStringLiteral("ATE0V1&C1&D2");
+    // The phone (modem::Profile's name): its set-up after the init string,
+    // and how it tells its registration and signal.
+    QString modemProfile = QStringLiteral("generic");
     bool rtsCts = true;
     // The call's price per started minute, shown when the call ends; 0: not shown.
     double callCostPerMinute = 0;
+    // The price's currency, "USD"; by default the system locale's.
+    QString callCurrency = defaultCurrency();
+    static QString defaultCurrency();
+    // The profile of that name (any case); false, the reason in *error, for none.
+    bool setModemProfile(const QString& name, QString* error = nullptr);
     // The satellite's one-way delay: the console waits twice this before it
     // calls a reported value that disagrees with the command a mismatch.
     int satelliteDelayMs = 1500;

@@ -4,6 +4,7 @@
 
 #include "link/session/LinkWorker.h"
 
+#include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/DigitPairs.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
@@ -115,6 +116,7 @@ LinkWorker::LinkWorker(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log
     });
     connect(m_link.get(), &Link::errorOccurred, this, &LinkWorker::errorOccurred);
     connect(m_link.get(), &Link::statusChanged, this, &LinkEvents::transportStatusChanged);
+    connect(m_link.get(), &Link::serviceChanged, this, &LinkEvents::modemServiceChanged);
 
     if (m_log)
         m_log->setErrorHandler([this](const QString& error) { reportError(QStringLiteral("frame log: ") + error); });
@@ -175,7 +177,7 @@ void LinkWorker::stop()
     m_statisticsDirty = false;
 }
 
-void LinkWorker::setCommand(const rcm::Message& command)
+void LinkWorker::setCommand(const rcm::Message& command, bool withPlanSections)
 {
     // The items the worker fills in are set to valid placeholders, so only
     // the operator's part is judged.
@@ -189,6 +191,7 @@ void LinkWorker::setCommand(const rcm::Message& command)
         return;
     }
     m_command = command;
+    m_withPlanSections = withPlanSections;
 }
 
 void LinkWorker::armTick()
@@ -228,7 +231,7 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
     if (!m_command)
         return;
     rcm::Message message = *m_command;
-    if (m_options.block2Source) {
+    if (m_options.block2Source && m_withPlanSections) {
         if (std::optional<rcm::FlightPlanSection> section = m_options.block2Source())
             message.flightPlan = std::move(*section);
     }
@@ -286,8 +289,8 @@ std::optional<QByteArray> LinkWorker::encode(rcm::Message& message)
     if (!bytes && !message.flightPlan.empty()) {
         // The command was validated when it was set, so the section is at
         // fault: the frame still goes, without it.
-        const QString reason = QStringLiteral("BLOCK 2 section %1/%2 not sent: %3")
-                                   .arg(message.flightPlan.planId)
+        const QString reason = QStringLiteral("BLOCK 2: flight plan %1 section %2 not sent: %3")
+                                   .arg(QString::fromStdString(rcm::planIdText(message.flightPlan.planId)))
                                    .arg(message.flightPlan.sectionId)
                                    .arg(joinDiagnostics(errors));
         if (reason != m_lastEncodeError) {

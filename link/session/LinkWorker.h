@@ -106,8 +106,10 @@ public slots:
     void stop();
     // The state to command from the next frame on. Refused, with the reasons
     // in commandRejected(), when it cannot be encoded; the previous command
-    // then stays. No frame is sent before the first command.
-    void setCommand(const rcm::Message& command);
+    // then stays. No frame is sent before the first command. Without
+    // `withPlanSections` the frames carry no section from the BLOCK 2 source:
+    // a command held back holds its flight plan upload back too.
+    void setCommand(const rcm::Message& command, bool withPlanSections = true);
 
 private:
     void armTick();
@@ -144,6 +146,7 @@ private:
     bool m_statisticsDirty = false;
     bool m_running = false;
     std::optional<rcm::Message> m_command;
+    bool m_withPlanSections = true;
     std::uint32_t m_nextMessageId;
     std::int64_t m_idealTickMicros = 0;  // UTC of the tick the timer is armed for
     QString m_lastEncodeError;           // so a bad BLOCK 2 source is reported once, not every second

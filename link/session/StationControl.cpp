@@ -40,7 +40,7 @@ void StationControl::setStation(std::optional<StationId> station)
     m_station = station;
     m_reportedControl.reset();
     m_reportedBackup.reset();
-    m_namesItself = true;
+    m_claimed = false;
     m_heldControl = false;
     setRole(Role::Unknown);
     emit headerChanged();
@@ -48,9 +48,10 @@ void StationControl::setStation(std::optional<StationId> station)
 
 void StationControl::reset()
 {
-    // What the aircraft said last is kept: a station that was not in control
-    // when its link ended must not take control up by naming itself on the
-    // next one before it hears the aircraft.
+    // A new link starts from nothing the operator confirmed on this one: it
+    // takes control again only by another Take control, after the aircraft
+    // has been heard. What the aircraft said last is kept for the alarms.
+    m_claimed = false;
     setRole(Role::Unknown);
 }
 
@@ -61,27 +62,36 @@ bool StationControl::canHandOver() const
 
 void StationControl::applyTo(Message& command) const
 {
-    if (!m_station)
-        return;
     using enum ItemId;
-    Role role = m_role;
-    if (role == Role::Unknown && !m_namesItself)
-        // A new link, this station not in control when the last one ended:
-        // as the aircraft last had it, until it says otherwise.
-        role = m_reportedControl == m_station ? Role::Offered : Role::Backup;
-    switch (role) {
+    if (!m_station) {
+        // The stations the header panel sets, but never a claim: only Take
+        // control, which follows control, sends one.
+        const std::optional<StationId> destination = headerStation(command, ID_GCS_destination);
+        if (destination && destination == headerStation(command, ID_GCS_backup))
+            command.header.erase(ID_GCS_backup);
+        return;
+    }
+    switch (m_role) {
         case Role::Unknown:
-            setStationItem(command, ID_GCS_destination, m_station);
-            break;  // the backup the operator set, if any
+            // Nobody named until the aircraft says who is in control: a frame
+            // naming no station is no command and changes no backup.
+            setStationItem(command, ID_GCS_destination, std::nullopt);
+            setStationItem(command, ID_GCS_backup, std::nullopt);
+            break;
         case Role::InControl:
+            // The claim: only the operator's Take control on this link sends it.
             setStationItem(command, ID_GCS_destination, m_station);
-            if (m_reportedBackup)
-                setStationItem(command, ID_GCS_backup, m_reportedBackup);
+            setStationItem(command, ID_GCS_backup, m_station);
             break;
         case Role::Offered:
+            // Naming itself, not claiming: taken up or not, the aircraft keeps
+            // what it does (the frames hold the command back meanwhile), and
+            // naming the backup instead would hand over a control taken up.
+            setStationItem(command, ID_GCS_destination, m_station);
+            setStationItem(command, ID_GCS_backup, std::nullopt);
+            break;
         case Role::HandingOver:
-            // Not naming itself: the aircraft acts on none of it (not yet taken
-            // up), or passes control to the backup (handing over).
+            // The aircraft passes control to the backup.
             setStationItem(command, ID_GCS_destination, m_reportedBackup);
             setStationItem(command, ID_GCS_backup, m_station);
             break;
@@ -108,13 +118,21 @@ void StationControl::statusReceived(const Message& status)
     if (m_role == Role::HandingOver && control == previousControl)
         next = Role::HandingOver;  // the aircraft has not seen it yet
     else if (control == m_station)
-        next = m_namesItself ? Role::InControl : Role::Offered;
+        next = m_claimed ? Role::InControl : Role::Offered;
     else
         next = backup == m_station ? Role::Backup : Role::Observing;
 
     if (next != m_role) {
         const Role previous = m_role;
-        if (next == Role::Offered) {
+        if (next == Role::Offered && previous == Role::Unknown && previousControl != control) {
+            // A new link (or a console started) finding itself in control, by
+            // the aircraft's start-up configuration or a control it kept.
+            emit event(tr("The aircraft names this station in control: check what it reports, "
+                          "then Take control to command it"));
+        } else if (next == Role::Offered && previous == Role::Unknown) {
+            emit event(tr("The aircraft still names this station in control: check what it reports, "
+                          "then Take control to command it again"));
+        } else if (next == Role::Offered) {
             emit alarm(tr("The aircraft gave control to this station (%1 was in control): "
                           "check what it reports, then Take control to command it")
                            .arg(text(previousControl ? previousControl : backup)));
@@ -136,7 +154,7 @@ void StationControl::statusReceived(const Message& status)
             emit event(tr("Took control: the aircraft acts on this station's commands; backup %1").arg(text(backup)));
         }
         if (next != Role::InControl && next != Role::Unknown)
-            m_namesItself = false;
+            m_claimed = false;
         if (next == Role::InControl || next == Role::Offered)
             m_heldControl = true;
         else if (next != Role::HandingOver)
@@ -151,7 +169,7 @@ void StationControl::handOver()
 {
     if (!canHandOver())
         return;
-    m_namesItself = false;
+    m_claimed = false;
     emit event(tr("Handing over to %1").arg(text(m_reportedBackup)));
     setRole(Role::HandingOver);
     emit headerChanged();
@@ -161,8 +179,8 @@ void StationControl::takeControl()
 {
     if (!canTakeControl())
         return;
-    m_namesItself = true;
-    emit event(tr("Taking control: the next frames name this station in control"));
+    m_claimed = true;
+    emit event(tr("Taking control: the next frames claim control for this station"));
     // The role follows the aircraft's next status, which names this station in control.
     setRole(Role::InControl);
     emit headerChanged();

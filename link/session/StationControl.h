@@ -25,8 +25,8 @@ class StationControl : public QObject {
 public:
     enum class Role {
         Unknown,      // no status frame on this link yet
-        InControl,    // the aircraft acts on this station's commands
-        Offered,      // the aircraft gave control here (handover or failover); not yet taken
+        InControl,    // the aircraft names this station in control, and its operator took control on this link
+        Offered,      // the aircraft names this station in control; its operator has not taken it on this link
         HandingOver,  // asked the aircraft to give control to the backup
         Backup,       // the aircraft names this station its backup
         Observing,    // neither
@@ -64,9 +64,9 @@ public slots:
     void handOver();
     // The operator confirmed: command from now on. Does nothing unless canTakeControl().
     void takeControl();
-    // The link ended: the role is unknown until the next status frame. The
-    // frames name this station in control meanwhile only if it was in
-    // control (or never heard otherwise).
+    // The link ended: the role is unknown until the next status frame, and
+    // the frames name no station meanwhile. Control is taken again only by
+    // another Take control.
     void reset();
 
 signals:
@@ -86,9 +86,10 @@ private:
     std::optional<rcm::StationId> m_reportedControl;
     std::optional<rcm::StationId> m_reportedBackup;
     Role m_role = Role::Unknown;
-    // Whether this station's frames name itself as destination: what takes
-    // control up at the aircraft.
-    bool m_namesItself = true;
+    // The operator took control on this link (takeControl()) and the
+    // aircraft has not named another station since: the frames claim control
+    // (ID_GCS_destination and ID_GCS_backup both this station).
+    bool m_claimed = false;
     // The aircraft last named this station in control: a new link that finds
     // another station in control is a failover away from it.
     bool m_heldControl = false;

@@ -76,6 +76,8 @@ void RehearsalLauncher::launch()
         arguments << QStringLiteral("--serial") << m_serialDevice;
     if (m_modem)
         arguments << QStringLiteral("--modem");
+    if (m_voice)
+        arguments << QStringLiteral("--voice-echo");
     if (!m_keyPath.isEmpty())
         arguments << QStringLiteral("--key") << m_keyPath;
     if (m_verbose)

@@ -42,6 +42,9 @@ public:
     void setSerialDevice(const QString& device) { m_serialDevice = device; }
     // uasim --modem: the serial device is a satellite modem, whose calls it answers.
     void setModem(bool modem) { m_modem = modem; }
+    // uasim --voice-echo: voice beside the commands, as the console has it,
+    // and what it hears said back, so that the operator hears the round trip.
+    void setVoice(bool voice) { m_voice = voice; }
 
     bool isRunning() const { return m_process && m_process->state() != QProcess::NotRunning; }
     quint16 port() const { return m_port; }
@@ -67,6 +70,7 @@ private:
     bool m_confirmed = false;
     bool m_verbose = false;
     bool m_modem = false;
+    bool m_voice = false;
     QString m_serialDevice;
     QByteArray m_stderr;
 };

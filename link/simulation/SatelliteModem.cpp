@@ -5,6 +5,7 @@
 #include <QSocketNotifier>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cstring>
@@ -116,6 +117,16 @@ struct SatelliteModem::Port {
     bool lineTooLong = false;
     bool lineFeedMayFollow = false;  // a CR ended a line: a LF next is its partner, not input
     QByteArray dialled;
+    // The network's reports: +CREG=n (0 off, 1 <stat>, 2 <stat> and location),
+    // +CIER=mode,signal,service; what is held for the return to command mode.
+    int registrationReports = 0;
+    bool indicatorEvents = false;
+    bool signalEvents = false;
+    bool serviceEvents = false;
+    bool heldRegistration = false;
+    bool heldSignal = false;
+    QByteArray bearer = "7,0,1";  // +CBST as last set
+    bool dtrHangsUp = true;       // &D2 (or &D1); &D0: a program going away leaves the call up
 
     // The "+++" escape: pluses held back until the guard time says what they are.
     int heldPluses = 0;
@@ -133,8 +144,11 @@ SatelliteModem::SatelliteModem(Options options, QObject* parent)
     : QObject(parent), m_options(options), m_random(options.seed)
 {
     m_clock.start();
-    for (QTimer* timer : {&m_setupTimer, &m_ringTimer, &m_dropTimer, &m_paceTimer})
+    for (QTimer* timer : {&m_setupTimer, &m_ringTimer, &m_dropTimer, &m_paceTimer, &m_serviceTimer})
         timer->setParent(this);
+    m_bars = m_options.noService ? 0 : 4;
+    m_serviceTimer.setSingleShot(true);
+    connect(&m_serviceTimer, &QTimer::timeout, this, &SatelliteModem::applyService);
     for (int side = 0; side < 2; ++side) {
         m_ports[std::size_t(side)] = std::make_unique<Port>();
         Port& p = port(side);
@@ -183,7 +197,81 @@ bool SatelliteModem::open(QString* error)
     }
     m_inotifyNotifier = std::make_unique<QSocketNotifier>(m_inotify, QSocketNotifier::Read, this);
     connect(m_inotifyNotifier.get(), &QSocketNotifier::activated, this, &SatelliteModem::readUserOpensAndCloses);
+    m_clock.restart();  // the service script's time starts now
+    applyService();
     return true;
+}
+
+std::optional<std::vector<SatelliteModem::Options::ServiceStep>> SatelliteModem::parseService(const QString& text,
+                                                                                              QString* error)
+{
+    std::vector<Options::ServiceStep> steps;
+    for (const QString& item : text.split(QLatin1Char(','), Qt::SkipEmptyParts)) {
+        const QStringList parts = item.split(QLatin1Char(':'));
+        bool timeOk = false, barsOk = false;
+        const double at = parts.value(0).trimmed().toDouble(&timeOk);
+        const int bars = parts.value(1).trimmed().toInt(&barsOk);
+        if (parts.size() != 2 || !timeOk || !barsOk || at < 0 || bars < 0 || bars > 5 ||
+            (!steps.empty() && at * 1000 < double(steps.back().at.count()))) {
+            if (error)
+                *error = QStringLiteral("\"%1\" in \"%2\" is not SECONDS:BARS (bars 0 to 5, seconds in order), as "
+                                        "in 0:0,10:4,60:1")
+                             .arg(item, text);
+            return std::nullopt;
+        }
+        steps.push_back({std::chrono::milliseconds(qint64(at * 1000)), bars});
+    }
+    return steps;
+}
+
+// The script's steps that are due, then a timer for the next one.
+void SatelliteModem::applyService()
+{
+    int bars = m_bars;
+    const auto& script = m_options.service;
+    while (m_serviceStep < script.size() && script[m_serviceStep].at.count() <= now())
+        bars = m_options.noService ? 0 : script[m_serviceStep++].bars;
+    if (m_serviceStep < script.size())
+        m_serviceTimer.start(int(std::max<qint64>(0, script[m_serviceStep].at.count() - now())));
+    setSignalBars(bars);
+}
+
+void SatelliteModem::setSignalBars(int bars)
+{
+    bars = std::clamp(bars, 0, 5);
+    if (bars == m_bars)
+        return;
+    const bool registrationChanged = (bars > 0) != (m_bars > 0);
+    m_bars = bars;
+    emit signalChanged(bars);
+    for (auto& p : m_ports)
+        report(*p, registrationChanged, true);
+    if (bars == 0 && m_call.state != CallState::Idle)
+        dropCall();  // the network lost the phones
+}
+
+void SatelliteModem::report(Port& p, bool registrationChanged, bool signalChanged)
+{
+    if (p.mode == Port::Mode::Data || p.mode == Port::Mode::Dialling) {
+        p.heldRegistration = p.heldRegistration || registrationChanged;
+        p.heldSignal = p.heldSignal || signalChanged;
+        return;
+    }
+    const int stat = registered() ? 1 : 2;
+    if (registrationChanged && p.registrationReports > 0)
+        sendInformation(p, "+CREG: " + QByteArray::number(stat));
+    if (p.indicatorEvents && signalChanged && p.signalEvents)
+        sendInformation(p, "+CIEV:0," + QByteArray::number(m_bars));
+    if (p.indicatorEvents && registrationChanged && p.serviceEvents)
+        sendInformation(p, "+CIEV:1," + QByteArray::number(registered() ? 1 : 0));
+}
+
+void SatelliteModem::flushReports(Port& p)
+{
+    const bool registration = std::exchange(p.heldRegistration, false);
+    const bool signal = std::exchange(p.heldSignal, false);
+    if (registration || signal)
+        report(p, registration, signal);
 }
 
 bool SatelliteModem::openPort(int side, QString* error)
@@ -274,7 +362,7 @@ void SatelliteModem::forgetUser(Port& p)
 void SatelliteModem::onUserGone(int side)
 {
     Port& p = port(side);
-    if (inCall(p))
+    if (inCall(p) && p.dtrHangsUp)
         hangUp(p, QStringLiteral("slave closed"));
     p.commandLine.clear();
     p.lineTooLong = false;
@@ -441,7 +529,12 @@ SatelliteModem::Outcome SatelliteModem::runCommands(Port& p, QByteArrayView comm
             break;
         case 'I':
             numberAt(commands, at, 0);
-            send(p, "\r\nRCM satellite modem model\r\n");
+            sendInformation(p, "RCM satellite modem model: " + m_options.profile.title.toLatin1());
+            break;
+        case '+':
+            outcome = runExtended(p, commands, at);
+            break;
+        case ';':
             break;
         default:
             return Outcome::Error;
@@ -464,13 +557,110 @@ SatelliteModem::Outcome SatelliteModem::runAmpersand(Port& p, QByteArrayView com
             return Outcome::Error;
         resetSettings(p);
         return Outcome::Ok;
-    case 'C':  // DCD, DTR and flow control: the model behaves as &C1 &D2 &K3 whatever is asked
-    case 'D':
+    case 'D':  // &D0: DTR is ignored, the call outlives the program; &D1, &D2: dropping DTR hangs up
+        p.dtrHangsUp = value != 0;
+        return Outcome::Ok;
+    case 'C':  // DCD and flow control: the model behaves as &C1 &K3 whatever is asked
     case 'K':
         return Outcome::Ok;
     default:
         return Outcome::Error;
     }
+}
+
+void SatelliteModem::sendInformation(Port& p, const QByteArray& text)
+{
+    send(p, "\r\n" + text + "\r\n");
+}
+
+// The extended commands of the phones' dialects, "+NAME", then "?", "=?",
+// "=values" or nothing, up to a ';' or the line's end.
+SatelliteModem::Outcome SatelliteModem::runExtended(Port& p, QByteArrayView commands, qsizetype& at)
+{
+    const modem::Profile& profile = m_options.profile;
+    if (!profile.hasNetwork())
+        return Outcome::Error;  // a modem without a network has none of them
+    QByteArray name;
+    while (at < commands.size() && std::isalpha(static_cast<unsigned char>(commands[at])))
+        name += upper(commands[at++]);
+    QByteArray rest;
+    while (at < commands.size() && commands[at] != ';')
+        rest += commands[at++];
+    rest.replace(' ', QByteArray());
+    const bool read = rest == "?";
+    const bool test = rest == "=?";
+    const bool set = rest.startsWith('=') && !test;
+    const QList<QByteArray> values = set ? rest.mid(1).split(',') : QList<QByteArray>{};
+    const auto valueAt = [&](int i, int otherwise) {
+        bool ok = false;
+        const int v = values.value(i).toInt(&ok);
+        return ok ? v : otherwise;
+    };
+    const bool iridium = profile.scale == modem::SignalScale::Bars;
+    // Iridium writes "+CSQ:4"; the GSM family "+CSQ: 17,99".
+    const QByteArray colon = iridium ? ":" : ": ";
+    const int stat = registered() ? 1 : 2;
+    if (name == "CBST") {
+        if (read)
+            sendInformation(p, "+CBST" + colon + p.bearer);
+        else if (test)
+            sendInformation(p, "+CBST" + colon + "(0-134),(0-1),(0-1)");
+        else if (set && values.size() == 3)
+            p.bearer = rest.mid(1);
+        else
+            return Outcome::Error;
+        return Outcome::Ok;
+    }
+    if (name == "CREG") {
+        if (read)
+            sendInformation(p, "+CREG" + colon + QByteArray::number(p.registrationReports) + ',' +
+                                   QByteArray::number(stat));
+        else if (test)
+            sendInformation(p, "+CREG" + colon + "(0-2)");
+        else if (set && valueAt(0, -1) >= 0 && valueAt(0, -1) <= 2)
+            p.registrationReports = valueAt(0, 0);
+        else
+            return Outcome::Error;
+        return Outcome::Ok;
+    }
+    if (name == "CSQ" || (name == "CSQF" && iridium)) {
+        if (test) {
+            sendInformation(p, "+" + name + colon + (iridium ? "(0-5)" : "(0-31,99),(0-7,99)"));
+            return Outcome::Ok;
+        }
+        if (!rest.isEmpty())
+            return Outcome::Error;
+        const QByteArray rssi = QByteArray::number(modem::signalFromBars(m_bars, profile.scale));
+        sendInformation(p, "+" + name + colon + (iridium ? rssi : rssi + ",99"));
+        return Outcome::Ok;
+    }
+    if (name == "CIER" && iridium) {
+        if (read) {
+            sendInformation(p, "+CIER:" + QByteArray::number(int(p.indicatorEvents)) + ',' +
+                                   QByteArray::number(int(p.signalEvents)) + ',' +
+                                   QByteArray::number(int(p.serviceEvents)) + ",0");
+            return Outcome::Ok;
+        }
+        if (test) {
+            sendInformation(p, "+CIER:(0-1),(0-1),(0-1),(0-1)");
+            return Outcome::Ok;
+        }
+        if (!set || values.isEmpty() || values.size() > 4)
+            return Outcome::Error;
+        p.indicatorEvents = valueAt(0, 0) == 1;
+        p.signalEvents = valueAt(1, 0) == 1;
+        p.serviceEvents = valueAt(2, 0) == 1;
+        // Turned on, the indicators say where they stand: after the OK.
+        if (p.indicatorEvents)
+            QMetaObject::invokeMethod(this, [this, side = p.side] { report(port(side), true, true); },
+                                      Qt::QueuedConnection);
+        return Outcome::Ok;
+    }
+    if (name == "CGMI" || name == "CGMM" || name == "GMM") {
+        sendInformation(p, profile.title.toLatin1() + " (RCM satellite modem model)");
+        return Outcome::Ok;
+    }
+    return Outcome::Error;
 }
 
 SatelliteModem::Outcome SatelliteModem::runRegister(Port& p, QByteArrayView commands, qsizetype& at)
@@ -499,6 +689,9 @@ void SatelliteModem::resetSettings(Port& p)
 {
     p.echo = true;
     p.registers = defaultRegisters();
+    p.registrationReports = 0;
+    p.indicatorEvents = p.signalEvents = p.serviceEvents = false;
+    p.dtrHangsUp = true;
 }
 
 SatelliteModem::Outcome SatelliteModem::dial(Port& p, QByteArrayView dialString)
@@ -513,7 +706,7 @@ SatelliteModem::Outcome SatelliteModem::dial(Port& p, QByteArrayView dialString)
         sendResult(p, ResultCode::Busy);
         return Outcome::Answered;
     }
-    if (m_options.noService) {
+    if (m_options.noService || !registered()) {
         sendResult(p, ResultCode::NoDialtone);
         return Outcome::Answered;
     }
@@ -620,6 +813,7 @@ void SatelliteModem::onGuardTimeAfterEscape(Port& p)
     p.heldPluses = 0;
     p.mode = Port::Mode::OnlineCommand;
     sendResult(p, ResultCode::Ok);
+    flushReports(p);
 }
 
 int SatelliteModem::guardTimeMs(const Port& p) const
@@ -719,7 +913,11 @@ void SatelliteModem::endCall()
     m_dropTimer.stop();
     m_paceTimer.stop();
     for (auto& p : m_ports) {
+        const bool wasOnline = p->mode != Port::Mode::Command;
         p->mode = Port::Mode::Command;
+        if (wasOnline)
+            QMetaObject::invokeMethod(this, [this, side = p->side] { flushReports(port(side)); },
+                                      Qt::QueuedConnection);
         p->heldPluses = 0;
         p->guard.stop();
         p->waiting.clear();

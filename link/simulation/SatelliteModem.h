@@ -11,6 +11,7 @@
 // It runs in real time on the thread that owns it: programs on the ptys see
 // a modem that answers as fast, and carries bytes as slowly, as the options say.
 
+#include "link/transport/ModemProfile.h"
 #include "link/transport/ModemResultCode.h"
 
 #include <QByteArray>
@@ -22,7 +23,9 @@
 #include <array>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <random>
+#include <vector>
 
 class QSocketNotifier;
 
@@ -47,7 +50,19 @@ public:
         std::chrono::milliseconds meanTimeBetweenDrops{0};  // 0: calls never drop by themselves
         quint32 seed = 1;                                   // of the random drops
         bool busy = false;       // the far side is busy: BUSY after the set-up time
-        bool noService = false;  // no network: NO DIALTONE at once
+        bool noService = false;  // no network ever: not registered, no signal, NO DIALTONE at once
+        // The phones' dialect: the set-up commands they take, how they
+        // answer AT+CREG? and AT+CSQ, and whether they have +CIER/+CIEV.
+        modem::Profile profile = modem::defaultProfile();
+        // The sky over both phones, as time goes: from `at` after open(),
+        // `bars` of signal (0..5; 0: no service, not registered). Before the
+        // first step, and with none, 4 bars. A call whose signal goes to 0
+        // drops.
+        struct ServiceStep {
+            std::chrono::milliseconds at{0};
+            int bars = 0;
+        };
+        std::vector<ServiceStep> service;
         int ringLimit = 6;       // rings unanswered before the caller gets NO ANSWER
         std::chrono::milliseconds ringInterval{3000};
     };
@@ -73,11 +88,19 @@ public:
     CallState callState() const { return m_call.state; }
     // The number `side` last dialled, as typed after ATD (T or P left off).
     QByteArray dialledNumber(int side) const;
+    // The signal now, 0..5; 0 is no service.
+    int signalBars() const { return m_bars; }
+    // The service script in the form satmodem's --service takes,
+    // "0:0,10:4,60:1"; nothing, the reason in *error, when it does not parse.
+    static std::optional<std::vector<Options::ServiceStep>> parseService(const QString& text, QString* error);
 
 public slots:
     // The network loses the call (a rehearsal's call-drop fault): NO CARRIER
     // to every side in it. Nothing happens when there is no call.
     void dropCall();
+    // The signal over both phones from now on, 0..5 (0: no service), as the
+    // service script sets it; for tests and rehearsals.
+    void setSignalBars(int bars);
 
 signals:
     void callStateChanged(SatelliteModem::CallState state);
@@ -91,6 +114,8 @@ signals:
     void hungUp(int side, const QString& how);
     // `side`'s CTS dropped (stopped) or rose again.
     void flowControlChanged(int side, bool stopped);
+    // The signal changed (the service script): 0..5, 0 no service.
+    void signalChanged(int bars);
 
 private:
     struct Port;
@@ -123,6 +148,14 @@ private:
     Outcome runCommands(Port& p, QByteArrayView commands);
     Outcome runAmpersand(Port& p, QByteArrayView commands, qsizetype& at);
     Outcome runRegister(Port& p, QByteArrayView commands, qsizetype& at);
+    Outcome runExtended(Port& p, QByteArrayView commands, qsizetype& at);
+    void sendInformation(Port& p, const QByteArray& text);
+    // Unsolicited reports of registration and signal; held while in data
+    // mode (the latest of each) and said on the return to command mode.
+    void report(Port& p, bool registrationChanged, bool signalChanged);
+    void flushReports(Port& p);
+    void applyService();
+    bool registered() const { return m_bars > 0; }
     void resetSettings(Port& p);
     Outcome dial(Port& p, QByteArrayView dialString);
     Outcome answer(Port& p);
@@ -164,5 +197,8 @@ private:
     QTimer m_ringTimer;
     QTimer m_dropTimer;
     QTimer m_paceTimer;
+    QTimer m_serviceTimer;
+    std::size_t m_serviceStep = 0;  // the next step of the service script
+    int m_bars = 4;
     std::mt19937 m_random;
 };

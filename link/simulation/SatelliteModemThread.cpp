@@ -11,6 +11,7 @@ SatelliteModemThread::SatelliteModemThread(SatelliteModem::Options options, QObj
         m_inThread, [&] { m_model = new SatelliteModem(options, m_inThread); }, Qt::BlockingQueuedConnection);
     connect(m_model, &SatelliteModem::hungUp, this, &SatelliteModemThread::hungUp);
     connect(m_model, &SatelliteModem::callStateChanged, this, &SatelliteModemThread::callStateChanged);
+    connect(m_model, &SatelliteModem::commandReceived, this, &SatelliteModemThread::commandReceived);
 }
 
 SatelliteModemThread::~SatelliteModemThread()
@@ -50,4 +51,9 @@ SatelliteModem::Counters SatelliteModemThread::counters() const
 void SatelliteModemThread::dropCall()
 {
     QMetaObject::invokeMethod(m_model, &SatelliteModem::dropCall, Qt::QueuedConnection);
+}
+
+void SatelliteModemThread::setSignalBars(int bars)
+{
+    QMetaObject::invokeMethod(m_model, [model = m_model, bars] { model->setSignalBars(bars); }, Qt::QueuedConnection);
 }

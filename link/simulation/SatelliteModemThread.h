@@ -27,9 +27,12 @@ public:
 public slots:
     // Queued: the network loses the call.
     void dropCall();
+    // Queued: the signal over both phones, 0..5 (0: no service).
+    void setSignalBars(int bars);
 
 signals:
     void hungUp(int side, const QString& how);
+    void commandReceived(int side, const QByteArray& command);
     void callStateChanged(SatelliteModem::CallState state);
 
 private:

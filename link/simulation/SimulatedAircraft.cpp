@@ -178,16 +178,16 @@ SimulatedAircraft::ApplyReport SimulatedAircraft::apply(const Message& command)
             } else {
                 contents = "; its contents are not a plan this aircraft reads (" + reason + ")";
             }
-            report.events.push_back("flight plan " + std::to_string(plan.planId) +
-                                    " complete: " + std::to_string(plan.plan.size()) + " bytes in " +
-                                    std::to_string(plan.total) + " sections" + contents);
+            report.events.push_back(
+                "flight plan " + rcm::planIdText(plan.planId) + " complete: " + std::to_string(plan.plan.size()) +
+                " bytes in " + std::to_string(plan.total) + (plan.total == 1 ? " section" : " sections") + contents);
             break;
         }
         case Kind::Missing: {
             std::string ids;
             for (std::uint16_t id : plan.missing)
                 ids += (ids.empty() ? "" : ", ") + std::to_string(id);
-            report.events.push_back("flight plan " + std::to_string(plan.planId) + ": sections missing: " + ids);
+            report.events.push_back("flight plan " + rcm::planIdText(plan.planId) + ": sections missing: " + ids);
             break;
         }
         case Kind::Error:

@@ -64,8 +64,17 @@ SimulatorOptions::SimulatorOptions()
                                 "silence included."),
                  QStringLiteral("file.wav")),
       m_voiceIn(QStringLiteral("voice-in"),
-                QStringLiteral("Voice: speak a WAV file (16-bit PCM, any rate) back to the console, from the start."),
-                QStringLiteral("file.wav"))
+                QStringLiteral("Voice: speak a WAV file (16-bit PCM, any rate) back to the console, from the start "
+                               "of the link (over UDP: from the console's first command, when uasim knows where "
+                               "to send)."),
+                QStringLiteral("file.wav")),
+      m_voice(QStringLiteral("voice"),
+              QStringLiteral("Voice beside the commands (docs/protocol.md section 7), as the console has it: "
+                             "implied by --voice-out, --voice-in and --voice-echo. With --key, enciphered and "
+                             "authenticated (docs/security.md section 8).")),
+      m_voiceEcho(QStringLiteral("voice-echo"),
+                  QStringLiteral("Voice: say back what is heard, as a radio check (what gcs --rehearsal asks for "
+                                 "when the console has voice)."))
 {
 }
 
@@ -73,7 +82,7 @@ void SimulatorOptions::addTo(QCommandLineParser& parser) const
 {
     parser.addOptions({m_udp, m_serial, m_station, m_failover, m_baud, m_modem, m_log, m_airframe, m_uaId});
     m_faults.addTo(parser);
-    parser.addOptions({m_verbose, m_key, m_voiceOut, m_voiceIn});
+    parser.addOptions({m_verbose, m_key, m_voice, m_voiceOut, m_voiceIn, m_voiceEcho});
 }
 
 std::optional<SimulatorSession::Settings> SimulatorOptions::read(const QCommandLineParser& parser, QString* error) const
@@ -93,10 +102,12 @@ std::optional<SimulatorSession::Settings> SimulatorOptions::read(const QCommandL
         return wrong(
             QStringLiteral("with --station, give each station's key as --station ID,PORT,KEYFILE, not "
                            "--key"));
-    if (stations && (parser.isSet(m_voiceOut) || parser.isSet(m_voiceIn)))
+    const bool voice =
+        parser.isSet(m_voice) || parser.isSet(m_voiceOut) || parser.isSet(m_voiceIn) || parser.isSet(m_voiceEcho);
+    if (stations && voice)
         return wrong(
-            QStringLiteral("--voice-out and --voice-in are for one link (--udp or --serial), not with "
-                           "--station"));
+            QStringLiteral("--voice, --voice-out, --voice-in and --voice-echo are for one link (--udp or --serial), "
+                           "not with --station"));
     if (parser.isSet(m_modem) && !parser.isSet(m_serial))
         return wrong(QStringLiteral("--modem needs --serial DEVICE: the modem is on a serial port"));
     if (!parser.positionalArguments().isEmpty())
@@ -152,8 +163,9 @@ std::optional<SimulatorSession::Settings> SimulatorOptions::read(const QCommandL
                 QStringLiteral("--failover wants seconds, 0.001 to 3600, not %1").arg(parser.value(m_failover)));
         settings.failover = std::chrono::milliseconds(std::llround(seconds * 1000));
     }
-    if (parser.isSet(m_voiceOut) || parser.isSet(m_voiceIn)) {
+    if (voice) {
         settings.voiceOutFile = parser.value(m_voiceOut);
+        settings.voiceEcho = parser.isSet(m_voiceEcho);
         settings.voiceSource = std::make_shared<VoiceEncoderSource>(std::chrono::milliseconds(0));
         std::string voiceError;
         if (parser.isSet(m_voiceIn) &&

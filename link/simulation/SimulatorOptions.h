@@ -42,4 +42,6 @@ private:
     QCommandLineOption m_key;
     QCommandLineOption m_voiceOut;
     QCommandLineOption m_voiceIn;
+    QCommandLineOption m_voice;
+    QCommandLineOption m_voiceEcho;
 };

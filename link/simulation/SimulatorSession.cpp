@@ -1,5 +1,6 @@
 #include "link/simulation/SimulatorSession.h"
 
+#include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/ItemTable.h"
 #include "codec/message/TextFormat.h"
 #include "codec/secure/SecureCodec.h"
@@ -15,6 +16,8 @@
 #include "link/voice/WithVoice.h"
 
 #include <QFileInfo>
+
+#include <algorithm>
 #include <QStringList>
 
 using namespace rcm;
@@ -64,7 +67,7 @@ QString commandSummary(const ReceivedMessage& received, const SimulatedAircraft&
         parts << QStringLiteral("photos taken %1").arg(photos.join(QLatin1Char('/')));
     if (!m.flightPlan.empty())
         parts << QStringLiteral("flight plan %1 section %2 (%3 bytes): %4/%5")
-                     .arg(m.flightPlan.planId)
+                     .arg(QString::fromStdString(rcm::planIdText(m.flightPlan.planId)))
                      .arg(m.flightPlan.sectionId)
                      .arg(m.flightPlan.data.size())
                      .arg(report.flightPlan.received)
@@ -110,6 +113,35 @@ SimulatorSession::SimulatorSession(Settings settings, Say say, QObject* parent)
 
 SimulatorSession::~SimulatorSession() = default;
 
+// What the radio heard goes back as it came, a radio check: speech is said
+// again, silence ends the talk. The first 100 ms of a talk are held before
+// any goes, so that the echo, paced by the line as the speech came, never
+// runs dry in the middle of it and splits it.
+void SimulatorSession::echo(VoiceEncoderSource& source, std::span<const std::int16_t> pcm)
+{
+    constexpr std::size_t kHeld = 5 * voice::kFrameSamples;
+    for (std::size_t at = 0; at < pcm.size(); at += voice::kFrameSamples) {
+        const auto slot = pcm.subspan(at, std::min(voice::kFrameSamples, pcm.size() - at));
+        if (std::all_of(slot.begin(), slot.end(), [](std::int16_t s) { return s == 0; })) {
+            if (!m_echoHeld.empty())
+                source.pushPcm(m_echoHeld);
+            if (m_echoTalking || !m_echoHeld.empty())
+                source.endTalk();
+            m_echoHeld.clear();
+            m_echoTalking = false;
+        } else if (m_echoTalking) {
+            source.pushPcm(slot);
+        } else {
+            m_echoHeld.insert(m_echoHeld.end(), slot.begin(), slot.end());
+            if (m_echoHeld.size() >= kHeld) {
+                source.pushPcm(m_echoHeld);
+                m_echoHeld.clear();
+                m_echoTalking = true;
+            }
+        }
+    }
+}
+
 QString SimulatorSession::logFileFor(const QString& logFile, StationId station)
 {
     const QString fileName = QFileInfo(logFile).fileName();
@@ -121,7 +153,8 @@ QString SimulatorSession::logFileFor(const QString& logFile, StationId station)
     return folder + fileName.left(dot) + tag + fileName.mid(dot);
 }
 
-std::unique_ptr<Link> SimulatorSession::openLink(const Station* station, Channel& channel)
+std::unique_ptr<Link> SimulatorSession::openLink(const Station* station, Channel& channel,
+                                                const secure::SecureEndpoint* key)
 {
     std::unique_ptr<Link> link;
     if (station || m_settings.udpPort) {
@@ -147,10 +180,27 @@ std::unique_ptr<Link> SimulatorSession::openLink(const Station* station, Channel
                 m_say(QStringLiteral("cannot write the voice: %1").arg(QString::fromStdString(error)));
                 return nullptr;
             }
-            sink = std::make_shared<VoiceDecoderSink>(
-                [this](std::span<const std::int16_t> pcm) { m_voiceRecord.append(pcm); });
         }
-        link = withVoice(std::move(link), m_settings.voiceSource, std::move(sink));
+        if (!m_settings.voiceOutFile.isEmpty() || m_settings.voiceEcho) {
+            sink = std::make_shared<VoiceDecoderSink>(
+                [this, source = m_settings.voiceSource](std::span<const std::int16_t> pcm) {
+                    if (!m_settings.voiceOutFile.isEmpty())
+                        m_voiceRecord.append(pcm);
+                    if (m_settings.voiceEcho)
+                        echo(*source, pcm);
+                });
+        }
+        VoiceSecurity security;
+        if (key) {
+            security.send = key->voiceSend;
+            security.receive = key->voiceReceive;
+            security.refused = [this, prefix = channel.prefix](std::uint64_t forged, std::uint64_t replayed) {
+                m_say(prefix + QStringLiteral("voice refused, never played: %1 forged, %2 replayed")
+                                   .arg(forged)
+                                   .arg(replayed));
+            };
+        }
+        link = withVoice(std::move(link), m_settings.voiceSource, std::move(sink), security);
     }
     if (m_settings.faults.any()) {
         auto faulty = std::make_unique<FaultyLink>(std::move(link), m_settings.faults);
@@ -167,7 +217,18 @@ bool SimulatorSession::openChannel(const Station* station)
         channel->station = station->id;
         channel->prefix = stationName(station->id) + QStringLiteral(": ");
     }
-    std::unique_ptr<Link> link = openLink(station, *channel);
+    LinkWorker::Options workerOptions;
+    workerOptions.clock = m_clock;
+    const QString keyFile = station ? station->keyFile : m_settings.keyFile;
+    if (!keyFile.isEmpty()) {
+        std::string error;
+        workerOptions.secure = secure::SecureEndpoint::open(keyFile.toStdString(), secure::Direction::UaToGcs, error);
+        if (!workerOptions.secure) {
+            m_say(channel->prefix + QString::fromStdString(error));
+            return false;
+        }
+    }
+    std::unique_ptr<Link> link = openLink(station, *channel, workerOptions.secure.get());
     if (!link)
         return false;
     std::unique_ptr<FrameLog> frameLog;
@@ -177,17 +238,6 @@ bool SimulatorSession::openChannel(const Station* station)
         QString error;
         if (!frameLog->open(path, &error)) {
             m_say(channel->prefix + QStringLiteral("cannot open the log: %1").arg(error));
-            return false;
-        }
-    }
-    LinkWorker::Options workerOptions;
-    workerOptions.clock = m_clock;
-    const QString keyFile = station ? station->keyFile : m_settings.keyFile;
-    if (!keyFile.isEmpty()) {
-        std::string error;
-        workerOptions.secure = secure::SecureEndpoint::open(keyFile.toStdString(), secure::Direction::UaToGcs, error);
-        if (!workerOptions.secure) {
-            m_say(channel->prefix + QString::fromStdString(error));
             return false;
         }
     }

@@ -31,6 +31,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 class Clock;
@@ -41,6 +42,9 @@ class LinkWorker;
 struct ReceivedMessage;
 class SimulatedAircraft;
 class VoiceEncoderSource;
+namespace rcm::secure {
+struct SecureEndpoint;
+}
 
 class SimulatorSession : public QObject {
     Q_OBJECT
@@ -76,6 +80,7 @@ public:
         // Voice beside the commands when not null: what the aircraft says.
         std::shared_ptr<VoiceEncoderSource> voiceSource;
         QString voiceOutFile;  // a WAV file for the voice heard; empty: dropped
+        bool voiceEcho = false;  // what is heard is said back (a radio check), as voiceSource
     };
     // Where the session's lines for the operator go.
     using Say = std::function<void(const QString& line)>;
@@ -105,7 +110,8 @@ private:
         QString lastError;  // the link's last error, not said again by the status that repeats it
     };
 
-    std::unique_ptr<Link> openLink(const Station* station, Channel& channel);
+    std::unique_ptr<Link> openLink(const Station* station, Channel& channel, const rcm::secure::SecureEndpoint* key);
+    void echo(VoiceEncoderSource& source, std::span<const std::int16_t> pcm);
     bool openChannel(const Station* station);
     void connectChannel(Channel& channel);
     void commandReceived(Channel& channel, const ReceivedMessage& received);
@@ -119,6 +125,8 @@ private:
     Settings m_settings;
     Say m_say;
     rcm::WavFile m_voiceRecord;
+    std::vector<std::int16_t> m_echoHeld;  // --voice-echo: the start of a talk, held
+    bool m_echoTalking = false;
     std::unique_ptr<SimulatedAircraft> m_aircraft;
     rcm::ControlArbiter m_arbiter;
     // The session's time: the workers' frames and ticks, the arbiter's, the control timer's.

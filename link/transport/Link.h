@@ -31,6 +31,9 @@ public:
     // The transport is bringing its line up (a modem dialling, redialling or
     // waiting for a call): silence now is not the far end's.
     virtual bool isConnecting() const { return false; }
+    // The transport knows where to send: false for a UDP link that replies
+    // to its sender and has heard none yet (what it would send is lost).
+    virtual bool canSend() const { return isOpen(); }
 
 public slots:
     // Both are idempotent. open() reports failure through errorOccurred().
@@ -52,4 +55,8 @@ signals:
     // For people: what the transport itself is doing, when it has more to
     // say than opened and closed (a modem dialling, connected, redialling).
     void statusChanged(const QString& status);
+    // A satellite phone's network service, as it last said it: signal bars
+    // 0..5 (-1 not known), registered or not, and both in words
+    // ("registered, signal 3 of 5"). Only modems say it.
+    void serviceChanged(int signalBars, bool registered, const QString& text);
 };

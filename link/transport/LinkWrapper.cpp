@@ -16,6 +16,7 @@ LinkWrapper::LinkWrapper(std::unique_ptr<Link> inner, QObject* parent) : Link(pa
     });
     connect(m_inner, &Link::errorOccurred, this, &Link::errorOccurred);
     connect(m_inner, &Link::statusChanged, this, &Link::statusChanged);
+    connect(m_inner, &Link::serviceChanged, this, &Link::serviceChanged);
     connect(m_inner, &Link::bytesReceived, this, [this](const QByteArray& bytes) { innerBytesReceived(bytes); });
     connect(m_inner, &Link::datagramReceived, this,
             [this](const QByteArray& datagram) { innerDatagramReceived(datagram); });

@@ -21,6 +21,7 @@ public:
     QString description() const override { return m_inner->description(); }
     qint64 bytesToWrite() const override { return m_inner->bytesToWrite(); }
     bool isConnecting() const override { return m_inner->isConnecting(); }
+    bool canSend() const override { return m_inner->canSend(); }
 
     Link* inner() const { return m_inner; }
 

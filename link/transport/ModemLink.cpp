@@ -5,6 +5,7 @@
 #include <QDeadlineTimer>
 
 #include <algorithm>
+#include <utility>
 
 namespace {
 
@@ -32,15 +33,25 @@ QString duration(qint64 ms)
 
 ModemLink::ModemLink(std::unique_ptr<SerialLink> serial, Options options, QObject* parent)
     : LinkWrapper(std::move(serial), parent), m_options(std::move(options)), m_timeout(this), m_redial(this),
-      m_carrierPoll(this)
+      m_servicePoll(this), m_carrierPoll(this)
 {
     m_timeout.setSingleShot(true);
     m_redial.setSingleShot(true);
+    m_servicePoll.setSingleShot(true);
     m_carrierPoll.setInterval(m_options.carrierPollInterval);
     connect(&m_timeout, &QTimer::timeout, this, &ModemLink::timedOut);
     connect(&m_redial, &QTimer::timeout, this, [this] {
-        if (port().isOpen())
-            dial();  // else the port's reopening initialises and dials
+        if (!port().isOpen())
+            return;  // the port's reopening probes, initialises and dials
+        // Registration and signal are read again before every redial.
+        if (m_initialised)
+            checkService();
+        else
+            initialise();
+    });
+    connect(&m_servicePoll, &QTimer::timeout, this, [this] {
+        if (m_state == CallState::WaitingForService)
+            checkService();
     });
     connect(&m_carrierPoll, &QTimer::timeout, this, &ModemLink::pollCarrier);
 }
@@ -87,8 +98,10 @@ void ModemLink::open()
     m_wanted = true;
     m_attempt = 0;
     m_failureShown = false;
+    m_serviceReported = false;
+    m_initialised = false;
     if (port().isOpen())
-        initialise();
+        probe();
     else
         port().open();  // innerOpened() goes on
 }
@@ -98,6 +111,7 @@ void ModemLink::close()
     m_wanted = false;
     m_timeout.stop();
     m_redial.stop();
+    m_servicePoll.stop();
     m_carrierPoll.stop();
     const CallState was = m_state;
     if (was == CallState::Connected) {
@@ -123,8 +137,9 @@ bool ModemLink::write(const QByteArray& bytes)
 
 void ModemLink::innerOpened()
 {
+    m_initialised = false;
     if (m_wanted)
-        initialise();
+        probe();
 }
 
 void ModemLink::innerClosed()
@@ -135,6 +150,7 @@ void ModemLink::innerClosed()
     const bool wasConnected = m_state == CallState::Connected;
     m_timeout.stop();
     m_redial.stop();
+    m_servicePoll.stop();
     m_carrierPoll.stop();
     m_state = CallState::Closed;
     emit statusChanged(wasConnected ? tr("call lost with the serial port: %1").arg(callSummary())
@@ -152,19 +168,142 @@ void ModemLink::setState(CallState state, const QString& status)
 void ModemLink::sendCommand(const QByteArray& command, CallState state, Milliseconds timeout, const QString& status)
 {
     m_line.clear();
-    setState(state, status);
+    m_command = command;
+    if (status.isEmpty())
+        m_state = state;
+    else
+        setState(state, status);
     m_timeout.start(timeout);
     port().write(command + '\r');
 }
 
+// A modem in command mode answers "AT" at once; one still in a call from an
+// earlier session (the console was killed, the cable pulled) passes it on
+// as data and says nothing.
+void ModemLink::probe()
+{
+    m_pending.clear();
+    sendCommand("AT", CallState::Probing, m_options.probeTimeout, tr("checking the modem"));
+}
+
+void ModemLink::escapeStaleCall()
+{
+    emit statusChanged(tr("the modem did not answer AT within %1 s: taken to be still in a call, escaped (+++) and "
+                          "hung up (ATH)")
+                           .arg(seconds(m_options.probeTimeout.count())));
+    hangUp(false);
+}
+
 void ModemLink::initialise()
 {
+    m_pending = m_options.profile.setup;
+    if (!m_options.profile.indications.isEmpty())
+        m_pending << m_options.profile.indications;
     sendCommand(m_options.initString, CallState::Initialising, m_options.commandTimeout,
                 tr("initialising the modem: %1").arg(QString::fromLatin1(m_options.initString)));
 }
 
+void ModemLink::nextSetupCommand()
+{
+    if (!m_pending.isEmpty()) {
+        const QByteArray command = m_pending.takeFirst();
+        sendCommand(command, CallState::Initialising, m_options.commandTimeout,
+                    tr("setting the modem up (%1): %2")
+                        .arg(m_options.profile.title, QString::fromLatin1(command)));
+        return;
+    }
+    m_timeout.stop();
+    m_initialised = true;
+    if (m_options.number.isEmpty())
+        setState(CallState::AwaitingCall, tr("waiting for a call"));
+    else
+        checkService();
+}
+
+// Registration and signal, asked before every dial (and again and again
+// while there is no service): a phone with no network is never dialled.
+void ModemLink::checkService()
+{
+    if (!m_options.profile.hasNetwork()) {
+        dial();
+        return;
+    }
+    m_pending = {m_options.profile.registrationQuery};
+    if (!m_options.profile.signalQuery.isEmpty())
+        m_pending << m_options.profile.signalQuery;
+    // Not remembered from the last time: only what the phone says now counts.
+    m_service.registration = modem::Registration::Unknown;
+    m_service.bars = -1;
+    nextServiceQuery();
+}
+
+void ModemLink::nextServiceQuery()
+{
+    if (m_pending.isEmpty()) {
+        m_timeout.stop();
+        serviceKnown();
+        return;
+    }
+    // Said once when it starts, not for every poll.
+    const QString status =
+        m_state == CallState::WaitingForService || m_state == CallState::CheckingService
+            ? QString()
+            : tr("reading the phone's registration and signal");
+    sendCommand(m_pending.takeFirst(), CallState::CheckingService, m_options.commandTimeout, status);
+}
+
+void ModemLink::serviceKnown()
+{
+    emit serviceChanged(m_service.bars, modem::isRegistered(m_service.registration), m_service.text());
+    m_serviceKnownOnce = true;
+    if (m_service.canDial()) {
+        m_serviceReported = false;
+        dial();
+        return;
+    }
+    const QString why = tr("not dialling %1: %2; dialling as soon as the phone has service")
+                            .arg(m_options.number, m_service.text());
+    const bool first = !m_serviceReported;
+    m_serviceReported = true;
+    const QString before = m_lastServiceWait;
+    m_lastServiceWait = why;
+    m_state = CallState::WaitingForService;
+    if (first)
+        emit errorOccurred(why);
+    if (first || why != before)
+        emit statusChanged(why);
+    m_servicePoll.start(m_options.servicePollInterval);
+}
+
+void ModemLink::takeServiceLine(const QByteArray& line)
+{
+    const modem::Service before = m_service;
+    if (!modem::parseServiceLine(line, m_options.profile.scale, m_service) || m_state == CallState::CheckingService)
+        return;  // an answer being gathered is told once, when the query ends
+    if (m_service == before && m_serviceKnownOnce)
+        return;
+    // The phone's own report, between commands.
+    emit serviceChanged(m_service.bars, modem::isRegistered(m_service.registration), m_service.text());
+    m_serviceKnownOnce = true;
+    // Any news while waiting: registration and signal are read afresh, and
+    // the phone dialled if they now allow it.
+    if (m_state == CallState::WaitingForService) {
+        m_servicePoll.stop();
+        checkService();
+    }
+}
+
+void ModemLink::giveUp(const QString& why)
+{
+    m_timeout.stop();
+    m_state = CallState::GaveUp;
+    m_failureShown = false;
+    fail(why);
+}
+
 void ModemLink::dial()
 {
+    ++m_dials;
     m_since.start();
     const QString attempt = m_attempt > 0 ? tr(", attempt %1 of %2").arg(m_attempt + 1).arg(m_options.redialAttempts + 1)
                                           : QString();
@@ -205,10 +344,11 @@ void ModemLink::takeLines(const QByteArray& bytes)
         }
         if (m_line.isEmpty())
             continue;
-        const std::optional<modem::Result> parsed = modem::parseResult(m_line);
-        m_line.clear();
-        if (parsed)
+        const QByteArray line = std::exchange(m_line, {});
+        if (const std::optional<modem::Result> parsed = modem::parseResult(line))
             result(*parsed);
+        else
+            takeServiceLine(line);
         if (m_state == CallState::Connected)
             return;  // what follows CONNECT in this read is data, and is lost: a frame's worth at most
     }
@@ -218,16 +358,37 @@ void ModemLink::result(const modem::Result& r)
 {
     const QString said = QString::fromLatin1(modem::resultText(r));
     switch (m_state) {
+        case CallState::Probing:
+            // Any answer is from a modem in command mode.
+            if (r.code == ResultCode::Ok || r.code == ResultCode::Error) {
+                m_timeout.stop();
+                initialise();
+            }
+            break;
         case CallState::Initialising:
             if (r.code == ResultCode::Ok) {
-                m_timeout.stop();
-                if (m_options.number.isEmpty())
-                    setState(CallState::AwaitingCall, tr("waiting for a call"));
-                else
-                    dial();
+                nextSetupCommand();
             } else if (r.code == ResultCode::Error) {
-                failed(tr("the modem refused \"%1\": %2").arg(QString::fromLatin1(m_options.initString), said));
+                const QString command = QString::fromLatin1(m_command);
+                if (m_command == m_options.initString) {
+                    failed(tr("the modem refused \"%1\": %2").arg(command, said));
+                } else if (m_command == m_options.profile.indications) {
+                    emit statusChanged(tr("the phone does not report its service by itself (%1: %2): asking it "
+                                          "every %3 s")
+                                           .arg(command, said, seconds(m_options.servicePollInterval.count())));
+                    nextSetupCommand();
+                } else {
+                    giveUp(tr("the modem refused %1 (%2), part of the %3 profile's set-up: the profile does not "
+                              "fit this phone; choose its own in the link pane, or \"%4\" and the phone's "
+                              "commands in the init string")
+                               .arg(command, said, m_options.profile.title, modem::defaultProfile().title));
+                }
             }
+            break;
+        case CallState::CheckingService:
+            // ERROR to AT+CREG? leaves the registration unknown: no dial.
+            if (r.code == ResultCode::Ok || r.code == ResultCode::Error)
+                nextServiceQuery();
             break;
         case CallState::Dialling:
             if (r.code == ResultCode::Connect)
@@ -265,7 +426,7 @@ void ModemLink::connected(int rate)
     const qint64 setUp = m_since.elapsed();
     m_rate = rate;
     ++m_calls;
-    m_attempt = 0;
+    // m_attempt goes on: only a call that lasts starts the redials afresh.
     m_failureShown = false;
     m_dataTail.clear();
     m_since.start();
@@ -279,9 +440,16 @@ void ModemLink::connected(int rate)
 void ModemLink::timedOut()
 {
     switch (m_state) {
+        case CallState::Probing:
+            escapeStaleCall();
+            initialise();
+            break;
         case CallState::Initialising:
             failed(tr("the modem did not answer \"%1\" within %2 s")
-                       .arg(QString::fromLatin1(m_options.initString), seconds(m_options.commandTimeout.count())));
+                       .arg(QString::fromLatin1(m_command), seconds(m_options.commandTimeout.count())));
+            break;
+        case CallState::CheckingService:
+            nextServiceQuery();  // what it did not say stays unknown
             break;
         case CallState::Dialling:
         case CallState::Answering:
@@ -307,7 +475,13 @@ void ModemLink::failed(const QString& what)
 void ModemLink::callEnded(const QString& why)
 {
     m_carrierPoll.stop();
-    const QString what = tr("call dropped (%1) after %2").arg(why, callSummary());
+    const bool lasted = m_since.elapsed() >= m_options.minimumCallDuration.count();
+    if (lasted)
+        m_attempt = 0;
+    const QString what =
+        lasted ? tr("call dropped (%1) after %2").arg(why, callSummary())
+               : tr("call dropped (%1) after %2, sooner than the %3 s a call must last to count as good")
+                     .arg(why, callSummary(), seconds(m_options.minimumCallDuration.count()));
     m_state = CallState::WaitingToRedial;  // not Connected any more, before anyone hears closed()
     emit closed();
     if (m_options.number.isEmpty()) {
@@ -360,7 +534,7 @@ void ModemLink::pollCarrier()
         callEnded(tr("carrier lost, DCD off"));
 }
 
-void ModemLink::hangUp()
+void ModemLink::hangUp(bool dropDtr)
 {
     m_state = CallState::HangingUp;
     m_line.clear();
@@ -372,7 +546,8 @@ void ModemLink::hangUp()
     port().write("ATH\r");
     waitFor(m_options.hangUpTimeout, true);
     // A modem set to &D2 hangs up when DTR drops, should the words have failed.
-    port().setDataTerminalReady(false);
+    if (dropDtr)
+        port().setDataTerminalReady(false);
 }
 
 // Without untilOk it is the guard time: silence on our side, whatever the
@@ -394,8 +569,18 @@ QString ModemLink::callSummary() const
     if (m_options.costPerMinute <= 0)
         return duration(ms);
     const qint64 minutes = std::max<qint64>(1, (ms + 59999) / 60000);
-    return tr("%1, %2 min billed, cost %3")
+    const QString currency = m_options.costCurrency.trimmed();
+    return tr("%1, %2 min billed at %3 a minute, cost %4")
         .arg(duration(ms))
         .arg(minutes)
-        .arg(QString::number(double(minutes) * m_options.costPerMinute, 'f', 2));
+        .arg(cost(m_options.costPerMinute),
+             currency.isEmpty() ? tr("%1 (no currency set)").arg(cost(double(minutes) * m_options.costPerMinute))
+                                : cost(double(minutes) * m_options.costPerMinute));
+}
+
+QString ModemLink::cost(double amount) const
+{
+    const QString number = QString::number(amount, 'f', 2);
+    const QString currency = m_options.costCurrency.trimmed();
+    return currency.isEmpty() ? number : QStringLiteral("%1 %2").arg(number, currency);
 }

@@ -24,7 +24,8 @@ constexpr std::array<std::pair<ResultCode, const char*>, 8> kTexts{{
 
 std::optional<Result> parseResult(QByteArrayView line)
 {
-    const QByteArray text = line.toByteArray().trimmed();
+    // Liberal: either case, spaces anywhere between the words.
+    const QByteArray text = line.toByteArray().simplified().toUpper();
     for (const auto& [code, name] : kTexts) {
         if (text == name)
             return Result{code, 0};

@@ -53,6 +53,7 @@ public:
     FrameTransport transport() const override { return FrameTransport::Udp; }
     bool isStream() const override { return false; }
     bool isOpen() const override { return m_socket.state() == QAbstractSocket::BoundState; }
+    bool canSend() const override { return isOpen() && !m_remoteAddress.isNull() && m_remotePort != 0; }
     QString description() const override;
 
 public slots:

@@ -80,6 +80,13 @@ void VoiceEncoderSource::readVoice(std::span<std::uint8_t> out)
     }
 }
 
+void VoiceEncoderSource::setFramesPerPacket(int frames)
+{
+    m_packetFrames = std::max(1, frames);
+    m_frameInPacket = 0;
+    m_framePosition = kFrameBytes;  // the next read starts a frame, and a packet
+}
+
 void VoiceEncoderSource::nextFrame()
 {
     std::array<std::int16_t, kFrameSamples> pcm{};
@@ -87,7 +94,13 @@ void VoiceEncoderSource::nextFrame()
     {
         const std::lock_guard lock(m_mutex);
         const std::size_t n = std::min(m_pcm.size(), kFrameSamples);
-        if (n == kFrameSamples || (n > 0 && m_talkEnded)) {
+        // A packet's first frame decides for the packet: speech only when
+        // the whole packet's samples wait (or the talk has ended), so that
+        // live speech is never cut into speech and idle halves.
+        if (m_frameInPacket == 0)
+            m_packetSpeech = m_pcm.size() >= kFrameSamples * std::size_t(m_packetFrames) || (n > 0 && m_talkEnded);
+        m_frameInPacket = (m_frameInPacket + 1) % m_packetFrames;
+        if (m_packetSpeech && (n == kFrameSamples || (n > 0 && m_talkEnded))) {
             std::copy_n(m_pcm.begin(), n, pcm.begin());
             m_pcm.erase(m_pcm.begin(), m_pcm.begin() + static_cast<std::ptrdiff_t>(n));
             speech = true;

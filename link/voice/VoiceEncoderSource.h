@@ -49,6 +49,7 @@ public:
 
     // The link's thread.
     void readVoice(std::span<std::uint8_t> out) override;
+    void setFramesPerPacket(int frames) override;
 
 private:
     void nextFrame();
@@ -63,5 +64,8 @@ private:
     rcm::voice::VoiceEncoder m_encoder;  // the link's thread only
     std::array<std::uint8_t, rcm::voice::kFrameBytes> m_frame{};
     std::size_t m_framePosition = rcm::voice::kFrameBytes;
+    int m_packetFrames = 1;
+    int m_frameInPacket = 0;    // of the packet being read
+    bool m_packetSpeech = false;  // the packet being read is speech
     std::atomic<float> m_sentLevel{0};
 };

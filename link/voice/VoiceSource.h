@@ -13,4 +13,9 @@ public:
     virtual ~VoiceSource() = default;
     // Fills all of `out`, at once: never blocks, never leaves a gap.
     virtual void readVoice(std::span<std::uint8_t> out) = 0;
+    // From the next frame on, frames are read `frames` at a time, whole (a
+    // secure link seals two 20 ms frames in one): a source that decides
+    // speech or idle per frame decides it per packet, so that a talk is never
+    // split by an idle half. A new link calls it before its first read.
+    virtual void setFramesPerPacket(int frames) { (void)frames; }
 };

@@ -26,7 +26,9 @@ VoiceUdpLink::VoiceUdpLink(std::unique_ptr<Link> inner, std::shared_ptr<VoiceSou
       m_source(std::move(source)),
       m_sink(std::move(sink)),
       m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>()),
-      m_timer(m_clock->createTimer(this, Qt::PreciseTimer))
+      m_timer(m_clock->createTimer(this, Qt::PreciseTimer)),
+      m_frameBytes(rcm::voice::kFrameBytes),
+      m_framesPerSecond(int(rcm::voice::kFramesPerSecond))
 {
     Q_ASSERT(!LinkWrapper::inner()->isStream());
     connect(m_timer, &ClockTimer::timeout, this, [this] {
@@ -40,6 +42,12 @@ bool VoiceUdpLink::isVoiceDatagram(const QByteArray& datagram)
     const qsizetype frames = datagram.size() - kMagicSize;
     return frames >= qsizetype(rcm::voice::kFrameBytes) && frames % qsizetype(rcm::voice::kFrameBytes) == 0 &&
            std::memcmp(datagram.constData(), kMagic, kMagicSize) == 0;
+}
+
+void VoiceUdpLink::setFraming(std::size_t frameBytes, int framesPerSecond)
+{
+    m_frameBytes = frameBytes;
+    m_framesPerSecond = framesPerSecond;
 }
 
 QString VoiceUdpLink::description() const
@@ -85,17 +93,24 @@ void VoiceUdpLink::pace()
 {
     if (!m_source || !inner()->isOpen())
         return;
-    using rcm::voice::kFrameBytes;
-    using rcm::voice::kFramesPerSecond;
-    // The frame whose 20 ms has begun goes now.
-    const auto due =
-        static_cast<std::uint64_t>((m_clock->steadyMicros() - m_openedMicros) * std::int64_t(kFramesPerSecond) / 1000000) + 1;
+    if (!inner()->canSend()) {
+        // Nobody to send to yet (uasim before the console's first command):
+        // the voice waits, from its first frame, for the link to be up,
+        // rather than go to nobody.
+        m_openedMicros = m_clock->steadyMicros();
+        m_frames = 0;
+        return;
+    }
+    // The frame whose 20 ms (40 ms on a keyed link) has begun goes now.
+    const auto due = static_cast<std::uint64_t>((m_clock->steadyMicros() - m_openedMicros) *
+                                                std::int64_t(m_framesPerSecond) / 1000000) +
+                     1;
     if (due > m_frames + kMaxCatchUp)
         m_frames = due - kMaxCatchUp;
-    QByteArray datagram(kMagicSize + qsizetype(kFrameBytes), Qt::Uninitialized);
+    QByteArray datagram(kMagicSize + qsizetype(m_frameBytes), Qt::Uninitialized);
     std::memcpy(datagram.data(), kMagic, kMagicSize);
     for (; m_frames < due; ++m_frames) {
-        m_source->readVoice({reinterpret_cast<std::uint8_t*>(datagram.data()) + kMagicSize, kFrameBytes});
+        m_source->readVoice({reinterpret_cast<std::uint8_t*>(datagram.data()) + kMagicSize, m_frameBytes});
         // No peer yet: the frame is gone, as on a line nobody listens to.
         if (inner()->write(datagram))
             ++m_sent;

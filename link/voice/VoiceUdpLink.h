@@ -45,6 +45,10 @@ public:
     // True for a datagram of the voice format above.
     static bool isVoiceDatagram(const QByteArray& datagram);
 
+    // The frames sent, one a datagram: 12 bytes 50 times a second (plain
+    // voice) or, on a keyed link, 24 bytes 25 times (codec/voice/SecureVoice.h).
+    void setFraming(std::size_t frameBytes, int framesPerSecond);
+
     QString description() const override;
 
     // The link's thread.
@@ -68,6 +72,8 @@ private:
     ClockTimer* m_timer;              // a child
     std::int64_t m_openedMicros = 0;  // m_clock's steady time when the link opened
     std::uint64_t m_frames = 0;  // voice frames taken from the source since the link opened
+    std::size_t m_frameBytes;
+    int m_framesPerSecond;
     std::uint64_t m_sent = 0;
     std::uint64_t m_received = 0;
 };

@@ -2,7 +2,7 @@
 // aircraft, each publishing as a console does at the link's real cadence,
 // through one real mosquitto on loopback to one FleetFeed, FleetModel and
 // FleetView (offscreen), measuring what each side costs and how late a
-// frame reaches its row.
+// report reaches its row, and accounting for every report published.
 //
 //   bench_fleet N [SECONDS] [WARMUP] [--no-view]
 //       N aircraft (10, 100, 1000), measured for SECONDS (default 30) after
@@ -15,23 +15,38 @@
 // broker (started here on a free port, with tests/MosquittoProcess.h), the
 // publishers (this program again, with --publish: one MqttClient per
 // aircraft, as each aircraft's console has its own connection, at most 250
-// to a process, see runFleet) and the fleet side (this process: one
+// to a process, see runFleet), the fleet side (this process: one
 // MqttClient, FleetFeed, FleetModel and a FleetView shown on the offscreen
-// platform).
+// platform) and a frame counter (this program again, with --count-frames:
+// every frame, as the observers of all the aircraft together would get
+// them).
 //
 // Each aircraft, every second, at its own offset in the second (the fleet
 // spread evenly over it): a frame up (a FrameReport of a 600-byte frame,
 // base64), a frame down half a second later (with its decoded text, as a
 // console publishes what it received), its station report and its link
-// statistics (both retained), all QoS 1 as the console publishes them. A
-// frame's utcMicros is stamped when it is handed to the client, as a console
-// stamps it when it goes on the link; its delay is taken when the model tells
-// its views of the row that counts it (the dataChanged() or rowsInserted() of
-// the model's once-a-pass flush).
+// statistics (both retained), all QoS 1 as the console publishes them, each
+// in its station's envelope, signed with its Ed25519 key. The fleet side
+// trusts every station's key and verifies every message it reads: the
+// station reports and the statistics (FleetFeed reads no frames). A report's
+// delay runs from its envelope's number (the publisher's UTC microseconds
+// when it signed it) to the model telling its views of the row (the
+// dataChanged() or rowsInserted() of the model's flush).
+//
+// Every report is accounted for: each publisher counts what it handed to
+// its client and what the broker acknowledged (PUBACK), by kind, stops on
+// time and waits for the last acknowledgements; the fleet side counts the
+// station reports and statistics it received and verified, the frame
+// counter the frames, each aircraft's by their numbers (FrameReport::seq):
+// none missing, none twice. The counts cover the whole run, not only the
+// window measured.
 #include "codec/message/Airframe.h"
 #include "codec/message/TextFormat.h"
+#include "codec/secure/StationSigningKey.h"
 #include "link/broker/BrokerSettings.h"
 #include "link/broker/BrokerTopics.h"
+#include "link/broker/BrokerTrust.h"
+#include "link/broker/EnvelopeWriter.h"
 #include "link/broker/FleetFeed.h"
 #include "link/broker/MqttClient.h"
 #include "tests/MosquittoProcess.h"
@@ -45,11 +60,14 @@
 #include <QHash>
 #include <QProcess>
 #include <QRandomGenerator>
+#include <QSocketNotifier>
 #include <QTimer>
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <set>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -141,6 +159,22 @@ QString stationName(int i)
     return QStringLiteral("GB_%1").arg(50000 + i);
 }
 
+// Station i's signing key, the same in every process of the bench: made
+// from its number (a bench's key, not a secret).
+std::shared_ptr<const rcm::secure::StationSigningKey> stationKey(int i)
+{
+    std::array<std::uint8_t, rcm::secure::kKeySize> seed{};
+    seed.fill(0x5a);
+    seed[0] = std::uint8_t(i);
+    seed[1] = std::uint8_t(i >> 8);
+    seed[2] = std::uint8_t(i >> 16);
+    return std::make_shared<const rcm::secure::StationSigningKey>(rcm::secure::SecretKey(seed));
+}
+
+// What an aircraft publishes, by kind, for the accounting.
+enum Kind { kFramesUp, kFramesDown, kStation, kStats, kKinds };
+const char* const kKindNames[kKinds] = {"frames up", "frames down", "station reports", "statistics"};
+
 BrokerSettings brokerAt(quint16 port, const QString& clientId)
 {
     BrokerSettings settings;
@@ -155,6 +189,7 @@ BrokerSettings brokerAt(quint16 port, const QString& clientId)
 // One simulated console: its connection, and what it has said so far.
 struct Console {
     std::unique_ptr<MqttClient> client;
+    std::unique_ptr<EnvelopeWriter> envelopes;
     QString station;
     QString framesTopic;
     QString stationTopic;
@@ -163,6 +198,9 @@ struct Console {
     StatsReport stats;
     qint64 lastDownUtcMicros = 0;
     quint32 messageId = 0;
+    qint64 session = 0;
+    quint64 frameSeq = 0;
+    QHash<int, int> unacknowledged;  // message ID -> Kind
 };
 
 // A frame as SessionPublisher reports it: up, our own send; down, received,
@@ -177,6 +215,8 @@ FrameReport frameReport(const Console& c, bool up, qint64 utcMicros, const QStri
     f.messageId = c.messageId;
     f.bytes = c.frameBytes;
     f.transport = FrameTransport::Serial;
+    f.session = c.session;
+    f.seq = c.frameSeq;
     if (!up) {
         f.corrected = {0, 0};
         f.text = downText;
@@ -209,9 +249,11 @@ int publish(int first, int count, int total, quint16 port, int seconds)
         Console& c = consoles[std::size_t(k)];
         c.client = std::make_unique<MqttClient>(brokerAt(port, QStringLiteral("bench-publisher-%1").arg(i)));
         c.station = stationName(i);
-        c.framesTopic = BrokerTopics::framesTopic(aircraftName(i));
-        c.stationTopic = BrokerTopics::stationTopic(aircraftName(i), stationName(i));
-        c.statsTopic = BrokerTopics::statsTopic(aircraftName(i));
+        c.envelopes = std::make_unique<EnvelopeWriter>(c.station, stationKey(i));
+        c.session = utcMicros();
+        c.framesTopic = BrokerTopics::framesTopic(aircraftName(i), c.station);
+        c.stationTopic = BrokerTopics::stationTopic(aircraftName(i), c.station);
+        c.statsTopic = BrokerTopics::statsTopic(aircraftName(i), c.station);
         c.frameBytes.resize(600);
         for (char& b : c.frameBytes)
             b = char(random.bounded(256));
@@ -238,9 +280,16 @@ int publish(int first, int count, int total, quint16 port, int seconds)
         }
     }
     if (first == 0)
-        say(QStringLiteral("a frame's JSON is %1 bytes up, %2 bytes down")
-                .arg(frameReport(consoles[0], true, utcMicros(), downText).toJson().size())
-                .arg(frameReport(consoles[0], false, utcMicros(), downText).toJson().size()));
+        say(QStringLiteral("a frame's envelope is %1 bytes up, %2 bytes down")
+                .arg(consoles[0]
+                         .envelopes
+                         ->wrap(consoles[0].framesTopic, frameReport(consoles[0], true, utcMicros(), downText).toJson())
+                         .size())
+                .arg(
+                    consoles[0]
+                        .envelopes
+                        ->wrap(consoles[0].framesTopic, frameReport(consoles[0], false, utcMicros(), downText).toJson())
+                        .size()));
     std::printf("ready\n");
     std::fflush(stdout);
 
@@ -258,6 +307,24 @@ int publish(int first, int count, int total, quint16 port, int seconds)
     quint64 published = 0;
     quint64 refused = 0;
     qint64 lateMaxMicros = 0;
+    std::array<quint64, kKinds> handed{};
+    std::array<quint64, kKinds> acknowledged{};
+    for (Console& c : consoles)
+        QObject::connect(c.client.get(), &MqttClient::published, [&c, &acknowledged](int id) {
+            const auto it = c.unacknowledged.constFind(id);
+            if (it == c.unacknowledged.cend())
+                return;
+            ++acknowledged[std::size_t(*it)];
+            c.unacknowledged.erase(it);
+        });
+    const auto send = [](Console& c, const QString& topic, const QByteArray& body, bool retain, int kind) {
+        int id = 0;
+        const bool ok = c.client->publish(topic, c.envelopes->wrap(topic, body), 1, retain, &id,
+                                          BrokerTopics::kMessageExpirySeconds);
+        if (ok)
+            c.unacknowledged.insert(id, kind);
+        return ok;
+    };
     std::size_t next = 0;
     const qint64 begin = (utcMicros() / kSecond + 1) * kSecond;
     qint64 cycleStart = begin;
@@ -270,6 +337,7 @@ int publish(int first, int count, int total, quint16 port, int seconds)
             case Act::FrameUp:
             case Act::FrameDown: {
                 const bool up = due.act == Act::FrameUp;
+                ++c.frameSeq;
                 const FrameReport f = frameReport(c, up, now, downText);
                 if (up) {
                     ++c.messageId;
@@ -278,7 +346,9 @@ int publish(int first, int count, int total, quint16 port, int seconds)
                     c.lastDownUtcMicros = now;
                     ++c.stats.framesReceived;
                 }
-                ok = c.client->publish(c.framesTopic, f.toJson(), BrokerTopics::kFramesQos, false);
+                ok = send(c, c.framesTopic, f.toJson(), false, up ? kFramesUp : kFramesDown);
+                if (ok)
+                    ++handed[up ? kFramesUp : kFramesDown];
                 break;
             }
             case Act::Station: {
@@ -291,13 +361,17 @@ int publish(int first, int count, int total, quint16 port, int seconds)
                 r.utcMicros = now;
                 r.lastFrameUtcMicros = c.lastDownUtcMicros;
                 r.destination = station;
-                ok = c.client->publish(c.stationTopic, r.toJson(), BrokerTopics::kStationQos, true);
+                ok = send(c, c.stationTopic, r.toJson(), true, kStation);
+                if (ok)
+                    ++handed[kStation];
                 break;
             }
             case Act::Stats:
                 c.stats.lastGoodFrameUtcMicros = c.lastDownUtcMicros;
                 c.stats.state = LinkState::Connected;
-                ok = c.client->publish(c.statsTopic, c.stats.toJson(), BrokerTopics::kStatsQos, true);
+                ok = send(c, c.statsTopic, c.stats.toJson(), true, kStats);
+                if (ok)
+                    ++handed[kStats];
                 break;
         }
         ++(ok ? published : refused);
@@ -332,8 +406,86 @@ int publish(int first, int count, int total, quint16 port, int seconds)
     });
     ticker.start();
     QCoreApplication::exec();
+    ticker.stop();
+    // The last acknowledgements, then what was handed and acknowledged, by kind.
+    QElapsedTimer draining;
+    draining.start();
+    const auto waiting = [&] {
+        std::size_t n = 0;
+        for (const Console& c : consoles)
+            n += std::size_t(c.unacknowledged.size());
+        return n;
+    };
+    while (waiting() > 0 && draining.elapsed() < 30'000)
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+    std::printf("totals");
+    for (int k = 0; k < kKinds; ++k)
+        std::printf(" %llu %llu", static_cast<unsigned long long>(handed[std::size_t(k)]),
+                    static_cast<unsigned long long>(acknowledged[std::size_t(k)]));
+    std::printf(" unacknowledged %zu\n", waiting());
+    std::fflush(stdout);
     for (Console& c : consoles)
         c.client->stop();
+    return 0;
+}
+
+// ---------------------------------------------------------------- frame counter
+
+// Every frame the broker delivers to a subscriber of rcm/+/frames/+, as an
+// observer of each aircraft would get it: counted by direction, and each
+// aircraft's frame numbers kept, so that a number never seen is a frame lost
+// on the way and one seen twice came twice. Prints "ready" once subscribed;
+// on "report" from the fleet side, waits until nothing came for 2 s, prints
+// "frames UP DOWN TWICE SKIPPED" and exits. The envelopes are read, not
+// verified: this is the bench's ledger, not a console (the fleet side
+// verifies what it shows).
+int countFrames(quint16 port)
+{
+    MqttClient client(brokerAt(port, QStringLiteral("bench-frame-counter")));
+    QHash<QString, std::set<quint64>> numbers;
+    quint64 up = 0, down = 0, twice = 0;
+    qint64 last = utcMicros();
+    QObject::connect(&client, &MqttClient::messageReceived, [&](const QString& topic, const QByteArray& payload) {
+        last = utcMicros();
+        const std::optional<BrokerEnvelope> e = BrokerEnvelope::fromJson(payload, nullptr);
+        const std::optional<FrameReport> f = e ? FrameReport::fromJson(e->body, nullptr) : std::nullopt;
+        if (!f)
+            return;
+        ++(f->direction == FrameDirection::Sent ? up : down);
+        if (!numbers[topic].insert(f->seq).second)
+            ++twice;
+    });
+    QObject::connect(&client, &MqttClient::subscribed, [] {
+        std::printf("ready\n");
+        std::fflush(stdout);
+    });
+    client.subscribe(BrokerTopics::allPattern(BrokerTopics::Kind::Frames), BrokerTopics::kFramesQos);
+    client.start();
+    QSocketNotifier input(STDIN_FILENO, QSocketNotifier::Read);
+    bool reporting = false;
+    QObject::connect(&input, &QSocketNotifier::activated, [&] {
+        char line[64];
+        if (!std::fgets(line, sizeof line, stdin) || qstrncmp(line, "report", 6) == 0)
+            reporting = true;
+    });
+    QTimer tick;
+    tick.setInterval(100);
+    QObject::connect(&tick, &QTimer::timeout, [&] {
+        if (!reporting || utcMicros() - last < 2 * kSecond)
+            return;
+        quint64 skipped = 0;
+        for (const std::set<quint64>& seen : std::as_const(numbers))
+            if (!seen.empty())
+                skipped += *seen.rbegin() - *seen.begin() + 1 - quint64(seen.size());
+        std::printf("frames %llu %llu %llu %llu\n", static_cast<unsigned long long>(up),
+                    static_cast<unsigned long long>(down), static_cast<unsigned long long>(twice),
+                    static_cast<unsigned long long>(skipped));
+        std::fflush(stdout);
+        QCoreApplication::quit();
+    });
+    tick.start();
+    QCoreApplication::exec();
+    client.stop();
     return 0;
 }
 
@@ -345,21 +497,32 @@ struct Snapshot {
     double publishersCpu = 0;
     double fleetCpu = 0;
     double fleetGuiCpu = 0;
-    quint64 framesReported = 0;
+    double counterCpu = 0;
+    quint64 statsReported = 0;
     quint64 published = 0;
 };
 
-// What the publishers said last ("second S published P refused R late_max_us L").
+// What the publishers said last ("second S published P refused R late_max_us L"),
+// and at their end ("totals", then handed and acknowledged of each kind).
 struct PublisherLine {
     int second = 0;
     quint64 published = 0;
     quint64 refused = 0;
     qint64 lateMaxMicros = 0;
+    bool done = false;
+    std::array<quint64, kKinds> handed{};
+    std::array<quint64, kKinds> acknowledged{};
+    quint64 unacknowledged = 0;
 };
 
 int runFleet(int n, int seconds, int warmup, bool shown)
 {
-    rcm::test::MosquittoProcess broker;
+    // A client that falls behind has 20,000 messages queued for it before the
+    // broker drops any (mosquitto's default: 1,000); the broker says how many
+    // it dropped in $SYS, once a second.
+    rcm::test::MosquittoProcess::Options brokerOptions;
+    brokerOptions.more = {QStringLiteral("max_queued_messages 20000"), QStringLiteral("sys_interval 1")};
+    rcm::test::MosquittoProcess broker(brokerOptions);
     if (!broker.start()) {
         say(QStringLiteral("cannot start /usr/sbin/mosquitto: ") + broker.setupError());
         return 1;
@@ -380,6 +543,27 @@ int runFleet(int n, int seconds, int warmup, bool shown)
 
     MqttClient fleetClient(brokerAt(broker.port(), QStringLiteral("bench-fleet")));
     FleetFeed feed(&fleetClient);
+    auto trust = std::make_shared<BrokerTrust>();
+    for (int i = 0; i < n; ++i)
+        trust->trustStation(stationName(i), stationKey(i)->publicKey());
+    feed.setTrust(trust);
+    // Everything the broker delivered, by kind, as the client judged it.
+    std::array<quint64, kKinds> delivered{};
+    quint64 deliveredRefused = 0;
+    qint64 lastDelivery = 0;
+    QObject::connect(&fleetClient, &MqttClient::messageOpened, [&](const OpenedMessage& m) {
+        lastDelivery = utcMicros();
+        if (m.refused() || !m.verified()) {
+            ++deliveredRefused;
+            if (deliveredRefused <= 3)
+                say(QStringLiteral("refused or unverified: ") + m.refusal);
+            return;
+        }
+        if (m.where->kind == BrokerTopics::Kind::Station)
+            ++delivered[kStation];
+        else if (m.where->kind == BrokerTopics::Kind::Stats)
+            ++delivered[kStats];
+    });
     FleetModel model;
     QObject::connect(&feed, &FleetFeed::aircraftUpdated, &model, &FleetModel::update);
     FleetView view(&model);
@@ -389,31 +573,19 @@ int runFleet(int n, int seconds, int warmup, bool shown)
     if (shown)
         view.show();
 
-    // Frames reported since the model's last flush, by their utcMicros; the
-    // flush is the model's dataChanged() without roles, or rowsInserted()
-    // (refreshAges() names its roles).
+    // Statistics reported since the model's last flush, by when they were
+    // published (their envelope's number, the publisher's UTC microseconds);
+    // the flush is the model's dataChanged() without roles, or
+    // rowsInserted() (refreshAges() names its roles).
     bool measuring = false;
-    quint64 framesReported = 0;
+    quint64 statsReported = 0;
     std::vector<qint64> waiting;
     std::vector<std::int64_t> delays;
-    delays.reserve(std::size_t(n) * 2 * std::size_t(seconds) + 1024);
-    // Frames lost on the way: each aircraft's frames carry consecutive
-    // message IDs each way, so a gap is a frame that never arrived.
-    struct Sequence {
-        std::optional<quint32> up;
-        std::optional<quint32> down;
-    };
-    QHash<QString, Sequence> sequences;
-    quint64 framesMissing = 0;
-    QObject::connect(&feed, &FleetFeed::frameReported, [&](const QString& aircraft, const FrameReport& frame) {
-        ++framesReported;
-        Sequence& seen = sequences[aircraft];
-        std::optional<quint32>& last = frame.direction == FrameDirection::Sent ? seen.up : seen.down;
-        if (measuring && last && frame.messageId && *frame.messageId > *last + 1)
-            framesMissing += *frame.messageId - *last - 1;
-        last = frame.messageId;
+    delays.reserve(std::size_t(n) * std::size_t(seconds) + 1024);
+    QObject::connect(&feed, &FleetFeed::statsReported, [&](const QString&, const StatsReport&, qint64 published) {
+        ++statsReported;
         if (measuring)
-            waiting.push_back(frame.utcMicros);
+            waiting.push_back(published);
     });
     const auto told = [&] {
         if (waiting.empty())
@@ -430,6 +602,38 @@ int runFleet(int n, int seconds, int warmup, bool shown)
                              told();
                      });
     fleetClient.start();
+    MqttClient sysClient(brokerAt(broker.port(), QStringLiteral("bench-sys")));
+    quint64 brokerDropped = 0;
+    QObject::connect(&sysClient, &MqttClient::messageReceived,
+                     [&](const QString&, const QByteArray& payload) { brokerDropped = payload.toULongLong(); });
+    sysClient.subscribe(QStringLiteral("$SYS/broker/publish/messages/dropped"), 0);
+    sysClient.start();
+
+    // The frames' ledger, a process of its own, subscribed before anyone publishes.
+    QProcess counter;
+    counter.setProgram(QCoreApplication::applicationFilePath());
+    counter.setArguments({QStringLiteral("--count-frames"), QString::number(broker.port())});
+    counter.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+    bool counterReady = false;
+    QList<QByteArray> counted;
+    QObject::connect(&counter, &QProcess::readyReadStandardOutput, [&] {
+        while (counter.canReadLine()) {
+            const QByteArray line = counter.readLine().trimmed();
+            if (line == "ready")
+                counterReady = true;
+            else if (line.startsWith("frames "))
+                counted = line.split(' ');
+        }
+    });
+    counter.start();
+    waited.restart();
+    while (!counterReady) {
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+        if (counter.state() == QProcess::NotRunning || waited.elapsed() > 30'000) {
+            say(QStringLiteral("the frame counter did not get ready"));
+            return 1;
+        }
+    }
 
     // The publishers, in processes of at most kClientsPerProcess clients:
     // libmosquitto's network loop waits with select(), which cannot watch a
@@ -446,7 +650,7 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         QProcess* raw = process.get();
         raw->setProgram(QCoreApplication::applicationFilePath());
         raw->setArguments({QStringLiteral("--publish"), QString::number(first), QString::number(count),
-                           QString::number(n), QString::number(broker.port()), QString::number(warmup + seconds + 10)});
+                           QString::number(n), QString::number(broker.port()), QString::number(warmup + seconds + 2)});
         raw->setProcessChannelMode(QProcess::ForwardedErrorChannel);
         PublisherLine& last = lines[std::size_t(p)];
         QObject::connect(raw, &QProcess::readyReadStandardOutput, [raw, &last, &ready] {
@@ -457,6 +661,15 @@ int runFleet(int n, int seconds, int warmup, bool shown)
                     continue;
                 }
                 const QList<QByteArray> f = line.split(' ');
+                if (f.size() == 2 + 2 * kKinds + 1 && f[0] == "totals") {
+                    for (int k = 0; k < kKinds; ++k) {
+                        last.handed[std::size_t(k)] = f[1 + 2 * k].toULongLong();
+                        last.acknowledged[std::size_t(k)] = f[2 + 2 * k].toULongLong();
+                    }
+                    last.unacknowledged = f.last().toULongLong();
+                    last.done = true;
+                    continue;
+                }
                 if (f.size() == 8 && f[0] == "second") {
                     last.second = f[1].toInt();
                     last.published = f[3].toULongLong();
@@ -517,12 +730,13 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         s.publishersCpu = publishersCpu();
         s.fleetCpu = processCpu(fleetPid);
         s.fleetGuiCpu = cpuSeconds(QStringLiteral("/proc/%1/task/%1/stat").arg(fleetPid));
-        s.framesReported = framesReported;
+        s.counterCpu = processCpu(counter.processId());
+        s.statsReported = statsReported;
         s.published = publishedSoFar();
         return s;
     };
     Snapshot start, end;
-    double brokerRss = 0, publishersRss = 0, fleetRss = 0;
+    double brokerRss = 0, publishersRss = 0, fleetRss = 0, counterRss = 0;
     QEventLoop loop;
     QTimer::singleShot(warmup * 1000, Qt::PreciseTimer, &loop, [&] {
         start = snapshot();
@@ -536,6 +750,7 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         brokerRss = statusMiB(mosquittoPid, "VmRSS");
         publishersRss = publishersRssNow();
         fleetRss = statusMiB(fleetPid, "VmRSS");
+        counterRss = statusMiB(counter.processId(), "VmRSS");
         loop.quit();
     });
     loop.exec();
@@ -548,9 +763,9 @@ int runFleet(int n, int seconds, int warmup, bool shown)
     }
     const double wall = double(end.steadyMicros - start.steadyMicros) / 1e6;
     const auto percent = [&](double a, double b) { return 100.0 * (b - a) / wall; };
-    // Two frames a second for each aircraft, over the time measured.
-    const quint64 expected = quint64(double(n) * 2.0 * wall + 0.5);
-    const quint64 reported = end.framesReported - start.framesReported;
+    // One statistics message a second for each aircraft, over the time measured.
+    const quint64 expected = quint64(double(n) * wall + 0.5);
+    const quint64 reported = end.statsReported - start.statsReported;
     std::sort(delays.begin(), delays.end());
     const auto at = [&](double q) {
         return delays.empty() ? 0.0 : double(delays[std::size_t(q * double(delays.size() - 1))]) / 1000.0;
@@ -564,10 +779,9 @@ int runFleet(int n, int seconds, int warmup, bool shown)
         static_cast<unsigned long long>(end.published - start.published),
         double(end.published - start.published) / wall, static_cast<unsigned long long>(refusedByClients),
         double(lateMaxMicros) / 1000.0);
-    std::printf("frames reported to the fleet: %llu, %llu due (%.2f %%); missing from the message ID sequences: %llu\n",
+    std::printf("statistics reported to the fleet in the window: %llu, %llu due (%.2f %%)\n",
                 static_cast<unsigned long long>(reported), static_cast<unsigned long long>(expected),
-                expected ? 100.0 * double(reported) / double(expected) : 0.0,
-                static_cast<unsigned long long>(framesMissing));
+                expected ? 100.0 * double(reported) / double(expected) : 0.0);
     std::printf("rows: %d\n\n", model.rowCount());
     std::printf("| process | CPU (%% of one core) | RSS (MiB) |\n|---|---:|---:|\n");
     std::printf("| mosquitto | %.1f | %.1f |\n", percent(start.brokerCpu, end.brokerCpu), brokerRss);
@@ -575,14 +789,78 @@ int runFleet(int n, int seconds, int warmup, bool shown)
                 percent(start.publishersCpu, end.publishersCpu), publishersRss);
     std::printf("| fleet side (MqttClient, FleetFeed, FleetModel%s) | %.1f | %.1f |\n",
                 shown ? ", FleetView shown" : ", no view shown", percent(start.fleetCpu, end.fleetCpu), fleetRss);
-    std::printf("| of which its GUI thread | %.1f | |\n\n", percent(start.fleetGuiCpu, end.fleetGuiCpu));
-    std::printf("frame to row: n=%zu  median %.1f ms  p99 %.1f ms  max %.1f ms\n", delays.size(), at(0.5), at(0.99),
-                delays.empty() ? 0.0 : double(delays.back()) / 1000.0);
+    std::printf("| of which its GUI thread | %.1f | |\n", percent(start.fleetGuiCpu, end.fleetGuiCpu));
+    std::printf("| frame counter (one MqttClient reading every frame's envelope) | %.1f | %.1f |\n\n",
+                percent(start.counterCpu, end.counterCpu), counterRss);
+    std::printf("statistics to row: n=%zu  median %.1f ms  p99 %.1f ms  max %.1f ms\n", delays.size(), at(0.5),
+                at(0.99), delays.empty() ? 0.0 : double(delays.back()) / 1000.0);
+
+    // Every report of the whole run: the publishers stop on time and wait
+    // for their last acknowledgements; then the fleet side waits until
+    // nothing more comes (2 s of quiet) and counts.
+    QElapsedTimer settling;
+    settling.start();
+    while (settling.elapsed() < 120'000) {
+        const bool allDone = std::all_of(lines.begin(), lines.end(), [](const PublisherLine& l) { return l.done; }) &&
+                             std::all_of(publishers.begin(), publishers.end(),
+                                         [](const auto& p) { return p->state() == QProcess::NotRunning; });
+        if (allDone && utcMicros() - lastDelivery > 2 * kSecond)
+            break;
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+    }
+    counter.write("report\n");
+    while (counted.isEmpty() && counter.state() != QProcess::NotRunning && settling.elapsed() < 180'000)
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 100);
+    std::array<quint64, kKinds> handed{};
+    std::array<quint64, kKinds> acknowledged{};
+    quint64 unacknowledged = 0;
+    for (const PublisherLine& l : lines) {
+        for (int k = 0; k < kKinds; ++k) {
+            handed[std::size_t(k)] += l.handed[std::size_t(k)];
+            acknowledged[std::size_t(k)] += l.acknowledged[std::size_t(k)];
+        }
+        unacknowledged += l.unacknowledged;
+    }
+    quint64 framesTwice = 0, gaps = 0;
+    if (counted.size() == 5) {
+        delivered[kFramesUp] = counted[1].toULongLong();
+        delivered[kFramesDown] = counted[2].toULongLong();
+        framesTwice = counted[3].toULongLong();
+        gaps = counted[4].toULongLong();
+    } else {
+        say(QStringLiteral("the frame counter said nothing"));
+    }
+    std::printf(
+        "\nevery report of the run (publishers' counts; the fleet side's for station reports and "
+        "statistics, verified; the frame counter's for frames):\n\n");
+    std::printf(
+        "| report | handed to the client | acknowledged by the broker | received | "
+        "missing |\n|---|---:|---:|---:|---:|\n");
+    quint64 missingTotal = 0;
+    for (int k = 0; k < kKinds; ++k) {
+        const quint64 a = acknowledged[std::size_t(k)];
+        const quint64 d = delivered[std::size_t(k)];
+        const quint64 missing = a > d ? a - d : 0;
+        missingTotal += missing;
+        std::printf("| %s | %llu | %llu | %llu | %llu |\n", kKindNames[k],
+                    static_cast<unsigned long long>(handed[std::size_t(k)]), static_cast<unsigned long long>(a),
+                    static_cast<unsigned long long>(d), static_cast<unsigned long long>(missing));
+    }
+    std::printf(
+        "\nnot acknowledged at the end: %llu; refused or unverified at the fleet: %llu; frames seen twice: "
+        "%llu; frame numbers skipped: %llu; reports missing: %llu; dropped by the broker (a subscriber's "
+        "queue full): %llu\n",
+        static_cast<unsigned long long>(unacknowledged), static_cast<unsigned long long>(deliveredRefused),
+        static_cast<unsigned long long>(framesTwice), static_cast<unsigned long long>(gaps),
+        static_cast<unsigned long long>(missingTotal), static_cast<unsigned long long>(brokerDropped));
 
     for (const auto& p : publishers) {
         p->kill();
         p->waitForFinished();
     }
+    counter.kill();
+    counter.waitForFinished();
+    sysClient.stop();
     fleetClient.stop();
     broker.stop();
     return 0;
@@ -592,6 +870,11 @@ int runFleet(int n, int seconds, int warmup, bool shown)
 
 int main(int argc, char** argv)
 {
+    if (argc == 3 && qstrcmp(argv[1], "--count-frames") == 0) {
+        // --count-frames PORT: started by the fleet side.
+        QCoreApplication app(argc, argv);
+        return countFrames(quint16(QByteArray(argv[2]).toInt()));
+    }
     if (argc >= 2 && qstrcmp(argv[1], "--publish") == 0) {
         // --publish FIRST COUNT TOTAL PORT SECONDS: started by the fleet side.
         QCoreApplication app(argc, argv);

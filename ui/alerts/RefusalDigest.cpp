@@ -9,11 +9,28 @@ RefusalDigest::RefusalDigest(EventLog* log, QObject* parent) : QObject(parent), 
     m_timer.start();
 }
 
+namespace {
+
+const QString kFrame = QStringLiteral("frame:");
+const QString kBroker = QStringLiteral("broker:");
+
+}  // namespace
+
 void RefusalDigest::refused(const QString& reasonAndDetail)
 {
-    const QString reason = reasonAndDetail.section(QStringLiteral(": "), 0, 0);
+    record(false, reasonAndDetail);
+}
+
+void RefusalDigest::refusedBrokerMessage(const QString& reasonAndDetail)
+{
+    record(true, reasonAndDetail);
+}
+
+void RefusalDigest::record(bool broker, const QString& reasonAndDetail)
+{
+    const QString key = (broker ? kBroker : kFrame) + reasonAndDetail.section(QStringLiteral(": "), 0, 0);
     const qint64 now = m_log->now();
-    auto it = m_windows.find(reason);
+    auto it = m_windows.find(key);
     if (it != m_windows.end() && now - it->startMicros < kWindowMicros) {
         ++it->more;
         it->last = reasonAndDetail;
@@ -21,13 +38,14 @@ void RefusalDigest::refused(const QString& reasonAndDetail)
     }
     if (it != m_windows.end() && it->more > 0) {
         // Refused all through the minute: its count, and this one opens the next.
-        recordMore(reason, *it, now);
+        recordMore(key, *it, now);
         it->more = 1;
         it->last = reasonAndDetail;
         return;
     }
-    m_log->warning(EventSource::Link, tr("A frame was refused: %1").arg(reasonAndDetail));
-    m_windows.insert(reason, Window{now, 0, QString()});
+    m_log->warning(EventSource::Link, broker ? tr("A broker message was refused: %1").arg(reasonAndDetail)
+                                             : tr("A frame was refused: %1").arg(reasonAndDetail));
+    m_windows.insert(key, Window{now, 0, QString()});
 }
 
 void RefusalDigest::tick()
@@ -47,15 +65,19 @@ void RefusalDigest::flush()
     m_windows.clear();
 }
 
-void RefusalDigest::recordMore(const QString& reason, Window& window, qint64 now)
+void RefusalDigest::recordMore(const QString& key, Window& window, qint64 now)
 {
+    const bool broker = key.startsWith(kBroker);
+    const QString reason = key.mid((broker ? kBroker : kFrame).size());
     const qint64 seconds = (now - window.startMicros + 500'000) / 1'000'000;
-    const QString text = window.more == 1
-                             ? tr("1 more frame refused as %1 in the last %2 s; the last: %3").arg(reason).arg(seconds)
-                             : tr("%1 more frames refused as %2 in the last %3 s; the last: %4")
-                                   .arg(window.more)
-                                   .arg(reason)
-                                   .arg(seconds);
+    const QString what = broker ? (window.more == 1 ? tr("broker message") : tr("broker messages"))
+                                : (window.more == 1 ? tr("frame") : tr("frames"));
+    const QString text =
+        window.more == 1 ? tr("1 more %1 refused as %2 in the last %3 s; the last: %4").arg(what, reason).arg(seconds)
+                         : tr("%1 more %2 refused as %3 in the last %4 s; the last: %5")
+                               .arg(window.more)
+                               .arg(what, reason)
+                               .arg(seconds);
     m_log->warning(EventSource::Link, text.arg(window.last));
     window.startMicros = now;
     window.more = 0;

@@ -11,6 +11,9 @@
 //
 // Time is the event log's clock (a virtual one in tests); tick() ends the
 // minutes that are over, and a timer calls it every second.
+//
+// Messages refused on a broker (forged, unsigned, replayed, too large ...)
+// are digested the same way, apart from frames and said as messages.
 
 #include <QMap>
 #include <QObject>
@@ -29,6 +32,8 @@ public:
 
     // As the link worker says it: "reason: detail".
     void refused(const QString& reasonAndDetail);
+    // A broker message, as BrokerTrust says it: "forged: ...".
+    void refusedBrokerMessage(const QString& reasonAndDetail);
     // Records the counts of the minutes that are over.
     void tick();
     // Records every count now, over or not: the link has stopped.
@@ -40,9 +45,11 @@ private:
         int more = 0;        // refused after the one recorded, within the window
         QString last;        // the last of them, whole
     };
-    void recordMore(const QString& reason, Window& window, qint64 now);
+    void record(bool broker, const QString& reasonAndDetail);
+    void recordMore(const QString& key, Window& window, qint64 now);
 
     EventLog* m_log;
-    QMap<QString, Window> m_windows;  // by reason, so that a tick records them in one order
+    // By "frame:REASON" or "broker:REASON", so that a tick records them in one order.
+    QMap<QString, Window> m_windows;
     QTimer m_timer;
 };

@@ -1,9 +1,10 @@
 #pragma once
 
 // gcs --station ID --broker URL --observe URL (and the broker's user,
-// password file and TLS files): which station this console is, the broker
-// it publishes its sessions to, and an aircraft to watch read-only. Here
-// rather than in gcs_main so that the program stays a thin list of options.
+// password file and TLS files, this station's signing key and the stations
+// it trusts): which station this console is, the broker it publishes its
+// sessions to, and an aircraft to watch read-only. Here rather than in
+// gcs_main so that the program stays a thin list of options.
 
 #include <QCommandLineOption>
 #include <QCommandLineParser>
@@ -32,4 +33,6 @@ private:
     QCommandLineOption m_user;
     QCommandLineOption m_passwordFile;
     QCommandLineOption m_caFile;
+    QCommandLineOption m_signingKey;
+    QCommandLineOption m_trust;
 };

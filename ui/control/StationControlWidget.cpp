@@ -72,9 +72,27 @@ StationControlWidget::StationControlWidget(StationControl* control, QWidget* par
     layout->addWidget(m_role);
     layout->addLayout(buttons);
 
-    connect(m_station, &QLineEdit::editingFinished, this, &StationControlWidget::readStation);
+    // Applied on Enter only, as every field that changes what the frames
+    // name: a station half typed (GB_30 of GB_30226) and left is not taken.
+    connect(m_station, &QLineEdit::returnPressed, this, &StationControlWidget::readStation);
+    connect(m_station, &QLineEdit::editingFinished, this, [this] {
+        if (m_station->hasFocus())
+            return;  // Enter, handled above
+        const QString applied =
+            m_control->station() ? QString::fromStdString(rcm::formatStation(*m_control->station())) : QString();
+        if (stationText() == applied)
+            return;
+        const QString typed = stationText();
+        m_station->setText(applied);
+        m_station->setStyleSheet(QString());
+        m_station->setToolTip(tr("Not applied: '%1' was left without Enter; this station stays %2")
+                                  .arg(typed, applied.isEmpty() ? tr("none") : applied));
+    });
     connect(m_handOver, &QPushButton::clicked, this, &StationControlWidget::requestHandOver);
-    connect(m_takeControl, &QPushButton::clicked, this, &StationControlWidget::requestTakeControl);
+    connect(m_takeControl, &QPushButton::clicked, this, [this] {
+        if (m_control->canTakeControl())
+            emit takeControlRequested();
+    });
     connect(m_control, &StationControl::roleChanged, this, &StationControlWidget::refresh);
     connect(m_control, &StationControl::headerChanged, this, &StationControlWidget::refresh);
     refresh();
@@ -132,21 +150,6 @@ void StationControlWidget::requestHandOver()
     ask.action = tr("Hand over");
     if (ask.ask(this))
         m_control->handOver();
-}
-
-void StationControlWidget::requestTakeControl()
-{
-    if (!m_control->canTakeControl())
-        return;
-    Confirmation ask;
-    ask.title = tr("Take control");
-    ask.text = tr("Command the aircraft from this console?");
-    ask.informativeText =
-        tr("From the next frame the aircraft acts on this console's panels as they are now. Check them against what "
-           "the aircraft reports (a difference is marked amber) before you take control.");
-    ask.action = tr("Take control");
-    if (ask.ask(this))
-        m_control->takeControl();
 }
 
 void StationControlWidget::refresh()

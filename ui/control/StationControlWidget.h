@@ -3,8 +3,10 @@
 // The link pane's part for control between stations (docs/protocol.md
 // section 10): this console's station ID, what the aircraft says this
 // station is (in control, given control, backup, observing), and the two
-// actions that move control, each asked for with a Confirmation: Hand over
-// to backup, Take control. It only shows StationControl and asks it; the
+// actions that move control: Hand over to backup, asked for with a
+// Confirmation, and Take control, which resumes commanding and so is asked
+// for where the console's command is held (CommandHoldBar), listing what
+// the panels would change. It only shows StationControl and asks it; the
 // aircraft decides.
 
 #include <QWidget>
@@ -33,11 +35,13 @@ public:
     QLabel* roleLabel() const { return m_role; }
 
 public slots:
-    // Each after the operator confirmed it in a dialog.
+    // After the operator confirmed it in a dialog.
     void requestHandOver();
-    void requestTakeControl();
 
 signals:
+    // Take control was clicked while the aircraft names this station in
+    // control: whoever holds the command asks and takes it.
+    void takeControlRequested();
     // The typed station did not read: what is wrong, for the operator.
     void stationRefused(const QString& reason);
 

@@ -22,6 +22,11 @@ struct Colours {
 std::optional<Colours> coloursOf(FleetModel::RowState state)
 {
     switch (state) {
+        case FleetModel::RowState::Unverified:
+            // Red on pink: no trusted key vouches for anything in the row.
+            return Colours{QColor(0x5c, 0x00, 0x00), QColor(0xf8, 0xd7, 0xd7)};
+        case FleetModel::RowState::Unknown:
+        case FleetModel::RowState::Sealed:
         case FleetModel::RowState::Offline:
             return Colours{QColor(0x3a, 0x3a, 0x3a), QColor(0xdc, 0xdc, 0xdc)};
         case FleetModel::RowState::Stale:
@@ -107,17 +112,21 @@ QVariant FleetModel::headerData(int section, Qt::Orientation orientation, int ro
     if (role == Qt::ToolTipRole) {
         switch (section) {
             case LinkColumn:
-                return tr("The best link any online station has to the aircraft");
+                return tr("The best link any online verified station has to the aircraft");
             case InControlColumn:
                 return tr("The station in control as the aircraft last reported it (ID_GCS_destination)");
             case BackupColumn:
                 return tr("The backup station as the aircraft last reported it (ID_GCS_backup)");
             case StationsColumn:
-                return tr("Stations publishing for this aircraft that are online, of all that have reported");
+                return tr(
+                    "Verified stations publishing for this aircraft that are online, of all that have "
+                    "reported; and stations whose key is not trusted");
             case LastFrameColumn:
                 return tr("Time since the last good frame from the aircraft any station reported");
             case FramesColumn:
-                return tr("Frames reported going up to the aircraft and coming down from it since this view started");
+                return tr(
+                    "Frames sent up to the aircraft and received down from it by its stations' links, as their "
+                    "statistics say");
         }
     }
     return {};
@@ -135,6 +144,8 @@ QVariant FleetModel::data(const QModelIndex& index, int role) const
             return row.summary.aircraft;
         case StateRole:
             return int(stateOf(row.summary));
+        case VerifiedRole:
+            return row.summary.verified() || row.summary.local;
         case SortRole:
             return sortValue(row, index.column());
         case Qt::ToolTipRole:
@@ -142,6 +153,14 @@ QVariant FleetModel::data(const QModelIndex& index, int role) const
                 return isoTime(row.summary.lastFrameUtcMicros);
             if (index.column() == AircraftColumn) {
                 switch (stateOf(row.summary)) {
+                    case RowState::Unverified:
+                        return tr("No station whose key is trusted reports %1: anyone may have published this")
+                            .arg(row.summary.aircraft);
+                    case RowState::Unknown:
+                        return tr("The broker is unreachable: nothing is known of %1 now").arg(row.summary.aircraft);
+                    case RowState::Sealed:
+                        return tr("%1's sessions are keyed: without the aircraft's key only their existence shows")
+                            .arg(row.summary.aircraft);
                     case RowState::Offline:
                         return tr("No station publishing for %1 is online").arg(row.summary.aircraft);
                     case RowState::Stale:
@@ -184,6 +203,18 @@ QString FleetModel::linkText(LinkState state)
     return {};
 }
 
+QString FleetModel::linkCellText(const AircraftSummary& s)
+{
+    if (!s.verified() && !s.local)
+        return tr("Unverified");
+    if (!s.brokerReachable && !s.local)
+        return tr("Unknown: broker unreachable");
+    if (s.stations == 0 && s.sealedStations > 0)
+        return tr("Sealed: keyed session");
+    const QString link = linkText(s.link);
+    return s.local ? tr("%1 (this console)").arg(link) : link;
+}
+
 QString FleetModel::ageText(qint64 ageMicros)
 {
     // Whole seconds, as the view refreshes them once a second.
@@ -202,13 +233,19 @@ QString FleetModel::cellText(const Row& row, int column) const
         case AircraftColumn:
             return s.aircraft;
         case LinkColumn:
-            return linkText(s.link);
+            return linkCellText(s);
         case InControlColumn:
             return orDash(s.inControl);
         case BackupColumn:
             return orDash(s.backup);
-        case StationsColumn:
-            return tr("%1 of %2 online").arg(s.stationsOnline).arg(s.stations);
+        case StationsColumn: {
+            QString text = tr("%1 of %2 online").arg(s.stationsOnline).arg(s.stations);
+            if (s.sealedStations)
+                text += tr(", %1 sealed").arg(s.sealedStations);
+            if (s.unverifiedStations)
+                text += tr(", %1 unverified").arg(s.unverifiedStations);
+            return text;
+        }
         case LastFrameColumn:
             return s.lastFrameUtcMicros ? ageText(m_clock() - s.lastFrameUtcMicros) : QStringLiteral("\u2014");
         case FramesColumn:
@@ -242,6 +279,12 @@ QVariant FleetModel::sortValue(const Row& row, int column) const
 
 FleetModel::RowState FleetModel::stateOf(const AircraftSummary& summary) const
 {
+    if (!summary.verified() && !summary.local)
+        return RowState::Unverified;
+    if (!summary.brokerReachable && !summary.local)
+        return RowState::Unknown;
+    if (summary.stations == 0)
+        return RowState::Sealed;
     if (summary.stationsOnline == 0)
         return RowState::Offline;
     if (summary.lastFrameUtcMicros == 0 || m_clock() - summary.lastFrameUtcMicros > m_staleLimitMicros)
@@ -301,6 +344,26 @@ void FleetModel::update(const AircraftSummary& summary)
         m_changedLast = std::max(m_changedLast, row);
     }
     scheduleFlush();
+}
+
+void FleetModel::remove(const QString& aircraft)
+{
+    if (!m_index.contains(aircraft))
+        return;
+    // What is pending is told first, so that rows keep the numbers the
+    // views know them by.
+    flushPending();
+    const int row = m_index.value(aircraft);
+    beginRemoveRows({}, row, row);
+    Row& gone = m_rows[std::size_t(row)];
+    if (gone.told)
+        --m_told[std::size_t(*gone.told)];
+    m_rows.erase(m_rows.begin() + row);
+    m_index.remove(aircraft);
+    for (auto it = m_index.begin(); it != m_index.end(); ++it)
+        if (*it > row)
+            --*it;
+    endRemoveRows();
 }
 
 void FleetModel::scheduleFlush()

@@ -43,13 +43,17 @@ public:
     };
     static constexpr int kColumnCount = 7;
 
-    // How a row reads, worst first: no station online, not heard for the
-    // stale limit (or never), heard within it.
-    enum class RowState { Offline, Stale, Live };
+    // How a row reads, worst first: reported by no station whose key is
+    // trusted; nothing known now (the broker unreachable); only sealed
+    // sessions; no station online; not heard for the stale limit (or never);
+    // heard within it.
+    enum class RowState { Unverified, Unknown, Sealed, Offline, Stale, Live };
+    static constexpr int kRowStateCount = 6;
     enum Role {
         StateRole = Qt::UserRole + 1,  // RowState as int
         AircraftRole,                  // the aircraft's name, whatever the column
         SortRole,                      // what a column sorts by: names, numbers, ages
+        VerifiedRole,                  // some station whose key is trusted reports it
     };
 
     // Microseconds since the epoch, UTC; tests pass a fake clock.
@@ -86,11 +90,15 @@ public:
     // aircraft never heard says "—".
     static QString ageText(qint64 ageMicros);
     static QString linkText(LinkState state);
+    // The link column of a summary: its link, or why it is not known.
+    static QString linkCellText(const AircraftSummary& summary);
 
 public slots:
     // FleetFeed::aircraftUpdated: the aircraft's row is replaced, or appended
     // when the aircraft is new.
     void update(const AircraftSummary& summary);
+    // FleetFeed::aircraftRemoved: its row goes (after what is pending is told).
+    void remove(const QString& aircraft);
     // Tells now what update() collected rather than in the next pass.
     void flushPending();
     // The ages moved on: dataChanged() over the last-frame column, and over
@@ -120,7 +128,7 @@ private:
     bool m_flushQueued = false;
     // Since the last flush: rows are told at most kMaxFlushRate times a second.
     QElapsedTimer m_sinceFlush;
-    std::array<int, 3> m_told{};  // rows by RowState told
+    std::array<int, kRowStateCount> m_told{};  // rows by RowState told
     Clock m_clock;
     qint64 m_staleLimitMicros = kDefaultStaleLimitMicros;
 };

@@ -1,5 +1,6 @@
 #include "ui/panels/CameraPanel.h"
 
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/ItemText.h"
 #include "ui/panels/CardGrid.h"
@@ -64,7 +65,8 @@ QPushButton* CameraPanel::addPhotoButton(UnitCard* card)
     for (unsigned code : ItemText::validFieldCodes(kPhoto, 0))
         if (code != none)
             take = code;
-    connect(button, &QPushButton::clicked, this, [this, ref, take] { m_command->setFieldCode(ref, kPhoto, 0, take); });
+    connect(button, &QPushButton::clicked, this,
+            [this, button, ref, take] { CommandGate::of(m_command)->setFieldCode(button, ref, kPhoto, 0, take); });
     // While a photograph waits for its frame, a second click would not be a second photograph.
     auto refresh = [this, button, ref, none] {
         const bool pending = m_command->unit(ref) && m_command->fieldCode(ref, kPhoto, 0) != none;

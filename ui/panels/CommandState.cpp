@@ -1,5 +1,6 @@
 #include "ui/panels/CommandState.h"
 
+#include "codec/message/CommandChanges.h"
 #include "codec/message/MessageEncoder.h"
 
 #include <QStringList>
@@ -8,9 +9,6 @@
 #include <utility>
 
 namespace {
-
-// One-shot items: sent once, then back to the resting command's value.
-constexpr rcm::ItemId kOneShotItems[] = {rcm::ItemId::take_one_photo};
 
 // The message as the link will send it: the link fills in these header
 // items, so they are set to valid placeholders for the size check.
@@ -48,15 +46,17 @@ CommandState::CommandState(rcm::Airframe airframe, QObject* parent)
 {
 }
 
-void CommandState::setAirframe(rcm::Airframe airframe)
+std::vector<rcm::Unit> CommandState::setAirframe(rcm::Airframe airframe)
 {
     m_airframe = std::move(airframe);
     m_resting = rcm::restingCommand(m_airframe);
-    rcm::Unit header = std::move(m_message.header);
-    m_message = m_resting;
-    m_message.header = std::move(header);
+    std::vector<rcm::Unit> left = rcm::unitsMissingFrom(m_message, m_resting);
+    rcm::Message carried = rcm::withValuesOf(m_resting, m_message);
+    carried.header = std::move(m_message.header);
+    m_message = std::move(carried);
     emit airframeChanged();
     emit changed();
+    return left;
 }
 
 int CommandState::unitCount(rcm::UnitKind kind) const
@@ -128,7 +128,8 @@ bool CommandState::editUnit(UnitRef ref, const std::function<void(rcm::Unit&)>& 
         emit rejected(joined(errors));
         return false;
     }
-    m_message = std::move(candidate);
+    const rcm::Message before = std::exchange(m_message, std::move(candidate));
+    emit changedByOperator(before);
     emit changed();
     return true;
 }
@@ -156,7 +157,7 @@ void forEachOneShot(MessageRef& command, const rcm::Message& resting, F&& f)
     // The resting command has the command's shape: the airframe made both,
     // and edits never add or remove a unit.
     auto visit = [&](auto& unit, const rcm::Unit& rest) {
-        for (rcm::ItemId id : kOneShotItems) {
+        for (rcm::ItemId id : rcm::kOneShotItems) {
             const rcm::Value* now = unit.find(id);
             const rcm::Value* restValue = rest.find(id);
             if (now && restValue && *now != *restValue)

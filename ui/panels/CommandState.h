@@ -22,9 +22,12 @@ public:
     explicit CommandState(rcm::Airframe airframe = rcm::Airframe::wellEquipped(), QObject* parent = nullptr);
 
     const rcm::Airframe& airframe() const { return m_airframe; }
-    // A different aircraft: the command goes back to its resting state; the
-    // header (aircraft ID, GCS stations) is kept, it names who talks to whom.
-    void setAirframe(rcm::Airframe airframe);
+    // A different aircraft: the command becomes its resting state with every
+    // value of the units both airframes have carried over (matched by key:
+    // engine 1 stays engine 1); the header (aircraft ID, GCS stations) is
+    // kept, it names who talks to whom. Returns the units of the command
+    // the new airframe has none of.
+    std::vector<rcm::Unit> setAirframe(rcm::Airframe airframe);
 
     // The command to send. ID_msg, time_UTC and date_UTC are left to the link.
     const rcm::Message& message() const { return m_message; }
@@ -72,6 +75,10 @@ public slots:
 
 signals:
     void changed();
+    // An edit of the operator's (setItem() and the rest, not replaceMessage(),
+    // setAirframe() or a one-shot's return): the command before it;
+    // message() is the command after it. Emitted before changed().
+    void changedByOperator(const rcm::Message& before);
     // Emitted before the changed() of the new resting command; panels rebuild their cards.
     void airframeChanged();
     void rejected(const QString& reason);

@@ -1,5 +1,6 @@
 #include "ui/panels/FieldButtonGroup.h"
 
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
@@ -13,7 +14,8 @@ FieldButtonGroup::FieldButtonGroup(CommandState* command, UnitRef ref, rcm::Item
     : QWidget(parent), m_command(command), m_ref(ref), m_id(id), m_field(field), m_group(new QButtonGroup(this))
 {
     setObjectName(ItemText::name(id, field));
-    setToolTip(ItemText::fieldToolTip(id, field));
+    const QString rule = CommandGate::ruleText(id, field);
+    setToolTip(ItemText::fieldToolTip(id, field) + (rule.isEmpty() ? QString() : QLatin1Char('\n') + rule));
     setAccessibleName(ItemText::label(id, field));
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
@@ -74,6 +76,7 @@ void FieldButtonGroup::commit(int code)
     const auto wanted = static_cast<unsigned>(code);
     if (wanted == m_command->fieldCode(m_ref, m_id, m_field))
         return;
-    if ((m_guard && !m_guard(wanted)) || !m_command->setFieldCode(m_ref, m_id, m_field, wanted))
+    const QString detail = m_detail ? m_detail(wanted) : QString();
+    if (!CommandGate::of(m_command)->setFieldCode(this, m_ref, m_id, m_field, wanted, detail))
         refresh();
 }

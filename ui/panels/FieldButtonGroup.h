@@ -2,8 +2,10 @@
 // valid code from the item table, in words (Out (down) | Retracted, Off | On):
 // for the switches an operator must see the position of at a glance. The
 // buttons are named after their codes (objectName "RETRACTED"). Only a click
-// or Space on a button changes the field, never an arrow key or the wheel. A guard, when set, may refuse a change
-// before it reaches the command (the fuel dump's confirmation).
+// or Space on a button changes the field, never an arrow key or the wheel.
+// A change to the code the item table asks about (a wheel to RETRACTED)
+// goes through CommandGate's question; a panel may add to it what the change
+// would do (the fuel dump: which tanks start dumping).
 #pragma once
 
 #include "codec/message/ItemTable.h"
@@ -21,12 +23,12 @@ class FieldButtonGroup : public QWidget {
     Q_OBJECT
 
 public:
-    // Called with the code about to be commanded; false leaves the command as it was.
-    using Guard = std::function<bool(unsigned code)>;
+    // What commanding `code` would do, for the question; empty: nothing to add.
+    using Detail = std::function<QString(unsigned code)>;
 
     FieldButtonGroup(CommandState* command, UnitRef ref, rcm::ItemId id, int field, QWidget* parent = nullptr);
 
-    void setGuard(Guard guard) { m_guard = std::move(guard); }
+    void setDetail(Detail detail) { m_detail = std::move(detail); }
     // The button for a code, nullptr for a code that is not valid in this field.
     QAbstractButton* button(unsigned code) const;
     rcm::ItemId item() const { return m_id; }
@@ -44,5 +46,5 @@ private:
     rcm::ItemId m_id;
     int m_field;
     QButtonGroup* m_group;
-    Guard m_guard;
+    Detail m_detail;
 };

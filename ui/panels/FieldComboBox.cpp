@@ -1,5 +1,6 @@
 #include "ui/panels/FieldComboBox.h"
 
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
@@ -13,7 +14,8 @@ FieldComboBox::FieldComboBox(CommandState* command, UnitRef ref, rcm::ItemId id,
     setObjectName(ItemText::name(id, field));
     for (unsigned code : ItemText::validFieldCodes(id, field))
         addItem(ItemText::fieldCodeWord(id, field, code), code);
-    setToolTip(ItemText::fieldToolTip(id, field));
+    const QString rule = CommandGate::ruleText(id, field);
+    setToolTip(ItemText::fieldToolTip(id, field) + (rule.isEmpty() ? QString() : QLatin1Char('\n') + rule));
     setAccessibleName(ItemText::label(id, field));
     DeliberateInput::protect(this);
     refresh();
@@ -35,7 +37,7 @@ void FieldComboBox::refresh()
 
 void FieldComboBox::commit(int index)
 {
-    if (index < 0 || !m_command->setFieldCode(m_ref, m_id, m_field, itemData(index).toUInt()))
+    if (index < 0 || !CommandGate::of(m_command)->setFieldCode(this, m_ref, m_id, m_field, itemData(index).toUInt()))
         refresh();
 }
 

@@ -1,9 +1,11 @@
 #include "ui/panels/ItemSpinBox.h"
 
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
 
+#include <QFocusEvent>
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QRegularExpression>
@@ -32,9 +34,9 @@ ItemSpinBox::ItemSpinBox(CommandState* command, UnitRef ref, rcm::ItemId id, QWi
     refresh();
     connect(lineEdit(), &QLineEdit::textEdited, this, [this] {
         m_edited = true;
+        m_notSent.clear();
         showState();
     });
-    connect(this, &QAbstractSpinBox::editingFinished, this, &ItemSpinBox::commit);
     connect(command, &CommandState::changed, this, &ItemSpinBox::refresh);
 }
 
@@ -66,6 +68,7 @@ void ItemSpinBox::stepBy(int steps)
 {
     QDoubleSpinBox::stepBy(steps);
     m_edited = true;
+    m_notSent.clear();
     showState();
 }
 
@@ -87,7 +90,9 @@ void ItemSpinBox::keyPressEvent(QKeyEvent* event)
                 event->accept();
                 return;
             }
-            break;
+            QDoubleSpinBox::keyPressEvent(event);  // takes the text as the value
+            commit();
+            return;
         default:
             break;
     }
@@ -106,15 +111,61 @@ void ItemSpinBox::refresh()
     showState();
 }
 
+QString ItemSpinBox::defaultToolTip() const
+{
+    QString tip = ItemText::toolTip(m_id) + QLatin1Char('\n') +
+                  tr("Enter sends a typed or stepped value; leaving the field does not.");
+    if (const QString rule = CommandGate::ruleText(m_id); !rule.isEmpty())
+        tip += QLatin1Char('\n') + rule;
+    return tip;
+}
+
+void ItemSpinBox::focusOutEvent(QFocusEvent* event)
+{
+    // A context menu over the text is still this field; a question the gate
+    // asks on Enter is that Enter's, not the operator leaving.
+    if (m_edited && event->reason() != Qt::PopupFocusReason && !CommandGate::of(m_command)->asking()) {
+        const QString left = lineEdit()->text().trimmed();
+        const auto typed = ItemText::parseNumber(m_id, left);
+        const rcm::Value* v = m_command->value(m_ref, m_id);
+        m_edited = false;
+        if (!typed || !v || v->number != *typed)
+            restoreUnsent(left);
+        else
+            refresh();
+    }
+    QDoubleSpinBox::focusOutEvent(event);
+}
+
+void ItemSpinBox::restoreUnsent(const QString& left)
+{
+    const rcm::Value* v = m_command->value(m_ref, m_id);
+    m_edited = false;
+    m_notSent = tr("Not sent: '%1' was left unsent; the command stays %2")
+                    .arg(left, v ? ItemText::value(m_id, *v) : tr("nothing"));
+    refresh();
+    CommandGate::of(m_command)->tellNotSent(m_ref, m_id, m_notSent);
+}
+
 void ItemSpinBox::commit()
 {
-    if (!ItemText::parseNumber(m_id, lineEdit()->text()))
+    const QString typedText = lineEdit()->text().trimmed();
+    const auto typed = ItemText::parseNumber(m_id, typedText);
+    if (!typed)
         return;
+    const bool edited = m_edited;
     m_edited = false;
-    if (!m_command->setNumber(m_ref, m_id, std::llround(value())))
-        refresh();
-    else
+    m_notSent.clear();
+    if (CommandGate::of(m_command)->setNumber(this, m_ref, m_id, *typed)) {
         showState();
+        return;
+    }
+    // Cancelled or refused: the command as it was, and the box says so.
+    const rcm::Value* v = m_command->value(m_ref, m_id);
+    if (edited && (!v || v->number != *typed))
+        m_notSent =
+            tr("Not sent: '%1'; the command stays %2").arg(typedText, v ? ItemText::value(m_id, *v) : tr("nothing"));
+    refresh();
 }
 
 void ItemSpinBox::showState()
@@ -123,19 +174,24 @@ void ItemSpinBox::showState()
     const bool invalid = !typed;
     const rcm::Value* v = m_command->value(m_ref, m_id);
     const bool edited = !invalid && m_edited && v && v->number != *typed;
-    if (invalid == property("invalid").toBool() && edited == property("edited").toBool())
-        return;
-    setProperty("invalid", invalid);
-    setProperty("edited", edited);
-    setStyleSheet(invalid  ? DeliberateInput::invalidStyle("QDoubleSpinBox")
-                  : edited ? DeliberateInput::editedStyle("QDoubleSpinBox")
-                           : QString());
+    if (invalid != property("invalid").toBool() || edited != property("edited").toBool()) {
+        setProperty("invalid", invalid);
+        setProperty("edited", edited);
+        setStyleSheet(invalid  ? DeliberateInput::invalidStyle("QDoubleSpinBox")
+                      : edited ? DeliberateInput::editedStyle("QDoubleSpinBox")
+                               : QString());
+    }
     const QString commanded = v ? ItemText::value(m_id, *v) : tr("nothing");
+    QString tip;
     if (invalid)
-        setToolTip(tr("Not a valid %1 (%2): not sent; the command stays %3")
-                       .arg(ItemText::label(m_id), ItemText::toolTip(m_id), commanded));
+        tip = tr("Not a valid %1 (%2): not sent; the command stays %3")
+                  .arg(ItemText::label(m_id), ItemText::toolTip(m_id), commanded);
     else if (edited)
-        setToolTip(tr("Not sent yet: Enter sends it, Esc goes back to the command (%1)").arg(commanded));
+        tip = tr("Not sent yet: Enter sends it, Esc or leaving the field goes back to the command (%1)").arg(commanded);
+    else if (!m_notSent.isEmpty())
+        tip = m_notSent;
     else
-        setToolTip(ItemText::toolTip(m_id));
+        tip = defaultToolTip();
+    if (tip != toolTip())
+        setToolTip(tip);
 }

@@ -4,6 +4,7 @@
 #include "codec/message/DigitPairs.h"
 #include "codec/message/ValueCodec.h"
 
+#include <QCoreApplication>
 #include <QRegularExpression>
 
 #include <algorithm>
@@ -196,6 +197,54 @@ QString value(rcm::ItemId id, const rcm::Value& v)
 QString fieldValue(rcm::ItemId id, int field, const rcm::Value& v)
 {
     return fieldCodeWord(id, field, rcm::fieldCode(static_cast<std::uint8_t>(v.number), field));
+}
+
+QString unitName(rcm::UnitKind kind, const std::optional<rcm::Value>& key)
+{
+    const QString label = fromView(rcm::unitLabel(kind));
+    const std::optional<rcm::ItemId> keyItem = rcm::unitKey(kind);
+    if (!keyItem || !key)
+        return label;
+    return label + QLatin1Char(' ') + value(*keyItem, *key).trimmed();
+}
+
+QString unitName(const rcm::Unit& unit)
+{
+    const std::optional<rcm::ItemId> key = rcm::unitKey(unit.kind());
+    const rcm::Value* v = key ? unit.find(*key) : nullptr;
+    return unitName(unit.kind(), v ? std::optional(*v) : std::nullopt);
+}
+
+QString unitNames(const std::vector<rcm::Unit>& units)
+{
+    QStringList names;
+    for (const rcm::Unit& unit : units)
+        names << unitName(unit);
+    return names.join(QStringLiteral(", "));
+}
+
+QString changeWhere(const rcm::ItemChange& c)
+{
+    // A Fields item with one field says the field alone ("Nose wheel"); a
+    // field of a unit's status item says both ("Engine status, Control source").
+    const rcm::ItemInfo& info = rcm::itemInfo(c.id);
+    QString item = label(c.id);
+    if (c.field >= 0)
+        item = info.fields.size() == 1 ? label(c.id, c.field) : item + QStringLiteral(", ") + label(c.id, c.field);
+    return unitName(c.kind, c.key) + QStringLiteral(", ") + item;
+}
+
+QString changeValue(const rcm::ItemChange& c, const std::optional<rcm::Value>& side)
+{
+    if (!side)
+        return QCoreApplication::translate("ItemText", "nothing");
+    return c.field >= 0 ? fieldValue(c.id, c.field, *side) : value(c.id, *side);
+}
+
+QString change(const rcm::ItemChange& c)
+{
+    return changeWhere(c) + QStringLiteral(": ") + changeValue(c, c.from) + QStringLiteral(" -> ") +
+           changeValue(c, c.to);
 }
 
 }  // namespace ItemText

@@ -3,6 +3,7 @@
 // them. Panels use these instead of spelling a name, range or unit again.
 #pragma once
 
+#include "codec/message/CommandChanges.h"
 #include "codec/message/ItemTable.h"
 #include "codec/message/Message.h"
 
@@ -41,5 +42,19 @@ QList<unsigned> validFieldCodes(rcm::ItemId id, int field);
 QString value(rcm::ItemId id, const rcm::Value& value);
 // One field of a Fields item's value, in words.
 QString fieldValue(rcm::ItemId id, int field, const rcm::Value& value);
+
+// A unit for people: "Engine 1", "Radio VHF1", "Camera NIK 1", "Flaps";
+// `key` its key item's value (none for the single units).
+QString unitName(rcm::UnitKind kind, const std::optional<rcm::Value>& key);
+QString unitName(const rcm::Unit& unit);
+// "Engine 2, Engine 3, Camera NIK 1"
+QString unitNames(const std::vector<rcm::Unit>& units);
+// Where a change is: "Engine 1, Propeller pitch", "Landing gear, Nose wheel".
+QString changeWhere(const rcm::ItemChange& change);
+// One side of a change in words ("25.1 %", "Retracted"); "nothing" when
+// that side has no such item.
+QString changeValue(const rcm::ItemChange& change, const std::optional<rcm::Value>& side);
+// "Engine 1, Propeller pitch: 0.0 % -> 25.1 %"
+QString change(const rcm::ItemChange& change);
 
 }  // namespace ItemText

@@ -2,11 +2,13 @@
 
 #include "codec/message/CountryCodes.h"
 #include "codec/message/ValueCodec.h"
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
 
 #include <QApplication>
+#include <QFocusEvent>
 #include <QHBoxLayout>
 #include <QLineEdit>
 #include <QRegularExpressionValidator>
@@ -86,10 +88,11 @@ StationEditor::StationEditor(CommandState* command, UnitRef ref, rcm::ItemId id,
         field->setProperty("invalid", false);
         DeliberateInput::protect(field);
         connect(field, &QLineEdit::returnPressed, this, &StationEditor::commit);
-        connect(field, &QLineEdit::editingFinished, this, [this, field] {
-            if (!field->hasFocus())  // not Enter, which returnPressed has handled
-                fieldLeft();
+        connect(field, &QLineEdit::textEdited, this, [this] {
+            m_notSent.clear();
+            showTyped();
         });
+        field->installEventFilter(this);
     }
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
@@ -139,8 +142,9 @@ void StationEditor::setProblem(QLineEdit* field, const QString& reason)
         f->setProperty("invalid", atFault);
         f->setStyleSheet(atFault ? DeliberateInput::invalidStyle("QLineEdit") : QString());
     }
-    m_country->setToolTip(countryToolTip());
-    m_unit->setToolTip(unitToolTip());
+    const QString notice = m_notSent.isEmpty() ? QString() : m_notSent + QLatin1Char('\n');
+    m_country->setToolTip(notice + countryToolTip());
+    m_unit->setToolTip(notice + unitToolTip());
     if (field)
         field->setToolTip(tr("%1. Not sent: the command keeps %2").arg(reason, commandedText()));
 }
@@ -174,12 +178,31 @@ StationEditor::Typed StationEditor::typed() const
     return {value, nullptr, {}};
 }
 
-void StationEditor::fieldLeft()
+bool StationEditor::eventFilter(QObject* watched, QEvent* event)
 {
+    if (event->type() == QEvent::FocusOut && (watched == m_country || watched == m_unit))
+        fieldLeft(static_cast<QFocusEvent*>(event)->reason());
+    return QWidget::eventFilter(watched, event);
+}
+
+QString StationEditor::typedText() const
+{
+    const QString country = m_country->text().trimmed().toUpper();
+    const QString unit = m_unit->text().trimmed();
+    return unit.isEmpty() ? country : country + QLatin1Char('_') + unit;
+}
+
+void StationEditor::fieldLeft(Qt::FocusReason reason)
+{
+    // A context menu over the text is still this field.
+    if (reason == Qt::PopupFocusReason || CommandGate::of(m_command)->asking())
+        return;
+    if (!m_country->isModified() && !m_unit->isModified())
+        return;
     // Country to unit or back is still typing the one station: shown, not sent.
     const QWidget* next = QApplication::focusWidget();
-    if (next != m_country && next != m_unit) {
-        commit();
+    if (reason == Qt::ActiveWindowFocusReason || (next != m_country && next != m_unit)) {
+        restoreUnsent();
         return;
     }
     const Typed t = typed();
@@ -187,16 +210,39 @@ void StationEditor::fieldLeft()
         setProblem(t.atFault, t.problem);
         return;
     }
+    showTyped();
+}
+
+void StationEditor::showTyped()
+{
+    const Typed t = typed();
     setProblem(nullptr, {});
+    if (t.atFault)
+        return;  // said when the operator moves on (Tab, Enter), not at every key
     const rcm::Value* v = m_command->value(m_ref, m_id);
     const bool differs = t.value ? !v || *v != *t.value : v != nullptr;
     setProperty("edited", differs);
     for (QLineEdit* f : {m_country, m_unit}) {
         f->setStyleSheet(differs ? DeliberateInput::editedStyle("QLineEdit") : QString());
         if (differs)
-            f->setToolTip(
-                tr("Not sent yet: Enter, or leaving the station, sends it; the command keeps %1").arg(commandedText()));
+            f->setToolTip(tr("Not sent yet: Enter sends it; leaving the station goes back to the command (%1)")
+                              .arg(commandedText()));
     }
+}
+
+void StationEditor::restoreUnsent()
+{
+    const Typed t = typed();
+    const rcm::Value* v = m_command->value(m_ref, m_id);
+    const bool differs = t.atFault || (t.value ? !v || *v != *t.value : v != nullptr);
+    const QString left = typedText();
+    m_country->setModified(false);
+    m_unit->setModified(false);
+    m_notSent =
+        differs ? tr("Not sent: '%1' was left unsent; the command stays %2").arg(left, commandedText()) : QString();
+    refresh();
+    if (differs)
+        CommandGate::of(m_command)->tellNotSent(m_ref, m_id, m_notSent);
 }
 
 void StationEditor::commit()
@@ -206,9 +252,11 @@ void StationEditor::commit()
         setProblem(t.atFault, t.problem);
         return;
     }
-    const bool done = t.value ? m_command->setItem(m_ref, m_id, *t.value) : m_command->eraseItem(m_ref, m_id);
+    const bool done =
+        t.value ? CommandGate::of(m_command)->setItem(this, m_ref, m_id, *t.value) : m_command->eraseItem(m_ref, m_id);
     if (!done)
         return;
+    m_notSent.clear();
     m_country->setModified(false);
     m_unit->setModified(false);
     refresh();

@@ -2,6 +2,7 @@
 
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/plan/PlanContents.h"
+#include "link/plan/MavCommand.h"
 #include "link/plan/PlanFile.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/plan/PlanMapView.h"
@@ -36,6 +37,12 @@ QString number(const std::optional<double>& value, int decimals)
 QString param(double value)
 {
     return std::isnan(value) ? QStringLiteral("\u2014") : QString::number(value, 'g', 7);
+}
+
+// "0x5245000D": one form wherever a plan ID is shown.
+QString planIdText(quint32 id)
+{
+    return QString::fromStdString(rcm::planIdText(id));
 }
 
 QString red(const QString& text)
@@ -153,9 +160,8 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     m_map->setTiles(m_tiles);
     m_map->setEditable(false);
 
-    m_progress->setRange(0, 1);
+    setProgressRange(1);
     m_progress->setValue(0);
-    m_progress->setFormat(tr("%v of %m sections"));
     m_progress->setMinimumWidth(220);
 
     auto* top = new QHBoxLayout;
@@ -259,6 +265,7 @@ bool FlightPlanWidget::loadPlan(const QString& path, QString* error)
     if (m_upload->progress().state != FlightPlanUpload::State::Sending)
         m_state->setText(tr("Not sent"));
     emit message(tr("Flight plan opened: %1: %2").arg(QDir::toNativeSeparators(path), m_summary->text()));
+    emit planOpened(path);
     return true;
 }
 
@@ -398,10 +405,9 @@ void FlightPlanWidget::uploadPlan()
     }
     m_sentPlan = m_plan;
     m_edited = false;
-    emit message(tr("Uploading flight plan %1 (%2): %3 BLOCK 2 sections")
-                     .arg(m_upload->progress().planId, 8, 16, QLatin1Char('0'))
-                     .arg(m_file->text())
-                     .arg(sections));
+    emit message(tr("Uploading flight plan %1 (%2): %3")
+                     .arg(planIdText(m_upload->progress().planId), m_file->text(),
+                          count(sections, tr("BLOCK 2 section"), tr("BLOCK 2 sections"))));
     planEdited();
 }
 
@@ -411,6 +417,12 @@ void FlightPlanWidget::cancelUpload()
         return;
     m_upload->cancel();
     emit message(tr("Flight plan upload cancelled: the aircraft holds the plan it last acknowledged"));
+}
+
+void FlightPlanWidget::setProgressRange(int sections)
+{
+    m_progress->setRange(0, sections);
+    m_progress->setFormat(sections == 1 ? tr("%v of %m section") : tr("%v of %m sections"));
 }
 
 int FlightPlanWidget::sectionsFor(qsizetype bytes) const
@@ -447,15 +459,19 @@ void FlightPlanWidget::showRow(int row)
         cell->setFlags(cell->flags() & ~Qt::ItemIsEditable);
         m_table->setItem(row, column, cell);
     };
-    set(SeqColumn, QString::number(item.seq));
+    // Numbered from 1, as QGroundControl and Mission Planner number them.
+    set(SeqColumn, QString::number(item.seq + 1));
     set(CommandColumn, item.commandName(), Qt::AlignLeft);
-    m_table->item(row, CommandColumn)->setToolTip(tr("MAV_CMD %1").arg(item.command));
+    m_table->item(row, CommandColumn)->setToolTip(MavCommand::mavlinkNameOf(item.command));
     set(FrameColumn, item.frameName(), Qt::AlignLeft);
-    const bool positioned = item.frame != 2;
+    // A field the command does not use (a RETURN_TO_LAUNCH's position, a
+    // TAKEOFF's 0, 0) is a dash, not a number the aircraft would ignore.
+    const bool positioned = item.hasPosition();
+    const bool altitude = item.hasAltitude();
     set(LatitudeColumn, positioned ? number(item.latitude, 7) : QStringLiteral("\u2014"));
     set(LongitudeColumn, positioned ? number(item.longitude, 7) : QStringLiteral("\u2014"));
-    set(AltitudeColumn, positioned ? number(item.altitude, 1) : QStringLiteral("\u2014"));
-    if (positioned && item.altitude) {
+    set(AltitudeColumn, altitude ? number(item.altitude, 1) : QStringLiteral("\u2014"));
+    if (altitude) {
         QTableWidgetItem* altitude = m_table->item(row, AltitudeColumn);
         if (m_editOnMap->isChecked())
             altitude->setFlags(altitude->flags() | Qt::ItemIsEditable);
@@ -482,7 +498,7 @@ void FlightPlanWidget::showSummary()
           << tr("%1 a pass").arg(duration(sections * kNominalSecondsPerSection));
     m_summary->setText(parts.join(QStringLiteral(", ")));
     if (m_upload->progress().state != FlightPlanUpload::State::Sending) {
-        m_progress->setRange(0, sections);
+        setProgressRange(sections);
         m_progress->setValue(0);
     }
     planEdited();
@@ -540,7 +556,7 @@ void FlightPlanWidget::cellEdited(int row, int column)
     if (!ok || !std::isfinite(metres) || metres < kLowestAltitude || metres > kHighestAltitude) {
         const QString reason = tr("Mission item %1: altitude \"%2\" is not a number of metres from %3 to %4; "
                                   "it stays %5 m")
-                                   .arg(row)
+                                   .arg(row + 1)
                                    .arg(m_table->item(row, column)->text())
                                    .arg(kLowestAltitude)
                                    .arg(kHighestAltitude)
@@ -628,7 +644,7 @@ void FlightPlanWidget::setItemAltitude(int index, double metres)
 void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
 {
     const int total = progress.total > 0 ? progress.total : (m_plan ? sectionsFor(m_plan->toBytes().size()) : 1);
-    m_progress->setRange(0, std::max(total, 1));
+    setProgressRange(std::max(total, 1));
     m_progress->setValue(progress.state == FlightPlanUpload::State::Acknowledged ? progress.total : progress.sent);
     switch (progress.state) {
         case FlightPlanUpload::State::Idle:
@@ -636,18 +652,17 @@ void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
             break;
         case FlightPlanUpload::State::Sending: {
             if (progress.pass == 0) {
-                m_state->setText(
-                    tr("Plan %1: waiting for the next frame").arg(progress.planId, 8, 16, QLatin1Char('0')));
+                m_state->setText(tr("Flight plan %1: waiting for the next frame").arg(planIdText(progress.planId)));
                 break;
             }
             const double left = progress.secondsLeftInPass(kNominalSecondsPerSection);
             const QString rate = progress.rateMeasured ? tr("%1 s a section").arg(progress.secondsPerSection, 0, 'f', 1)
                                                        : tr("a section a frame");
-            m_state->setText(left > 0 ? tr("Pass %1 of %2: %3 of %4 sections, %5 left in this pass (%6)")
+            m_state->setText(left > 0 ? tr("Pass %1 of %2: %3 of %4, %5 left in this pass (%6)")
                                             .arg(progress.pass)
                                             .arg(progress.maxPasses)
                                             .arg(progress.inPass)
-                                            .arg(progress.total)
+                                            .arg(count(progress.total, tr("section"), tr("sections")))
                                             .arg(duration(left), rate)
                                       : tr("Pass %1 of %2 sent: waiting for the aircraft's acknowledgement")
                                             .arg(progress.pass)
@@ -659,8 +674,8 @@ void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
             showAcknowledgement(progress);
             break;
         case FlightPlanUpload::State::GaveUp: {
-            const QString text =
-                tr("Flight plan upload gave up: no acknowledgement after %1 passes").arg(progress.maxPasses);
+            const QString text = tr("Flight plan upload gave up: no acknowledgement after %1")
+                                     .arg(count(progress.maxPasses, tr("pass"), tr("passes")));
             m_state->setText(red(text));
             emit problem(text);
             break;

@@ -101,6 +101,7 @@ public slots:
 
 signals:
     void message(const QString& text);  // for the status bar and the event log
+    void planOpened(const QString& path);  // a plan file was read and is shown: bring it forward
     void problem(const QString& text);  // an error the operator must see: the event log and the banner
 
 private:
@@ -114,6 +115,7 @@ private:
     void selectRow(int row);
     void cellEdited(int row, int column);
     int sectionsFor(qsizetype bytes) const;
+    void setProgressRange(int sections);
 
     FlightPlanUpload* m_upload;
     MapTiles* m_tiles;

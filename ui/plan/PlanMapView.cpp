@@ -22,6 +22,9 @@ constexpr double kMarkerRadius = 11;
 // Pixels around the plan's outermost points after a fit: room for a marker
 // and its number, and for the buttons' corner.
 constexpr double kFitMargin = 36;
+// Pixels below the lowest marker's centre that keep it clear of the scale
+// bar (35 px from the bottom) and the attribution.
+constexpr double kScaleBarRoom = 35 + kMarkerRadius + 2;
 // A wheel notch zooms by half a step: two notches double the scale.
 constexpr double kWheelZoomPerNotch = 0.5;
 // Tiles are scaled from the nearest whole zoom; beyond this many zoom
@@ -244,15 +247,23 @@ void PlanMapView::fitToPlan()
     const QRectF& bounds = m_geometry.bounds;
     if (!m_geometry.hasBounds)
         return;
-    const double availableWidth = std::max(1.0, width() - 2 * kFitMargin);
-    const double availableHeight = std::max(1.0, height() - 2 * kFitMargin);
-    double zoom = kMaxFitZoom;
-    if (bounds.width() > 0 || bounds.height() > 0) {
-        const double scale = std::min(bounds.width() > 0 ? availableWidth / bounds.width() : INFINITY,
-                                      bounds.height() > 0 ? availableHeight / bounds.height() : INFINITY);
-        zoom = std::min(kMaxFitZoom, std::log2(scale));
-    }
-    setView(zoom, bounds.center());
+    // On a small map the full margin would leave the plan a few pixels: at
+    // most 15 % of each side, and never less than a marker needs; at the
+    // bottom, clear of the scale bar, up to a quarter of the height.
+    const auto margin = [](int size) { return std::clamp(0.15 * size, kMarkerRadius + 4, kFitMargin); };
+    const double side = margin(width());
+    const double top = margin(height());
+    const double bottom = std::max(top, std::min(kScaleBarRoom, 0.25 * height()));
+    const double availableWidth = std::max(1.0, width() - 2 * side);
+    const double availableHeight = std::max(1.0, height() - top - bottom);
+    // The least extent in zoom-0 pixels where the plan is.
+    const double least =
+        kMinFitExtent / WebMercator::metresPerPixel(WebMercator::toGeo(bounds.center(), 0).latitude, 0);
+    const double scale =
+        std::min(availableWidth / std::max(bounds.width(), least), availableHeight / std::max(bounds.height(), least));
+    const double zoom = std::clamp(std::log2(scale), kMinZoom, kMaxZoom);
+    // The plan in the middle of the room between the margins.
+    setView(zoom, bounds.center() + QPointF(0, (bottom - top) / 2 / std::exp2(zoom)));
     m_fitted = true;
 }
 
@@ -328,8 +339,10 @@ void PlanMapView::rebuildGeometry()
         m_geometry.items.append(world);
         include(world);
     }
-    if (m_plan->homeLatitude && m_plan->homeLongitude) {
-        m_geometry.home = zoomZeroWorld({*m_plan->homeLatitude, *m_plan->homeLongitude});
+    // A home at 0, 0 is none (MissionPlan::home()): no marker in the Gulf of
+    // Guinea, and no fit to the whole world.
+    if (const auto home = m_plan->home()) {
+        m_geometry.home = zoomZeroWorld(*home);
         include(*m_geometry.home);
     }
     for (const FencePolygon& polygon : m_plan->fencePolygons) {
@@ -619,7 +632,7 @@ void PlanMapView::paintMission(QPainter& p)
         const QPointF pos = markerPos(index);
         if (!visible.contains(pos))
             return;
-        const QString label = QString::number(m_plan->items[index].seq);
+        const QString label = QString::number(m_plan->items[index].seq + 1);  // as the table numbers them
         if (selected) {
             p.setPen(QPen(kHomeColour, 2));
             p.setBrush(Qt::NoBrush);
@@ -652,7 +665,8 @@ void PlanMapView::paintMission(QPainter& p)
         // Where it was, faint, until the owner moves it.
         p.setOpacity(0.35);
         const QPointF was = toWidget(*m_geometry.items[dragged]);
-        drawMarker(p, was, QString::number(m_plan->items[dragged].seq), kPathColour, Qt::white, MarkerShape::Circle);
+        drawMarker(p, was, QString::number(m_plan->items[dragged].seq + 1), kPathColour, Qt::white,
+                   MarkerShape::Circle);
         p.setOpacity(1);
     }
     if (m_selected >= 0 && m_geometry.items.value(m_selected) && m_selected != dragged)

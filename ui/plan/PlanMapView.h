@@ -42,8 +42,9 @@ public:
     // range only decides which tiles are scaled to fill the view.
     static constexpr double kMinZoom = 2;
     static constexpr double kMaxZoom = 19;
-    // Fit does not zoom in beyond this on a plan of one point or a tiny one.
-    static constexpr double kMaxFitZoom = 17;
+    // Fit shows at least this many metres each way: a plan of one point, or
+    // a tiny one, with some ground around it; a 100 m survey fills the view.
+    static constexpr double kMinFitExtent = 50;
     // A press and release closer than this is a click, not a move.
     static constexpr int kMoveThreshold = 4;
 
@@ -74,8 +75,9 @@ public:
     void setEditable(bool editable);
     bool isEditable() const { return m_editable; }
 
-    // Shows the plan's items, home, fence and rally points; with nothing to
-    // show the view stays.
+    // Shows the plan's items, home, fence and rally points as large as the
+    // view holds them (at least kMinFitExtent metres across, at most
+    // kMaxZoom); with nothing to show the view stays.
     void fitToPlan();
     void zoomIn();
     void zoomOut();

@@ -1,6 +1,7 @@
 #include "ui/rehearsal/RehearsalDialog.h"
 
 #include "link/rehearsal/ScenarioRunner.h"
+#include "link/session/DataFolder.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
 
 #include <QDateTime>
@@ -56,7 +57,8 @@ RehearsalDialog::~RehearsalDialog() = default;
 void RehearsalDialog::chooseAndRun(QWidget* parent)
 {
     const QString path =
-        QFileDialog::getOpenFileName(parent, tr("Rehearse scenario"), QString(), tr("Rehearsal scenarios (*.json)"));
+        QFileDialog::getOpenFileName(parent, tr("Rehearse scenario"), DataFolder::path(QStringLiteral("scenarios")),
+                                     tr("Rehearsal scenarios (*.json)"));
     if (path.isEmpty())
         return;
     const QString stamp = QDateTime::currentDateTimeUtc().toString(QStringLiteral("yyyy-MM-ddTHH-mm-ssZ"));
@@ -107,11 +109,9 @@ void RehearsalDialog::runFinished()
     const RehearsalReport& report = m_runner->report();
     QString error;
     const bool written = report.write(m_reportDirectory, &error);
-    QString text =
-        report.passed() ? tr("PASSED: every expectation held (%1).").arg(report.expectations.size()) : tr("FAILED:");
-    for (const auto& e : report.expectations)
-        if (!e.held)
-            text += QLatin1Char('\n') + e.description + QStringLiteral(" (") + e.detail + QLatin1Char(')');
+    QString text = report.passed() ? tr("PASSED: %1.").arg(report.verdict()) : tr("FAILED: %1.").arg(report.verdict());
+    for (const QString& failure : report.failures())
+        text += QLatin1Char('\n') + failure;
     text += QLatin1Char('\n') + (written ? tr("Report in %1").arg(m_reportDirectory) : error);
     m_verdict->setText(text);
     m_openReport->setEnabled(written);

@@ -15,6 +15,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QRadioButton>
+#include <QTimer>
 #include <QToolButton>
 #include <QVBoxLayout>
 
@@ -60,8 +61,15 @@ PushToTalkWidget::PushToTalkWidget(VoiceChannel* channel, QWidget* parent)
       m_browse(new QToolButton),
       m_sent(meter(tr("Level sent"))),
       m_received(meter(tr("Level received"))),
-      m_note(new QLabel)
+      m_note(new QLabel),
+      m_release(new QTimer(this))
 {
+    m_release->setSingleShot(true);
+    m_release->setInterval(kReleaseGraceMs);
+    connect(m_release, &QTimer::timeout, this, [this] {
+        m_keyHeld = false;
+        m_channel->stopTalking();
+    });
     m_voiceOn->setObjectName(QStringLiteral("voiceOn"));
     m_talk->setObjectName(QStringLiteral("pushToTalk"));
     m_voiceOn->setToolTip(
@@ -112,6 +120,9 @@ PushToTalkWidget::PushToTalkWidget(VoiceChannel* channel, QWidget* parent)
     connect(m_channel, &VoiceChannel::sentLevel, this, [this](float level) { showPeak(m_sent, level); });
     connect(m_channel, &VoiceChannel::receivedLevel, this, [this](float level) { showPeak(m_received, level); });
     connect(m_channel, &VoiceChannel::errorOccurred, m_note, &QLabel::setText);
+    connect(m_channel, &VoiceChannel::voiceRefused, this, [this](quint64 forged, quint64 replayed) {
+        m_note->setText(tr("Voice refused, never played: %1 forged, %2 replayed").arg(forged).arg(replayed));
+    });
 
     qApp->installEventFilter(this);
     updateEnabled();
@@ -139,16 +150,22 @@ bool PushToTalkWidget::eventFilter(QObject* watched, QEvent* event)
         auto* key = static_cast<QKeyEvent*>(event);
         auto* target = qobject_cast<QWidget*>(watched);
         if (key->key() == kTalkKey && target && target->window() == window()) {
-            if (!key->isAutoRepeat()) {
-                m_keyHeld = type == QEvent::KeyPress;
-                if (m_keyHeld)
+            if (key->isAutoRepeat()) {
+                // Held: nothing changes.
+            } else if (type == QEvent::KeyPress) {
+                // A press right after a release is the key's auto-repeat:
+                // the talk goes on, it does not start again.
+                m_release->stop();
+                if (!m_keyHeld)
                     m_channel->startTalking();
-                else
-                    m_channel->stopTalking();
+                m_keyHeld = true;
+            } else if (m_keyHeld) {
+                m_release->start();
             }
             return true;
         }
     } else if (type == QEvent::WindowDeactivate && watched == window() && m_keyHeld) {
+        m_release->stop();
         m_keyHeld = false;
         m_channel->stopTalking();
     }

@@ -13,6 +13,7 @@ class QLineEdit;
 class QProgressBar;
 class QPushButton;
 class QRadioButton;
+class QTimer;
 class QToolButton;
 class VoiceChannel;
 
@@ -21,6 +22,11 @@ class PushToTalkWidget : public QWidget {
 
 public:
     static constexpr Qt::Key kTalkKey = Qt::Key_F12;
+    // A release of the talk key counts once no press has followed it within
+    // this: X's key auto-repeat sends a release and a press every 40 ms (at
+    // its default 25 a second) while the key is held, and Qt 6.4 marks only
+    // the first pair as auto-repeat (QKeyEvent::isAutoRepeat).
+    static constexpr int kReleaseGraceMs = 120;
 
     explicit PushToTalkWidget(VoiceChannel* channel, QWidget* parent = nullptr);
     ~PushToTalkWidget() override;
@@ -52,4 +58,5 @@ private:
     QProgressBar* m_received;
     QLabel* m_note;
     bool m_keyHeld = false;
+    QTimer* m_release;  // a release of the talk key, waiting to see no press follow
 };

@@ -1,12 +1,18 @@
 #include "ui/voice/VoiceChannel.h"
 
+#include "codec/secure/SecureCodec.h"
 #include "link/voice/VoiceDecoderSink.h"
 #include "link/voice/VoiceEncoderSource.h"
+#include "link/voice/VoiceUdpLink.h"
 #include "link/voice/WithVoice.h"
 #include "ui/voice/PcmFifo.h"
 #include "ui/voice/VoiceAudio.h"
 
+#include <QPointer>
+
 #include <algorithm>
+#include <functional>
+#include <utility>
 #include <atomic>
 #include <cstdlib>
 
@@ -55,14 +61,55 @@ std::uint64_t VoiceChannel::samplesReceived() const
     return m_received->samples.load();
 }
 
-std::unique_ptr<Link> VoiceChannel::attach(std::unique_ptr<Link> link)
+namespace {
+
+// Voice that comes while voice is off here: set aside, said once.
+class IgnoredVoice : public VoiceSink {
+public:
+    explicit IgnoredVoice(std::function<void()> first) : m_first(std::move(first)) {}
+    void writeVoice(std::span<const std::uint8_t>) override
+    {
+        if (const std::function<void()> first = std::exchange(m_first, nullptr))
+            first();
+    }
+
+private:
+    std::function<void()> m_first;
+};
+
+}  // namespace
+
+std::unique_ptr<Link> VoiceChannel::attach(std::unique_ptr<Link> link, const rcm::secure::SecureEndpoint* key)
 {
-    if (!m_enabled || !link || link->transport() == FrameTransport::Replay)
+    if (!link || link->transport() == FrameTransport::Replay)
         return link;
+    if (!m_enabled) {
+        if (link->isStream())
+            return link;  // a serial line's format is the far end's to agree on: voice is off there too
+        // The aircraft may speak in datagrams of their own all the same: they
+        // are voice, set aside and said once, not fifty frames a second of
+        // the wrong size in the frame log. Nothing is sent.
+        auto ignored = std::make_shared<IgnoredVoice>([self = QPointer<VoiceChannel>(this)] {
+            QMetaObject::invokeMethod(
+                self, [self] { emit self->voiceIgnored(); }, Qt::QueuedConnection);
+        });
+        return std::make_unique<VoiceUdpLink>(std::move(link), nullptr, ignored);
+    }
     m_playback->clear();
     QMetaObject::invokeMethod(m_audio, &VoiceAudio::startPlayback, Qt::QueuedConnection);
     m_levels.start();
-    return withVoice(std::move(link), m_source, m_sink);
+    VoiceSecurity security;
+    m_secure = key && key->voiceSend && key->voiceReceive;
+    if (m_secure) {
+        security.send = key->voiceSend;
+        security.receive = key->voiceReceive;
+        // From the link's thread, queued to this one.
+        security.refused = [self = QPointer<VoiceChannel>(this)](std::uint64_t forged, std::uint64_t replayed) {
+            QMetaObject::invokeMethod(
+                self, [self, forged, replayed] { emit self->voiceRefused(forged, replayed); }, Qt::QueuedConnection);
+        };
+    }
+    return withVoice(std::move(link), m_source, m_sink, security);
 }
 
 void VoiceChannel::setEnabled(bool on)

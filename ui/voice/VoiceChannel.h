@@ -18,6 +18,10 @@
 
 #include <memory>
 
+namespace rcm::secure {
+struct SecureEndpoint;
+}
+
 class PcmFifo;
 class VoiceAudio;
 class VoiceDecoderSink;
@@ -35,8 +39,13 @@ public:
 
     bool isEnabled() const { return m_enabled; }
     // The transport with voice beside the commands when voice is on (a
-    // replay is left as it is); starts the speaker.
-    std::unique_ptr<Link> attach(std::unique_ptr<Link> link);
+    // replay is left as it is); starts the speaker. With voice off, a UDP
+    // transport is wrapped all the same, to set aside voice datagrams that
+    // come (voiceIgnored()); it sends none. Under the link's key
+    // when it has one (null: the plain link), the voice is enciphered and
+    // authenticated (codec/voice/SecureVoice.h).
+    std::unique_ptr<Link> attach(std::unique_ptr<Link> link, const rcm::secure::SecureEndpoint* key = nullptr);
+    bool isSecure() const { return m_secure; }
 
     // Empty: the microphone.
     QString rehearsalFile() const { return m_rehearsalFile; }
@@ -61,6 +70,12 @@ signals:
     void sentLevel(float level);
     void receivedLevel(float level);
     void errorOccurred(const QString& message);
+    // Keyed link: voice frames that did not authenticate (forged) or came
+    // again (replayed) were refused, never played; the totals of this link.
+    void voiceRefused(quint64 forged, quint64 replayed);
+    // Voice off here, and the aircraft sends voice datagrams all the same:
+    // said once a link; they are set aside, not counted as frames.
+    void voiceIgnored();
 
 private:
     struct Received;
@@ -76,5 +91,6 @@ private:
     QTimer m_levels;
     bool m_enabled = false;
     bool m_talking = false;
+    bool m_secure = false;
     QString m_rehearsalFile;
 };

@@ -1,5 +1,6 @@
 #include "ui/window/LinkSettingsWidget.h"
 
+#include "link/transport/ModemProfile.h"
 #include "link/transport/SerialLink.h"
 #include "ui/panels/DeliberateInput.h"
 
@@ -51,6 +52,8 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
       m_baud(new QComboBox),
       m_dialNumber(new QLineEdit),
       m_modemInit(new QLineEdit),
+      m_modemProfile(new QComboBox),
+      m_currency(new QLineEdit),
       m_rtsCts(new QCheckBox(tr("RTS/CTS flow control"))),
       m_callCost(new QDoubleSpinBox),
       m_satelliteDelay(new QSpinBox),
@@ -111,11 +114,26 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     m_callCost->setRange(0, 1000);
     m_callCost->setDecimals(2);
     m_callCost->setSpecialValueText(tr("not shown"));
-    m_callCost->setToolTip(tr("The call's price per started minute, in your currency, shown when a call ends"));
+    m_callCost->setToolTip(tr("The call's price per started minute, shown with its currency when a call ends"));
+    m_currency->setMaxLength(8);
+    m_currency->setPlaceholderText(tr("currency"));
+    m_currency->setToolTip(tr("The currency of the price, such as USD or EUR"));
+    m_currency->setMaximumWidth(fontMetrics().horizontalAdvance(QStringLiteral("MMMMMM")));
+    for (const modem::Profile& profile : modem::profiles()) {
+        m_modemProfile->addItem(profile.title, profile.name);
+        m_modemProfile->setItemData(m_modemProfile->count() - 1, profile.note, Qt::ToolTipRole);
+    }
+    m_modemProfile->setToolTip(tr("The satellite phone: its data bearer, and how it tells its registration and "
+                                  "signal; the console dials only once the phone is registered, with signal "
+                                  "(docs/modem.md)"));
     serial->addRow(tr("Dial"), m_dialNumber);
+    serial->addRow(tr("Phone"), m_modemProfile);
     serial->addRow(tr("Modem init"), m_modemInit);
     serial->addRow(QString(), m_rtsCts);
-    serial->addRow(tr("Cost a minute"), m_callCost);
+    auto* cost = new QHBoxLayout;
+    cost->addWidget(m_callCost, 1);
+    cost->addWidget(m_currency);
+    serial->addRow(tr("Cost a minute"), cost);
     m_satelliteDelay->setRange(0, 10000);
     m_satelliteDelay->setSingleStep(100);
     m_satelliteDelay->setSuffix(tr(" ms"));
@@ -154,7 +172,8 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     });
     connect(m_refresh, &QToolButton::clicked, this, &LinkSettingsWidget::refreshPorts);
     connect(m_chooseKey, &QToolButton::clicked, this, &LinkSettingsWidget::chooseKeyFile);
-    for (QLineEdit* edit : {m_localAddress, m_remoteAddress, m_keyPath, m_dialNumber, m_modemInit})
+    connect(m_modemProfile, &QComboBox::currentIndexChanged, this, &LinkSettingsWidget::changed);
+    for (QLineEdit* edit : {m_localAddress, m_remoteAddress, m_keyPath, m_dialNumber, m_modemInit, m_currency})
         connect(edit, &QLineEdit::textChanged, this, &LinkSettingsWidget::changed);
     for (QSpinBox* box : {m_localPort, m_remotePort, m_satelliteDelay})
         connect(box, &QSpinBox::valueChanged, this, &LinkSettingsWidget::changed);
@@ -164,7 +183,7 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     connect(m_callCost, &QDoubleSpinBox::valueChanged, this, &LinkSettingsWidget::changed);
     // A wheel turned over the pane to scroll it must not switch the
     // transport or move a port: the link settings change only by hand.
-    for (QWidget* control : std::initializer_list<QWidget*>{m_transport, m_port, m_baud, m_localPort, m_remotePort, m_callCost, m_satelliteDelay})
+    for (QWidget* control : std::initializer_list<QWidget*>{m_transport, m_port, m_baud, m_localPort, m_remotePort, m_callCost, m_satelliteDelay, m_modemProfile})
         DeliberateInput::protect(control);
 
     setSettings(LinkSettings());
@@ -186,6 +205,8 @@ LinkSettings LinkSettingsWidget::settings() const
     s.keyPath = m_keyPath->text().trimmed();
     s.dialNumber = m_dialNumber->text().trimmed();
     s.modemInit = m_modemInit->text().trimmed();
+    s.modemProfile = m_modemProfile->currentData().toString();
+    s.callCurrency = m_currency->text().trimmed();
     s.rtsCts = m_rtsCts->isChecked();
     s.callCostPerMinute = m_callCost->value();
     s.satelliteDelayMs = m_satelliteDelay->value();
@@ -209,6 +230,9 @@ void LinkSettingsWidget::setSettings(const LinkSettings& s)
     m_keyPath->setText(s.keyPath);
     m_dialNumber->setText(s.dialNumber);
     m_modemInit->setText(s.modemInit);
+    const int profile = m_modemProfile->findData(s.modemProfile);
+    m_modemProfile->setCurrentIndex(profile >= 0 ? profile : 0);
+    m_currency->setText(s.callCurrency);
     m_rtsCts->setChecked(s.rtsCts);
     m_callCost->setValue(s.callCostPerMinute);
     m_satelliteDelay->setValue(s.satelliteDelayMs);

@@ -49,6 +49,8 @@ private:
     QComboBox* m_baud;
     QLineEdit* m_dialNumber;
     QLineEdit* m_modemInit;
+    QComboBox* m_modemProfile;
+    QLineEdit* m_currency;
     QCheckBox* m_rtsCts;
     QDoubleSpinBox* m_callCost;
     QSpinBox* m_satelliteDelay;

@@ -7,8 +7,17 @@
 #include "link/framelog/ReplayLink.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
+#include "codec/message/CommandChanges.h"
+#include "codec/message/TextFormat.h"
+#include "ui/control/CommandHoldBar.h"
 #include "ui/control/StationControlWidget.h"
+#include "ui/panels/CommandJournal.h"
+#include "ui/panels/ItemText.h"
+#include "ui/alerts/RefusalDigest.h"
+#include "codec/receive/LoggedFrameReading.h"
+#include "codec/secure/StationSigningKey.h"
 #include "link/broker/BrokerObservation.h"
+#include "link/broker/BrokerTrust.h"
 #include "link/broker/FleetFeed.h"
 #include "link/broker/MqttClient.h"
 #include "link/broker/SessionBroadcast.h"
@@ -18,6 +27,7 @@
 #include "ui/overview/OverviewPage.h"
 #include "link/simulation/AirframeLoader.h"
 #include "ui/panels/CameraPanel.h"
+#include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandPreview.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/EnginePanel.h"
@@ -183,6 +193,8 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_command, &CommandState::changed, this, &MainWindow::commandChanged);
     connect(m_command, &CommandState::rejected, this,
             [this](const QString& reason) { statusBar()->showMessage(tr("Not commanded: %1").arg(reason), 8000); });
+    connect(CommandGate::of(m_command), &CommandGate::notSent, this,
+            [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     connect(m_command, &CommandState::airframeChanged, this, [this] {
         m_reported->clear();
         updateTitle();
@@ -190,7 +202,9 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     // Every link carries the voice beside the commands (when it is on) and
     // the flight plan upload; the uploader takes the section size of the
     // link: 199 bytes when keyed.
-    m_session->setLinkWrapper([this](std::unique_ptr<Link> link) { return m_voice->attach(std::move(link)); });
+    m_session->setLinkWrapper([this](std::unique_ptr<Link> link, const rcm::secure::SecureEndpoint* key) {
+        return m_voice->attach(std::move(link), key);
+    });
     m_session->setOptionsFilter([this](LinkWorker::Options o) { return m_upload->linkOptions(std::move(o)); });
     connect(m_session, &ConsoleSession::linkStarted, this, &MainWindow::linkStarted);
     connect(m_session, &ConsoleSession::linkStopped, this, &MainWindow::linkStopped);
@@ -199,6 +213,7 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_session, &ConsoleSession::warning, this,
             [this](const QString& message) { showError(message, EventSource::Link); });
     bindStationControl();
+    bindCommandHold();
     connect(m_session, &ConsoleSession::starting, m_linkNote, &QLabel::setText);
     connect(m_session, &ConsoleSession::starting, this,
             [this](const QString& what) { m_alerts->info(EventSource::Link, what); });
@@ -254,6 +269,8 @@ void MainWindow::buildPanels()
     centreLayout->setContentsMargins(0, 0, 0, 0);
     centreLayout->setSpacing(0);
     centreLayout->addWidget(m_alerts->banners());
+    m_holdBar = new CommandHoldBar(m_session, m_command);
+    centreLayout->addWidget(m_holdBar);
     centreLayout->addWidget(m_panels, 1);
     setCentralWidget(centre);
 }
@@ -320,10 +337,28 @@ void MainWindow::buildDocks()
     QDockWidget* log = dock(tr("Frame log"), QStringLiteral("frameLogDock"), m_logView, this);
     QDockWidget* plan = dock(tr("Flight plan"), QStringLiteral("flightPlanDock"), m_flightPlan, this);
     m_voice = new VoiceChannel(this);
+    // Not the banner, as for refused frames: a forger could send fifty a
+    // second. At most a line a second, with the totals.
+    connect(m_voice, &VoiceChannel::voiceIgnored, this, [this] {
+        m_alerts->info(EventSource::Link, tr("The aircraft sends voice, set aside: voice is off in this console "
+                                             "(\"Voice on the link\" in the Voice pane, then connect again)"));
+    });
+    connect(m_voice, &VoiceChannel::voiceRefused, this, [this](quint64 forged, quint64 replayed) {
+        m_alerts->warning(EventSource::Link, tr("Voice refused, never played: %1 forged (no valid tag), %2 replayed "
+                                                "(authentic but not new), since the link started")
+                                                 .arg(forged)
+                                                 .arg(replayed));
+    });
     QDockWidget* voice = dock(tr("Voice"), QStringLiteral("voiceDock"), new PushToTalkWidget(m_voice), this);
     QDockWidget* events = dock(tr("Events"), QStringLiteral("eventsDock"), m_alerts->eventView(), this);
     for (QDockWidget* d : {link, voice, log, plan, preview, events})
         m_docks.push_back(d);
+    // A plan opened (gcs --plan, File > Open flight plan) is shown.
+    connect(m_flightPlan, &FlightPlanWidget::planOpened, this, [this, plan] {
+        m_planInFront = true;
+        plan->show();
+        plan->raise();
+    });
     placeDocks();
 }
 
@@ -353,7 +388,7 @@ void MainWindow::placeDocks()
     tabifyDockWidget(log, plan);
     // The events in front beside the frame log; the next frame behind them.
     tabifyDockWidget(preview, events);
-    log->raise();
+    (m_planInFront ? plan : log)->raise();
     events->raise();
     // In proportion to the window: the panels keep the larger part of the
     // height, the frame log enough for a dozen rows.
@@ -407,7 +442,7 @@ void MainWindow::buildMenus()
         a->setCheckable(true);
         a->setData(path);
         m_airframeActions->addAction(a);
-        connect(a, &QAction::triggered, this, [this, path] { loadAirframe(path); });
+        connect(a, &QAction::triggered, this, [this, path] { requestAirframe(path); });
     }
     airframes->addSeparator();
     airframes->addAction(tr("From a &file\u2026"), this, &MainWindow::chooseAirframe);
@@ -542,12 +577,61 @@ bool MainWindow::loadAirframe(const QString& path, QString* error)
             showError(reason);
         return false;
     }
+    const QString was = QString::fromStdString(m_command->airframe().name);
+    const bool live = m_session->isLive();
+    // Another airframe on a live link: nothing goes out until the aircraft's
+    // report is in the panels and the operator resumes.
+    if (live)
+        m_session->holdCommand(CommandHold::Reason::Airframe);
     m_airframePath = path;
-    m_command->setAirframe(*airframe);
-    for (QAction* a : m_airframeActions->actions())
-        a->setChecked(a->data().toString() == path);
+    const std::vector<rcm::Unit> left = m_command->setAirframe(*airframe);
+    checkAirframeAction();
     updateTitle();
+    if (live || !left.empty()) {
+        const QString name = QString::fromStdString(airframe->name);
+        m_alerts->info(EventSource::Console, tr("Airframe %1 (was %2): the command's values carried over unit by unit")
+                                                 .arg(name, was));
+        if (!left.empty())
+            m_alerts->warning(EventSource::Console, tr("Not in airframe %1, so no longer commanded: %2")
+                                                        .arg(name, ItemText::unitNames(left)));
+    }
     return true;
+}
+
+void MainWindow::checkAirframeAction()
+{
+    for (QAction* a : m_airframeActions->actions())
+        a->setChecked(a->data().toString() == m_airframePath);
+}
+
+void MainWindow::requestAirframe(const QString& path)
+{
+    QString reason;
+    const std::optional<rcm::Airframe> airframe = AirframeLoader::load(path, &reason);
+    if (!airframe) {
+        showError(reason);
+        checkAirframeAction();
+        return;
+    }
+    if (m_session->isLive()) {
+        const std::vector<rcm::Unit> left =
+            rcm::unitsMissingFrom(m_command->message(), rcm::restingCommand(*airframe));
+        Confirmation ask;
+        ask.title = tr("Airframe");
+        ask.text = tr("Load the airframe %1 while the link is live?").arg(QString::fromStdString(airframe->name));
+        ask.informativeText =
+            tr("The command's values are carried over unit by unit. The console then holds the command back until "
+               "the aircraft's report is in the panels and you resume commanding.") +
+            (left.empty() ? QString()
+                          : QLatin1Char('\n') + tr("Not in this airframe, so no longer commanded: %1")
+                                                    .arg(ItemText::unitNames(left)));
+        ask.action = tr("Load airframe");
+        if (!ask.ask(this)) {
+            checkAirframeAction();
+            return;
+        }
+    }
+    loadAirframe(path);
 }
 
 bool MainWindow::confirmEndingLink(const QString& action)
@@ -600,6 +684,8 @@ void MainWindow::startRehearsal()
 
 void MainWindow::startRehearsalWith(const QString& uasimProgram)
 {
+    // uasim with voice when the console has it, saying back what it hears.
+    m_session->rehearsalLauncher()->setVoice(m_voice->isEnabled());
     m_session->startRehearsal(m_command->airframe(), m_linkSettings->settings().keyPath, uasimProgram);
     updateLinkControls();
 }
@@ -680,6 +766,8 @@ void MainWindow::linkStarted(const LinkController* controller)
             m_logModel->setSessionLog(logPath);
     }
     endObservation();
+    // The fleet reads this link's keyed sessions on the broker too.
+    updateBrokerTrust();
     m_status->setTransportLabel(tr("Call"), tr("The satellite phone's call: what the modem does, and for how long"));
     bindLinkEvents(controller, !replay);
     // Also when a live link replaced a log being opened.
@@ -711,7 +799,7 @@ void MainWindow::linkStarted(const LinkController* controller)
     m_status->setLinkDescription(description);
     m_status->setKeyFingerprint(m_session->keyFingerprint());
     m_status->setStatistics(LinkStatistics());
-    m_flightPlan->setLinkReady(!replay);
+    m_flightPlan->setLinkReady(!replay && m_session->commanding());
     // A replay says so, with the log's own time, and raises no link alarm.
     m_alerts->setReplay(replay);
     m_status->setReplay(replay);
@@ -737,6 +825,7 @@ void MainWindow::bindLinkEvents(const LinkEvents* events, bool logRows)
     // A modem's call: dialling, connected, redialling, hung up. Its failures
     // come as errors too (once an outage), and are logged once, as errors.
     m_status->setTransportStatus(QString());
+    m_status->setModemService(-1, false, QString());
     m_reported->setLinkDelay(m_session->kind() == ConsoleSession::Kind::Live ? m_linkSettings->settings().oneWayDelay()
                                                                               : std::chrono::milliseconds(0));
     connect(events, &LinkEvents::errorOccurred, this, [this](const QString& error) { m_lastLinkError = error; });
@@ -744,6 +833,15 @@ void MainWindow::bindLinkEvents(const LinkEvents* events, bool logRows)
         m_status->setTransportStatus(status);
         if (status != m_lastLinkError)
             m_alerts->info(EventSource::Link, status);
+    });
+    // The phone's registration and signal: bars in the status bar, and each
+    // change of registration in the event log.
+    connect(events, &LinkEvents::modemServiceChanged, this, [this](int bars, bool registered, const QString& text) {
+        const bool wasRegistered = m_status->modemServiceText().isEmpty() ? !registered : m_modemRegistered;
+        m_status->setModemService(bars, registered, text);
+        if (registered != wasRegistered)
+            m_alerts->info(EventSource::Link, tr("The satellite phone: %1").arg(text));
+        m_modemRegistered = registered;
     });
     // A live session's frames become rows as the link logs them; a replay's
     // rows are its log file, opened already.
@@ -768,32 +866,101 @@ void MainWindow::joinBroker(const BrokerSettings& settings, bool publish)
     if (m_broker)
         return;  // once a run: the command line's broker
     m_broker = std::make_unique<BrokerSettings>(settings);
+    if (!settings.tls && !settings.password.isEmpty())
+        m_alerts->warning(EventSource::Link,
+                          tr("The broker password goes to %1 over plain mqtt://, unencrypted: anyone on the path "
+                             "reads it; use mqtts://")
+                              .arg(settings.hostAndPort()));
     if (publish) {
         m_broadcast = new SessionBroadcast(m_session, settings, this);
         m_broadcast->follow(m_alerts->events());
-        connect(m_broadcast, &SessionBroadcast::errorOccurred, this,
-                [this](const QString& error) { m_alerts->warning(EventSource::Link, error); });
-        m_alerts->info(EventSource::Link, tr("Publishing every link on the broker %1").arg(settings.url()));
+        followBrokerClient(m_broadcast->client());
+        const QString station = m_broadcast->stationName();
+        m_alerts->info(
+            EventSource::Link,
+            settings.signingKey
+                ? tr("Broker %1: connecting, to publish every link as %2, signed").arg(settings.url(), station)
+                : tr("Broker %1: connecting, to publish every link as %2, unsigned (no --broker-key): "
+                     "observers will show it as unverified")
+                      .arg(settings.url(), station));
+        // Said once: a reconnection is said by its return.
+        connect(m_broadcast->client(), &MqttClient::connected, this, [this, url = settings.url()] {
+            if (std::exchange(m_brokerAnnounced, true))
+                return;
+            m_alerts->info(EventSource::Link, tr("Broker %1: connected, publishing every link").arg(url));
+        });
     }
     // The fleet has a connection of its own: it reads everything, the publisher only writes.
     BrokerSettings fleetSettings = settings;
     fleetSettings.clientId.clear();
     m_fleetClient = new MqttClient(fleetSettings, this);
-    auto* feed = new FleetFeed(m_fleetClient, this);
+    if (!publish)
+        followBrokerClient(m_fleetClient, true);
+    m_fleetFeed = new FleetFeed(m_fleetClient, this);
+    updateBrokerTrust();
     m_fleetModel = new FleetModel(this);
-    connect(feed, &FleetFeed::aircraftUpdated, m_fleetModel, &FleetModel::update);
+    connect(m_fleetFeed, &FleetFeed::aircraftUpdated, m_fleetModel, &FleetModel::update);
+    connect(m_fleetFeed, &FleetFeed::aircraftRemoved, m_fleetModel, &FleetModel::remove);
     m_fleetView = new FleetView(m_fleetModel);
     m_fleetView->setBroker(settings.url());
-    connect(m_fleetClient, &MqttClient::connected, m_fleetView, [this] { m_fleetView->setBrokerConnected(true); });
-    connect(m_fleetClient, &MqttClient::disconnected, m_fleetView, [this] { m_fleetView->setBrokerConnected(false); });
-    if (!publish)
-        connect(m_fleetClient, &MqttClient::errorOccurred, this,
-                [this](const QString& error) { m_alerts->warning(EventSource::Link, error); });
+    connect(m_fleetFeed, &FleetFeed::messageRefused, this, [this](const QString& reason) {
+        m_alerts->refusals()->refusedBrokerMessage(reason);
+        m_fleetView->setRefusedMessages(m_fleetFeed->refusedPayloads());
+    });
+    // The broker's state, apart from any link's: this console's own row
+    // keeps its link while the broker is away.
+    const auto reachable = [this](bool yes) {
+        m_fleetView->setBrokerConnected(yes);
+        m_fleetFeed->setBrokerReachable(yes);
+    };
+    connect(m_fleetClient, &MqttClient::connected, this, [reachable] { reachable(true); });
+    connect(m_fleetClient, &MqttClient::disconnected, this, [reachable] { reachable(false); });
+    connect(m_fleetClient, &MqttClient::errorOccurred, this, [reachable] { reachable(false); });
+    connect(m_fleetClient, &MqttClient::setupFailed, this, [reachable] { reachable(false); });
+    if (m_broadcast)
+        connect(m_broadcast, &SessionBroadcast::stationReportChanged, m_fleetFeed, &FleetFeed::setLocalStation);
     connect(m_fleetView, &FleetView::observeRequested, this, &MainWindow::observeRequested);
     QDockWidget* fleet = dock(tr("Fleet"), QStringLiteral("fleetDock"), m_fleetView, this);
     tabifyDockWidget(m_docks[5], fleet);
     fleet->raise();
     m_fleetClient->start();
+}
+
+void MainWindow::followBrokerClient(const MqttClient* client, bool quietWhileObserving)
+{
+    // An observation's own client says the same of the same broker.
+    const auto heard = [this, quietWhileObserving] { return !(quietWhileObserving && m_observation); };
+    connect(client, &MqttClient::errorOccurred, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->warning(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::setupFailed, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->error(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::refusedByBroker, this, [this, heard](const QString& error) {
+        if (heard())
+            m_alerts->error(EventSource::Link, error);
+    });
+    connect(client, &MqttClient::restored, this, [this, heard](const QString& message) {
+        if (heard())
+            m_alerts->info(EventSource::Link, message);
+    });
+}
+
+void MainWindow::updateBrokerTrust()
+{
+    if (!m_broker)
+        return;
+    auto trust = std::make_shared<BrokerTrust>(m_broker->trust ? *m_broker->trust : BrokerTrust());
+    // This station believes itself, and reads its own keyed sessions.
+    if (m_broadcast && m_broker->signingKey)
+        trust->trustStation(m_broadcast->stationName(), m_broker->signingKey->publicKey());
+    if (std::shared_ptr<const rcm::LogKey> key = m_session->logKey())
+        trust->addLinkKey(std::move(key));
+    m_brokerTrust = trust;
+    if (m_fleetFeed)
+        m_fleetFeed->setTrust(m_brokerTrust);
 }
 
 void MainWindow::observeRequested(const QString& aircraft)
@@ -803,6 +970,7 @@ void MainWindow::observeRequested(const QString& aircraft)
     BrokerSettings settings = *m_broker;
     settings.aircraft = aircraft;
     settings.clientId.clear();
+    settings.trust = m_brokerTrust;
     observe(settings);
 }
 
@@ -811,10 +979,23 @@ void MainWindow::observe(const BrokerSettings& settings)
     m_session->stop();
     endObservation();
     m_observation = new BrokerObservation(settings, this);
+    // A keyed session's frames are the enciphered bytes: with the aircraft's
+    // key the log view and the panels read them as the station's own would.
+    const QList<std::shared_ptr<const rcm::LogKey>> keys =
+        settings.trust ? settings.trust->linkKeys() : QList<std::shared_ptr<const rcm::LogKey>>();
     m_logModel->clear();
-    m_logModel->setLogKey(nullptr);
+    m_logModel->setLogKey(keys.isEmpty() ? nullptr : keys.front());
     m_status->setTransportLabel(tr("Broker"), tr("The broker the observation comes through, and for how long"));
     bindLinkEvents(m_observation, true);
+    // Refused messages are counted as refused frames are; what is worth
+    // knowing (frames missed, stations unverified or sealed) is a warning.
+    connect(m_observation, &BrokerObservation::messageRefused, m_alerts->refusals(),
+            &RefusalDigest::refusedBrokerMessage);
+    connect(m_observation, &BrokerObservation::messageRefused, this, [this](const QString& reason) {
+        statusBar()->showMessage(tr("A broker message was refused: %1").arg(reason), 8000);
+    });
+    connect(m_observation, &BrokerObservation::warning, this,
+            [this](const QString& text) { m_alerts->warning(EventSource::Link, text); });
     // Read only, as a replay: the panels show what the observed station commands.
     m_ownCommand = m_command->message();
     m_replayMicros = QDateTime::currentMSecsSinceEpoch() * 1000;
@@ -823,21 +1004,45 @@ void MainWindow::observe(const BrokerSettings& settings)
     m_replayNote->show();
     m_replayReadOnly = new ReadOnlyArea(m_panels, this);
     qApp->installEventFilter(m_replayReadOnly);
-    connect(m_observation, &LinkEvents::frameLogged, this, [this](const LoggedFrame& frame) {
+    connect(m_observation, &LinkEvents::frameLogged, this, [this, keys](const LoggedFrame& frame) {
         m_replayMicros = frame.entry.utcMicros;
-        if (frame.entry.direction != FrameDirection::Sent || frame.entry.enciphered)
+        if (frame.entry.direction != FrameDirection::Sent)
             return;
-        rcm::DecodeResult r = rcm::decodeFrame(std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()),
-                                                         std::size_t(frame.bytes.size())));
+        const auto bytes =
+            std::span(reinterpret_cast<const std::uint8_t*>(frame.bytes.constData()), std::size_t(frame.bytes.size()));
+        if (frame.entry.enciphered) {
+            // Read only when a key of ours authenticates it.
+            for (const std::shared_ptr<const rcm::LogKey>& key : keys)
+                if (const rcm::LoggedFrameReading reading = rcm::readLoggedFrame(bytes, true, key.get());
+                    reading.read()) {
+                    m_command->replaceMessage(reading.decoded.message);
+                    return;
+                }
+            return;
+        }
+        rcm::DecodeResult r = rcm::decodeFrame(bytes);
         if (r.ok() && r.diagnostics.empty())
             m_command->replaceMessage(r.message);
     });
     const QString description = tr("Observing %1 on %2").arg(m_observation->aircraft(), settings.url());
     m_status->setLinkDescription(description);
+    m_status->setKeyFingerprint(keys.isEmpty() ? QString() : QString::fromStdString(keys.front()->fingerprint()));
     m_status->setStatistics(LinkStatistics());
     m_flightPlan->setLinkReady(false);
     m_linkNote->setText(tr("%1: read only, nothing is sent to the aircraft").arg(description));
     m_alerts->info(EventSource::Link, description);
+    const QStringList trusted = settings.trust ? settings.trust->trustedStations() : QStringList();
+    if (trusted.isEmpty())
+        m_alerts->warning(EventSource::Link, tr("No station's key is trusted (--broker-trust): nothing %1's stations "
+                                                "publish can be verified, and nothing unverified is shown")
+                                                 .arg(m_observation->aircraft()));
+    else
+        m_alerts->info(EventSource::Link, tr("Trusting the keys of %1").arg(trusted.join(QStringLiteral(", "))));
+    if (!settings.tls && !settings.password.isEmpty() && !m_broker)
+        m_alerts->warning(EventSource::Link,
+                          tr("The broker password goes to %1 over plain mqtt://, unencrypted: anyone on the path "
+                             "reads it; use mqtts://")
+                              .arg(settings.hostAndPort()));
     m_observation->start();
     updateLinkControls();
 }
@@ -852,6 +1057,7 @@ void MainWindow::endObservation()
     m_replayNote->setText(replayNoteText());
     endReplay();
     m_status->setLinkDescription(QString());
+    m_status->setKeyFingerprint(QString());
     m_status->setStatistics(LinkStatistics());
     m_alerts->setStatistics(LinkStatistics());  // closed: no alarm
     m_alerts->info(EventSource::Link, tr("Stopped observing"));
@@ -874,6 +1080,7 @@ void MainWindow::linkStopped()
     m_alerts->setStatistics(LinkStatistics());  // closed: no alarm
     m_alerts->setReplay(false);
     m_alerts->info(EventSource::Link, tr("Stopped"));
+    m_journal->linkEnded();
     showNotConnected();
     updateTitle();
     updateLinkControls();
@@ -945,18 +1152,26 @@ void MainWindow::actionFailed(const QString& reason)
 
 void MainWindow::commandChanged()
 {
-    m_preview->setCommand(m_command->message());
+    // What the next frame carries: the header alone while the command is held.
+    const bool held = m_session->isLive() && !m_session->commanding();
+    m_preview->setCommand(held ? rcm::heldCommand(m_command->message()) : m_command->message());
     m_session->setCommand(m_command->message());
 }
 
 void MainWindow::messageReceived(const ReceivedMessage& received)
 {
     m_reported->onReceived(received);
+    if (!m_ownCommand)
+        m_journal->statusReceived(received.message);
 }
 
 void MainWindow::frameSent(quint32 messageId)
 {
-    m_command->frameSent();
+    // A frame that held the command back carried no photograph to return from.
+    if (m_session->commanding()) {
+        m_command->frameSent();
+        m_journal->frameSent(messageId);
+    }
     m_preview->frameSent(messageId);
 }
 
@@ -1047,7 +1262,7 @@ void MainWindow::chooseAirframe()
     const QString path =
         QFileDialog::getOpenFileName(this, tr("Open an airframe"), QString(), tr("Airframes (*.json);;All files (*)"));
     if (!path.isEmpty())
-        loadAirframe(path);
+        requestAirframe(path);
 }
 
 void MainWindow::bindStationControl()
@@ -1068,6 +1283,36 @@ void MainWindow::bindStationControl()
         control->applyTo(named);
         m_command->editUnit({rcm::UnitKind::Header, 0}, [&](rcm::Unit& header) { header = named.header; });
     });
+}
+
+void MainWindow::bindCommandHold()
+{
+    m_journal = new CommandJournal(m_command, this);
+    connect(m_journal, &CommandJournal::entry, this, [this](const QString& text, bool warning) {
+        if (warning)
+            m_alerts->warning(EventSource::Command, text);
+        else
+            m_alerts->info(EventSource::Command, text);
+    });
+    StationControl* control = m_session->stationControl();
+    connect(control, &StationControl::headerChanged, m_journal, [this, control] {
+        m_journal->setStation(control->station() ? QString::fromStdString(rcm::formatStation(*control->station()))
+                                                 : QString());
+    });
+    // The report taken into the panels is not the operator's change.
+    connect(m_session, &ConsoleSession::commandAdopted, m_command, &CommandState::replaceMessage);
+    connect(m_session, &ConsoleSession::commandEvent, this, [this](const QString& text) {
+        statusBar()->showMessage(text, 8000);
+        m_alerts->info(EventSource::Command, text);
+    });
+    connect(m_session->commandHold(), &CommandHold::changed, this, [this] {
+        commandChanged();
+        m_flightPlan->setLinkReady(m_session->isLive() && m_session->kind() != ConsoleSession::Kind::Replay &&
+                                   m_session->commanding());
+    });
+    connect(m_stationControl, &StationControlWidget::takeControlRequested, m_holdBar, &CommandHoldBar::requestResume);
+    connect(m_holdBar, &CommandHoldBar::refused, this,
+            [this](const QString& reason) { showError(reason, EventSource::Command); });
 }
 
 void MainWindow::showError(const QString& message, EventSource source)

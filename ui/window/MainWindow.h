@@ -22,6 +22,8 @@
 #include <optional>
 #include <vector>
 
+class CommandHoldBar;
+class CommandJournal;
 class CommandPreview;
 class ConsoleAlerts;
 class OverviewPage;
@@ -42,6 +44,7 @@ class ReplayLink;
 class ReportedState;
 class StationControlWidget;
 class BrokerObservation;
+class BrokerTrust;
 class FleetFeed;
 class FleetModel;
 class FleetView;
@@ -83,10 +86,13 @@ public:
     FleetView* fleetView() const { return m_fleetView; }
     SessionBroadcast* broadcast() const { return m_broadcast; }
     BrokerObservation* observation() const { return m_observation; }
+    FleetFeed* fleetFeed() const { return m_fleetFeed; }
     ConsoleSession* session() const { return m_session; }
     // The event log, its dock, the error banner and the link-loss alarm.
     ConsoleAlerts* alerts() const { return m_alerts; }
     OverviewPage* overview() const { return m_overview; }
+    // The band above the panels while the command is held back.
+    CommandHoldBar* commandHold() const { return m_holdBar; }
     // Statistics of the running link; the default ones when none runs.
     LinkStatistics statistics() const { return m_session->statistics(); }
     bool isLinkRunning() const { return m_session->isRunning(); }
@@ -98,8 +104,12 @@ public:
     // Applies `kind` to the whole application and ticks View > Night theme to match.
     void setTheme(Theme::Kind kind);
 
-    // False, with the reason, when the airframe file cannot be used.
+    // False, with the reason, when the airframe file cannot be used. On a
+    // live link the command is held until the operator resumes; the units
+    // the new airframe lacks are said in the event log.
     bool loadAirframe(const QString& path, QString* error = nullptr);
+    // File > Airframe: asks first while a link is live, then loadAirframe().
+    void requestAirframe(const QString& path);
 
 public slots:
     // Connect, Start rehearsal, Open log for replay and Quit, as the
@@ -131,8 +141,9 @@ public slots:
     // 0.25 to 10 times the logged pace.
     void setReplaySpeed(double speed);
     // Joins the broker: the Fleet dock lists every aircraft on it, and with
-    // `publish` every link this console runs is published there
-    // (docs/architecture.md, "Stations and the broker").
+    // `publish` every link this console runs is published there, signed with
+    // settings.signingKey (docs/architecture.md, "Stations and the broker";
+    // docs/security.md, "The broker").
     void joinBroker(const BrokerSettings& settings, bool publish);
     // Shows settings.aircraft read-only from the broker: its frames, status
     // and events as the station publishing it logged them; nothing is sent.
@@ -155,9 +166,21 @@ private:
     void placeDocks();
     // Control between stations: its alarms and events to the log, its header to the panels.
     void bindStationControl();
+    // The command held back and resumed, adopted from the aircraft's report,
+    // and every change of it in the event log.
+    void bindCommandHold();
+    // The Airframe menu's tick on the airframe loaded.
+    void checkAirframeAction();
     // What a link or an observation says, to the status bar, overview, alerts and log view.
     void bindLinkEvents(const LinkEvents* events, bool logRows);
     void endObservation();
+    // The broker's own trouble: what waiting mends to the event log, what it
+    // does not to the banner too, its return to the event log. Quiet while
+    // an observation runs, whose own client says it.
+    void followBrokerClient(const MqttClient* client, bool quietWhileObserving = false);
+    // Whom the fleet and the observations believe: the command line's trust,
+    // this station's own key, the running link's key.
+    void updateBrokerTrust();
     void buildMenus();
     void restoreSession(const Options& options);
     void saveSession() const;
@@ -202,6 +225,8 @@ private:
     OverviewPage* m_overview = nullptr;
     FrameLogView* m_logView = nullptr;
     CommandPreview* m_preview = nullptr;
+    CommandHoldBar* m_holdBar = nullptr;
+    CommandJournal* m_journal = nullptr;
     FlightPlanWidget* m_flightPlan = nullptr;
     LinkSettingsWidget* m_linkSettings = nullptr;
     ReplayControls* m_replayControls = nullptr;
@@ -213,6 +238,9 @@ private:
     StationControlWidget* m_stationControl = nullptr;
     SessionBroadcast* m_broadcast = nullptr;
     MqttClient* m_fleetClient = nullptr;
+    FleetFeed* m_fleetFeed = nullptr;
+    std::shared_ptr<const BrokerTrust> m_brokerTrust;
+    bool m_brokerAnnounced = false;  // "connected, publishing" said once
     FleetModel* m_fleetModel = nullptr;
     FleetView* m_fleetView = nullptr;
     BrokerObservation* m_observation = nullptr;
@@ -229,6 +257,7 @@ private:
     std::vector<QDockWidget*> m_docks;  // in placeDocks()' order
     bool m_layoutRestored = false;
     bool m_layoutPlaced = false;
+    bool m_planInFront = false;  // a plan was opened: the flight plan, not the frame log, in front
     // While a replay plays: the console's own command, kept aside, and the
     // log's time, which the reports' age is counted in.
     std::optional<rcm::Message> m_ownCommand;
@@ -236,4 +265,5 @@ private:
     QObject* m_replayReadOnly = nullptr;  // an application event filter
     QLabel* m_replayNote = nullptr;
     QString m_lastLinkError;  // the link's last error, not logged again when its status repeats it
+    bool m_modemRegistered = false;  // the satellite phone's registration, as last said
 };

@@ -2,9 +2,11 @@
 
 #include "codec/receive/Refusal.h"
 #include "ui/panels/SteadyLabel.h"
+#include "ui/window/SignalBars.h"
 #include "ui/window/StatusFigure.h"
 
 #include <QDateTime>
+#include <QEvent>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLocale>
@@ -60,11 +62,16 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
                             "plaintext: an unencrypted frame on a keyed link"))),
       m_lost(new QLabel(tr("LINK LOST"))),
       m_transportSeparator(separator()),
-      m_transport(new StatusFigure(m_transportLabel, m_transportToolTip))
+      m_transport(new StatusFigure(m_transportLabel, m_transportToolTip)),
+      m_signal(new SignalBars)
 {
     m_state->setTextFormat(Qt::RichText);
-    m_state->setMinimumWidth(
-        fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535")));
+    const int stateWidth =
+        fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535"));
+    m_state->setMinimumWidth(stateWidth);
+    // The state takes the room the figures leave, whatever its text's length.
+    m_state->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    m_state->installEventFilter(this);
     m_lost->setToolTip(tr("No good frame from the aircraft within the silence timeout"));
     m_lost->setAlignment(Qt::AlignCenter);
     m_lost->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("  LINK LOST  ")) + 16);
@@ -73,7 +80,7 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(6, 0, 6, 0);
     layout->setSpacing(12);
-    layout->addWidget(m_state);
+    layout->addWidget(m_state, 1);
     for (QWidget* figure : std::initializer_list<QWidget*>{m_sent, m_received, m_corrected, m_uncorrectable, m_age,
                                                             m_security}) {
         layout->addWidget(separator());
@@ -82,10 +89,11 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     layout->addWidget(m_rejectedSeparator);
     layout->addWidget(m_rejected);
     layout->addWidget(m_transportSeparator);
+    layout->addWidget(m_signal);
     layout->addWidget(m_transport);
     m_transportSeparator->hide();
     m_transport->hide();
-    layout->addStretch(1);
+    m_signal->hide();
     layout->addWidget(m_lost);
 
     m_ageTimer.setInterval(250);
@@ -147,19 +155,36 @@ void StatusBarWidget::setTransportStatus(const QString& status)
 {
     m_transportStatus = status;
     m_transportSince = QDateTime::currentMSecsSinceEpoch();
-    m_transportSeparator->setVisible(!status.isEmpty());
+    m_transportSeparator->setVisible(!status.isEmpty() || !m_signal->text().isEmpty());
     m_transport->setVisible(!status.isEmpty());
-    m_transport->setToolTip(status.isEmpty() ? QString() : m_transportToolTip);
     if (!status.isEmpty())
         m_ageTimer.start();
     updateTransport();
 }
 
+QString StatusBarWidget::modemServiceText() const
+{
+    return m_signal->isVisibleTo(this) ? m_signal->text() : QString();
+}
+
+void StatusBarWidget::setModemService(int signalBars, bool registered, const QString& text)
+{
+    m_signal->setService(signalBars, registered, text);
+    m_signal->setVisible(!text.isEmpty());
+    m_transportSeparator->setVisible(!text.isEmpty() || !m_transportStatus.isEmpty());
+}
+
 void StatusBarWidget::updateTransport()
 {
     m_transport->setName(m_transportLabel);
-    if (!m_transportStatus.isEmpty())
-        m_transport->setValue(transportText());
+    if (m_transportStatus.isEmpty())
+        return;
+    // A long status (why the phone is not dialled) is the banner's and the
+    // event log's to say whole: here it is elided, whole in the tool tip.
+    const QString text = transportText();
+    const int room = fontMetrics().horizontalAdvance(QStringLiteral("connected at 19200 bit/s after 14 s, 12:03:45"));
+    m_transport->setValue(fontMetrics().elidedText(text, Qt::ElideMiddle, room));
+    m_transport->setToolTip(m_transportToolTip + QStringLiteral("\n") + m_transportStatus);
 }
 
 void StatusBarWidget::setTransportLabel(const QString& label, const QString& toolTip)
@@ -244,16 +269,46 @@ void StatusBarWidget::setState(LinkState state)
         name = tr("Replay");
         colour = QStringLiteral("#1565c0");
     }
-    QString text = QStringLiteral("<span style=\"color:%1\">\u25cf</span> <b>%2</b>").arg(colour, name);
-    if (!m_description.isEmpty() && state != LinkState::Closed)
-        text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(m_description.toHtmlEscaped());
-    m_state->setText(text);
+    m_stateName = name;
+    m_stateColour = colour;
+    m_state->setToolTip(state == LinkState::Closed ? QString() : m_description);
+    renderState();
     setAlarm(state == LinkState::Lost && !m_replay);
     if (state == LinkState::Closed)
         m_ageTimer.stop();
     else if (!m_ageTimer.isActive())
         m_ageTimer.start();
     updateAge();
+}
+
+// The description is elided to the room the label has, so that a long port
+// path and a modem's number never push the figures beside it under one
+// another (at 1366 px, in a call); the whole of it is the tool tip. A label
+// not shown yet has no room to speak of: it says it all.
+void StatusBarWidget::renderState()
+{
+    QString text = QStringLiteral("<span style=\"color:%1\">\u25cf</span> <b>%2</b>").arg(m_stateColour, m_stateName);
+    if (!m_description.isEmpty() && m_statistics.state != LinkState::Closed) {
+        QString shown = m_description;
+        if (m_state->isVisible()) {
+            QFont bold = font();
+            bold.setBold(true);
+            const int room = m_state->width() -
+                             QFontMetrics(bold).horizontalAdvance(QStringLiteral("\u25cf ") + m_stateName) -
+                             fontMetrics().horizontalAdvance(QStringLiteral("   "));
+            shown = fontMetrics().elidedText(m_description, Qt::ElideMiddle, std::max(room, 0));
+        }
+        text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(shown.toHtmlEscaped());
+    }
+    if (text != m_state->text())
+        m_state->setText(text);
+}
+
+bool StatusBarWidget::eventFilter(QObject* watched, QEvent* event)
+{
+    if (watched == m_state && (event->type() == QEvent::Resize || event->type() == QEvent::Show))
+        renderState();
+    return QWidget::eventFilter(watched, event);
 }
 
 void StatusBarWidget::setStatistics(const LinkStatistics& statistics)

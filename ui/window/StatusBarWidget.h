@@ -16,6 +16,7 @@
 #include <QWidget>
 
 class QLabel;
+class SignalBars;
 class StatusFigure;
 
 class StatusBarWidget : public QWidget {
@@ -36,6 +37,8 @@ public:
     // The transport's own state and how long it has been so: "dialling
     // 881612345678, 0:14"; empty when the transport has none (UDP).
     QString transportText() const;
+    // "registered, signal 3 of 5"; empty when no modem said.
+    QString modemServiceText() const;
 
 public slots:
     void setStatistics(const LinkStatistics& statistics);
@@ -52,12 +55,19 @@ public slots:
     // What the transport status is of: "Call" (a modem's), "Broker" (an observation's).
     void setTransportLabel(const QString& label, const QString& toolTip);
     void setTransportStatus(const QString& status);
+    // A satellite phone's service: signal bars beside the call; bars -1 and
+    // an empty text hide them (no modem).
+    void setModemService(int signalBars, bool registered, const QString& text);
 
 signals:
     // True when the link is lost, false when it is back or was closed.
     void alarm(bool on);
 
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
+
 private:
+    void renderState();
     void updateAge();
     void updateTransport();
     void updateSecurity();
@@ -66,6 +76,8 @@ private:
 
     LinkStatistics m_statistics;
     QString m_description;
+    QString m_stateName;
+    QString m_stateColour;
     QString m_fingerprint;
     QString m_transportStatus;
     QString m_transportLabel = tr("Call");
@@ -89,4 +101,5 @@ private:
     QLabel* m_lost;
     QWidget* m_transportSeparator;
     StatusFigure* m_transport;
+    SignalBars* m_signal;
 };
