@@ -215,6 +215,8 @@ struct TrialDecoder::Found {
 TrialDecoder::TrialDecoder(PredictionOptions options, bool keyed)
     : m_options(options), m_keyed(keyed), m_units(options.maxUnits)
 {
+    // Never reallocated: predictionsFor() hands out references into it.
+    m_predictions.reserve(2 * m_options.maxSenders + 2);
 }
 
 TrialDecoder::~TrialDecoder() = default;
