@@ -585,9 +585,12 @@ void TestRehearsal::uasimEndsWithTheConsole()
     QVERIFY(gcs.waitForStarted());
     QList<qint64> children;
     QTRY_VERIFY_WITH_TIMEOUT(!(children = childrenOf(gcs.processId())).isEmpty(), 30000);
-    QFile comm(QStringLiteral("/proc/%1/comm").arg(children.first()));
-    QVERIFY(comm.open(QIODevice::ReadOnly));
-    QCOMPARE(comm.readAll().trimmed(), QByteArray("uasim"));
+    // Between its fork and its exec the child is still called gcs.
+    const auto name = [](qint64 pid) {
+        QFile comm(QStringLiteral("/proc/%1/comm").arg(pid));
+        return comm.open(QIODevice::ReadOnly) ? comm.readAll().trimmed() : QByteArray();
+    };
+    QTRY_COMPARE_WITH_TIMEOUT(name(children.first()), QByteArray("uasim"), 30000);
     // Killed, with no chance to stop its rehearsal: the aircraft goes too.
     gcs.kill();
     QVERIFY(gcs.waitForFinished());
