@@ -2,7 +2,7 @@
 #include "link/session/LinkSettings.h"
 #include "link/simulation/AirframeLoader.h"
 #include "link/transport/ModemProfile.h"
-#include "ui/control/StationCommandLine.h"
+#include "ui/window/StationCommandLine.h"
 #include "ui/plan/PlanCommandLine.h"
 #include "ui/rehearsal/RehearsalCommandLine.h"
 #include "ui/window/LinkSettingsWidget.h"

@@ -25,7 +25,7 @@
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
 #include "ui/framelog/FrameLogView.h"
-#include "ui/framelog/ReplayControls.h"
+#include "ui/window/ReplayControls.h"
 #include "link/session/LinkSettings.h"
 #include "link/simulation/SatelliteModemThread.h"
 #include "ui/window/LinkSettingsWidget.h"
