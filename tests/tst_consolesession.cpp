@@ -69,6 +69,31 @@ private:
     bool m_open = false;
 };
 
+// Another station's session, as an observation tells it: here its frames are
+// emitted by the test.
+class ScriptedObservation : public Observation {
+public:
+    void start() override { running = true; }
+    void stop() override { running = false; }
+    QString observed() const override { return QStringLiteral("GB_133"); }
+    bool running = false;
+};
+
+LoggedFrame loggedFrame(const rcm::Message& message, FrameDirection direction, const rcm::secure::SecureCodec& codec,
+                        qint64 utcMicros)
+{
+    rcm::Diagnostics errors;
+    const std::optional<rcm::EncodedBlocks> blocks = codec.encode(message, errors);
+    const rcm::DatagramBytes datagram = rcm::makeDatagram(blocks->block1, blocks->block2);
+    LoggedFrame frame;
+    frame.entry.direction = direction;
+    frame.entry.utcMicros = utcMicros;
+    frame.entry.enciphered = true;
+    frame.entry.offset = -1;
+    frame.bytes = QByteArray(reinterpret_cast<const char*>(datagram.data()), qsizetype(datagram.size()));
+    return frame;
+}
+
 }  // namespace
 
 class TestConsoleSession : public QObject {
@@ -86,6 +111,7 @@ private slots:
     void rehearsalAgainstUasim();
     void rehearsalWithoutUasimSaysWhy();
     void joinOfAStuckLinkThreadIsBounded();
+    void observationIsAKindOfSession();
 
 private:
     QString logDirectory(const QString& name) const { return m_dir.filePath(name); }
@@ -414,6 +440,68 @@ void TestConsoleSession::joinOfAStuckLinkThreadIsBounded()
     // Unstuck, the thread goes on and destroys the link after all.
     release.release();
     QTRY_VERIFY_WITH_TIMEOUT(gone, kTimeoutMs);
+}
+
+// An observation runs as a kind of session: read only (nothing is live,
+// no link of ours runs), its keyed frames read with the keys given, what
+// each frame sent commanded said by loggedCommand, and stop() ends it.
+void TestConsoleSession::observationIsAKindOfSession()
+{
+    const rcm::secure::SecretKey psk = rcm::secure::generateKey();
+    const auto key = std::make_shared<const rcm::LogKey>(psk);
+    const rcm::secure::SecureCodec up(psk, rcm::secure::Direction::GcsToUa);
+    const rcm::secure::SecureCodec down(psk, rcm::secure::Direction::UaToGcs);
+    const rcm::secure::SecureCodec stranger(rcm::secure::generateKey(), rcm::secure::Direction::GcsToUa);
+    rcm::Message sent = command(12);
+    sent.header.set(rcm::ItemId::ID_msg, 7);
+    sent.header.set(rcm::ItemId::time_UTC, std::int64_t(73200));
+    sent.header.set(rcm::ItemId::date_UTC, std::int64_t(261122));
+
+    ConsoleSession session(logDirectory(QStringLiteral("observed")));
+    QSignalSpy started(&session, &ConsoleSession::observationStarted);
+    QSignalSpy stopped(&session, &ConsoleSession::observationStopped);
+    QSignalSpy linkStarted(&session, &ConsoleSession::linkStarted);
+    QList<std::pair<qint64, std::optional<rcm::Message>>> commanded;
+    connect(&session, &ConsoleSession::loggedCommand, this,
+            [&](qint64 utc, const std::optional<rcm::Message>& m) { commanded.append({utc, m}); });
+    auto owned = std::make_unique<ScriptedObservation>();
+    ScriptedObservation* observation = owned.get();
+    session.observe(std::move(owned), QStringLiteral("Observing GB_133 on the test"), {key});
+    QCOMPARE(started.count(), 1);
+    QCOMPARE(linkStarted.count(), 0);
+    QVERIFY(observation->running);
+    QCOMPARE(session.observation(), observation);
+    QCOMPARE(session.kind(), ConsoleSession::Kind::Observation);
+    QVERIFY(session.isActive());
+    QVERIFY(!session.isLive());
+    QVERIFY(!session.isRunning());
+    QCOMPARE(session.description(), QStringLiteral("Observing GB_133 on the test"));
+    QCOMPARE(session.logKey(), key);
+    QCOMPARE(session.keyFingerprint(), QString::fromStdString(key->fingerprint()));
+
+    emit observation->frameLogged(loggedFrame(sent, FrameDirection::Sent, up, 1000));
+    emit observation->frameLogged(loggedFrame(sent, FrameDirection::Received, down, 2000));
+    emit observation->frameLogged(loggedFrame(sent, FrameDirection::Sent, stranger, 3000));
+    QCOMPARE(commanded.size(), 3);
+    QCOMPARE(commanded.at(0).first, qint64(1000));
+    QVERIFY(commanded.at(0).second);
+    QCOMPARE(commanded.at(0).second->flaps.number(rcm::ItemId::F_elev_set), std::int64_t(12));
+    QCOMPARE(commanded.at(0).second->header.number(rcm::ItemId::ID_msg), std::int64_t(7));
+    // A report is no command; a frame no key of ours opens is not read.
+    QCOMPARE(commanded.at(1).first, qint64(2000));
+    QVERIFY(!commanded.at(1).second);
+    QCOMPARE(commanded.at(2).first, qint64(3000));
+    QVERIFY(!commanded.at(2).second);
+
+    QPointer<Observation> gone(observation);
+    session.stop();
+    QCOMPARE(stopped.count(), 1);
+    QVERIFY(!observation->running);
+    QCOMPARE(session.kind(), ConsoleSession::Kind::None);
+    QVERIFY(!session.isActive());
+    QVERIFY(!session.observation());
+    QVERIFY(session.description().isEmpty());
+    QTRY_VERIFY_WITH_TIMEOUT(gone.isNull(), kTimeoutMs);
 }
 
 QTEST_MAIN(TestConsoleSession)

@@ -11,6 +11,7 @@
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "codec/frame/Frame.h"
 #include "codec/secure/SecureCodec.h"
 #include "link/framelog/FrameLog.h"
 #include "link/framelog/FrameLogReader.h"
@@ -25,7 +26,7 @@
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/framelog/FrameLogModel.h"
 #include "ui/framelog/FrameLogView.h"
-#include "ui/framelog/ReplayControls.h"
+#include "ui/window/ReplayControls.h"
 #include "link/session/LinkSettings.h"
 #include "link/simulation/SatelliteModemThread.h"
 #include "ui/window/LinkSettingsWidget.h"
@@ -137,6 +138,7 @@ private slots:
     void replaysAFrameLog();
     void replayOfAMissingLogSaysWhy();
     void replayShowsTheLogsCommandReadOnly();
+    void keyedReplayShowsWhatWasCommanded();
     void rehearsalAgainstUasim();
     void keyedUploadUses199ByteSections();
     void refusedKeyFileSaysWhy();
@@ -777,6 +779,76 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
     QTest::mouseClick(retract, Qt::LeftButton);
     QVERIFY(retracting.shown);
     QVERIFY(command->message() != own);
+}
+
+// A keyed session's log, replayed with its key: the panels show what the
+// session commanded, read through the receive path for logged frames with
+// the session's key; replayed without it, they show nothing of it (its
+// frames are ciphertext, never read as plain).
+void TestMainWindow::keyedReplayShowsWhatWasCommanded()
+{
+    using rcm::ItemId;
+    const QString keyPath = keyFile(QStringLiteral("replayed.key"));
+    std::string error;
+    const std::optional<rcm::secure::SecretKey> psk = rcm::secure::readKeyFile(keyPath.toStdString(), error);
+    QVERIFY2(psk, error.c_str());
+    const rcm::secure::SecureCodec up(*psk, rcm::secure::Direction::GcsToUa);
+    const rcm::secure::SecureCodec down(*psk, rcm::secure::Direction::UaToGcs);
+    const UnitRef flaps{rcm::UnitKind::Flaps, 0};
+    CommandState logged;
+    QVERIFY(logged.setNumber(flaps, ItemId::F_rudder_set, 9));
+    const QString path = m_dir.filePath(QStringLiteral("keyed.pcapng"));
+    {
+        FrameLog log;
+        QVERIFY(log.open(path));
+        for (int i = 0; i < 5; ++i) {
+            for (const FrameDirection direction : {FrameDirection::Sent, FrameDirection::Received}) {
+                rcm::Message message = logged.message();
+                message.header.set(ItemId::ID_msg, 100 + i);
+                message.header.set(ItemId::time_UTC, std::int64_t(73200 + i));
+                message.header.set(ItemId::date_UTC, std::int64_t(261122));
+                rcm::Diagnostics errors;
+                const std::optional<rcm::EncodedBlocks> blocks =
+                    (direction == FrameDirection::Sent ? up : down).encode(message, errors);
+                QVERIFY2(blocks, errors.empty() ? "" : errors.front().toString().c_str());
+                const rcm::DatagramBytes datagram = rcm::makeDatagram(blocks->block1, blocks->block2);
+                FrameRecord r;
+                r.bytes = QByteArray(reinterpret_cast<const char*>(datagram.data()), qsizetype(datagram.size()));
+                r.utcMicros = 1795332720000000 + i * 1'000'000 + (direction == FrameDirection::Sent ? 0 : 100'000);
+                r.direction = direction;
+                r.transport = FrameTransport::Udp;
+                r.status = direction == FrameDirection::Sent ? FrameStatus::NotChecked : FrameStatus::Decoded;
+                r.enciphered = true;
+                QVERIFY(log.append(r));
+            }
+        }
+    }
+    MainWindow window(options());
+    CommandState* command = window.command();
+    const rcm::Message own = command->message();
+    QCOMPARE(command->value(flaps, ItemId::F_rudder_set)->number, 0);
+    QSignalSpy finished(&window, &MainWindow::replayFinished);
+    window.setReplaySpeed(10.0);
+
+    // Without the key: ciphertext, never shown as a command.
+    window.openFrameLog(path);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
+    QCOMPARE(window.session()->kind(), ConsoleSession::Kind::Replay);
+    QCOMPARE(command->message(), own);
+    window.disconnectLink();
+
+    // With it: what the session commanded, and the aircraft's reports.
+    window.openFrameLog(path, keyPath);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 2, kLinkTimeoutMs);
+    QVERIFY(window.session()->logKey());
+    QCOMPARE(command->value(flaps, ItemId::F_rudder_set)->number, 9);
+    QCOMPARE(command->message().header.number(ItemId::ID_msg), std::int64_t(104));
+    QTRY_COMPARE_WITH_TIMEOUT(window.reported()->statusFrames(), 5, kLinkTimeoutMs);
+    QCOMPARE(window.reported()->value(flaps, ItemId::F_rudder_set)->number, 9);
+
+    // Afterwards the console's own command.
+    window.disconnectLink();
+    QCOMPARE(command->message(), own);
 }
 
 void TestMainWindow::rehearsalAgainstUasim()

@@ -23,7 +23,7 @@ BrokerSettings observerSettings(BrokerSettings settings, const QString& aircraft
 }  // namespace
 
 BrokerObservation::BrokerObservation(const BrokerSettings& settings, QObject* parent)
-    : LinkEvents(parent), m_aircraft(settings.aircraft.isEmpty() ? BrokerTopics::kUnknownAircraft : settings.aircraft)
+    : Observation(parent), m_aircraft(settings.aircraft.isEmpty() ? BrokerTopics::kUnknownAircraft : settings.aircraft)
 {
     m_client = new MqttClient(observerSettings(settings, m_aircraft), this);
     m_client->setTrust(settings.trust ? settings.trust : std::make_shared<const BrokerTrust>());

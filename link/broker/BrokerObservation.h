@@ -41,7 +41,7 @@
 #include "link/broker/BrokerSettings.h"
 #include "link/broker/BrokerTopics.h"
 #include "link/broker/SequenceCheck.h"
-#include "link/session/LinkEvents.h"
+#include "link/session/Observation.h"
 
 #include <QHash>
 #include <QMap>
@@ -53,7 +53,7 @@
 
 class MqttClient;
 
-class BrokerObservation : public LinkEvents {
+class BrokerObservation : public Observation {
     Q_OBJECT
 
 public:
@@ -64,10 +64,11 @@ public:
     explicit BrokerObservation(const BrokerSettings& settings, QObject* parent = nullptr);
     ~BrokerObservation() override;
 
-    void start();
-    void stop();
+    void start() override;
+    void stop() override;
 
     QString aircraft() const { return m_aircraft; }
+    QString observed() const override { return m_aircraft; }
     bool isConnected() const;
     const BrokerSettings& settings() const;
     MqttClient* client() const { return m_client; }

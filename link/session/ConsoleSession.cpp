@@ -46,6 +46,26 @@ QString keyRefused(const QString& reason)
     return ConsoleSession::tr("Not connected: the key file is refused: %1").arg(reason);
 }
 
+// What a frame the station sent commanded, as its log holds it: read
+// through the receive path for logged frames, and only when exact (and
+// authentic, keyed). A keyed session's frame without its key reads as
+// nothing rather than as noise.
+std::optional<rcm::Message> commandIn(const QByteArray& bytes, bool enciphered,
+                                      const std::vector<const rcm::secure::SecureCodec*>& codecs)
+{
+    const auto frame = std::span(reinterpret_cast<const std::uint8_t*>(bytes.constData()), std::size_t(bytes.size()));
+    rcm::LoggedFrameReading reading = rcm::readLoggedFrame(frame, enciphered, codecs);
+    if (!reading.read())
+        return std::nullopt;
+    return std::move(reading.decoded.message);
+}
+
+const std::vector<const rcm::secure::SecureCodec*>& codecsOf(const rcm::LogKey* key)
+{
+    static const std::vector<const rcm::secure::SecureCodec*> none;
+    return key ? key->codecs() : none;
+}
+
 }  // namespace
 
 ConsoleSession::ConsoleSession(const QString& frameLogDirectory, QObject* parent)
@@ -217,10 +237,71 @@ void ConsoleSession::startReplay(const QString& path, quint64 request, std::shar
     replay->setSpeed(m_replaySpeed);
     m_replayPaused = false;
     m_replay = replay.get();
+    readReplayedCommands(replay.get(), request);
     connect(replay.get(), &ReplayLink::stateChanged, this,
             [this](ReplayLink::State state) { m_replayPaused = state == ReplayLink::State::Paused; });
     opened->log.reset();  // a replay writes no log of its own
     startController(std::move(replay), Kind::Replay, tr("replay of %1").arg(QFileInfo(path).fileName()), *opened);
+}
+
+void ConsoleSession::readReplayedCommands(ReplayLink* replay, quint64 request)
+{
+    // In the link thread, as each record plays: the session hears of every
+    // record (its time) before the worker's report of the same frame.
+    connect(
+        replay, &ReplayLink::frameReplayed, replay,
+        [this, request, key = m_logKey](const FrameRecord& record) {
+            std::optional<rcm::Message> commanded;
+            if (record.direction == FrameDirection::Sent)
+                commanded = commandIn(record.bytes, record.enciphered, codecsOf(key.get()));
+            QMetaObject::invokeMethod(
+                this,
+                [this, request, utc = record.utcMicros, commanded] {
+                    if (request == m_request)  // else the replay ended meanwhile
+                        emit loggedCommand(utc, commanded);
+                },
+                Qt::QueuedConnection);
+        },
+        Qt::DirectConnection);
+}
+
+void ConsoleSession::observe(std::unique_ptr<Observation> observation, const QString& description,
+                             const QList<std::shared_ptr<const rcm::LogKey>>& keys)
+{
+    stop();
+    m_observation = observation.release();
+    m_observation->setParent(this);
+    m_observedKeys = keys;
+    m_observedCodecs.clear();
+    for (const std::shared_ptr<const rcm::LogKey>& key : keys)
+        m_observedCodecs.insert(m_observedCodecs.end(), key->codecs().begin(), key->codecs().end());
+    m_kind = Kind::Observation;
+    m_description = description;
+    m_logKey = keys.isEmpty() ? nullptr : keys.front();
+    m_keyFingerprint = m_logKey ? QString::fromStdString(m_logKey->fingerprint()) : QString();
+    connect(m_observation, &LinkEvents::frameLogged, this, [this](const LoggedFrame& frame) {
+        std::optional<rcm::Message> commanded;
+        if (frame.entry.direction == FrameDirection::Sent)
+            commanded = commandIn(frame.bytes, frame.entry.enciphered, m_observedCodecs);
+        emit loggedCommand(frame.entry.utcMicros, commanded);
+    });
+    emit observationStarted(m_observation);
+    m_observation->start();
+}
+
+void ConsoleSession::stopObservation()
+{
+    if (!m_observation)
+        return;
+    Observation* observation = std::exchange(m_observation, nullptr);
+    observation->stop();
+    observation->deleteLater();
+    m_kind = Kind::None;
+    m_description.clear();
+    m_keyFingerprint.clear();
+    m_observedCodecs.clear();
+    m_observedKeys.clear();
+    emit observationStopped();
 }
 
 void ConsoleSession::prepare(std::unique_ptr<Link> link, Kind kind, const QString& description,
@@ -310,6 +391,7 @@ void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, cons
 
 void ConsoleSession::stopController()
 {
+    stopObservation();
     if (!m_controller)
         return;
     m_replay.clear();

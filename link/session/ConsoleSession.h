@@ -2,15 +2,16 @@
 
 // One operator session's link, whichever feeds the console: a live link over
 // serial or UDP, a rehearsal against the simulated aircraft (uasim) on
-// loopback, or a frame log replayed. It owns each one's lifetime, from
+// loopback, a frame log replayed, or another station's session observed
+// read only (an Observation, from a broker). It owns each one's lifetime, from
 // connect or open to stop, with its key and its frame log, and it does the
 // slow parts off the GUI thread: opening the key file (two fsyncs), creating
 // the session's frame log and indexing a log for replay. Their results come
 // back as signals. It has no widgets: the console binds its own to it, and
 // tests drive it without a window.
 //
-// Each action that starts a link (connectWith, startRehearsal, openReplay)
-// is one call that replaces whatever link runs, so that a console can ask
+// Each action that starts a link (connectWith, startRehearsal, openReplay,
+// observe) is one call that replaces whatever link runs, so that a console can ask
 // before calling one while isActive().
 
 #include "codec/message/Airframe.h"
@@ -22,9 +23,11 @@
 #include "link/session/LinkSettings.h"
 #include "link/session/LinkStatistics.h"
 #include "link/session/LinkWorker.h"
+#include "link/session/Observation.h"
 #include "link/session/StationControl.h"
 #include "link/simulation/RehearsalLauncher.h"
 
+#include <QList>
 #include <QObject>
 #include <QPointer>
 
@@ -37,6 +40,7 @@ namespace rcm {
 class LogKey;
 }
 namespace rcm::secure {
+class SecureCodec;
 struct SecureEndpoint;
 }
 
@@ -45,7 +49,7 @@ class ConsoleSession : public QObject {
 
 public:
     // What feeds the console: the link running or being started.
-    enum class Kind { None, Live, Rehearsal, Replay };
+    enum class Kind { None, Live, Rehearsal, Replay, Observation };
     Q_ENUM(Kind)
 
     // Wraps each transport before it goes to the worker (the console's voice
@@ -77,7 +81,8 @@ public:
         const auto live = [](Kind k) { return k == Kind::Live || k == Kind::Rehearsal; };
         return live(m_kind) || live(m_preparing);
     }
-    // A link runs (its thread does; it may be waiting for the far end).
+    // A link runs (its thread does; it may be waiting for the far end). Not
+    // an observation, which has no link of this console's.
     bool isRunning() const { return m_controller != nullptr; }
     // A link runs or is being started: what a new action would replace.
     bool isActive() const { return m_kind != Kind::None || m_preparing != Kind::None; }
@@ -86,6 +91,8 @@ public:
     // The replay running, or null: it lives in the link thread, so connect
     // to its signals only and steer it with the replay slots below.
     const ReplayLink* replay() const { return m_replay.data(); }
+    // The observation running, or null; for connecting to its signals.
+    const Observation* observation() const { return m_observation; }
     // Statistics of the running link; the default ones when none runs.
     LinkStatistics statistics() const;
     // One datagram a frame (UDP, rehearsal, replay), or a serial stream.
@@ -107,8 +114,15 @@ public:
     // The index of the log opened for replay, for a log view, after
     // replayIndexed(): handed over once, null after that.
     std::unique_ptr<FrameLogReader> takeReplayIndex() { return std::move(m_replayIndex); }
-    // The running link's key (or the replayed log's), to read a keyed link's
-    // frames in the log with; null for none. Codecs of its own: the GUI
+    // Stops the running link and shows `observation` instead, read only, as
+    // `description`; its keyed frames are read with `keys` (the observed
+    // aircraft's link keys, any of them), logKey() is the first. Nothing is
+    // sent. It runs until stop() or the next action.
+    void observe(std::unique_ptr<Observation> observation, const QString& description,
+                 const QList<std::shared_ptr<const rcm::LogKey>>& keys);
+    // The running link's key (or the replayed log's, or the observed
+    // session's first), to read a keyed link's frames in the log with; null
+    // for none. Codecs of its own: the GUI
     // thread's, not the link thread's.
     std::shared_ptr<const rcm::LogKey> logKey() const { return m_logKey; }
     // Control between stations (docs/protocol.md section 10): fed by the
@@ -165,6 +179,15 @@ signals:
     void linkStarted(const LinkController* controller);
     // The link ended: by stop(), or replaced by another one.
     void linkStopped();
+    // An observation starts: connect to it in the slot, before it says anything.
+    void observationStarted(const Observation* observation);
+    // The observation ended: by stop(), or replaced by a link.
+    void observationStopped();
+    // A replay or an observation, read only: each frame's time as it comes
+    // and, for a frame the station sent that reads exactly through the
+    // receive path for logged frames (with the session's key when keyed),
+    // what it commanded; nothing for any other frame.
+    void loggedCommand(qint64 utcMicros, const std::optional<rcm::Message>& commanded);
     // An action did not start its link; the reason for people, naming the
     // file, port or program. Nothing was replaced.
     void failed(const QString& reason);
@@ -191,6 +214,9 @@ private:
                  std::shared_ptr<rcm::secure::SecureEndpoint> key = nullptr);
     void startController(std::unique_ptr<Link> link, Kind kind, const QString& description, Opened& opened);
     void stopController();
+    void stopObservation();
+    // Each sent frame of the replay, read in the link thread as it plays.
+    void readReplayedCommands(ReplayLink* replay, quint64 request);
     // Plays the log indexed for `request`, unless another action came in since.
     void startReplay(const QString& path, quint64 request, std::shared_ptr<Opened> opened);
     void rehearsalReady(quint16 port);
@@ -212,6 +238,9 @@ private:
     // still agrees with the aircraft.
     bool m_checkAfterRegain = false;
     std::unique_ptr<LinkController> m_controller;
+    Observation* m_observation = nullptr;                           // a child, deleted later once stopped
+    std::vector<const rcm::secure::SecureCodec*> m_observedCodecs;  // of m_observedKeys
+    QList<std::shared_ptr<const rcm::LogKey>> m_observedKeys;
     std::unique_ptr<Link> m_preparedLink;  // the transport waiting for its key and log
     QPointer<ReplayLink> m_replay;  // lives in the link thread; only queued calls
     std::unique_ptr<FrameLogReader> m_replayIndex;

@@ -111,65 +111,8 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
       m_hex(makeDetailPane(tr("Select a frame to see its bytes")))
 {
     m_filter->setSourceModel(model);
-
-    m_direction->addItem(tr("Both directions"), FrameLogFilterModel::kAllDirections);
-    m_direction->addItem(tr("Sent"), FrameLogFilterModel::bit(FrameDirection::Sent));
-    m_direction->addItem(tr("Received"), FrameLogFilterModel::bit(FrameDirection::Received));
-    m_direction->setToolTip(tr("Show frames sent to the aircraft, received from it, or both"));
-    using F = FrameLogFilterModel;
-    m_status->addItem(tr("Any status"), F::kAllStatuses);
-    m_status->addItem(tr("Problems (corrected, uncorrectable, refused)"), F::bit(FrameStatus::Corrected) |
-                                                                              F::bit(FrameStatus::Uncorrectable) |
-                                                                              F::bit(FrameStatus::Rejected));
-    for (FrameStatus s : {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable,
-                          FrameStatus::Rejected, FrameStatus::NotChecked})
-        m_status->addItem(FrameLogModel::statusText(s), F::bit(s));
-    m_status->setToolTip(tr("Show only frames with this decode status"));
-    m_follow->setChecked(true);
-    m_follow->setToolTip(tr("Scroll to each new frame as it arrives"));
-
-    auto* bar = new QHBoxLayout;
-    bar->setContentsMargins(0, 0, 0, 0);
-    bar->addWidget(new QLabel(tr("Show:")));
-    bar->addWidget(m_direction);
-    bar->addWidget(m_status);
-    bar->addWidget(m_follow);
-    bar->addStretch(1);
-    bar->addWidget(m_count);
-
-    m_table->setModel(m_filter);
-    m_table->setItemDelegate(new FrameLogDelegate(m_table));
-    // A view lays out a new model on a timer of its own; done at once, the
-    // first screen of a log opened for replay is painted with the log, not
-    // together with everything else that changes when the replay starts.
-    connect(m_filter, &QAbstractItemModel::modelReset, m_table, &QTableView::doItemsLayout);
-    m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
-    m_table->setSelectionMode(QAbstractItemView::SingleSelection);
-    m_table->setAlternatingRowColors(true);
-    m_table->setWordWrap(false);
-    m_table->setShowGrid(false);
-    m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
-    m_table->verticalHeader()->hide();
-    // Always there: a scroll bar that appears when a log fills the view (a
-    // replay opened, a live session's first minute) narrows the view, and
-    // the whole view and its header are painted again in that pass.
-    m_table->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOn);
-    m_table->setVerticalScrollBar(new SteadyScrollBar(Qt::Vertical));
-    // Fixed row heights and column widths: a view that measured its rows
-    // would ask for the text of all 200,000 of them.
-    m_table->verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
-    m_table->verticalHeader()->setDefaultSectionSize(m_table->fontMetrics().height() + 6);
-    QHeaderView* columns = m_table->horizontalHeader();
-    columns->setSectionResizeMode(QHeaderView::Interactive);
-    columns->setStretchLastSection(true);
-    columns->setHighlightSections(false);
-    const int digit = m_table->fontMetrics().horizontalAdvance(QLatin1Char('0'));
-    m_table->setColumnWidth(FrameLogModel::NumberColumn, digit * 9);
-    m_table->setColumnWidth(FrameLogModel::TimeColumn, digit * 15);
-    m_table->setColumnWidth(FrameLogModel::DirectionColumn, digit * 12);
-    m_table->setColumnWidth(FrameLogModel::MessageIdColumn, digit * 12);
-    m_table->setColumnWidth(FrameLogModel::CorrectedColumn, digit * 15);
-
+    QLayout* bar = filterBar();
+    setUpTable();
     auto* details = new QSplitter(Qt::Horizontal);
     details->addWidget(m_detail);
     details->addWidget(m_hex);
@@ -202,6 +145,71 @@ FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
         showSelected();
     });
     updateCount();
+}
+
+QLayout* FrameLogView::filterBar()
+{
+    m_direction->addItem(tr("Both directions"), FrameLogFilterModel::kAllDirections);
+    m_direction->addItem(tr("Sent"), FrameLogFilterModel::bit(FrameDirection::Sent));
+    m_direction->addItem(tr("Received"), FrameLogFilterModel::bit(FrameDirection::Received));
+    m_direction->setToolTip(tr("Show frames sent to the aircraft, received from it, or both"));
+    using F = FrameLogFilterModel;
+    m_status->addItem(tr("Any status"), F::kAllStatuses);
+    m_status->addItem(tr("Problems (corrected, uncorrectable, refused)"), F::bit(FrameStatus::Corrected) |
+                                                                              F::bit(FrameStatus::Uncorrectable) |
+                                                                              F::bit(FrameStatus::Rejected));
+    for (FrameStatus s : {FrameStatus::Decoded, FrameStatus::Corrected, FrameStatus::Uncorrectable,
+                          FrameStatus::Rejected, FrameStatus::NotChecked})
+        m_status->addItem(FrameLogModel::statusText(s), F::bit(s));
+    m_status->setToolTip(tr("Show only frames with this decode status"));
+    m_follow->setChecked(true);
+    m_follow->setToolTip(tr("Scroll to each new frame as it arrives"));
+
+    auto* bar = new QHBoxLayout;
+    bar->setContentsMargins(0, 0, 0, 0);
+    bar->addWidget(new QLabel(tr("Show:")));
+    bar->addWidget(m_direction);
+    bar->addWidget(m_status);
+    bar->addWidget(m_follow);
+    bar->addStretch(1);
+    bar->addWidget(m_count);
+    return bar;
+}
+
+void FrameLogView::setUpTable()
+{
+    m_table->setModel(m_filter);
+    m_table->setItemDelegate(new FrameLogDelegate(m_table));
+    // A view lays out a new model on a timer of its own; done at once, the
+    // first screen of a log opened for replay is painted with the log, not
+    // together with everything else that changes when the replay starts.
+    connect(m_filter, &QAbstractItemModel::modelReset, m_table, &QTableView::doItemsLayout);
+    m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
+    m_table->setSelectionMode(QAbstractItemView::SingleSelection);
+    m_table->setAlternatingRowColors(true);
+    m_table->setWordWrap(false);
+    m_table->setShowGrid(false);
+    m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    m_table->verticalHeader()->hide();
+    // Always there: a scroll bar that appears when a log fills the view (a
+    // replay opened, a live session's first minute) narrows the view, and
+    // the whole view and its header are painted again in that pass.
+    m_table->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOn);
+    m_table->setVerticalScrollBar(new SteadyScrollBar(Qt::Vertical));
+    // Fixed row heights and column widths: a view that measured its rows
+    // would ask for the text of all 200,000 of them.
+    m_table->verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
+    m_table->verticalHeader()->setDefaultSectionSize(m_table->fontMetrics().height() + 6);
+    QHeaderView* columns = m_table->horizontalHeader();
+    columns->setSectionResizeMode(QHeaderView::Interactive);
+    columns->setStretchLastSection(true);
+    columns->setHighlightSections(false);
+    const int digit = m_table->fontMetrics().horizontalAdvance(QLatin1Char('0'));
+    m_table->setColumnWidth(FrameLogModel::NumberColumn, digit * 9);
+    m_table->setColumnWidth(FrameLogModel::TimeColumn, digit * 15);
+    m_table->setColumnWidth(FrameLogModel::DirectionColumn, digit * 12);
+    m_table->setColumnWidth(FrameLogModel::MessageIdColumn, digit * 12);
+    m_table->setColumnWidth(FrameLogModel::CorrectedColumn, digit * 15);
 }
 
 void FrameLogView::setFollowing(bool on)

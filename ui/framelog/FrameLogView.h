@@ -11,6 +11,7 @@ class FrameLogModel;
 class QCheckBox;
 class QComboBox;
 class QLabel;
+class QLayout;
 class QPlainTextEdit;
 class QTableView;
 
@@ -36,6 +37,10 @@ public:
     QString hexText() const;
 
 private:
+    // The row above the table: which frames to show, following, the count.
+    QLayout* filterBar();
+    // Fixed rows and columns, a steady scroll bar: a day's log stays cheap.
+    void setUpTable();
     void applyFilter();
     void showSelected();
     void updateCount();

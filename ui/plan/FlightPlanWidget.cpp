@@ -139,7 +139,20 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     m_file->setWordWrap(true);
     m_file->setMaximumWidth(260);
     m_mapSource->setTextFormat(Qt::PlainText);
+    setUpTable();
+    m_map->setTiles(m_tiles);
+    m_map->setEditable(false);
+    setProgressRange(1);
+    m_progress->setValue(0);
+    m_progress->setMinimumWidth(220);
+    layOut();
+    connectParts();
+    m_mapSource->setText(m_tiles->description());
+    showProgress(m_upload->progress());
+}
 
+void FlightPlanWidget::setUpTable()
+{
     m_table->setHorizontalHeaderLabels({tr("#"), tr("Command"), tr("Frame"), tr("Latitude (\u00b0)"),
                                         tr("Longitude (\u00b0)"), tr("Altitude (m)"), tr("Param 1"), tr("Param 2"),
                                         tr("Param 3"), tr("Param 4")});
@@ -156,14 +169,10 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     // 10,000-item plan on every change held the GUI thread for seconds.
     m_table->horizontalHeader()->setSectionResizeMode(QHeaderView::Interactive);
     m_table->horizontalHeader()->setResizeContentsPrecision(kRowsMeasured);
+}
 
-    m_map->setTiles(m_tiles);
-    m_map->setEditable(false);
-
-    setProgressRange(1);
-    m_progress->setValue(0);
-    m_progress->setMinimumWidth(220);
-
+void FlightPlanWidget::layOut()
+{
     auto* top = new QHBoxLayout;
     top->addWidget(m_open);
     top->addWidget(m_save);
@@ -195,7 +204,10 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     layout->addLayout(top);
     layout->addWidget(split, 1);
     layout->addLayout(bottom);
+}
 
+void FlightPlanWidget::connectParts()
+{
     connect(m_open, &QPushButton::clicked, this, &FlightPlanWidget::openPlan);
     connect(m_save, &QPushButton::clicked, this, &FlightPlanWidget::savePlanAs);
     connect(m_tileButton, &QPushButton::clicked, this, &FlightPlanWidget::chooseTiles);
@@ -221,8 +233,6 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
     });
     connect(m_tiles, &MapTiles::sourceChanged, this, [this] { m_mapSource->setText(m_tiles->description()); });
     connect(m_tiles, &MapTiles::error, this, &FlightPlanWidget::problem);
-    m_mapSource->setText(m_tiles->description());
-    showProgress(m_upload->progress());
 }
 
 FlightPlanWidget::~FlightPlanWidget() = default;

@@ -105,6 +105,12 @@ signals:
     void problem(const QString& text);  // an error the operator must see: the event log and the banner
 
 private:
+    // The constructor's parts: the table's columns and behaviour, the
+    // layout (file and summary on top, the table beside the map, the upload
+    // at the bottom), and the connections of buttons, table, map and tiles.
+    void setUpTable();
+    void layOut();
+    void connectParts();
     void showPlan();
     void showRow(int row);
     void showSummary();  // the summary line and the bar's sections

@@ -67,7 +67,21 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     m_transport->addItem(tr("UDP"), int(LinkSettings::Transport::Udp));
     m_transport->addItem(tr("Serial modem"), int(LinkSettings::Transport::Serial));
     m_transport->setToolTip(tr("UDP: one 510-byte datagram a frame. Serial: 600-byte frames in the byte stream."));
+    m_pages->addWidget(udpPage());
+    m_pages->addWidget(serialPage());
 
+    auto* layout = new QFormLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+    layout->addRow(tr("Transport"), m_transport);
+    layout->addRow(m_pages);
+    layout->addRow(tr("Key file"), keyRow());
+    connectChanges();
+    setSettings(LinkSettings());
+}
+
+QWidget* LinkSettingsWidget::udpPage()
+{
     auto* udpPage = new QWidget;
     QFormLayout* udp = form(udpPage);
     m_remoteAddress->setToolTip(tr("IP address of the aircraft's link"));
@@ -82,7 +96,11 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     local->addWidget(m_localPort);
     udp->addRow(tr("Aircraft"), remote);
     udp->addRow(tr("Local"), local);
+    return udpPage;
+}
 
+QWidget* LinkSettingsWidget::serialPage()
+{
     auto* serialPage = new QWidget;
     QFormLayout* serial = form(serialPage);
     m_port->setEditable(true);
@@ -101,6 +119,12 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     port->addWidget(m_refresh);
     serial->addRow(tr("Port"), port);
     serial->addRow(tr("Bit rate"), m_baud);
+    addModemRows(serial);
+    return serialPage;
+}
+
+void LinkSettingsWidget::addModemRows(QFormLayout* serial)
+{
     m_dialNumber->setPlaceholderText(tr("none: the line is connected"));
     m_dialNumber->setClearButtonEnabled(true);
     m_dialNumber->setValidator(new QRegularExpressionValidator(QRegularExpression(QStringLiteral("[0-9+*#,PTpt ]*")),
@@ -141,10 +165,10 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
                                     "once twice this and a frame's airtime (0.5 s) have passed since the command "
                                     "changed"));
     serial->addRow(tr("Delay, one way"), m_satelliteDelay);
+}
 
-    m_pages->addWidget(udpPage);
-    m_pages->addWidget(serialPage);
-
+QLayout* LinkSettingsWidget::keyRow()
+{
     // The same key file for either transport: it belongs to the aircraft.
     m_keyPath->setPlaceholderText(tr("none"));
     m_keyPath->setClearButtonEnabled(true);
@@ -156,14 +180,11 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     auto* key = new QHBoxLayout;
     key->addWidget(m_keyPath, 1);
     key->addWidget(m_chooseKey);
+    return key;
+}
 
-    auto* layout = new QFormLayout(this);
-    layout->setContentsMargins(0, 0, 0, 0);
-    layout->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
-    layout->addRow(tr("Transport"), m_transport);
-    layout->addRow(m_pages);
-    layout->addRow(tr("Key file"), key);
-
+void LinkSettingsWidget::connectChanges()
+{
     connect(m_transport, &QComboBox::currentIndexChanged, this, [this](int index) {
         showPage(index);
         if (index == 1 && m_port->count() == 0)
@@ -185,8 +206,6 @@ LinkSettingsWidget::LinkSettingsWidget(QWidget* parent)
     // transport or move a port: the link settings change only by hand.
     for (QWidget* control : std::initializer_list<QWidget*>{m_transport, m_port, m_baud, m_localPort, m_remotePort, m_callCost, m_satelliteDelay, m_modemProfile})
         DeliberateInput::protect(control);
-
-    setSettings(LinkSettings());
 }
 
 LinkSettings LinkSettingsWidget::settings() const

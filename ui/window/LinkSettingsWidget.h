@@ -18,6 +18,8 @@ class QLineEdit;
 class QSpinBox;
 class QStackedWidget;
 class QToolButton;
+class QFormLayout;
+class QLayout;
 
 class LinkSettingsWidget : public QWidget {
     Q_OBJECT
@@ -40,6 +42,14 @@ signals:
     void changed();
 
 private:
+    QWidget* udpPage();
+    QWidget* serialPage();
+    // The satellite phone's: the number, the phone, its init string, flow
+    // control, the call's cost and the satellite's delay.
+    void addModemRows(QFormLayout* serial);
+    QLayout* keyRow();
+    // Every edit says changed(); none changes by a wheel turned over it.
+    void connectChanges();
     void showPage(int index);
 
     QComboBox* m_transport;

@@ -1,7 +1,7 @@
 #pragma once
 
 // Play, pause, speed and position of a frame log replay. The widget only
-// shows and asks: MainWindow passes its requests on to the ReplayLink in the
+// shows and asks: ReplayBinding passes its requests on to the ReplayLink in the
 // link thread and feeds back where playback stands.
 
 #include <QWidget>

@@ -1,4 +1,4 @@
-#include "ui/framelog/ReplayControls.h"
+#include "ui/window/ReplayControls.h"
 
 #include "ui/panels/SteadyLabel.h"
 

@@ -1,4 +1,4 @@
-#include "ui/control/StationCommandLine.h"
+#include "ui/window/StationCommandLine.h"
 
 #include "codec/message/TextFormat.h"
 #include "codec/receive/LoggedFrameReading.h"

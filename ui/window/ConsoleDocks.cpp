@@ -1,0 +1,95 @@
+#include "ui/window/ConsoleDocks.h"
+
+#include <QDockWidget>
+#include <QMainWindow>
+
+#include <algorithm>
+
+namespace {
+
+QDockWidget* dock(const QString& title, const QString& name, QWidget* content, QMainWindow* window)
+{
+    auto* d = new QDockWidget(title, window);
+    d->setObjectName(name);  // for saveState()
+    // The title as a heading, so the areas of the window read at a glance;
+    // the content keeps the normal font.
+    QFont body = d->font();
+    body.setBold(false);  // explicitly, or the content would inherit the heading's weight
+    content->setFont(body);
+    QFont heading = d->font();
+    heading.setBold(true);
+    d->setFont(heading);
+    // The content paints its own background, so that a change inside it (a
+    // count, the log scrolling) repaints the content alone: the dock's title
+    // bar asks the style for its two buttons' icons on every paint.
+    content->setAutoFillBackground(true);
+    d->setWidget(content);
+    d->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable | QDockWidget::DockWidgetClosable);
+    return d;
+}
+
+}  // namespace
+
+ConsoleDocks::ConsoleDocks(QMainWindow* window, const Contents& contents)
+    : QObject(window),
+      m_window(window),
+      m_link(dock(tr("Link"), QStringLiteral("linkDock"), contents.link, window)),
+      m_preview(dock(tr("Next frame"), QStringLiteral("previewDock"), contents.preview, window)),
+      m_log(dock(tr("Frame log"), QStringLiteral("frameLogDock"), contents.frameLog, window)),
+      m_plan(dock(tr("Flight plan"), QStringLiteral("flightPlanDock"), contents.flightPlan, window)),
+      m_voice(dock(tr("Voice"), QStringLiteral("voiceDock"), contents.voice, window)),
+      m_events(dock(tr("Events"), QStringLiteral("eventsDock"), contents.events, window))
+{
+    place();
+}
+
+void ConsoleDocks::place()
+{
+    for (QDockWidget* d : {m_link, m_voice, m_log, m_plan, m_preview, m_events}) {
+        d->setFloating(false);
+        d->show();
+    }
+    // The link and the voice down the left, full height, so that neither is
+    // squeezed; the panels take the rest of the width, so that their tabs
+    // all show at 1366 pixels; the frame log and the events share the bottom.
+    m_window->setCorner(Qt::TopLeftCorner, Qt::LeftDockWidgetArea);
+    m_window->setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
+    m_window->setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
+    m_window->setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
+    m_window->addDockWidget(Qt::LeftDockWidgetArea, m_link);
+    m_window->splitDockWidget(m_link, m_voice, Qt::Vertical);
+    m_window->addDockWidget(Qt::BottomDockWidgetArea, m_log);
+    m_window->splitDockWidget(m_log, m_preview, Qt::Horizontal);
+    m_window->tabifyDockWidget(m_log, m_plan);
+    // The events in front beside the frame log; the next frame behind them.
+    m_window->tabifyDockWidget(m_preview, m_events);
+    (m_planInFront ? m_plan : m_log)->raise();
+    m_events->raise();
+    // In proportion to the window: the panels keep the larger part of the
+    // height, the frame log enough for a dozen rows.
+    const QSize area = m_window->size();
+    m_window->resizeDocks({m_link}, {std::clamp(area.width() / 5, 250, 320)}, Qt::Horizontal);
+    m_window->resizeDocks({m_log, m_preview}, {area.width() * 3 / 5, area.width() * 2 / 5}, Qt::Horizontal);
+    m_window->resizeDocks({m_log}, {area.height() * 2 / 5}, Qt::Vertical);
+}
+
+void ConsoleDocks::placeOnFirstShow(bool restored)
+{
+    if (!m_placed && !restored)
+        place();
+    m_placed = true;
+}
+
+void ConsoleDocks::bringPlanForward()
+{
+    m_planInFront = true;
+    m_plan->show();
+    m_plan->raise();
+}
+
+void ConsoleDocks::addFleet(QWidget* fleetView)
+{
+    QDockWidget* fleet = dock(tr("Fleet"), QStringLiteral("fleetDock"), fleetView, m_window);
+    m_window->tabifyDockWidget(m_events, fleet);
+    fleet->raise();
+}
