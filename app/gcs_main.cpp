@@ -1,6 +1,6 @@
 // gcs: the operator console (`gcs --help`); start-up, memory and GUI stalls: tests/bench/bench_console.cpp.
+#include "link/airframe/AirframeLoader.h"
 #include "link/session/LinkSettings.h"
-#include "link/simulation/AirframeLoader.h"
 #include "link/transport/ModemProfile.h"
 #include "ui/control/StationCommandLine.h"
 #include "ui/plan/PlanCommandLine.h"

@@ -4,7 +4,7 @@
 
 #include "codec/message/MessageDecoder.h"
 #include "link/framelog/FrameLogCsv.h"
-#include "link/framelog/ReplayLink.h"
+#include "link/replay/ReplayLink.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "codec/message/CommandChanges.h"
@@ -25,7 +25,7 @@
 #include "ui/fleet/FleetView.h"
 #include "ui/eventlog/EventLogView.h"
 #include "ui/overview/OverviewPage.h"
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 #include "ui/panels/CameraPanel.h"
 #include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandPreview.h"
