@@ -1,6 +1,6 @@
-// satmodem: the pair of satellite phone modems (link/simulation/SatelliteModem.h) on two
+// satmodem: the pair of satellite phone modems (link/satmodem/SatelliteModem.h) on two
 // pseudo-terminals, for rehearsals by hand: its command line, symlinks and way to stop.
-#include "link/simulation/SatelliteModem.h"
+#include "link/satmodem/SatelliteModem.h"
 
 #include <QCommandLineParser>
 #include <QCoreApplication>

@@ -1,8 +1,8 @@
 // uasim: a simulated aircraft at the far end of the link, for rehearsals and
-// tests (link/simulation/SimulatorSession.h). This is only its command line
+// tests (link/aircraft/SimulatorSession.h). This is only its command line
 // and its way to stop: SIGINT or SIGTERM.
-#include "link/simulation/SimulatorOptions.h"
-#include "link/simulation/SimulatorSession.h"
+#include "link/aircraft/SimulatorOptions.h"
+#include "link/aircraft/SimulatorSession.h"
 
 #include <QCommandLineParser>
 #include <QCoreApplication>

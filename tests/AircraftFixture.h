@@ -9,10 +9,10 @@
 #include "InProcessLink.h"
 
 #include "codec/secure/SecureCodec.h"
+#include "link/aircraft/AircraftResponder.h"
+#include "link/aircraft/SimulatedAircraft.h"
+#include "link/clock/VirtualClock.h"
 #include "link/session/LinkWorker.h"
-#include "link/session/VirtualClock.h"
-#include "link/simulation/AircraftResponder.h"
-#include "link/simulation/SimulatedAircraft.h"
 
 #include <chrono>
 #include <memory>

@@ -2,7 +2,7 @@
 // suites that must finish in seconds; nothing asserts how long anything took.
 #pragma once
 
-#include "link/simulation/SatelliteModem.h"
+#include "link/satmodem/SatelliteModem.h"
 
 #include <chrono>
 

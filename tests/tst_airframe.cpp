@@ -1,5 +1,5 @@
 // Airframe files: the one reader the console and the simulated aircraft share.
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 
 #include <QtTest>
 

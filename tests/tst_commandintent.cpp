@@ -10,8 +10,8 @@
 
 #include "codec/message/Airframe.h"
 #include "codec/message/CommandChanges.h"
+#include "link/airframe/AirframeLoader.h"
 #include "link/session/ConsoleSession.h"
-#include "link/simulation/AirframeLoader.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/control/CommandHoldBar.h"
 #include "ui/eventlog/EventLogModel.h"

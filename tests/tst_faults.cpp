@@ -1,7 +1,7 @@
 // Rehearsal faults: counted, not timed. Each check runs a seeded injector over
 // many frames and compares what it did with the binomial or Poisson
 // expectation, within five standard deviations.
-#include "link/simulation/FaultInjector.h"
+#include "link/aircraft/FaultInjector.h"
 
 #include <QtTest>
 

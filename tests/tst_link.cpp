@@ -10,11 +10,11 @@
 
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
+#include "link/clock/VirtualClock.h"
 #include "link/framelog/FrameLog.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/LinkController.h"
 #include "link/session/LinkWorker.h"
-#include "link/session/VirtualClock.h"
 #include "link/transport/SerialLink.h"
 #include "link/transport/UdpLink.h"
 

@@ -6,9 +6,9 @@
 // nothing here asserts how long anything took.
 #include "QuickSatellite.h"
 #include "codec/message/Message.h"
+#include "link/satmodem/SatelliteModem.h"
+#include "link/satmodem/SatelliteModemThread.h"
 #include "link/session/ConsoleSession.h"
-#include "link/simulation/SatelliteModem.h"
-#include "link/simulation/SatelliteModemThread.h"
 #include "link/transport/ModemLink.h"
 #include "link/transport/SerialLink.h"
 #include "link/voice/VoiceSerialLink.h"

@@ -5,7 +5,7 @@
 // that says so. Time is a virtual clock.
 
 #include "codec/message/Airframe.h"
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 #include "ui/overview/LinkQualityHistory.h"
 #include "ui/overview/LinkQualityPlot.h"
 #include "ui/overview/OverviewPage.h"

@@ -10,7 +10,7 @@
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/message/TextFormat.h"
-#include "link/simulation/SimulatedAircraft.h"
+#include "link/aircraft/SimulatedAircraft.h"
 #include "ui/panels/CameraPanel.h"
 #include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"

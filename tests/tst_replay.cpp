@@ -5,10 +5,10 @@
 // through at 10x, and ten show that a paused or closed one stays silent.
 
 #include "codec/frame/Frame.h"
+#include "link/clock/VirtualClock.h"
 #include "link/framelog/FrameLog.h"
-#include "link/framelog/ReplayLink.h"
+#include "link/replay/ReplayLink.h"
 #include "link/session/LinkWorker.h"
-#include "link/session/VirtualClock.h"
 
 #include <QFile>
 #include <QSignalSpy>

@@ -3,7 +3,7 @@
 // written to it, and waits on what it hears. Times are shortened so that the
 // suite takes seconds; nothing here asserts how long anything took.
 #include "QuickSatellite.h"
-#include "link/simulation/SatelliteModem.h"
+#include "link/satmodem/SatelliteModem.h"
 
 #include <QFileInfo>
 #include <QProcess>

@@ -8,9 +8,9 @@
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/secure/SecureCodec.h"
+#include "link/aircraft/SimulatedAircraft.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/LinkWorker.h"
-#include "link/simulation/SimulatedAircraft.h"
 #include "link/transport/UdpLink.h"
 
 #include "AircraftFixture.h"

@@ -2,7 +2,7 @@
 
 #include "link/plan/QgcComplexItemReader.h"
 
-#include "link/simulation/JsonPosition.h"
+#include "link/json/JsonPosition.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>

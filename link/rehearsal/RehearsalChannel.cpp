@@ -1,6 +1,6 @@
 #include "link/rehearsal/RehearsalChannel.h"
 
-#include "link/simulation/FaultInjector.h"
+#include "link/aircraft/FaultInjector.h"
 
 #include <QPointer>
 

@@ -1,7 +1,7 @@
 #include "link/rehearsal/RehearsalProxy.h"
 
 #include "codec/frame/Frame.h"
-#include "link/simulation/PseudoTerminal.h"
+#include "link/satmodem/PseudoTerminal.h"
 #include "link/transport/UdpLink.h"
 
 #include <cerrno>

@@ -2,8 +2,8 @@
 
 #include "codec/message/ItemTable.h"
 #include "codec/message/TextFormat.h"
-#include "link/simulation/AirframeLoader.h"
-#include "link/simulation/JsonPosition.h"
+#include "link/airframe/AirframeLoader.h"
+#include "link/json/JsonPosition.h"
 
 #include <QDir>
 #include <QFile>

@@ -17,15 +17,15 @@
 #include "codec/message/Airframe.h"
 #include "codec/message/Message.h"
 #include "link/framelog/FrameLogReader.h"
-#include "link/framelog/ReplayLink.h"
+#include "link/replay/ReplayLink.h"
 #include "link/session/CommandHold.h"
 #include "link/session/LinkController.h"
 #include "link/session/LinkSettings.h"
 #include "link/session/LinkStatistics.h"
 #include "link/session/LinkWorker.h"
 #include "link/session/Observation.h"
+#include "link/session/RehearsalLauncher.h"
 #include "link/session/StationControl.h"
-#include "link/simulation/RehearsalLauncher.h"
 
 #include <QList>
 #include <QObject>

@@ -13,14 +13,14 @@
 // records.
 
 #include "codec/message/Message.h"
-#include "link/session/Clock.h"
-#include "link/session/MessageMetaType.h"
+#include "link/clock/Clock.h"
 #include "link/framelog/FrameLog.h"
-#include "link/transport/Link.h"
 #include "link/session/LinkEvents.h"
 #include "link/session/LinkStatistics.h"
 #include "link/session/LoggedFrame.h"
+#include "link/session/MessageMetaType.h"
 #include "link/session/ReceivedMessage.h"
+#include "link/transport/Link.h"
 
 #include <QObject>
 

@@ -4,7 +4,7 @@
 // cadence belong to LinkWorker; a Link knows nothing of frames, so a new
 // transport is only this class to implement.
 
-#include "link/framelog/FrameLog.h"
+#include "link/framelog/FrameFacts.h"
 
 #include <QByteArray>
 #include <QObject>

@@ -1,7 +1,7 @@
 #pragma once
 
 // Hayes/V.250 result codes in their verbose form (V1), as a modem says them
-// and as the satellite modem model (link/simulation/SatelliteModem) says them
+// and as the satellite modem model (link/satmodem/SatelliteModem) says them
 // to its callers: "\r\n" TEXT "\r\n". One list for both sides, so that what
 // the console listens for is what the model sends.
 

@@ -1,6 +1,6 @@
 #include "link/voice/SecureVoiceSink.h"
 
-#include "link/session/Clock.h"
+#include "link/clock/Clock.h"
 
 SecureVoiceSink::SecureVoiceSink(std::shared_ptr<VoiceSink> inner, const rcm::secure::VoiceKeys& keys,
                                  std::shared_ptr<Clock> clock, RefusedHandler refused)

@@ -1,6 +1,6 @@
 #include "link/voice/SecureVoiceSource.h"
 
-#include "link/session/Clock.h"
+#include "link/clock/Clock.h"
 
 #include <algorithm>
 

@@ -33,7 +33,7 @@
 // bytes, so that is minutes before it runs dry or grows by a frame.
 
 #include "codec/voice/VoiceMux.h"
-#include "link/session/Clock.h"
+#include "link/clock/Clock.h"
 #include "link/transport/LinkWrapper.h"
 
 #include <chrono>

@@ -17,7 +17,7 @@
 // passes its own), a frame every 20 ms, as the voice phase of the serial line
 // would carry it.
 
-#include "link/session/Clock.h"
+#include "link/clock/Clock.h"
 #include "link/transport/LinkWrapper.h"
 
 #include <chrono>

@@ -1,7 +1,7 @@
 #include "link/voice/WithVoice.h"
 
 #include "codec/voice/SecureVoice.h"
-#include "link/session/Clock.h"
+#include "link/clock/Clock.h"
 #include "link/voice/SecureVoiceSource.h"
 #include "link/voice/VoiceEncoderSource.h"
 #include "link/voice/VoiceSerialLink.h"

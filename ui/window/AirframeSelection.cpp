@@ -2,7 +2,7 @@
 
 #include "codec/message/CommandChanges.h"
 #include "link/session/ConsoleSession.h"
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/panels/CommandState.h"

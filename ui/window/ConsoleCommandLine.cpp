@@ -1,6 +1,6 @@
 #include "ui/window/ConsoleCommandLine.h"
 
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 #include "link/transport/ModemProfile.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/StationCommandLine.h"

@@ -1,7 +1,7 @@
 #include "ui/window/MainWindow.h"
 
 #include "link/broker/BrokerObservation.h"
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/eventlog/EventLogView.h"

@@ -1,6 +1,6 @@
 #include "ui/window/ReplayBinding.h"
 
-#include "link/framelog/ReplayLink.h"
+#include "link/replay/ReplayLink.h"
 #include "link/session/ConsoleSession.h"
 #include "ui/framelog/FrameLogView.h"
 #include "ui/overview/OverviewPage.h"

@@ -4,7 +4,7 @@
 // outage on what it receives; otherwise the transport it wraps. The faults'
 // time is counted from the wrapper's construction.
 
-#include "link/simulation/FaultInjector.h"
+#include "link/aircraft/FaultInjector.h"
 #include "link/transport/LinkWrapper.h"
 
 #include <QElapsedTimer>

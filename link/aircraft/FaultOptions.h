@@ -4,7 +4,7 @@
 // --delay, --outage, --silent, --seed), read into FaultSettings, and what
 // the faults did, said in one line.
 
-#include "link/simulation/FaultInjector.h"
+#include "link/aircraft/FaultInjector.h"
 
 #include <QCommandLineOption>
 #include <QString>

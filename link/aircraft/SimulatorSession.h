@@ -19,7 +19,7 @@
 #include "codec/control/ControlArbiter.h"
 #include "codec/message/Airframe.h"
 #include "codec/voice/WavFile.h"
-#include "link/simulation/FaultInjector.h"
+#include "link/aircraft/FaultInjector.h"
 #include "link/transport/SerialLink.h"
 
 #include <QElapsedTimer>

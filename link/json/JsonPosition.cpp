@@ -1,4 +1,4 @@
-#include "link/simulation/JsonPosition.h"
+#include "link/json/JsonPosition.h"
 
 JsonLineColumn jsonLineColumn(const QByteArray& text, int offset)
 {

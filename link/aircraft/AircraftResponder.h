@@ -11,8 +11,8 @@
 // the state after the commands received before it (a one-frame indication
 // such as a photograph taken cannot be cleared by a frame that did not carry it).
 
+#include "link/aircraft/SimulatedAircraft.h"
 #include "link/session/LinkWorker.h"
-#include "link/simulation/SimulatedAircraft.h"
 
 #include <QObject>
 

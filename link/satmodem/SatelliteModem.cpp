@@ -1,6 +1,6 @@
-#include "link/simulation/SatelliteModem.h"
+#include "link/satmodem/SatelliteModem.h"
 
-#include "link/simulation/PseudoTerminal.h"
+#include "link/satmodem/PseudoTerminal.h"
 
 #include <QSocketNotifier>
 

@@ -1,8 +1,8 @@
-#include "link/simulation/SimulatorOptions.h"
+#include "link/aircraft/SimulatorOptions.h"
 
 #include "codec/message/ItemTable.h"
 #include "codec/message/TextFormat.h"
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 #include "link/voice/VoiceEncoderSource.h"
 
 #include <QCommandLineParser>

@@ -1,4 +1,4 @@
-#include "link/simulation/PseudoTerminal.h"
+#include "link/satmodem/PseudoTerminal.h"
 
 #include <cerrno>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "link/framelog/ReplayLink.h"
+#include "link/replay/ReplayLink.h"
 
 #include "codec/frame/Frame.h"
 

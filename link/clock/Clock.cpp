@@ -1,4 +1,4 @@
-#include "link/session/Clock.h"
+#include "link/clock/Clock.h"
 
 #include <QTimer>
 

@@ -5,7 +5,7 @@
 // seconds, and the model must answer it meanwhile. What the model says comes
 // back queued, in the owner's thread.
 
-#include "link/simulation/SatelliteModem.h"
+#include "link/satmodem/SatelliteModem.h"
 
 #include <QObject>
 #include <QThread>

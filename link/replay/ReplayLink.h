@@ -18,8 +18,8 @@
 // frames. Where the wall clock stepped backwards mid-session, the records
 // after the step play at once, in file order.
 
+#include "link/clock/Clock.h"
 #include "link/framelog/FrameLogReader.h"
-#include "link/session/Clock.h"
 #include "link/transport/Link.h"
 
 #include <memory>

@@ -1,4 +1,4 @@
-#include "link/simulation/FaultyLink.h"
+#include "link/aircraft/FaultyLink.h"
 
 #include <QTimer>
 

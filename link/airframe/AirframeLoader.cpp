@@ -1,7 +1,7 @@
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 
 #include "codec/message/MessageEncoder.h"
-#include "link/simulation/JsonPosition.h"
+#include "link/json/JsonPosition.h"
 
 #include <QDir>
 #include <QFile>

@@ -1,4 +1,4 @@
-#include "link/simulation/SimulatedAircraft.h"
+#include "link/aircraft/SimulatedAircraft.h"
 
 #include "codec/message/DigitPairs.h"
 #include "codec/message/ValueCodec.h"

@@ -10,7 +10,7 @@
 // in another thread (a worker under LinkController) fires there, and
 // advance() waits for it to finish.
 
-#include "link/session/Clock.h"
+#include "link/clock/Clock.h"
 
 #include <chrono>
 #include <cstdint>

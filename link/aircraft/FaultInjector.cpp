@@ -1,4 +1,4 @@
-#include "link/simulation/FaultInjector.h"
+#include "link/aircraft/FaultInjector.h"
 
 #include <algorithm>
 #include <bit>

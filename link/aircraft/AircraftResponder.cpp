@@ -1,4 +1,4 @@
-#include "link/simulation/AircraftResponder.h"
+#include "link/aircraft/AircraftResponder.h"
 
 AircraftResponder::AircraftResponder(SimulatedAircraft& aircraft, LinkWorker& worker, QObject* parent)
     : QObject(parent), m_aircraft(aircraft), m_worker(worker), m_lastSteadyMicros(worker.clock().steadyMicros())

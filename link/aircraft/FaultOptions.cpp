@@ -1,4 +1,4 @@
-#include "link/simulation/FaultOptions.h"
+#include "link/aircraft/FaultOptions.h"
 
 #include <QCommandLineParser>
 #include <QStringList>

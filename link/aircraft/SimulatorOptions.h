@@ -3,8 +3,8 @@
 // uasim's command line: its options, read into SimulatorSession::Settings.
 // The rehearsal faults' options are FaultOptions'.
 
-#include "link/simulation/FaultOptions.h"
-#include "link/simulation/SimulatorSession.h"
+#include "link/aircraft/FaultOptions.h"
+#include "link/aircraft/SimulatorSession.h"
 
 #include <QCommandLineOption>
 

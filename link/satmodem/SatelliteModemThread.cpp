@@ -1,4 +1,4 @@
-#include "link/simulation/SatelliteModemThread.h"
+#include "link/satmodem/SatelliteModemThread.h"
 
 SatelliteModemThread::SatelliteModemThread(SatelliteModem::Options options, QObject* parent)
     : QObject(parent), m_inThread(new QObject)

@@ -1,4 +1,4 @@
-#include "link/session/VirtualClock.h"
+#include "link/clock/VirtualClock.h"
 
 #include <QMutex>
 #include <QThread>

@@ -1,6 +1,6 @@
-#include "link/simulation/RehearsalLauncher.h"
+#include "link/session/RehearsalLauncher.h"
 
-#include "link/simulation/AirframeLoader.h"
+#include "link/airframe/AirframeLoader.h"
 
 #include <QCoreApplication>
 #include <QDir>
