@@ -596,6 +596,7 @@ void TestModemLink::staleCallIsEscapedBeforeInit()
     auto aircraft = modemLink(model.device(SatelliteModem::Aircraft), quickLink(QString()));
     aircraft->open();
     QTRY_COMPARE_WITH_TIMEOUT(aircraft->callState(), ModemLink::CallState::AwaitingCall, kWaitMs);
+    QSignalSpy userGone(&model, &SatelliteModemThread::userGone);
     {
         // The earlier session: its call up, then gone without hanging up.
         ModemLink::Options o = quickLink(kNumber);
@@ -606,7 +607,8 @@ void TestModemLink::staleCallIsEscapedBeforeInit()
         // Killed: the port closes, with no +++ and no ATH.
         static_cast<SerialLink*>(earlier->inner())->close();
     }
-    QTest::qWait(300);  // the model's turn to see the port close: the call must stay up
+    // The model has seen the port close (DTR dropped) and kept the call, as &D0 says.
+    QTRY_VERIFY_WITH_TIMEOUT(userGone.contains(QVariantList{int(SatelliteModem::Ground)}), kWaitMs);
     QCOMPARE(model.callState(), SatelliteModem::CallState::Connected);
     QCOMPARE(model.hangUps.size(), 0);
     QVERIFY(aircraft->isOpen());

@@ -1,11 +1,14 @@
 #include "link/aircraft/FaultyLink.h"
 
-#include <QTimer>
+#include "link/clock/Clock.h"
 
-FaultyLink::FaultyLink(std::unique_ptr<Link> inner, const FaultSettings& settings, QObject* parent)
-    : LinkWrapper(std::move(inner), parent), m_faults(settings)
+FaultyLink::FaultyLink(std::unique_ptr<Link> inner, const FaultSettings& settings, std::shared_ptr<Clock> clock,
+                       QObject* parent)
+    : LinkWrapper(std::move(inner), parent),
+      m_faults(settings),
+      m_clock(std::move(clock)),
+      m_startMicros(m_clock->steadyMicros())
 {
-    m_clock.start();
 }
 
 QString FaultyLink::description() const
@@ -22,7 +25,12 @@ bool FaultyLink::write(const QByteArray& bytes)
         return inner()->isOpen();
     if (outcome.delay.count() == 0)
         return inner()->write(damaged);
-    QTimer::singleShot(outcome.delay, inner(), [link = inner(), damaged] { link->write(damaged); });
+    ClockTimer* late = m_clock->createTimer(inner(), Qt::PreciseTimer);
+    connect(late, &ClockTimer::timeout, inner(), [link = inner(), late, damaged] {
+        link->write(damaged);
+        late->deleteLater();
+    });
+    late->start(std::chrono::duration_cast<std::chrono::milliseconds>(outcome.delay));
     return inner()->isOpen();
 }
 
@@ -40,5 +48,6 @@ void FaultyLink::innerDatagramReceived(const QByteArray& datagram)
 
 std::chrono::milliseconds FaultyLink::elapsed() const
 {
-    return std::chrono::milliseconds(m_clock.elapsed());
+    return std::chrono::duration_cast<std::chrono::milliseconds>(
+        std::chrono::microseconds(m_clock->steadyMicros() - m_startMicros));
 }

@@ -2,21 +2,24 @@
 
 // A transport with rehearsal faults (FaultInjector) on what it sends and an
 // outage on what it receives; otherwise the transport it wraps. The faults'
-// time is counted from the wrapper's construction.
+// time is counted from the wrapper's construction, on the session's clock.
 
 #include "link/aircraft/FaultInjector.h"
 #include "link/transport/LinkWrapper.h"
 
-#include <QElapsedTimer>
+class Clock;
+
 
 #include <chrono>
+#include <cstdint>
 #include <memory>
 
 class FaultyLink : public LinkWrapper {
     Q_OBJECT
 
 public:
-    FaultyLink(std::unique_ptr<Link> inner, const FaultSettings& settings, QObject* parent = nullptr);
+    FaultyLink(std::unique_ptr<Link> inner, const FaultSettings& settings, std::shared_ptr<Clock> clock,
+               QObject* parent = nullptr);
 
     QString description() const override;
     const FaultInjector& faults() const { return m_faults; }
@@ -32,5 +35,6 @@ private:
     std::chrono::milliseconds elapsed() const;
 
     FaultInjector m_faults;
-    QElapsedTimer m_clock;
+    std::shared_ptr<Clock> m_clock;
+    std::int64_t m_startMicros;
 };

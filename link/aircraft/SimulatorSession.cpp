@@ -107,7 +107,7 @@ SimulatorSession::SimulatorSession(Settings settings, Say say, QObject* parent)
       m_settings(std::move(settings)),
       m_say(std::move(say)),
       m_arbiter(idsOf(m_settings.stations), m_settings.failover),
-      m_clock(std::make_shared<SystemClock>())
+      m_clock(m_settings.clock ? m_settings.clock : std::make_shared<SystemClock>())
 {
 }
 
@@ -203,7 +203,7 @@ std::unique_ptr<Link> SimulatorSession::openLink(const Station* station, Channel
         link = withVoice(std::move(link), m_settings.voiceSource, std::move(sink), security);
     }
     if (m_settings.faults.any()) {
-        auto faulty = std::make_unique<FaultyLink>(std::move(link), m_settings.faults);
+        auto faulty = std::make_unique<FaultyLink>(std::move(link), m_settings.faults, m_clock);
         channel.faultyLink = faulty.get();
         link = std::move(faulty);
     }
@@ -299,7 +299,7 @@ bool SimulatorSession::start()
     for (const Station& station : m_settings.stations)
         if (!openChannel(&station))
             return false;
-    m_simulationClock.start();
+    m_lastAdvanceMicros = m_clock->steadyMicros();
     offerStatus();
     for (const std::unique_ptr<Channel>& c : m_channels) {
         LinkWorker* worker = c->worker.get();
@@ -392,7 +392,10 @@ void SimulatorSession::statusFrameSent(Channel& channel)
     if (second != m_statusSecond) {
         m_statusSecond = second;
         m_aircraft->statusSent();
-        m_aircraft->advance(std::chrono::milliseconds(m_simulationClock.restart()));
+        const auto step = std::chrono::duration_cast<std::chrono::milliseconds>(
+            std::chrono::microseconds(m_clock->steadyMicros() - m_lastAdvanceMicros));
+        m_aircraft->advance(step);
+        m_lastAdvanceMicros += std::chrono::microseconds(step).count();  // the fraction left carries over
     }
     channel.worker->setCommand(status());
 }
@@ -425,7 +428,8 @@ void SimulatorSession::sayControlEvent(const ControlArbiter::Event& event)
 
 Message SimulatorSession::status() const
 {
-    Message status = m_aircraft->status(std::chrono::system_clock::now());
+    Message status = m_aircraft->status(
+        std::chrono::system_clock::time_point(std::chrono::microseconds(m_clock->utcMicros())));
     // The aircraft decides who is in control, not the last command.
     if (!m_arbiter.singleStation()) {
         status.header.set(ItemId::ID_GCS_destination, Value::station(*m_arbiter.controller()));

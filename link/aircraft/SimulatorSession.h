@@ -22,7 +22,6 @@
 #include "link/aircraft/FaultInjector.h"
 #include "link/transport/SerialLink.h"
 
-#include <QElapsedTimer>
 #include <QObject>
 #include <QSet>
 #include <QString>
@@ -81,6 +80,10 @@ public:
         std::shared_ptr<VoiceEncoderSource> voiceSource;
         QString voiceOutFile;  // a WAV file for the voice heard; empty: dropped
         bool voiceEcho = false;  // what is heard is said back (a radio check), as voiceSource
+        // The one time source of the session: its channels' cadence, the
+        // aircraft's motion, its status's time stamp, control's timeouts.
+        // Null: the SystemClock.
+        std::shared_ptr<Clock> clock;
     };
     // Where the session's lines for the operator go.
     using Say = std::function<void(const QString& line)>;
@@ -137,5 +140,5 @@ private:
     // send in it ends the frame's one-frame indications, after the others
     // were handed the same frame.
     std::int64_t m_statusSecond = -1;
-    QElapsedTimer m_simulationClock;
+    std::int64_t m_lastAdvanceMicros = 0;  // steady time the aircraft was last moved on to
 };

@@ -367,6 +367,7 @@ void SatelliteModem::onUserGone(int side)
     p.commandLine.clear();
     p.lineTooLong = false;
     p.lineFeedMayFollow = false;
+    emit userGone(side);
 }
 
 void SatelliteModem::readPty(Port& p)

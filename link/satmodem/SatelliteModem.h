@@ -116,6 +116,9 @@ signals:
     void flowControlChanged(int side, bool stopped);
     // The signal changed (the service script): 0..5, 0 no service.
     void signalChanged(int bars);
+    // The program on `side`'s pty went away (DTR dropped) and the modem has
+    // acted on it: hung up under &D1/&D2, kept the call under &D0.
+    void userGone(int side);
 
 private:
     struct Port;

@@ -12,6 +12,7 @@ SatelliteModemThread::SatelliteModemThread(SatelliteModem::Options options, QObj
     connect(m_model, &SatelliteModem::hungUp, this, &SatelliteModemThread::hungUp);
     connect(m_model, &SatelliteModem::callStateChanged, this, &SatelliteModemThread::callStateChanged);
     connect(m_model, &SatelliteModem::commandReceived, this, &SatelliteModemThread::commandReceived);
+    connect(m_model, &SatelliteModem::userGone, this, &SatelliteModemThread::userGone);
 }
 
 SatelliteModemThread::~SatelliteModemThread()

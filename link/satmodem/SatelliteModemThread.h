@@ -34,6 +34,7 @@ signals:
     void hungUp(int side, const QString& how);
     void commandReceived(int side, const QByteArray& command);
     void callStateChanged(SatelliteModem::CallState state);
+    void userGone(int side);
 
 private:
     QThread m_thread;
