@@ -1,7 +1,7 @@
 // A Wireshark Lua dissector for Remote Control Messages, written from the item
 // table so that Wireshark names, sizes and decodes every item exactly as the
 // codec does. resources/wireshark/rcm.lua is a checked-in copy of this text;
-// tests/tst_dissector.cpp keeps the two byte-identical.
+// tests/link/tst_dissector.cpp keeps the two byte-identical.
 //
 // The dissector registers for link type 147 (LINKTYPE_USER0, the frame log's)
 // and for "Decode As" on UDP ports. It takes the 600-byte frame and the

@@ -165,6 +165,7 @@ std::unique_ptr<Link> SimulatorSession::openLink(const Station* station, Channel
     } else if (m_settings.modem) {
         ModemLink::Options modem;
         modem.initString = m_settings.modemInit;
+        modem.clock = m_clock;
         link = std::make_unique<ModemLink>(std::make_unique<SerialLink>(m_settings.serialDevice, m_settings.baudRate,
                                                                         SerialLink::FlowControl::RtsCts),
                                            modem);

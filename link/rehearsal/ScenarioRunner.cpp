@@ -116,6 +116,7 @@ std::unique_ptr<Link> ScenarioRunner::consoleModem(const QString& device)
     options.number = QStringLiteral("881600000001");
     options.initString = "ATE0V1&C1&D2S12=5";
     options.guardTime = std::chrono::milliseconds(150);
+    options.clock = m_time;  // the run's clock: real time, as the modem model keeps
     options.redialDelay = std::chrono::milliseconds(qint64((Scenario::kCallDropOutage - Scenario::kModemCallSetupSeconds) * 1000));
     auto link = std::make_unique<ModemLink>(
         std::make_unique<SerialLink>(device, SerialLink::kDefaultBaudRate, SerialLink::FlowControl::RtsCts), options);

@@ -1,5 +1,7 @@
 #include "link/transport/ModemLink.h"
 
+#include "link/clock/Clock.h"
+
 #include "link/transport/SerialLink.h"
 
 #include <QDeadlineTimer>
@@ -32,15 +34,16 @@ QString duration(qint64 ms)
 }  // namespace
 
 ModemLink::ModemLink(std::unique_ptr<SerialLink> serial, Options options, QObject* parent)
-    : LinkWrapper(std::move(serial), parent), m_options(std::move(options)), m_timeout(this), m_redial(this),
-      m_servicePoll(this), m_carrierPoll(this)
+    : LinkWrapper(std::move(serial), parent),
+      m_options(std::move(options)),
+      m_clock(m_options.clock ? m_options.clock : std::make_shared<SystemClock>()),
+      m_timeout(m_clock->createTimer(this)),
+      m_redial(m_clock->createTimer(this)),
+      m_servicePoll(m_clock->createTimer(this)),
+      m_carrierPoll(m_clock->createTimer(this))
 {
-    m_timeout.setSingleShot(true);
-    m_redial.setSingleShot(true);
-    m_servicePoll.setSingleShot(true);
-    m_carrierPoll.setInterval(m_options.carrierPollInterval);
-    connect(&m_timeout, &QTimer::timeout, this, &ModemLink::timedOut);
-    connect(&m_redial, &QTimer::timeout, this, [this] {
+    connect(m_timeout, &ClockTimer::timeout, this, &ModemLink::timedOut);
+    connect(m_redial, &ClockTimer::timeout, this, [this] {
         if (!port().isOpen())
             return;  // the port's reopening probes, initialises and dials
         // Registration and signal are read again before every redial.
@@ -49,11 +52,11 @@ ModemLink::ModemLink(std::unique_ptr<SerialLink> serial, Options options, QObjec
         else
             initialise();
     });
-    connect(&m_servicePoll, &QTimer::timeout, this, [this] {
+    connect(m_servicePoll, &ClockTimer::timeout, this, [this] {
         if (m_state == CallState::WaitingForService)
             checkService();
     });
-    connect(&m_carrierPoll, &QTimer::timeout, this, &ModemLink::pollCarrier);
+    connect(m_carrierPoll, &ClockTimer::timeout, this, &ModemLink::pollCarrier);
 }
 
 ModemLink::~ModemLink()
@@ -109,10 +112,10 @@ void ModemLink::open()
 void ModemLink::close()
 {
     m_wanted = false;
-    m_timeout.stop();
-    m_redial.stop();
-    m_servicePoll.stop();
-    m_carrierPoll.stop();
+    m_timeout->stop();
+    m_redial->stop();
+    m_servicePoll->stop();
+    m_carrierPoll->stop();
     const CallState was = m_state;
     if (was == CallState::Connected) {
         hangUp();
@@ -148,10 +151,10 @@ void ModemLink::innerClosed()
     if (m_state == CallState::Closed)
         return;
     const bool wasConnected = m_state == CallState::Connected;
-    m_timeout.stop();
-    m_redial.stop();
-    m_servicePoll.stop();
-    m_carrierPoll.stop();
+    m_timeout->stop();
+    m_redial->stop();
+    m_servicePoll->stop();
+    m_carrierPoll->stop();
     m_state = CallState::Closed;
     emit statusChanged(wasConnected ? tr("call lost with the serial port: %1").arg(callSummary())
                                     : tr("modem lost with the serial port"));
@@ -173,7 +176,7 @@ void ModemLink::sendCommand(const QByteArray& command, CallState state, Millisec
         m_state = state;
     else
         setState(state, status);
-    m_timeout.start(timeout);
+    m_timeout->start(timeout);
     port().write(command + '\r');
 }
 
@@ -212,7 +215,7 @@ void ModemLink::nextSetupCommand()
                         .arg(m_options.profile.title, QString::fromLatin1(command)));
         return;
     }
-    m_timeout.stop();
+    m_timeout->stop();
     m_initialised = true;
     if (m_options.number.isEmpty())
         setState(CallState::AwaitingCall, tr("waiting for a call"));
@@ -240,7 +243,7 @@ void ModemLink::checkService()
 void ModemLink::nextServiceQuery()
 {
     if (m_pending.isEmpty()) {
-        m_timeout.stop();
+        m_timeout->stop();
         serviceKnown();
         return;
     }
@@ -272,7 +275,7 @@ void ModemLink::serviceKnown()
         emit errorOccurred(why);
     if (first || why != before)
         emit statusChanged(why);
-    m_servicePoll.start(m_options.servicePollInterval);
+    m_servicePoll->start(m_options.servicePollInterval);
 }
 
 void ModemLink::takeServiceLine(const QByteArray& line)
@@ -288,14 +291,14 @@ void ModemLink::takeServiceLine(const QByteArray& line)
     // Any news while waiting: registration and signal are read afresh, and
     // the phone dialled if they now allow it.
     if (m_state == CallState::WaitingForService) {
-        m_servicePoll.stop();
+        m_servicePoll->stop();
         checkService();
     }
 }
 
 void ModemLink::giveUp(const QString& why)
 {
-    m_timeout.stop();
+    m_timeout->stop();
     m_state = CallState::GaveUp;
     m_failureShown = false;
     fail(why);
@@ -304,7 +307,7 @@ void ModemLink::giveUp(const QString& why)
 void ModemLink::dial()
 {
     ++m_dials;
-    m_since.start();
+    m_sinceMicros = m_clock->steadyMicros();
     const QString attempt = m_attempt > 0 ? tr(", attempt %1 of %2").arg(m_attempt + 1).arg(m_options.redialAttempts + 1)
                                           : QString();
     sendCommand("ATD" + m_options.number.toLatin1(), CallState::Dialling, m_options.dialTimeout,
@@ -361,7 +364,7 @@ void ModemLink::result(const modem::Result& r)
         case CallState::Probing:
             // Any answer is from a modem in command mode.
             if (r.code == ResultCode::Ok || r.code == ResultCode::Error) {
-                m_timeout.stop();
+                m_timeout->stop();
                 initialise();
             }
             break;
@@ -394,14 +397,14 @@ void ModemLink::result(const modem::Result& r)
             if (r.code == ResultCode::Connect)
                 connected(r.rate);
             else if (r.code != ResultCode::Ok && r.code != ResultCode::Ring)
-                failed(tr("%1 after %2 s").arg(said, seconds(m_since.elapsed())));
+                failed(tr("%1 after %2 s").arg(said, seconds(sinceMs())));
             break;
         case CallState::AwaitingCall:
             if (r.code == ResultCode::Ring) {
-                m_since.start();
+                m_sinceMicros = m_clock->steadyMicros();
                 sendCommand("ATA", CallState::Answering, m_options.dialTimeout, tr("answering a call"));
             } else if (r.code == ResultCode::Connect) {
-                m_since.start();
+                m_sinceMicros = m_clock->steadyMicros();
                 connected(r.rate);  // the modem answered by itself (ATS0)
             }
             break;
@@ -422,18 +425,18 @@ void ModemLink::result(const modem::Result& r)
 
 void ModemLink::connected(int rate)
 {
-    m_timeout.stop();
-    const qint64 setUp = m_since.elapsed();
+    m_timeout->stop();
+    const qint64 setUp = sinceMs();
     m_rate = rate;
     ++m_calls;
     // m_attempt goes on: only a call that lasts starts the redials afresh.
     m_failureShown = false;
     m_dataTail.clear();
-    m_since.start();
+    m_sinceMicros = m_clock->steadyMicros();
     setState(CallState::Connected, rate > 0 ? tr("connected at %1 bit/s after %2 s").arg(rate).arg(seconds(setUp))
                                             : tr("connected after %1 s").arg(seconds(setUp)));
     if (m_options.watchCarrierDetect)
-        m_carrierPoll.start();
+        m_carrierPoll->start(m_options.carrierPollInterval);
     emit opened();
 }
 
@@ -463,7 +466,7 @@ void ModemLink::timedOut()
 
 void ModemLink::failed(const QString& what)
 {
-    m_timeout.stop();
+    m_timeout->stop();
     if (m_options.number.isEmpty()) {
         // The answering side has no one to call back: it waits for the next call.
         setState(CallState::AwaitingCall, tr("%1; waiting for a call").arg(what));
@@ -474,8 +477,8 @@ void ModemLink::failed(const QString& what)
 
 void ModemLink::callEnded(const QString& why)
 {
-    m_carrierPoll.stop();
-    const bool lasted = m_since.elapsed() >= m_options.minimumCallDuration.count();
+    m_carrierPoll->stop();
+    const bool lasted = sinceMs() >= m_options.minimumCallDuration.count();
     if (lasted)
         m_attempt = 0;
     const QString what =
@@ -508,7 +511,7 @@ void ModemLink::scheduleRedial(const QString& what)
              .arg(what, seconds(delay.count()))
              .arg(m_attempt + 1)
              .arg(m_options.redialAttempts + 1));
-    m_redial.start(delay);
+    m_redial->start(delay);
 }
 
 void ModemLink::fail(const QString& message)
@@ -524,14 +527,21 @@ void ModemLink::fail(const QString& message)
 void ModemLink::pollCarrier()
 {
     if (m_state != CallState::Connected) {
-        m_carrierPoll.stop();
+        m_carrierPoll->stop();
         return;
     }
     const std::optional<bool> carrier = port().carrierDetect();
     if (!carrier)
-        m_carrierPoll.stop();  // no pins to watch: NO CARRIER alone tells
+        m_carrierPoll->stop();  // no pins to watch: NO CARRIER alone tells
     else if (!*carrier)
         callEnded(tr("carrier lost, DCD off"));
+    else
+        m_carrierPoll->start(m_options.carrierPollInterval);
+}
+
+qint64 ModemLink::sinceMs() const
+{
+    return m_sinceMicros < 0 ? 0 : (m_clock->steadyMicros() - m_sinceMicros) / 1000;
 }
 
 void ModemLink::hangUp(bool dropDtr)
@@ -565,7 +575,7 @@ void ModemLink::waitFor(Milliseconds duration, bool untilOk)
 
 QString ModemLink::callSummary() const
 {
-    const qint64 ms = m_since.isValid() ? m_since.elapsed() : 0;
+    const qint64 ms = sinceMs();
     if (m_options.costPerMinute <= 0)
         return duration(ms);
     const qint64 minutes = std::max<qint64>(1, (ms + 59999) / 60000);

@@ -28,12 +28,13 @@
 #include "link/transport/ModemResultCode.h"
 
 #include <QByteArray>
-#include <QElapsedTimer>
-#include <QTimer>
 
 #include <chrono>
+#include <cstdint>
 #include <memory>
 
+class Clock;
+class ClockTimer;
 class SerialLink;
 
 class ModemLink : public LinkWrapper {
@@ -64,6 +65,9 @@ public:
         Milliseconds hangUpTimeout{2000};   // the modem's OK after "+++" (beyond the guard time) and after ATH
         Milliseconds redialDelay{10000};    // before the first redial; doubled for each next one
         Milliseconds redialDelayLimit{160000};
+        // The time its timeouts, polls, redials and call lengths run on;
+        // null: the SystemClock.
+        std::shared_ptr<Clock> clock;
         int redialAttempts = 5;  // in a row, before giving up; 0: never redial
         // A call that ends sooner counts as a failed attempt: the redials in
         // a row start again from the first only after a call this long.
@@ -170,9 +174,11 @@ private:
     int m_calls = 0;
     int m_attempt = 0;            // redials in a row since the last call that lasted
     int m_dials = 0;
-    QTimer m_timeout;             // a command's or a dial's time limit
-    QTimer m_redial;
-    QTimer m_servicePoll;
-    QTimer m_carrierPoll;
-    QElapsedTimer m_since;        // this dial's or this call's start
+    std::shared_ptr<Clock> m_clock;
+    ClockTimer* m_timeout;        // a command's or a dial's time limit
+    ClockTimer* m_redial;
+    ClockTimer* m_servicePoll;
+    ClockTimer* m_carrierPoll;    // re-armed after each look at the pins
+    std::int64_t m_sinceMicros = -1;  // steady time of this dial's or this call's start; -1: none yet
+    qint64 sinceMs() const;
 };

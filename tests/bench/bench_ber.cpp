@@ -1,5 +1,5 @@
 // Frames delivered against bit error rate: a realistic session
-// (tests/BerSession.h) through the one receive path, plain and secure link,
+// (tests/support/BerSession.h) through the one receive path, plain and secure link,
 // with decoding with predictions and without. Prints a table and writes CSV
 // for scripts/plot-ber. Never run by CTest; figures in docs/performance.md.
 //
@@ -10,7 +10,7 @@
 // ber.csv. --items 1-4: each change sets 1 to 4 commands at once, of every
 // size. --status: the aircraft's status frames as the console reads them,
 // the console's own commands its prediction.
-#include "../BerSession.h"
+#include "tests/support/BerSession.h"
 
 #include <chrono>
 #include <cstdio>

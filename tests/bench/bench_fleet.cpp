@@ -12,7 +12,7 @@
 //       and the model cost alone).
 //
 // Processes apart, so that each side's CPU and memory stand alone: the
-// broker (started here on a free port, with tests/MosquittoProcess.h), the
+// broker (started here on a free port, with tests/support/MosquittoProcess.h), the
 // publishers (this program again, with --publish: one MqttClient per
 // aircraft, as each aircraft's console has its own connection, at most 250
 // to a process, see runFleet), the fleet side (this process: one
@@ -49,7 +49,7 @@
 #include "link/broker/EnvelopeWriter.h"
 #include "link/broker/FleetFeed.h"
 #include "link/broker/MqttClient.h"
-#include "tests/MosquittoProcess.h"
+#include "tests/support/MosquittoProcess.h"
 #include "ui/fleet/FleetModel.h"
 #include "ui/fleet/FleetView.h"
 

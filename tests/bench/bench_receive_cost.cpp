@@ -15,7 +15,7 @@
 //    genuine frame is delivered.
 //
 //   bench_receive_cost [SECONDS]      default 60: seconds of traffic per row
-#include "tests/ReceiveChannel.h"
+#include "tests/support/ReceiveChannel.h"
 
 #include <chrono>
 #include <cstdio>

@@ -19,7 +19,7 @@
 //
 //   bench_voice [bursts]      (default 40, about 20 s)
 
-#include "../CommandFrame.h"
+#include "tests/support/CommandFrame.h"
 #include "Spread.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/voice/VoiceCodec.h"

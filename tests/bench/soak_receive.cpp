@@ -7,7 +7,7 @@
 // WRONG must be 0 in every row; the exit status is 1 otherwise.
 //
 // --attacks: what an attacker or a broken line does instead
-// (tests/ReceiveAttacks.h): old frames replayed live and into a recording,
+// (tests/support/ReceiveAttacks.h): old frames replayed live and into a recording,
 // splices of two frames' codewords on the plain and keyed link, streams cut,
 // overlapped, with garbage between frames and byte slips (each frame libfec
 // reads at its true place must be delivered), outages after which the sender
@@ -18,7 +18,7 @@
 //
 //   soak_receive [--plain] [FRAMES_PER_ROW [ROW_NAME_PREFIX]]
 //   soak_receive --attacks [FRAMES_PER_ROW [ROW_NAME_PREFIX]]
-#include "tests/ReceiveAttacks.h"
+#include "tests/support/ReceiveAttacks.h"
 
 #include <chrono>
 #include <cstdio>

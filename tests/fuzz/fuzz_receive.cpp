@@ -7,7 +7,7 @@
 // the last delivered; what is counted adds up; memory stays bounded. Fixed
 // seed, bounded work: a CTest target, not an open-ended fuzzer. An optional
 // argument sets the number of rounds.
-#include "tests/ReceiveChannel.h"
+#include "tests/support/ReceiveChannel.h"
 
 #include <cstdio>
 #include <cstdlib>

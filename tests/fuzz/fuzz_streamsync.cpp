@@ -5,7 +5,7 @@
 // memory, statistics that add up, clean frames always found). Fixed seed,
 // bounded work: a CTest target, not an open-ended fuzzer. An optional
 // argument sets the number of rounds.
-#include "RandomMessage.h"
+#include "tests/support/RandomMessage.h"
 
 #include "codec/frame/Frame.h"
 #include "codec/message/MessageDecoder.h"

@@ -1,7 +1,7 @@
 // Random and mutated text through the parser, and random bytes through the
 // block decoders, under ASan/UBSan: nothing may crash, hang or read out of
 // bounds. Fixed seed, bounded work: a CTest target, not an open-ended fuzzer.
-#include "RandomMessage.h"
+#include "tests/support/RandomMessage.h"
 
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"

@@ -1,16 +1,16 @@
-// What tests/tst_receive.cpp asserts on (10^4 frames a row) and
+// What tests/codec/tst_receive.cpp asserts on (10^4 frames a row) and
 // tests/bench/soak_receive.cpp measures (10^6 frames a row) beyond channel
 // noise: old frames replayed into a live stream or a recording, splices of
 // two frames' codewords, streams cut and overlapped and slipped, judged
 // against what libfec reads at each frame's true place, and outages after
 // which a sender resumes with its counter where it was.
 //
-// Every row streams a CommandSession (tests/ReceiveChannel.h) through one
+// Every row streams a CommandSession (tests/support/ReceiveChannel.h) through one
 // FrameReceiver as the link worker runs it (live, its clock the sender's,
 // with predictions), or as `rcm decode` reads a recording.
 #pragma once
 
-#include "tests/ReceiveChannel.h"
+#include "tests/support/ReceiveChannel.h"
 
 #include "codec/frame/ReedSolomon.h"
 

@@ -4,12 +4,12 @@
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/receive/FrameReceiver.h"
 #include "codec/secure/SecureCodec.h"
-#include "tests/ReceiveAttacks.h"
+#include "tests/support/ReceiveAttacks.h"
 
 #include <QtTest>
 
 #include <initializer_list>
-#include "tests/BerSession.h"
+#include "tests/support/BerSession.h"
 
 using namespace rcm;
 using namespace rcm::test;

@@ -1,6 +1,6 @@
 // A realistic command session and the damage a channel does to it, streamed
 // through FrameReceiver as the link worker runs it, with TrialDecoder's
-// predictions when plain decoding fails: what tests/tst_receive.cpp asserts
+// predictions when plain decoding fails: what tests/codec/tst_receive.cpp asserts
 // on (10^4 frames a row) and tests/bench/soak_receive.cpp measures (10^6
 // frames a row). Receive::Plain leaves the predictions out, for comparison.
 //

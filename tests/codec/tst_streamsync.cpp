@@ -143,7 +143,7 @@ constexpr std::size_t kCw = kPreambleSize;  // where codeword 1 begins inside a 
 // off (with both codewords displaced, a reading one byte early can assume no
 // more errors). A displaced codeword may "decode" into a rotation of itself
 // (RS codes are cyclic): that is for the acceptance decision to refuse
-// (tests/tst_receive.cpp), not for the synchroniser to guess. Read as it was
+// (tests/codec/tst_receive.cpp), not for the synchroniser to guess. Read as it was
 // sent only from where the bytes after the slip line up again: a byte
 // inserted early in codeword 1 leaves it two errors from what was sent a byte
 // later, where a window qualifies when codeword 1's first byte is within 2
@@ -684,7 +684,7 @@ void TestStreamSync::slipsInsidePadding()
     // as rotations that differ from the true data in a few bytes only. The
     // synchroniser reports that frame once, near where it was sent, and
     // keeps every frame around it whole; what RS made of the slipped one is
-    // for the acceptance decision to refuse (tests/tst_receive.cpp).
+    // for the acceptance decision to refuse (tests/codec/tst_receive.cpp).
     Block idle{};
     std::fill(idle.begin() + 7, idle.end() - 1, std::uint8_t{0x55});
     for (const int lost : {1, 2, 3, -1, -2}) {  // negative: bytes inserted

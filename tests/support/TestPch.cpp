@@ -1,0 +1,1 @@
+// Holds the precompiled header the console's suites share (tests/CMakeLists.txt).
