@@ -299,6 +299,17 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
     return count;
 }
 
+// correctFromRemainder on a copy: `word` is left as received when it fails.
+int correctUnlessFailed(std::uint8_t* word, const std::uint8_t* remainder, int maxErrors)
+{
+    std::uint8_t copy[kCodewordSize];
+    std::memcpy(copy, word, kCodewordSize);
+    const int corrected = correctFromRemainder(copy, remainder, maxErrors);
+    if (corrected > 0)
+        std::memcpy(word, copy, kCodewordSize);
+    return corrected;
+}
+
 // The remainder of a word (dual basis) modulo the generator, conventional
 // basis, coefficient of x^31 first; false when it is 0 (a codeword).
 bool remainderOf(const std::uint8_t* word, std::uint8_t* remainder)
@@ -370,12 +381,7 @@ int decodeWithin(std::uint8_t* codeword, int maxErrors)
     std::uint8_t remainder[kParitySize];
     if (!remainderOf(codeword, remainder))
         return 0;
-    std::uint8_t word[kCodewordSize];
-    std::memcpy(word, codeword, kCodewordSize);
-    const int corrected = correctFromRemainder(word, remainder, maxErrors);
-    if (corrected > 0)
-        std::memcpy(codeword, word, kCodewordSize);
-    return corrected;
+    return correctUnlessFailed(codeword, remainder, maxErrors);
 }
 
 int decodeWithParity(std::uint8_t* word, const std::uint8_t* codewordParity, int maxErrors)
@@ -389,12 +395,7 @@ int decodeWithParity(std::uint8_t* word, const std::uint8_t* codewordParity, int
     }
     if (!any)
         return 0;
-    std::uint8_t copy[kCodewordSize];
-    std::memcpy(copy, word, kCodewordSize);
-    const int corrected = correctFromRemainder(copy, remainder, maxErrors);
-    if (corrected > 0)
-        std::memcpy(word, copy, kCodewordSize);
-    return corrected;
+    return correctUnlessFailed(word, remainder, maxErrors);
 }
 
 int decodeLibfec(std::uint8_t* codeword)
