@@ -228,6 +228,19 @@ Verdict descriptorFits(const FlightPlanSection& s)
                                             std::to_string(size) + " bytes");
 }
 
+// The frame refused, and why; false.
+bool refuseFrame(ReceivedFrame& frame, Verdict v, bool keyed)
+{
+    frame.refusal = v.refusal;
+    frame.detail = std::move(v.detail);
+    if (keyed) {
+        // Nothing read from a refused frame is passed on, authentic or not.
+        frame.decoded.message = Message{};
+        frame.decoded.diagnostics.clear();
+    }
+    return false;
+}
+
 // Keyed link: the blocks decrypted by the first key and direction they are
 // authentic with, into frame.decoded; refused as plaintext or forged when
 // none.
@@ -630,16 +643,7 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
 {
     frame.blocks = blocks;
     const bool keyed = !m_options.keys.codecs.empty();
-    const auto no = [&](Verdict v) {
-        frame.refusal = v.refusal;
-        frame.detail = std::move(v.detail);
-        if (keyed) {
-            // Nothing read from a refused frame is passed on, authentic or not.
-            frame.decoded.message = Message{};
-            frame.decoded.diagnostics.clear();
-        }
-        return false;
-    };
+    const auto no = [&](Verdict v) { return refuseFrame(frame, std::move(v), keyed); };
     if (!blocks.ok()) {
         // A keyed link's blocks are ciphertext: nothing in them can be read.
         if (!keyed)
