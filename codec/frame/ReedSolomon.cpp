@@ -64,6 +64,20 @@ struct Register {
         r2 = ((r2 << 8) | (r3 >> 56)) ^ row[2];
         r3 = (r3 << 8) ^ row[3];
     }
+    // The register after the data bytes of `word` (dual basis).
+    static Register after(const ParityTable& tab, const std::uint8_t* word)
+    {
+        Register reg;
+        for (std::size_t i = 0; i < kDataSize; ++i)
+            reg.feed(tab, word[i]);
+        return reg;
+    }
+    // Parity byte k (0 .. 31) in the conventional basis, coefficient of x^(31-k).
+    std::uint8_t parityByte(std::size_t k) const
+    {
+        const std::uint64_t regs[4] = {r0, r1, r2, r3};
+        return static_cast<std::uint8_t>(regs[k / 8] >> (56 - 8 * (k % 8)));
+    }
     // Compare in the conventional basis: convert the received parity.
     bool matches(const ParityTable& tab, const std::uint8_t* parity) const
     {
@@ -134,19 +148,10 @@ inline int modnn(int x)
     return x;
 }
 
-// libfec's decode_rs (decode_rs.h, no erasures) from the remainder of the
-// word modulo the generator instead of from the word itself: the syndromes
-// are the remainder's values at the generator's roots, 32 coefficients
-// instead of 255. `remainder[k]` is the coefficient of x^(31-k), conventional
-// basis; `word` is corrected in place, dual basis. The same steps as libfec's
-// (Berlekamp-Massey, Chien search, Forney), so the same result; `maxErrors`
-// stops before the Chien search when the error locator already says more.
-int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int maxErrors)
+// The syndromes (log form): the remainder's values at the generator's roots;
+// false when all are 0.
+bool syndromes(const Field& gf, const std::uint8_t* remainder, int* s)
 {
-    const Field& gf = field();
-    const auto& alphaTo = gf.alphaTo;
-    const auto& indexOf = gf.indexOf;
-    int s[kRoots];
     bool nonzero = false;
     for (int i = 0; i < kRoots; ++i) {
         const auto& times = gf.times[static_cast<std::size_t>(i)];
@@ -154,12 +159,16 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
         for (int k = 0; k < kRoots; ++k)
             v = times[v] ^ remainder[k];
         nonzero = nonzero || v != 0;
-        s[i] = indexOf[v];
+        s[i] = gf.indexOf[v];
     }
-    if (!nonzero)
-        return 0;
+    return nonzero;
+}
 
-    std::uint8_t lambda[kRoots + 1] = {1};
+// Berlekamp-Massey: the error locator polynomial from the syndromes.
+void errorLocator(const Field& gf, const int* s, std::uint8_t* lambda)
+{
+    const auto& alphaTo = gf.alphaTo;
+    const auto& indexOf = gf.indexOf;
     int b[kRoots + 1];
     int t[kRoots + 1];
     for (int i = 0; i <= kRoots; ++i)
@@ -191,21 +200,14 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
         for (int i = 0; i <= kRoots; ++i)
             lambda[i] = static_cast<std::uint8_t>(t[i]);
     }
+}
 
-    int lambdaLog[kRoots + 1];
-    int degLambda = 0;
-    for (int i = 0; i <= kRoots; ++i) {
-        lambdaLog[i] = indexOf[lambda[i]];
-        if (lambdaLog[i] != kA0)
-            degLambda = i;
-    }
-    if (degLambda > maxErrors)
-        return -1;
-
+// Chien search: the roots of the error locator (`root`) and the error
+// positions they stand for (`loc`); returns how many were found.
+int chienSearch(const Field& gf, const int* lambdaLog, int degLambda, int* root, int* loc)
+{
     int reg[kRoots + 1];
     std::memcpy(&reg[1], &lambdaLog[1], kRoots * sizeof reg[0]);
-    int root[kRoots];
-    int loc[kRoots];
     int count = 0;
     for (int i = 1, k = kInversePrimitive - 1; i <= 255; ++i, k = modnn(k + kInversePrimitive)) {
         unsigned q = 1;
@@ -213,7 +215,7 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
             if (reg[j] != kA0) {
                 const int next = reg[j] + j;
                 reg[j] = next >= 255 ? next - 255 : next;
-                q ^= alphaTo[static_cast<std::size_t>(reg[j])];
+                q ^= gf.alphaTo[static_cast<std::size_t>(reg[j])];
             }
         }
         if (q != 0)
@@ -223,9 +225,16 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
         if (++count == degLambda)
             break;
     }
-    if (degLambda != count)
-        return -1;
+    return count;
+}
 
+// Forney: the error values at the `count` positions found, applied to `word`
+// (dual basis).
+void correctErrors(const Field& gf, const int* s, const int* lambdaLog, int degLambda, const int* root, const int* loc,
+                   int count, std::uint8_t* word)
+{
+    const auto& alphaTo = gf.alphaTo;
+    const auto& indexOf = gf.indexOf;
     const int degOmega = degLambda - 1;
     int omega[kRoots + 1];
     for (int i = 0; i <= degOmega; ++i) {
@@ -253,7 +262,52 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
             byte = tab.convToDual[static_cast<std::uint8_t>(tab.dualToConv[byte] ^ error)];
         }
     }
+}
+
+// libfec's decode_rs (decode_rs.h, no erasures) from the remainder of the
+// word modulo the generator instead of from the word itself: the syndromes
+// are the remainder's values at the generator's roots, 32 coefficients
+// instead of 255. `remainder[k]` is the coefficient of x^(31-k), conventional
+// basis; `word` is corrected in place, dual basis. The same steps as libfec's
+// (Berlekamp-Massey, Chien search, Forney), so the same result; `maxErrors`
+// stops before the Chien search when the error locator already says more.
+int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int maxErrors)
+{
+    const Field& gf = field();
+    int s[kRoots];
+    if (!syndromes(gf, remainder, s))
+        return 0;
+
+    std::uint8_t lambda[kRoots + 1] = {1};
+    errorLocator(gf, s, lambda);
+    int lambdaLog[kRoots + 1];
+    int degLambda = 0;
+    for (int i = 0; i <= kRoots; ++i) {
+        lambdaLog[i] = gf.indexOf[lambda[i]];
+        if (lambdaLog[i] != kA0)
+            degLambda = i;
+    }
+    if (degLambda > maxErrors)
+        return -1;
+
+    int root[kRoots];
+    int loc[kRoots];
+    const int count = chienSearch(gf, lambdaLog, degLambda, root, loc);
+    if (degLambda != count)
+        return -1;
+    correctErrors(gf, s, lambdaLog, degLambda, root, loc, count, word);
     return count;
+}
+
+// correctFromRemainder on a copy: `word` is left as received when it fails.
+int correctUnlessFailed(std::uint8_t* word, const std::uint8_t* remainder, int maxErrors)
+{
+    std::uint8_t copy[kCodewordSize];
+    std::memcpy(copy, word, kCodewordSize);
+    const int corrected = correctFromRemainder(copy, remainder, maxErrors);
+    if (corrected > 0)
+        std::memcpy(word, copy, kCodewordSize);
+    return corrected;
 }
 
 // The remainder of a word (dual basis) modulo the generator, conventional
@@ -261,17 +315,12 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
 bool remainderOf(const std::uint8_t* word, std::uint8_t* remainder)
 {
     const ParityTable& tab = table();
-    Register reg;
-    for (std::size_t i = 0; i < kDataSize; ++i)
-        reg.feed(tab, word[i]);
-    const std::uint64_t regs[4] = {reg.r0, reg.r1, reg.r2, reg.r3};
+    const Register reg = Register::after(tab, word);
     std::uint8_t any = 0;
-    for (int w = 0; w < 4; ++w)
-        for (int b = 0; b < 8; ++b) {
-            const std::size_t k = static_cast<std::size_t>(w * 8 + b);
-            remainder[k] = static_cast<std::uint8_t>(regs[w] >> (56 - 8 * b)) ^ tab.dualToConv[word[kDataSize + k]];
-            any |= remainder[k];
-        }
+    for (std::size_t k = 0; k < kParitySize; ++k) {
+        remainder[k] = reg.parityByte(k) ^ tab.dualToConv[word[kDataSize + k]];
+        any |= remainder[k];
+    }
     return any != 0;
 }
 
@@ -283,13 +332,9 @@ bool remainderOf(const std::uint8_t* word, std::uint8_t* remainder)
 void encode(const std::uint8_t* data, std::uint8_t* parity)
 {
     const ParityTable& tab = table();
-    Register reg;
-    for (std::size_t i = 0; i < kDataSize; ++i)
-        reg.feed(tab, data[i]);
-    const std::uint64_t regs[4] = {reg.r0, reg.r1, reg.r2, reg.r3};
-    for (int w = 0; w < 4; ++w)
-        for (int b = 0; b < 8; ++b)
-            parity[w * 8 + b] = tab.convToDual[static_cast<std::uint8_t>(regs[w] >> (56 - 8 * b))];
+    const Register reg = Register::after(tab, data);
+    for (std::size_t k = 0; k < kParitySize; ++k)
+        parity[k] = tab.convToDual[reg.parityByte(k)];
 }
 
 void encodeLibfec(const std::uint8_t* data, std::uint8_t* parity)
@@ -300,10 +345,7 @@ void encodeLibfec(const std::uint8_t* data, std::uint8_t* parity)
 bool isCodeword(const std::uint8_t* codeword)
 {
     const ParityTable& tab = table();
-    Register reg;
-    for (std::size_t i = 0; i < kDataSize; ++i)
-        reg.feed(tab, codeword[i]);
-    return reg.matches(tab, codeword + kDataSize);
+    return Register::after(tab, codeword).matches(tab, codeword + kDataSize);
 }
 
 void checkCodewords(const std::uint8_t* a, const std::uint8_t* b, bool* aClean, bool* bClean)
@@ -339,12 +381,7 @@ int decodeWithin(std::uint8_t* codeword, int maxErrors)
     std::uint8_t remainder[kParitySize];
     if (!remainderOf(codeword, remainder))
         return 0;
-    std::uint8_t word[kCodewordSize];
-    std::memcpy(word, codeword, kCodewordSize);
-    const int corrected = correctFromRemainder(word, remainder, maxErrors);
-    if (corrected > 0)
-        std::memcpy(codeword, word, kCodewordSize);
-    return corrected;
+    return correctUnlessFailed(codeword, remainder, maxErrors);
 }
 
 int decodeWithParity(std::uint8_t* word, const std::uint8_t* codewordParity, int maxErrors)
@@ -358,12 +395,7 @@ int decodeWithParity(std::uint8_t* word, const std::uint8_t* codewordParity, int
     }
     if (!any)
         return 0;
-    std::uint8_t copy[kCodewordSize];
-    std::memcpy(copy, word, kCodewordSize);
-    const int corrected = correctFromRemainder(copy, remainder, maxErrors);
-    if (corrected > 0)
-        std::memcpy(word, copy, kCodewordSize);
-    return corrected;
+    return correctUnlessFailed(word, remainder, maxErrors);
 }
 
 int decodeLibfec(std::uint8_t* codeword)

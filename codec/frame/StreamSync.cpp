@@ -188,6 +188,19 @@ bool better(const Trial& a, const Trial& b)
     return corrections(a.blocks) < corrections(b.blocks);
 }
 
+// The failure report of the closest candidate: a codeword that decoded
+// without confirming the start is not trusted either.
+DecodedBlocks uncorrectedBlocks(const std::uint8_t* codewords, const DecodedBlocks& decoded)
+{
+    DecodedBlocks blocks = decoded;
+    if (blocks.corrected.block1 >= 0)
+        std::memcpy(blocks.block1.data(), codewords, kBlockSize);
+    if (blocks.corrected.block2 >= 0)
+        std::memcpy(blocks.block2.data(), codewords + kCodewordSize, kBlockSize);
+    blocks.corrected.block1 = blocks.corrected.block2 = -1;
+    return blocks;
+}
+
 }  // namespace
 
 StreamSync::StreamSync(Handler onFrame, Acceptor exact)
@@ -419,33 +432,15 @@ bool StreamSync::trySlipped(std::uint64_t c, std::uint64_t end)
     return false;
 }
 
-bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::uint64_t end)
-{
+// The qualifying starts of one neighbourhood, closest window first, and the
+// readings tried there.
+struct StreamSync::Neighbourhood {
     std::array<Candidate, kNeighbourhood> cands;
     std::size_t n = 0;
     // At the end of the stream, candidates whose codewords are cut off
     // cannot be tried; none whose window is no closer than theirs may be
     // accepted instead (one byte early, a cut-off frame still "decodes").
     int bar = std::numeric_limits<int>::max();
-    for (std::uint64_t c = q; c <= last; ++c) {
-        const int d = distance(c);
-        if (!qualifies(c, d))
-            continue;
-        if (c + kDatagramSize > end) {
-            bar = std::min(bar, d);
-            continue;
-        }
-        // Insertion keeps equal distances in stream order.
-        std::size_t i = n++;
-        while (i > 0 && cands[i - 1].distance > d) {
-            cands[i] = cands[i - 1];
-            --i;
-        }
-        cands[i] = {c, d};
-    }
-    if (n == 0 || cands[0].distance >= bar)
-        return false;
-
     // The reading taken is the best the acceptance decision finds exact, or,
     // when none is, the best of all (which it will then refuse); without an
     // acceptor every reading counts as exact.
@@ -454,115 +449,149 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
     Decoded bestDecoded;
     int best = -1;
     int exact = -1;
-    DecodedBlocks firstBlocks;
-    for (std::size_t i = 0; i < n; ++i) {
-        // score >= distance: once the distance alone exceeds the score of the
-        // reading to be taken, no later candidate can win, nor tie with fewer
-        // corrections.
-        if (exact >= 0) {
-            const Trial& b = trials[exact];
-            if (cands[i].distance > b.score || (cands[i].distance == b.score && corrections(b.blocks) == 0))
-                break;
-        }
-        int slot = 0;
-        while (slot == best || slot == exact)
-            ++slot;
-        Trial& t = trials[slot];
-        Decoded& d = decoded[i == 0 ? 0 : 1];
-        rsDecode(at(cands[i].c), i == 0 ? nullptr : &decoded[0],
-                 static_cast<std::int64_t>(cands[i].c - cands[0].c), d);
-        score(at(cands[i].c), d, t);
-        t.c = cands[i].c;
-        t.distance = cands[i].distance;
-        t.score += t.distance;
-        if (i == 0) {
-            // The failure report, should nothing confirm, is this
-            // candidate's; a codeword that decoded without confirming the
-            // start is not trusted either.
-            firstBlocks = t.blocks;
-            const std::uint8_t* cw = at(t.c);
-            if (firstBlocks.corrected.block1 >= 0)
-                std::memcpy(firstBlocks.block1.data(), cw, kBlockSize);
-            if (firstBlocks.corrected.block2 >= 0)
-                std::memcpy(firstBlocks.block2.data(), cw + kCodewordSize, kBlockSize);
-            firstBlocks.corrected.block1 = firstBlocks.corrected.block2 = -1;
-        }
-        if (!confirms(t, t.c < failEnd_))
-            continue;
-        if (best < 0 || better(t, trials[best])) {
-            best = slot;
-            bestDecoded = d;
-        }
-        if ((exact < 0 || better(t, trials[exact])) && (!exact_ || exact_(t.blocks)))
-            exact = slot;
-    }
-    if (best >= 0 && exact < 0 && exact_ && trials[best].blocks.ok()) {
-        // A reading that decodes into what is not a frame: perhaps a
-        // rotation of the real one.
-        const std::uint64_t from = trials[best].c;
-        for (std::int64_t j = 1; j <= kRotationSearch && exact < 0; ++j) {
-            for (const std::int64_t signedJ : {-j, j}) {
-                if (signedJ < 0 && static_cast<std::uint64_t>(-signedJ) > from)
-                    continue;
-                const std::uint64_t c = from + static_cast<std::uint64_t>(signedJ);
-                if (c < base_ + kPreambleSize || c + kDatagramSize > end || (emitted_ && c <= lastEmitted_))
-                    continue;
-                Decoded d;
-                if (!rotated(at(c), bestDecoded, signedJ, d, 0))
-                    continue;
-                Trial& t = trials[best == 0 ? 1 : 0];
-                score(at(c), d, t);
-                t.c = c;
-                t.distance = distance(c);
-                t.score += t.distance;
-                if (exact_(t.blocks)) {
-                    exact = best == 0 ? 1 : 0;
-                    break;
-                }
-            }
-        }
-    }
-    if (best >= 0) {
-        const Trial& taken = trials[exact >= 0 ? exact : best];
-        if (taken.distance >= bar)
+    DecodedBlocks firstBlocks;  // the failure report, should nothing confirm
+};
+
+bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::uint64_t end)
+{
+    Neighbourhood hood;
+    gatherCandidates(hood, q, last, end);
+    if (hood.n == 0 || hood.cands[0].distance >= hood.bar)
+        return false;
+    tryCandidates(hood);
+    if (hood.best >= 0 && hood.exact < 0 && exact_ && hood.trials[hood.best].blocks.ok())
+        searchRotations(hood, end);
+    if (hood.best >= 0) {
+        const Trial& taken = hood.trials[hood.exact >= 0 ? hood.exact : hood.best];
+        if (taken.distance >= hood.bar)
             return false;
         // A reading that is not exact, inside a frame already found not to
         // be, is no news: it is dropped like a failure there.
-        if (exact >= 0 || taken.c >= failEnd_) {
-            confirm(taken.c, taken.distance, taken.blocks, exact >= 0);
+        if (hood.exact >= 0 || taken.c >= failEnd_) {
+            confirm(taken.c, taken.distance, taken.blocks, hood.exact >= 0);
             return true;
         }
     }
-
-    // Reported where the next frame was due, if it was a candidate: at a
-    // high bit error rate the true window may be further from the preamble
-    // than one a byte early is.
-    std::uint64_t p = cands[0].c;
-    for (std::size_t i = 0; i < n; ++i)
-        if (cands[i].c == due_)
-            p = due_;
-    const int pDistance = distance(p);
-    if (p != cands[0].c) {
-        const std::uint8_t* cw = at(p);
-        std::memcpy(firstBlocks.block1.data(), cw, kBlockSize);
-        std::memcpy(firstBlocks.block2.data(), cw + kCodewordSize, kBlockSize);
-    }
-    if (p >= failEnd_) {
-        if (hasPending_)
-            reportPending();
-        hasPending_ = true;
-        pendingC_ = p;
-        pendingDistance_ = pDistance;
-        pendingBlocks_ = firstBlocks;
-        failEnd_ = p + kDatagramSize;
-        if (p == due_) {
-            due_ = p + kFrameSize;  // lock kept through a frame beyond correction
-            expect_ = due_;
-            expectTried_ = false;
-        }
-    }
+    holdFailure(hood);
     scan_ = q + kNeighbourhood;
     return true;
+}
+
+void StreamSync::gatherCandidates(Neighbourhood& hood, std::uint64_t q, std::uint64_t last, std::uint64_t end) const
+{
+    for (std::uint64_t c = q; c <= last; ++c) {
+        const int d = distance(c);
+        if (!qualifies(c, d))
+            continue;
+        if (c + kDatagramSize > end) {
+            hood.bar = std::min(hood.bar, d);
+            continue;
+        }
+        // Insertion keeps equal distances in stream order.
+        std::size_t i = hood.n++;
+        while (i > 0 && hood.cands[i - 1].distance > d) {
+            hood.cands[i] = hood.cands[i - 1];
+            --i;
+        }
+        hood.cands[i] = {c, d};
+    }
+}
+
+void StreamSync::tryCandidates(Neighbourhood& hood) const
+{
+    Trial* trials = hood.trials;
+    for (std::size_t i = 0; i < hood.n; ++i) {
+        const Candidate& candidate = hood.cands[i];
+        // score >= distance: once the distance alone exceeds the score of the
+        // reading to be taken, no later candidate can win, nor tie with fewer
+        // corrections.
+        if (hood.exact >= 0) {
+            const Trial& b = trials[hood.exact];
+            if (candidate.distance > b.score || (candidate.distance == b.score && corrections(b.blocks) == 0))
+                break;
+        }
+        int slot = 0;
+        while (slot == hood.best || slot == hood.exact)
+            ++slot;
+        Trial& t = trials[slot];
+        Decoded& d = hood.decoded[i == 0 ? 0 : 1];
+        rsDecode(at(candidate.c), i == 0 ? nullptr : &hood.decoded[0],
+                 static_cast<std::int64_t>(candidate.c - hood.cands[0].c), d);
+        score(at(candidate.c), d, t);
+        t.c = candidate.c;
+        t.distance = candidate.distance;
+        t.score += t.distance;
+        if (i == 0)
+            hood.firstBlocks = uncorrectedBlocks(at(t.c), t.blocks);
+        if (!confirms(t, t.c < failEnd_))
+            continue;
+        if (hood.best < 0 || better(t, trials[hood.best])) {
+            hood.best = slot;
+            hood.bestDecoded = d;
+        }
+        if ((hood.exact < 0 || better(t, trials[hood.exact])) && (!exact_ || exact_(t.blocks)))
+            hood.exact = slot;
+    }
+}
+
+// The best reading decodes into what is not a frame: perhaps a rotation of
+// the real one.
+void StreamSync::searchRotations(Neighbourhood& hood, std::uint64_t end) const
+{
+    const std::uint64_t from = hood.trials[hood.best].c;
+    const int spare = hood.best == 0 ? 1 : 0;
+    for (std::int64_t j = 1; j <= kRotationSearch; ++j) {
+        for (const std::int64_t signedJ : {-j, j}) {
+            if (signedJ < 0 && static_cast<std::uint64_t>(-signedJ) > from)
+                continue;
+            const std::uint64_t c = from + static_cast<std::uint64_t>(signedJ);
+            if (c < base_ + kPreambleSize || c + kDatagramSize > end || (emitted_ && c <= lastEmitted_))
+                continue;
+            Decoded d;
+            if (!rotated(at(c), hood.bestDecoded, signedJ, d, 0))
+                continue;
+            Trial& t = hood.trials[spare];
+            score(at(c), d, t);
+            t.c = c;
+            t.distance = distance(c);
+            t.score += t.distance;
+            if (exact_(t.blocks)) {
+                hood.exact = spare;
+                return;
+            }
+        }
+    }
+}
+
+// Nothing confirmed: the failure is held, to be reported where the next
+// frame was due if that was a candidate (at a high bit error rate the true
+// window may be further from the preamble than one a byte early is).
+void StreamSync::holdFailure(Neighbourhood& hood)
+{
+    std::uint64_t p = hood.cands[0].c;
+    for (std::size_t i = 0; i < hood.n; ++i)
+        if (hood.cands[i].c == due_)
+            p = due_;
+    const int pDistance = distance(p);
+    if (p != hood.cands[0].c) {
+        const std::uint8_t* cw = at(p);
+        std::memcpy(hood.firstBlocks.block1.data(), cw, kBlockSize);
+        std::memcpy(hood.firstBlocks.block2.data(), cw + kCodewordSize, kBlockSize);
+    }
+    if (p < failEnd_)
+        return;
+    if (hasPending_)
+        reportPending();
+    hasPending_ = true;
+    pendingC_ = p;
+    pendingDistance_ = pDistance;
+    pendingBlocks_ = hood.firstBlocks;
+    failEnd_ = p + kDatagramSize;
+    if (p == due_) {
+        due_ = p + kFrameSize;  // lock kept through a frame beyond correction
+        expect_ = due_;
+        expectTried_ = false;
+    }
 }
 
 void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks, bool exact)

@@ -118,7 +118,12 @@ private:
     void process(bool final);
     bool tryExpected(std::uint64_t c);
     bool trySlipped(std::uint64_t c, std::uint64_t end);
+    struct Neighbourhood;
     bool decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::uint64_t end);
+    void gatherCandidates(Neighbourhood& hood, std::uint64_t q, std::uint64_t last, std::uint64_t end) const;
+    void tryCandidates(Neighbourhood& hood) const;
+    void searchRotations(Neighbourhood& hood, std::uint64_t end) const;
+    void holdFailure(Neighbourhood& hood);
     void confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks, bool exact);
     void emitFrame(std::uint64_t c, int distance, const DecodedBlocks& blocks);
     void reportPending();

@@ -211,15 +211,16 @@ std::vector<std::uint16_t> FlightPlanAssembler::unheldBelow(std::size_t end, std
     return ids;
 }
 
+FlightPlanAssembler::Result FlightPlanAssembler::failure(std::string what) const
+{
+    Result r = progress(Result::Kind::Error);
+    r.error = "flight plan " + planIdText(m_planId) + ": " + std::move(what);
+    return r;
+}
+
 FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& section)
 {
     using Kind = Result::Kind;
-    const auto fail = [this](std::string what) {
-        Result r = progress(Kind::Error);
-        r.error = "flight plan " + planIdText(m_planId) + ": " + std::move(what);
-        return r;
-    };
-
     if (section.empty() || section.sectionId >= kFirstControlSectionId)
         return progress(Kind::None);
     if (section.planId == 0) {
@@ -236,8 +237,8 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
         if (!newDescriptor) {
             if (section.planId != m_planId)
                 restart(section.planId);
-            return fail("section 0 holds " + std::to_string(section.data.size()) + " bytes, fewer than the " +
-                        std::to_string(FlightPlanDescriptor::kSize) + "-byte descriptor");
+            return failure("section 0 holds " + std::to_string(section.data.size()) + " bytes, fewer than the " +
+                           std::to_string(FlightPlanDescriptor::kSize) + "-byte descriptor");
         }
     }
 
@@ -252,73 +253,98 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
     if (section.planId != m_planId || (newDescriptor && m_descriptor && *newDescriptor != *m_descriptor))
         restart(section.planId);
     if (section.data.empty())
-        return fail("section " + std::to_string(id) + " carries no data");
+        return failure("section " + std::to_string(id) + " carries no data");
 
     if (newDescriptor) {
-        const FlightPlanDescriptor& d = *newDescriptor;
-        const std::uint64_t streamBytes = FlightPlanDescriptor::kSize + std::uint64_t{d.totalBytes};
-        std::string wrong;
-        if (d.sectionCount == 0 || d.sectionCount > kMaxFlightPlanSections)
-            wrong = sectionsText(d.sectionCount) + ", outside 1.." + std::to_string(kMaxFlightPlanSections);
-        else if (d.totalBytes > m_maxPlanBytes)
-            wrong = std::to_string(d.totalBytes) + " bytes, more than the " + std::to_string(m_maxPlanBytes) +
-                    " this receiver holds";
-        else if (streamBytes < d.sectionCount ||
-                 streamBytes > std::uint64_t{d.sectionCount} * FlightPlanSection::kMaxData)
-            wrong = std::to_string(d.totalBytes) + " bytes cannot make " + sectionsText(d.sectionCount) + " of 1.." +
-                    std::to_string(FlightPlanSection::kMaxData) + " bytes";
-        else if (d.sectionCount == 1 && section.data.size() != streamBytes)
-            wrong = "one section of " + std::to_string(d.totalBytes) + " plan bytes, but section 0 holds " +
-                    std::to_string(section.data.size() - FlightPlanDescriptor::kSize);
-        if (!wrong.empty())
-            return fail("corrupt descriptor: " + wrong);
-        m_descriptor = d;
-        const auto beyond = m_sections.lower_bound(d.sectionCount);
-        if (beyond != m_sections.end()) {
-            const std::uint16_t first = beyond->first;
-            m_sections.erase(beyond, m_sections.end());
-            m_sections.emplace(id, section.data);
-            return fail("held section " + std::to_string(first) + " lies beyond the " + sectionsText(d.sectionCount) +
-                        " the descriptor announces; dropped");
-        }
+        if (auto refused = adoptDescriptor(*newDescriptor, section))
+            return *refused;
     } else if (m_descriptor && id >= m_descriptor->sectionCount) {
-        return fail("section " + std::to_string(id) + " lies beyond the " + sectionsText(m_descriptor->sectionCount) +
-                    " the descriptor announces");
+        return failure("section " + std::to_string(id) + " lies beyond the " +
+                       sectionsText(m_descriptor->sectionCount) + " the descriptor announces");
     }
 
-    // Sections the cycle order says the sender sent since the previous one.
-    std::vector<std::uint16_t> skipped;
-    const auto collectUnheld = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k)
-            if (!m_sections.contains(static_cast<std::uint16_t>(k)))
-                skipped.push_back(static_cast<std::uint16_t>(k));
-    };
-    const bool wrapped = m_lastId && id < *m_lastId;
-    if (!m_lastId)
-        collectUnheld(0, id);
-    else if (id > *m_lastId)
-        collectUnheld(*m_lastId + 1u, id);
-    else if (wrapped) {
-        collectUnheld(*m_lastId + 1u, m_descriptor ? m_descriptor->sectionCount : 0);
-        collectUnheld(0, id);
-    }
-    m_lastId = id;
-    m_highestId = std::max<std::size_t>(m_highestId.value_or(0), id);
-    m_wrapped = m_wrapped || wrapped;
+    const bool skipped = skippedBefore(id);
     const bool complete = m_descriptor && m_sections.size() + !m_sections.contains(id) == m_descriptor->sectionCount;
     // Everything sent and not held, not only this gap: what another pass must bring.
     const std::size_t sentEnd = m_wrapped && m_descriptor ? m_descriptor->sectionCount : *m_highestId + 1u;
-    const std::vector<std::uint16_t> missing = skipped.empty() ? skipped : unheldBelow(sentEnd, id);
+    const std::vector<std::uint16_t> missing = skipped ? unheldBelow(sentEnd, id) : std::vector<std::uint16_t>{};
     m_sections.insert_or_assign(id, section.data);
 
-    if (!complete) {
-        if (missing.empty())
-            return progress(Kind::InProgress);
-        Result r = progress(Kind::Missing);
-        r.missing = missing;
-        return r;
-    }
+    if (complete)
+        return assemble();
+    if (missing.empty())
+        return progress(Kind::InProgress);
+    Result r = progress(Kind::Missing);
+    r.missing = missing;
+    return r;
+}
 
+// What is wrong with a descriptor that section 0 (`section0Bytes` long)
+// holds; empty when nothing is.
+std::string FlightPlanAssembler::descriptorFault(const FlightPlanDescriptor& d, std::size_t section0Bytes) const
+{
+    const std::uint64_t streamBytes = FlightPlanDescriptor::kSize + std::uint64_t{d.totalBytes};
+    if (d.sectionCount == 0 || d.sectionCount > kMaxFlightPlanSections)
+        return sectionsText(d.sectionCount) + ", outside 1.." + std::to_string(kMaxFlightPlanSections);
+    if (d.totalBytes > m_maxPlanBytes)
+        return std::to_string(d.totalBytes) + " bytes, more than the " + std::to_string(m_maxPlanBytes) +
+               " this receiver holds";
+    if (streamBytes < d.sectionCount || streamBytes > std::uint64_t{d.sectionCount} * FlightPlanSection::kMaxData)
+        return std::to_string(d.totalBytes) + " bytes cannot make " + sectionsText(d.sectionCount) + " of 1.." +
+               std::to_string(FlightPlanSection::kMaxData) + " bytes";
+    if (d.sectionCount == 1 && section0Bytes != streamBytes)
+        return "one section of " + std::to_string(d.totalBytes) + " plan bytes, but section 0 holds " +
+               std::to_string(section0Bytes - FlightPlanDescriptor::kSize);
+    return {};
+}
+
+// Takes the descriptor section 0 carries, unless it is corrupt; held
+// sections beyond the count it announces are dropped.
+std::optional<FlightPlanAssembler::Result> FlightPlanAssembler::adoptDescriptor(const FlightPlanDescriptor& d,
+                                                                                const FlightPlanSection& section)
+{
+    const std::string wrong = descriptorFault(d, section.data.size());
+    if (!wrong.empty())
+        return failure("corrupt descriptor: " + wrong);
+    m_descriptor = d;
+    const auto beyond = m_sections.lower_bound(d.sectionCount);
+    if (beyond == m_sections.end())
+        return std::nullopt;
+    const std::uint16_t first = beyond->first;
+    m_sections.erase(beyond, m_sections.end());
+    m_sections.emplace(section.sectionId, section.data);
+    return failure("held section " + std::to_string(first) + " lies beyond the " + sectionsText(d.sectionCount) +
+                   " the descriptor announces; dropped");
+}
+
+// Notes section `id` in the cycle order; true when the order says the sender
+// sent sections since the previous one that are not held.
+bool FlightPlanAssembler::skippedBefore(std::uint16_t id)
+{
+    const auto unheldIn = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k)
+            if (!m_sections.contains(static_cast<std::uint16_t>(k)))
+                return true;
+        return false;
+    };
+    const bool wrapped = m_lastId && id < *m_lastId;
+    bool skipped = false;
+    if (!m_lastId)
+        skipped = unheldIn(0, id);
+    else if (id > *m_lastId)
+        skipped = unheldIn(*m_lastId + 1u, id);
+    else if (wrapped)
+        skipped = unheldIn(*m_lastId + 1u, m_descriptor ? m_descriptor->sectionCount : 0) || unheldIn(0, id);
+    m_lastId = id;
+    m_highestId = std::max<std::size_t>(m_highestId.value_or(0), id);
+    m_wrapped = m_wrapped || wrapped;
+    return skipped;
+}
+
+// All sections held: the plan, when their bytes make what the descriptor
+// announces, or collecting again.
+FlightPlanAssembler::Result FlightPlanAssembler::assemble()
+{
     std::vector<std::uint8_t> stream;
     for (const auto& [k, data] : m_sections)
         stream.insert(stream.end(), data.begin(), data.end());
@@ -327,8 +353,8 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
     if (stream.size() != expected) {
         const std::size_t got = stream.size();
         restart(m_planId);
-        return fail("the " + std::to_string(d.sectionCount) + " sections hold " + std::to_string(got) +
-                    " bytes, not the " + std::to_string(expected) + " the descriptor announces; collecting again");
+        return failure("the " + std::to_string(d.sectionCount) + " sections hold " + std::to_string(got) +
+                       " bytes, not the " + std::to_string(expected) + " the descriptor announces; collecting again");
     }
     const std::span<const std::uint8_t> plan(stream.data() + FlightPlanDescriptor::kSize, d.totalBytes);
     const std::uint32_t crc = crc32(plan);
@@ -336,10 +362,10 @@ FlightPlanAssembler::Result FlightPlanAssembler::add(const FlightPlanSection& se
         restart(m_planId);
         char text[64];
         std::snprintf(text, sizeof text, "CRC-32 %08X, descriptor says %08X", crc, d.crc);
-        return fail(std::string(text) + "; collecting again");
+        return failure(std::string(text) + "; collecting again");
     }
 
-    Result r = progress(Kind::Complete);
+    Result r = progress(Result::Kind::Complete);
     r.plan.assign(plan.begin(), plan.end());
     m_lastComplete = FlightPlanAcknowledgement{m_planId, d, {}};
     restart(0);

@@ -193,6 +193,11 @@ private:
     Result progress(Result::Kind kind) const;
     void restart(std::uint32_t planId);
     std::vector<std::uint16_t> unheldBelow(std::size_t end, std::uint16_t arriving) const;
+    Result failure(std::string what) const;
+    std::string descriptorFault(const FlightPlanDescriptor& d, std::size_t section0Bytes) const;
+    std::optional<Result> adoptDescriptor(const FlightPlanDescriptor& d, const FlightPlanSection& section);
+    bool skippedBefore(std::uint16_t id);
+    Result assemble();
 
     std::size_t m_maxPlanBytes;
     std::uint32_t m_planId = 0;

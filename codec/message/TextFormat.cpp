@@ -2,6 +2,7 @@
 
 #include "codec/message/CountryCodes.h"
 #include "codec/message/DigitPairs.h"
+#include "codec/message/HexDigits.h"
 #include "codec/message/ValueCodec.h"
 
 #include <algorithm>
@@ -243,16 +244,6 @@ bool isAlpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); 
 bool allDigits(std::string_view s)
 {
     return !s.empty() && std::all_of(s.begin(), s.end(), isDigit);
-}
-int hexValue(char c)
-{
-    if (c >= '0' && c <= '9')
-        return c - '0';
-    if (c >= 'A' && c <= 'F')
-        return c - 'A' + 10;
-    if (c >= 'a' && c <= 'f')
-        return c - 'a' + 10;
-    return -1;
 }
 bool equalsIgnoreCase(std::string_view a, std::string_view b)
 {
@@ -603,9 +594,9 @@ private:
                     if (e == '"' || e == '\\') {
                         t.unescaped += e;
                         j += 2;
-                    } else if (e == 'x' && j + 3 < line.size() && hexValue(line[j + 2]) >= 0 &&
-                               hexValue(line[j + 3]) >= 0) {
-                        t.unescaped += static_cast<char>(hexValue(line[j + 2]) * 16 + hexValue(line[j + 3]));
+                    } else if (e == 'x' && j + 3 < line.size() && hexDigitValue(line[j + 2]) >= 0 &&
+                               hexDigitValue(line[j + 3]) >= 0) {
+                        t.unescaped += static_cast<char>(hexDigitValue(line[j + 2]) * 16 + hexDigitValue(line[j + 3]));
                         j += 4;
                     } else {
                         error(DiagKind::Syntax, static_cast<int>(j) + 1, "",
@@ -1198,7 +1189,7 @@ private:
                 return;
             }
             for (std::size_t i = 0; i < t.raw.size(); ++i) {
-                if (hexValue(t.raw[i]) < 0) {
+                if (hexDigitValue(t.raw[i]) < 0) {
                     error(DiagKind::Syntax, t.column + static_cast<int>(i), std::string(name),
                           quote(t.raw.substr(i, 1)) + " is not a hex digit; expected " + expected);
                     return;
@@ -1222,7 +1213,7 @@ private:
                 return;
             plan.data.resize(bytes);
             for (std::size_t i = 0; i < bytes; ++i)
-                plan.data[i] = static_cast<std::uint8_t>(hexValue(t.raw[2 * i]) * 16 + hexValue(t.raw[2 * i + 1]));
+                plan.data[i] = static_cast<std::uint8_t>(hexDigitValue(t.raw[2 * i]) * 16 + hexDigitValue(t.raw[2 * i + 1]));
             return;
         }
 

@@ -4,6 +4,7 @@
 #include "codec/message/ItemTable.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/message/ValueCodec.h"
+#include "codec/receive/EncodedItems.h"
 #include "codec/receive/TrialDecoder.h"
 #include "codec/secure/SecureCodec.h"
 
@@ -227,6 +228,68 @@ Verdict descriptorFits(const FlightPlanSection& s)
                                             std::to_string(size) + " bytes");
 }
 
+// The frame refused, and why; false.
+bool refuseFrame(ReceivedFrame& frame, Verdict v, bool keyed)
+{
+    frame.refusal = v.refusal;
+    frame.detail = std::move(v.detail);
+    if (keyed) {
+        // Nothing read from a refused frame is passed on, authentic or not.
+        frame.decoded.message = Message{};
+        frame.decoded.diagnostics.clear();
+    }
+    return false;
+}
+
+// Keyed link: the blocks decrypted by the first key and direction they are
+// authentic with, into frame.decoded; refused as plaintext or forged when
+// none.
+Verdict authentic(const std::vector<const secure::SecureCodec*>& codecs, const DecodedBlocks& blocks,
+                  ReceivedFrame& frame, secure::HeaderStamp& stamp)
+{
+    bool plaintext = false;
+    std::string why;
+    for (const secure::SecureCodec* codec : codecs) {
+        secure::Authenticated a = codec->decryptBlocks(blocks);
+        if (a.authentic) {
+            frame.decoded = std::move(a.decoded);
+            stamp = a.stamp;
+            frame.direction = codec->direction();
+            return {};
+        }
+        plaintext = plaintext || a.rejection == secure::Rejection::Plaintext;
+        why = codecs.size() == 1 ? a.detail : "sent in none of the directions given with this key";
+    }
+    frame.decoded = DecodeResult{};
+    frame.decoded.corrected.block1 = blocks.corrected.block1;
+    frame.decoded.corrected.block2 = blocks.corrected.block2;
+    return plaintext ? refuse(Refusal::Plaintext, "an unencrypted message on a keyed link")
+                     : refuse(Refusal::Forged, why);
+}
+
+// Live: the frame's stamp within the window around the receiver's clock.
+Verdict inClockWindow(std::int64_t seconds, std::int64_t nowMicros, std::int64_t windowSeconds)
+{
+    const std::int64_t skew = seconds - nowMicros / 1'000'000;
+    if (skew <= windowSeconds && skew >= -windowSeconds)
+        return {};
+    return refuse(Refusal::TimeWindow, "time_UTC/date_UTC is " + std::to_string(skew < 0 ? -skew : skew) + " s " +
+                                           (skew < 0 ? "behind" : "ahead of") +
+                                           " the receiver's clock; the window is " + std::to_string(windowSeconds) +
+                                           " s");
+}
+
+// The replay guard shared with other receivers of the key: the stamp not
+// seen before, and then remembered.
+Verdict guardAccepts(secure::ReplayGuard& guard, const secure::HeaderStamp& stamp, std::string& warning)
+{
+    std::string detail;
+    if (const std::optional<secure::Rejection> g = guard.check(stamp, &detail))
+        return refuse(*g == secure::Rejection::Replayed ? Refusal::Replayed : Refusal::TimeWindow, detail);
+    guard.accept(stamp, &warning);
+    return {};
+}
+
 // The history a frame accepted after `before` leaves, written into `h`,
 // which may be *before itself: assigning in place keeps the vectors'
 // storage, which matters when a day's recording is read.
@@ -276,18 +339,13 @@ struct ValueAt {
 
 std::optional<ValueAt> valueOf(const Block& b, ItemId want)
 {
-    std::size_t p = 0;
-    while (p < kBlockSize && b[p] == kPad55)
-        ++p;
-    while (p < kBlockSize) {
-        const ItemInfo* info = findItem(b[p]);
-        if (!info)
-            return std::nullopt;
-        if (info->id == want)
-            return ValueAt{p + 1, info->size};
-        p += 1 + info->size;
-    }
-    return std::nullopt;
+    std::optional<ValueAt> found;
+    forEachEncodedItem(b, [&](const ItemInfo& info, std::size_t at) {
+        if (info.id == want)
+            found = ValueAt{at + 1, info.size};
+        return !found;
+    });
+    return found;
 }
 
 std::uint32_t bigEndian(const std::uint8_t* p, std::size_t n)
@@ -585,16 +643,7 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
 {
     frame.blocks = blocks;
     const bool keyed = !m_options.keys.codecs.empty();
-    const auto no = [&](Verdict v) {
-        frame.refusal = v.refusal;
-        frame.detail = std::move(v.detail);
-        if (keyed) {
-            // Nothing read from a refused frame is passed on, authentic or not.
-            frame.decoded.message = Message{};
-            frame.decoded.diagnostics.clear();
-        }
-        return false;
-    };
+    const auto no = [&](Verdict v) { return refuseFrame(frame, std::move(v), keyed); };
     if (!blocks.ok()) {
         // A keyed link's blocks are ciphertext: nothing in them can be read.
         if (!keyed)
@@ -609,26 +658,8 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
     DecodeResult& r = frame.decoded;
     secure::HeaderStamp stamp;
     if (keyed) {
-        bool plaintext = false;
-        std::string why;
-        for (const secure::SecureCodec* codec : m_options.keys.codecs) {
-            secure::Authenticated a = codec->decryptBlocks(blocks);
-            if (a.authentic) {
-                r = std::move(a.decoded);
-                stamp = a.stamp;
-                frame.direction = codec->direction();
-                break;
-            }
-            plaintext = plaintext || a.rejection == secure::Rejection::Plaintext;
-            why = m_options.keys.codecs.size() == 1 ? a.detail : "sent in none of the directions given with this key";
-        }
-        if (!frame.direction) {
-            r = DecodeResult{};
-            r.corrected.block1 = blocks.corrected.block1;
-            r.corrected.block2 = blocks.corrected.block2;
-            return no(plaintext ? refuse(Refusal::Plaintext, "an unencrypted message on a keyed link")
-                                : refuse(Refusal::Forged, why));
-        }
+        if (Verdict v = authentic(m_options.keys.codecs, blocks, frame, stamp); v.refusal)
+            return no(std::move(v));
     } else if (!m_exactCache->read(blocks, r.message)) {
         r = DecodeResult{};
         if (Verdict v = exactPlain(blocks, r); v.refusal)
@@ -644,14 +675,9 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
         return no(refuse(Refusal::InvalidField, "time_UTC/date_UTC is not a valid time"));
     const bool live = m_options.mode == Mode::Live;
     const std::int64_t nowMicros = live ? m_options.clock() : 0;
-    if (live) {
-        const std::int64_t skew = *seconds - nowMicros / 1'000'000;
-        if (skew > m_options.clockWindowSeconds || skew < -m_options.clockWindowSeconds)
-            return no(refuse(Refusal::TimeWindow, "time_UTC/date_UTC is " + std::to_string(skew < 0 ? -skew : skew) +
-                                                      " s " + (skew < 0 ? "behind" : "ahead of") +
-                                                      " the receiver's clock; the window is " +
-                                                      std::to_string(m_options.clockWindowSeconds) + " s"));
-    }
+    if (live)
+        if (Verdict v = inClockWindow(*seconds, nowMicros, m_options.clockWindowSeconds); v.refusal)
+            return no(std::move(v));
     if (Verdict v = descriptorFits(r.message.flightPlan); v.refusal)
         return no(std::move(v));
     const std::uint32_t key = senderKey(r.message);
@@ -686,12 +712,9 @@ bool FrameReceiver::accept(ReceivedFrame& frame, const DecodedBlocks& blocks, bo
         // may be that sender's frames again.
         return no(refuse(Refusal::Replayed, "time_UTC/date_UTC is older than the frames of senders no longer followed"));
     }
-    if (m_options.keys.guard) {
-        std::string detail;
-        if (const std::optional<secure::Rejection> g = m_options.keys.guard->check(stamp, &detail))
-            return no(refuse(*g == secure::Rejection::Replayed ? Refusal::Replayed : Refusal::TimeWindow, detail));
-        m_options.keys.guard->accept(stamp, &frame.warning);
-    }
+    if (m_options.keys.guard)
+        if (Verdict v = guardAccepts(*m_options.keys.guard, stamp, frame.warning); v.refusal)
+            return no(std::move(v));
 
     if (known != m_senders.end() && before == &known->second) {
         // The common case: the sender's next frame, written over its last.

@@ -5,6 +5,7 @@
 #include "codec/message/ItemTable.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/message/MessagePrediction.h"
+#include "codec/receive/EncodedItems.h"
 
 #include <algorithm>
 #include <cstring>
@@ -74,21 +75,15 @@ HeaderPlaces headerPlacesOf(const Block& b)
 {
     HeaderPlaces h;
     int seen = 0;
-    std::size_t p = 0;
-    while (p < kBlockSize && b[p] == kPad55)
-        ++p;
-    while (p < kBlockSize) {
-        const ItemInfo* info = findItem(b[p]);
-        if (!info)
-            break;
-        if (info->id == ItemId::ID_msg)
-            h.id = p + 1, ++seen;
-        else if (info->id == ItemId::time_UTC)
-            h.time = p + 1, ++seen;
-        else if (info->id == ItemId::date_UTC)
-            h.date = p + 1, ++seen;
-        p += 1 + info->size;
-    }
+    forEachEncodedItem(b, [&](const ItemInfo& info, std::size_t at) {
+        if (info.id == ItemId::ID_msg)
+            h.id = at + 1, ++seen;
+        else if (info.id == ItemId::time_UTC)
+            h.time = at + 1, ++seen;
+        else if (info.id == ItemId::date_UTC)
+            h.date = at + 1, ++seen;
+        return true;
+    });
     h.found = seen == 3;
     return h;
 }
@@ -129,18 +124,12 @@ secure::HeaderStamp stampOf(const Message& m)
 std::vector<std::size_t> commandValueBytes(const Block& plain)
 {
     std::vector<std::size_t> at;
-    std::size_t p = 0;
-    while (p < kBlockSize && plain[p] == kPad55)
-        ++p;
-    while (p < kBlockSize) {
-        const ItemInfo* info = findItem(plain[p]);
-        if (!info || p + 1 + info->size > kBlockSize)
-            break;
-        if (info->owner != UnitKind::Header)
-            for (std::size_t j = 1; j <= info->size; ++j)
+    forEachEncodedItem(plain, [&](const ItemInfo& info, std::size_t p) {
+        if (info.owner != UnitKind::Header)
+            for (std::size_t j = 1; j <= info.size; ++j)
                 at.push_back(p + j);
-        p += 1 + info->size;
-    }
+        return true;
+    });
     return at;
 }
 
@@ -358,116 +347,135 @@ std::optional<TrialDecoder::Found> TrialDecoder::findBlock1(const SenderHistory&
                                                             bool keyed, const std::uint8_t* r1,
                                                             std::uint32_t gapEstimate, Work& work)
 {
-    const int margin = m_options.margin;
     SenderPredictions& p = predictionsFor(h, codec, keyed, work);
     const std::vector<std::uint32_t> order = gapOrder(m_options.maxGapSeconds, gapEstimate);
 
-    // Tries every prediction of `list` gap by gap, the likeliest first; of
-    // those of one gap that fit (keyed: the time variants), the one needing
-    // fewest corrections.
-    const auto tryList = [&](const std::vector<Predicted>& list) -> std::optional<Found> {
-        for (std::uint32_t n : order) {
-            Found best;
-            for (const Predicted& pred : list) {
-                if (pred.n != n)
-                    continue;
-                if (keyed) {
-                    if (!work.take(kCompareUnits))
-                        return std::nullopt;
-                    const int distance = rs::parityDistance(r1, pred.codeword.data());
-                    if (distance <= margin && (best.corrected < 0 || distance < best.corrected)) {
-                        std::memcpy(best.block.data(), pred.codeword.data(), kBlockSize);
-                        best.corrected = distance;
-                        best.stamp = pred.stamp;
-                    }
-                    continue;
-                }
-                if (!work.take(kTrialUnits))
-                    return std::nullopt;
-                Codeword out;
-                const int c = rs::decodeWithPrediction(r1, pred.codeword.data(), out.data(), margin);
-                if (c >= 0) {
-                    std::memcpy(best.block.data(), out.data(), kBlockSize);
-                    best.corrected = c;
-                    return best;
-                }
-            }
-            if (best.corrected >= 0)
-                return best;
-        }
-        return std::nullopt;
-    };
-
-    if (std::optional<Found> f = tryList(p.advanced)) {
+    if (std::optional<Found> f = tryPredictions(p.advanced, order, keyed, r1, work)) {
         ++m_stats.block1FromPrediction;
         return f;
     }
     makeExpected(p, h, keyed, work);
-    if (std::optional<Found> f = tryList(p.expected)) {
+    if (std::optional<Found> f = tryPredictions(p.expected, order, keyed, r1, work)) {
         ++m_stats.block1FromExpected;
         return f;
     }
-
-    if (!keyed && !m_recent.empty() && work.take(kCompareUnits)) {
-        // The bytes the frames received last agree on: the most recent pair
-        // of them (this frame first) that holds the same value at a place.
-        // A changed command is in every frame after the change, so two of
-        // them carry it, where the channel's errors rarely agree.
-        std::array<const std::uint8_t*, kRecentFrames + 1> copies{};
-        std::size_t count = 0;
-        copies[count++] = r1;
-        for (const Codeword& frame : m_recent)
-            copies[count++] = frame.data();
-        std::array<int, kBlockSize> agreed;
-        agreed.fill(-1);
-        bool any = false;
-        for (std::size_t i = 0; i < kBlockSize; ++i) {
-            for (std::size_t b = 1; b < count && agreed[i] < 0; ++b)
-                for (std::size_t a = 0; a < b; ++a)
-                    if (copies[a][i] == copies[b][i]) {
-                        agreed[i] = copies[a][i];
-                        break;
-                    }
-            any = any || agreed[i] >= 0;
+    if (!keyed && !m_recent.empty() && work.take(kCompareUnits))
+        if (std::optional<Found> f = fromAgreedBytes(p, order, r1, work)) {
+            ++m_stats.block1FromCopies;
+            return f;
         }
-        if (any) {
-            for (const std::vector<Predicted>* list : {&p.advanced, &p.expected}) {
-                for (std::uint32_t n : order) {
-                    for (const Predicted& pred : *list) {
-                        if (pred.n != n)
-                            continue;
-                        Codeword hybrid = pred.codeword;
-                        bool differs = false;
-                        for (std::size_t i = 0; i < kBlockSize; ++i)
-                            if (agreed[i] >= 0 && hybrid[i] != agreed[i]) {
-                                hybrid[i] = static_cast<std::uint8_t>(agreed[i]);
-                                differs = true;
-                            }
-                        if (!differs)
-                            continue;
-                        if (!work.take(kCodewordUnits + kTrialUnits))
-                            return std::nullopt;
-                        rs::encode(hybrid.data(), hybrid.data() + kBlockSize);
-                        Codeword out;
-                        const int c = rs::decodeWithPrediction(r1, hybrid.data(), out.data(), margin);
-                        if (c >= 0) {
-                            Found f;
-                            std::memcpy(f.block.data(), out.data(), kBlockSize);
-                            f.corrected = c;
-                            ++m_stats.block1FromCopies;
-                            return f;
-                        }
-                    }
-                }
-            }
-        }
-    }
-
     if (codec && &h == m_lastHistory)
         if (std::optional<Found> f = searchCommandChange(h, codec, r1, gapEstimate, work)) {
             ++m_stats.block1FromCommandChange;
             return f;
         }
+    return std::nullopt;
+}
+
+// Tries every prediction of `list` gap by gap, the likeliest first; of those
+// of one gap that fit (keyed: the time variants), the one needing fewest
+// corrections.
+std::optional<TrialDecoder::Found> TrialDecoder::tryPredictions(const std::vector<Predicted>& list,
+                                                                const std::vector<std::uint32_t>& order, bool keyed,
+                                                                const std::uint8_t* r1, Work& work) const
+{
+    const int margin = m_options.margin;
+    for (std::uint32_t n : order) {
+        Found best;
+        for (const Predicted& pred : list) {
+            if (pred.n != n)
+                continue;
+            if (keyed) {
+                if (!work.take(kCompareUnits))
+                    return std::nullopt;
+                const int distance = rs::parityDistance(r1, pred.codeword.data());
+                if (distance <= margin && (best.corrected < 0 || distance < best.corrected)) {
+                    std::memcpy(best.block.data(), pred.codeword.data(), kBlockSize);
+                    best.corrected = distance;
+                    best.stamp = pred.stamp;
+                }
+                continue;
+            }
+            if (!work.take(kTrialUnits))
+                return std::nullopt;
+            Codeword out;
+            const int c = rs::decodeWithPrediction(r1, pred.codeword.data(), out.data(), margin);
+            if (c >= 0) {
+                std::memcpy(best.block.data(), out.data(), kBlockSize);
+                best.corrected = c;
+                return best;
+            }
+        }
+        if (best.corrected >= 0)
+            return best;
+    }
+    return std::nullopt;
+}
+
+// The bytes the frames received last agree on: the most recent pair of them
+// (this frame first) that holds the same value at a place; -1 where none
+// does. A changed command is in every frame after the change, so two of them
+// carry it, where the channel's errors rarely agree.
+std::optional<std::array<int, kBlockSize>> TrialDecoder::agreedBytes(const std::uint8_t* r1) const
+{
+    std::array<const std::uint8_t*, kRecentFrames + 1> copies{};
+    std::size_t count = 0;
+    copies[count++] = r1;
+    for (const Codeword& frame : m_recent)
+        copies[count++] = frame.data();
+    std::array<int, kBlockSize> agreed;
+    agreed.fill(-1);
+    bool any = false;
+    for (std::size_t i = 0; i < kBlockSize; ++i) {
+        for (std::size_t b = 1; b < count && agreed[i] < 0; ++b)
+            for (std::size_t a = 0; a < b; ++a)
+                if (copies[a][i] == copies[b][i]) {
+                    agreed[i] = copies[a][i];
+                    break;
+                }
+        any = any || agreed[i] >= 0;
+    }
+    if (!any)
+        return std::nullopt;
+    return agreed;
+}
+
+// Plain link: the predictions with the bytes the last frames agree on put in.
+std::optional<TrialDecoder::Found> TrialDecoder::fromAgreedBytes(const SenderPredictions& p,
+                                                                 const std::vector<std::uint32_t>& order,
+                                                                 const std::uint8_t* r1, Work& work) const
+{
+    const std::optional<std::array<int, kBlockSize>> agreed = agreedBytes(r1);
+    if (!agreed)
+        return std::nullopt;
+    for (const std::vector<Predicted>* list : {&p.advanced, &p.expected}) {
+        for (std::uint32_t n : order) {
+            for (const Predicted& pred : *list) {
+                if (pred.n != n)
+                    continue;
+                Codeword hybrid = pred.codeword;
+                bool differs = false;
+                for (std::size_t i = 0; i < kBlockSize; ++i)
+                    if ((*agreed)[i] >= 0 && hybrid[i] != (*agreed)[i]) {
+                        hybrid[i] = static_cast<std::uint8_t>((*agreed)[i]);
+                        differs = true;
+                    }
+                if (!differs)
+                    continue;
+                if (!work.take(kCodewordUnits + kTrialUnits))
+                    return std::nullopt;
+                rs::encode(hybrid.data(), hybrid.data() + kBlockSize);
+                Codeword out;
+                const int c = rs::decodeWithPrediction(r1, hybrid.data(), out.data(), m_options.margin);
+                if (c >= 0) {
+                    Found f;
+                    std::memcpy(f.block.data(), out.data(), kBlockSize);
+                    f.corrected = c;
+                    return f;
+                }
+            }
+        }
+    }
     return std::nullopt;
 }
 
@@ -580,55 +588,61 @@ bool TrialDecoder::findBlock2(const SenderHistory& h, const secure::SecureCodec*
     }
 
     // The plan being sent, from an earlier pass: its next sections first.
-    const PlanProgress& plan = h.plan;
-    if (plan.planId != 0) {
-        std::vector<const Section*> held;
-        for (const Section& s : m_sections)
-            if (s.planId == plan.planId)
-                held.push_back(&s);
-        const std::uint32_t cycle = plan.sectionCount ? plan.sectionCount : 0x10000u;
-        const auto ahead = [&](const Section* s) {
-            return (s->sectionId + 2 * cycle - plan.section - 1) % cycle;
-        };
-        std::sort(held.begin(), held.end(), [&](const Section* a, const Section* b) { return ahead(a) < ahead(b); });
-        for (const Section* s : held)
-            if (fits(s->plain)) {
-                ++m_stats.block2FromPlan;
-                return true;
-            }
-    }
+    for (const Section* s : heldSectionsAhead(h.plan))
+        if (fits(s->plain)) {
+            ++m_stats.block2FromPlan;
+            return true;
+        }
+    return !keyed && block2FromCopies(r2, d, work);
+}
 
-    // Plain link: the copies of this section from earlier passes, combined
-    // byte by byte with this one (codeword 2 of a frame lost in each pass).
-    if (!keyed && !m_block2Copies.empty() && work.take(kCompareUnits * 8)) {
-        std::vector<const std::uint8_t*> votes;
-        for (const Codeword& c : m_block2Copies) {
-            std::size_t same = 0;
-            for (std::size_t i = 0; i < kBlockSize; ++i)
-                same += c[i] == r2[i];
-            if (same >= kSimilarBytes)
-                votes.push_back(c.data());
-            if (votes.size() == kMaxCombined)
-                break;
-        }
-        if (votes.size() >= 2 && work.take(kDecodeUnits + kTrialUnits)) {
-            std::reverse(votes.begin(), votes.end());
-            votes.push_back(r2);  // ties go to this frame's byte
-            Codeword vote;
-            rs::majorityBytes(votes.data(), static_cast<int>(votes.size()), vote.data());
-            if (rs::decodeWithin(vote.data(), margin) >= 0) {
-                Codeword out;
-                const int c = rs::decodeWithPrediction(r2, vote.data(), out.data(), margin);
-                if (c >= 0) {
-                    std::memcpy(d.block2.data(), out.data(), kBlockSize);
-                    d.corrected.block2 = c;
-                    ++m_stats.block2FromCopies;
-                    return true;
-                }
-            }
-        }
+// The sections held of the plan being sent, the one after the last received first.
+std::vector<const TrialDecoder::Section*> TrialDecoder::heldSectionsAhead(const PlanProgress& plan) const
+{
+    std::vector<const Section*> held;
+    if (plan.planId == 0)
+        return held;
+    for (const Section& s : m_sections)
+        if (s.planId == plan.planId)
+            held.push_back(&s);
+    const std::uint32_t cycle = plan.sectionCount ? plan.sectionCount : 0x10000u;
+    const auto ahead = [&](const Section* s) { return (s->sectionId + 2 * cycle - plan.section - 1) % cycle; };
+    std::sort(held.begin(), held.end(), [&](const Section* a, const Section* b) { return ahead(a) < ahead(b); });
+    return held;
+}
+
+// Plain link: the copies of this section from earlier passes, combined byte
+// by byte with this one (codeword 2 of a frame lost in each pass).
+bool TrialDecoder::block2FromCopies(const std::uint8_t* r2, DecodedBlocks& d, Work& work)
+{
+    if (m_block2Copies.empty() || !work.take(kCompareUnits * 8))
+        return false;
+    std::vector<const std::uint8_t*> votes;
+    for (const Codeword& c : m_block2Copies) {
+        std::size_t same = 0;
+        for (std::size_t i = 0; i < kBlockSize; ++i)
+            same += c[i] == r2[i];
+        if (same >= kSimilarBytes)
+            votes.push_back(c.data());
+        if (votes.size() == kMaxCombined)
+            break;
     }
-    return false;
+    if (votes.size() < 2 || !work.take(kDecodeUnits + kTrialUnits))
+        return false;
+    std::reverse(votes.begin(), votes.end());
+    votes.push_back(r2);  // ties go to this frame's byte
+    Codeword vote;
+    rs::majorityBytes(votes.data(), static_cast<int>(votes.size()), vote.data());
+    if (rs::decodeWithin(vote.data(), m_options.margin) < 0)
+        return false;
+    Codeword out;
+    const int c = rs::decodeWithPrediction(r2, vote.data(), out.data(), m_options.margin);
+    if (c < 0)
+        return false;
+    std::memcpy(d.block2.data(), out.data(), kBlockSize);
+    d.corrected.block2 = c;
+    ++m_stats.block2FromCopies;
+    return true;
 }
 
 bool TrialDecoder::majority(const std::uint8_t* r1, const DecodedBlocks& plain, DecodedBlocks& d, Work& work)
@@ -661,6 +675,59 @@ bool TrialDecoder::majority(const std::uint8_t* r1, const DecodedBlocks& plain, 
     return d.corrected.block2 >= 0;
 }
 
+// The senders to predict from: the last accepted first.
+std::vector<const SenderHistory*> TrialDecoder::sendersToPredict(const FrameReceiver& receiver) const
+{
+    std::vector<const SenderHistory*> histories;
+    for (const auto& [key, h] : receiver.senders())
+        histories.push_back(&h);
+    std::sort(histories.begin(), histories.end(),
+              [](const SenderHistory* a, const SenderHistory* b) { return a->serial > b->serial; });
+    if (histories.size() > m_options.maxSenders)
+        histories.resize(m_options.maxSenders);
+    return histories;
+}
+
+// How many seconds on from `h` this frame likely is: by the clock when live,
+// by the frames received since the last delivery otherwise.
+std::uint32_t TrialDecoder::likelyGap(const FrameReceiver& receiver, const SenderHistory& h,
+                                      std::int64_t nowMicros) const
+{
+    if (receiver.options().mode != FrameReceiver::Mode::Live)
+        return static_cast<std::uint32_t>(std::min<std::uint64_t>(m_framesSinceDelivery + 1, m_options.maxGapSeconds));
+    const std::int64_t sinceMicros = nowMicros - h.receivedMicros;
+    return static_cast<std::uint32_t>(
+        std::clamp<std::int64_t>((sinceMicros + 500'000) / 1'000'000, 1, m_options.maxGapSeconds));
+}
+
+// BLOCK 1 as `codec` reads it (nullptr: the plain link): the decoded one if
+// it is authentic, else one a prediction from `h` finds.
+std::optional<DecodedBlocks> TrialDecoder::readBlock1(const SenderHistory& h, const secure::SecureCodec* codec,
+                                                      bool keyed, const DecodedBlocks& start, const std::uint8_t* r1,
+                                                      std::uint32_t gapEstimate, secure::HeaderStamp& stamp, Work& work)
+{
+    DecodedBlocks d = start;
+    if (d.corrected.block1 >= 0 && codec) {
+        DecodedBlocks only = d;
+        only.corrected.block2 = -1;
+        if (!work.take(kEncipherUnits))
+            return std::nullopt;
+        const secure::Authenticated a = codec->decryptBlocks(only);
+        if (!a.authentic)
+            return std::nullopt;
+        stamp = a.stamp;
+    }
+    if (d.corrected.block1 < 0) {
+        const std::optional<Found> f = findBlock1(h, codec, keyed, r1, gapEstimate, work);
+        if (!f)
+            return std::nullopt;
+        d.block1 = f->block;
+        d.corrected.block1 = f->corrected;
+        stamp = f->stamp;
+    }
+    return d;
+}
+
 TrialDecoder::Candidates TrialDecoder::candidates(std::span<const std::uint8_t, kDatagramSize> received,
                                                   const DecodedBlocks& plain, bool block2Read,
                                                   const FrameReceiver& receiver, std::int64_t nowMicros)
@@ -674,6 +741,12 @@ TrialDecoder::Candidates TrialDecoder::candidates(std::span<const std::uint8_t, 
     const std::vector<const secure::SecureCodec*>& codecs = receiver.options().keys.codecs;
     const bool keyed = !codecs.empty();
     DecodedBlocks start = plain;
+    const auto finished = [&] {
+        out.units = work.spent;
+        out.cut = work.cut;
+        m_stats.cut += work.cut;
+        return out;
+    };
 
     // Codeword 2 not decoded yet: it is needed once BLOCK 1 is read.
     bool block2Tried = block2Read;
@@ -689,16 +762,8 @@ TrialDecoder::Candidates TrialDecoder::candidates(std::span<const std::uint8_t, 
         d.corrected.block2 = start.corrected.block2;
     };
 
-    // The senders to predict from: the last accepted first.
-    std::vector<const SenderHistory*> histories;
-    for (const auto& [key, h] : receiver.senders())
-        histories.push_back(&h);
-    std::sort(histories.begin(), histories.end(),
-              [](const SenderHistory* a, const SenderHistory* b) { return a->serial > b->serial; });
-    if (histories.size() > m_options.maxSenders)
-        histories.resize(m_options.maxSenders);
+    std::vector<const SenderHistory*> histories = sendersToPredict(receiver);
     m_lastHistory = histories.empty() ? nullptr : histories.front();
-
     if (histories.empty()) {
         // Nothing accepted yet: on the plain link, consecutive frames repeat
         // most bytes, so a vote over the last few is a prediction.
@@ -713,74 +778,46 @@ TrialDecoder::Candidates TrialDecoder::candidates(std::span<const std::uint8_t, 
                     out.blocks.push_back(d);
             }
         }
-        out.units = work.spent;
-        out.cut = work.cut;
-        m_stats.cut += work.cut;
-        return out;
+        return finished();
     }
     m_majority.clear();
     if (m_unaccepted) {
-        const SenderHistory* last = histories.front();
-        const std::uint32_t ahead = (m_unaccepted->messageId - last->messageId) & kIdMask;
+        const std::uint32_t ahead = (m_unaccepted->messageId - histories.front()->messageId) & kIdMask;
         if (ahead >= 1 && ahead <= m_options.maxGapSeconds)
             histories.insert(histories.begin(), &*m_unaccepted);
         else
             m_unaccepted.reset();
     }
-    std::optional<SenderHistory> readBlock1;  // this frame's BLOCK 1, if its BLOCK 2 stays unreadable
+    std::optional<SenderHistory> unaccepted;  // this frame's BLOCK 1, if its BLOCK 2 stays unreadable
 
     std::vector<const secure::SecureCodec*> tryCodecs = codecs;
     if (!keyed)
         tryCodecs.push_back(nullptr);
     for (const SenderHistory* h : histories) {
-        const bool live = receiver.options().mode == FrameReceiver::Mode::Live;
-        const std::int64_t sinceMicros = live ? nowMicros - h->receivedMicros : 0;
-        const std::uint32_t gapEstimate =
-            live ? static_cast<std::uint32_t>(std::clamp<std::int64_t>((sinceMicros + 500'000) / 1'000'000, 1,
-                                                                        m_options.maxGapSeconds))
-                 : static_cast<std::uint32_t>(std::min<std::uint64_t>(m_framesSinceDelivery + 1, m_options.maxGapSeconds));
+        const std::uint32_t gap = likelyGap(receiver, *h, nowMicros);
         for (const secure::SecureCodec* codec : tryCodecs) {
             if (work.cut)
                 break;
-            DecodedBlocks d = start;
             secure::HeaderStamp stamp;
-            if (d.corrected.block1 >= 0 && codec) {
-                DecodedBlocks only = d;
-                only.corrected.block2 = -1;
-                if (!work.take(kEncipherUnits))
-                    break;
-                const secure::Authenticated a = codec->decryptBlocks(only);
-                if (!a.authentic)
-                    continue;
-                stamp = a.stamp;
-            }
-            if (d.corrected.block1 < 0) {
-                const std::optional<Found> f = findBlock1(*h, codec, keyed, r1, gapEstimate, work);
-                if (!f)
-                    continue;
-                d.block1 = f->block;
-                d.corrected.block1 = f->corrected;
-                stamp = f->stamp;
-            }
-            if (d.corrected.block2 < 0)
-                readBlock2(d);
-            if (d.corrected.block2 >= 0 || findBlock2(*h, codec, keyed, stamp, r2, d, work)) {
-                out.blocks.push_back(d);
-            } else if (!readBlock1) {
-                readBlock1 = block1History(d, codec, *h, nowMicros);
+            std::optional<DecodedBlocks> d = readBlock1(*h, codec, keyed, start, r1, gap, stamp, work);
+            if (!d)
+                continue;
+            if (d->corrected.block2 < 0)
+                readBlock2(*d);
+            if (d->corrected.block2 >= 0 || findBlock2(*h, codec, keyed, stamp, r2, *d, work)) {
+                out.blocks.push_back(*d);
+            } else if (!unaccepted) {
+                unaccepted = block1History(*d, codec, *h, nowMicros);
             }
         }
         if (work.cut)
             break;
     }
-    if (readBlock1) {
-        readBlock1->serial = (std::uint64_t{1} << 63) | ++m_tick;
-        m_unaccepted = std::move(readBlock1);
+    if (unaccepted) {
+        unaccepted->serial = (std::uint64_t{1} << 63) | ++m_tick;
+        m_unaccepted = std::move(unaccepted);
     }
-    out.units = work.spent;
-    out.cut = work.cut;
-    m_stats.cut += work.cut;
-    return out;
+    return finished();
 }
 
 void TrialDecoder::observe(std::span<const std::uint8_t, kDatagramSize> received, const ReceivedFrame& frame,

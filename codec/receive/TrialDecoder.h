@@ -112,14 +112,27 @@ private:
     };
     struct Work;
     struct Found;
+    struct Section;
 
     void refill(const FrameReceiver& receiver, std::int64_t nowMicros);
     SenderPredictions& predictionsFor(const SenderHistory& h, const secure::SecureCodec* codec, bool keyed, Work& work);
     void makeExpected(SenderPredictions& p, const SenderHistory& h, bool keyed, Work& work);
+    std::vector<const SenderHistory*> sendersToPredict(const FrameReceiver& receiver) const;
+    std::uint32_t likelyGap(const FrameReceiver& receiver, const SenderHistory& h, std::int64_t nowMicros) const;
+    std::optional<DecodedBlocks> readBlock1(const SenderHistory& h, const secure::SecureCodec* codec, bool keyed,
+                                            const DecodedBlocks& start, const std::uint8_t* r1,
+                                            std::uint32_t gapEstimate, secure::HeaderStamp& stamp, Work& work);
     std::optional<Found> findBlock1(const SenderHistory& h, const secure::SecureCodec* codec, bool keyed,
                                     const std::uint8_t* r1, std::uint32_t gapEstimate, Work& work);
+    std::optional<Found> tryPredictions(const std::vector<Predicted>& list, const std::vector<std::uint32_t>& order,
+                                        bool keyed, const std::uint8_t* r1, Work& work) const;
+    std::optional<std::array<int, kBlockSize>> agreedBytes(const std::uint8_t* r1) const;
+    std::optional<Found> fromAgreedBytes(const SenderPredictions& p, const std::vector<std::uint32_t>& order,
+                                         const std::uint8_t* r1, Work& work) const;
     bool findBlock2(const SenderHistory& h, const secure::SecureCodec* codec, bool keyed,
                     const secure::HeaderStamp& stamp, const std::uint8_t* r2, DecodedBlocks& d, Work& work);
+    std::vector<const Section*> heldSectionsAhead(const PlanProgress& plan) const;
+    bool block2FromCopies(const std::uint8_t* r2, DecodedBlocks& d, Work& work);
     std::optional<Found> searchCommandChange(const SenderHistory& h, const secure::SecureCodec* codec,
                                              const std::uint8_t* r1, std::uint32_t gapEstimate, Work& work);
     bool majority(const std::uint8_t* r1, const DecodedBlocks& plain, DecodedBlocks& d, Work& work);

@@ -2,6 +2,7 @@
 
 #include "codec/secure/Hctr2.h"
 #include "codec/message/DigitPairs.h"
+#include "codec/message/HexDigits.h"
 #include "codec/message/ItemTable.h"
 
 #include <openssl/core_names.h>
@@ -48,17 +49,6 @@ std::string modeText(mode_t mode)
     char buf[8];
     std::snprintf(buf, sizeof buf, "%04o", static_cast<unsigned>(mode & 07777));
     return buf;
-}
-
-int hexDigit(char c)
-{
-    if (c >= '0' && c <= '9')
-        return c - '0';
-    if (c >= 'a' && c <= 'f')
-        return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F')
-        return c - 'A' + 10;
-    return -1;
 }
 
 std::string directionSuffix(Direction d) { return d == Direction::GcsToUa ? "gcs-to-ua" : "ua-to-gcs"; }
@@ -273,17 +263,9 @@ std::optional<SecretKey> readKeyFile(const std::string& path, std::string& error
             --len;
     }
     std::optional<SecretKey> key;
-    if (len == 2 * kKeySize) {
-        key.emplace();
-        for (std::size_t i = 0; i < kKeySize && key; ++i) {
-            const int hi = hexDigit(static_cast<char>(buf[2 * i]));
-            const int lo = hexDigit(static_cast<char>(buf[2 * i + 1]));
-            if (hi < 0 || lo < 0)
-                key.reset();
-            else
-                key->mutableBytes()[i] = static_cast<std::uint8_t>(hi << 4 | lo);
-        }
-    }
+    key.emplace();
+    if (!decodeHex(std::string_view(reinterpret_cast<const char*>(buf), len), key->mutableBytes()))
+        key.reset();
     OPENSSL_cleanse(buf, sizeof buf);
     if (!key)
         error = "the key file " + path +

@@ -1,5 +1,7 @@
 #include "codec/secure/StationSigningKey.h"
 
+#include "codec/message/HexDigits.h"
+
 #include <openssl/evp.h>
 
 #include <stdexcept>
@@ -11,21 +13,6 @@ struct StationSigningKey::Pkey {
     EVP_PKEY* pkey = nullptr;
     ~Pkey() { EVP_PKEY_free(pkey); }
 };
-
-namespace {
-
-int hexValue(char c)
-{
-    if (c >= '0' && c <= '9')
-        return c - '0';
-    if (c >= 'a' && c <= 'f')
-        return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F')
-        return c - 'A' + 10;
-    return -1;
-}
-
-}  // namespace
 
 StationSigningKey::StationSigningKey(const SecretKey& seed) : m_key(std::make_unique<Pkey>()), m_seed(seed)
 {
@@ -134,16 +121,9 @@ std::string hexOf(std::span<const std::uint8_t> bytes)
 
 std::optional<StationPublicKey> parseStationPublicKey(std::string_view hex)
 {
-    if (hex.size() != 2 * kStationPublicKeySize)
-        return std::nullopt;
     StationPublicKey key{};
-    for (std::size_t i = 0; i < key.size(); ++i) {
-        const int hi = hexValue(hex[2 * i]);
-        const int lo = hexValue(hex[2 * i + 1]);
-        if (hi < 0 || lo < 0)
-            return std::nullopt;
-        key[i] = static_cast<std::uint8_t>(hi << 4 | lo);
-    }
+    if (!decodeHex(hex, key))
+        return std::nullopt;
     return key;
 }
 

@@ -50,6 +50,106 @@ QString unknownMember(const QJsonObject& object, std::initializer_list<const cha
     return {};
 }
 
+// `member` of `root`, when present: an array of objects with the members `allowed`.
+std::optional<QString> readUnitList(const QJsonObject& root, const char* member,
+                                    std::initializer_list<const char*> allowed, QJsonArray* out)
+{
+    const QJsonValue v = root.value(QLatin1String(member));
+    if (v.isUndefined())
+        return std::nullopt;
+    if (!v.isArray())
+        return QStringLiteral("\"%1\" must be an array").arg(QLatin1String(member));
+    *out = v.toArray();
+    for (qsizetype i = 0; i < out->size(); ++i) {
+        if (!out->at(i).isObject())
+            return QStringLiteral("%1[%2] must be an object").arg(QLatin1String(member)).arg(i);
+        if (const QString key = unknownMember(out->at(i).toObject(), allowed); !key.isEmpty())
+            return QStringLiteral("%1[%2]: unknown member \"%3\"").arg(QLatin1String(member)).arg(i).arg(key);
+    }
+    return std::nullopt;
+}
+
+QString memberText(const QJsonObject& o, const char* member)
+{
+    return o.value(QLatin1String(member)).toString();
+}
+
+bool isWholeByte(const QJsonValue& value)
+{
+    const double n = value.toDouble(-1);
+    return value.isDouble() && n == double(int(n)) && n >= 0 && n <= 255;
+}
+
+std::optional<QString> readEngines(const QJsonArray& engines, rcm::Airframe& a)
+{
+    std::set<int> engineIds;
+    for (qsizetype i = 0; i < engines.size(); ++i) {
+        const QJsonObject o = engines[i].toObject();
+        const QJsonValue id = o.value(QStringLiteral("id"));
+        if (!isWholeByte(id))
+            return QStringLiteral("engines[%1]: \"id\" must be a whole number 0..255").arg(i);
+        const int n = id.toInt();
+        if (!engineIds.insert(n).second)
+            return QStringLiteral("engines[%1]: engine %2 is listed twice").arg(i).arg(n);
+        a.engines.push_back({std::uint8_t(n), memberText(o, "name").toStdString()});
+    }
+    return std::nullopt;
+}
+
+std::optional<QString> readRadios(const QJsonArray& radios, rcm::Airframe& a)
+{
+    std::set<QString> radioIds;
+    for (qsizetype i = 0; i < radios.size(); ++i) {
+        const QJsonObject o = radios[i].toObject();
+        const QString id = memberText(o, "systemId");
+        if (!printableAscii(id, 1, 8) || id.endsWith(QLatin1Char(' ')))
+            return QStringLiteral(
+                       "radios[%1]: \"systemId\" must be 1 to 8 printable ASCII characters, "
+                       "not ending in a space")
+                .arg(i);
+        if (!radioIds.insert(id).second)
+            return QStringLiteral("radios[%1]: radio %2 is listed twice").arg(i).arg(id);
+        a.radios.push_back({id.toStdString(), memberText(o, "name").toStdString()});
+    }
+    return std::nullopt;
+}
+
+std::optional<QString> readCameras(const QJsonArray& cameras, rcm::Airframe& a)
+{
+    std::set<std::pair<QString, int>> cameraIds;
+    for (qsizetype i = 0; i < cameras.size(); ++i) {
+        const QJsonObject o = cameras[i].toObject();
+        const QString maker = memberText(o, "maker");
+        const QJsonValue number = o.value(QStringLiteral("number"));
+        if (!printableAscii(maker, 3, 3))
+            return QStringLiteral("cameras[%1]: \"maker\" must be 3 printable ASCII characters").arg(i);
+        if (!isWholeByte(number))
+            return QStringLiteral("cameras[%1]: \"number\" must be a whole number 0..255").arg(i);
+        const int n = number.toInt();
+        if (!cameraIds.insert({maker, n}).second)
+            return QStringLiteral("cameras[%1]: camera %2 %3 is listed twice").arg(i).arg(maker).arg(n);
+        a.cameras.push_back({maker.toStdString(), std::uint8_t(n), memberText(o, "name").toStdString()});
+    }
+    return std::nullopt;
+}
+
+// The unit lists of an airframe object: engines, radios, cameras.
+std::optional<QString> readUnits(const QJsonObject& root, rcm::Airframe& a)
+{
+    QJsonArray engines, radios, cameras;
+    if (auto e = readUnitList(root, "engines", {"id", "name"}, &engines))
+        return e;
+    if (auto e = readUnitList(root, "radios", {"systemId", "name"}, &radios))
+        return e;
+    if (auto e = readUnitList(root, "cameras", {"maker", "number", "name"}, &cameras))
+        return e;
+    if (auto e = readEngines(engines, a))
+        return e;
+    if (auto e = readRadios(radios, a))
+        return e;
+    return readCameras(cameras, a);
+}
+
 }  // namespace
 
 std::optional<rcm::Airframe> AirframeLoader::load(const QString& path, QString* error)
@@ -92,73 +192,8 @@ std::optional<rcm::Airframe> AirframeLoader::fromJson(const QByteArray& json, co
     if (!sense.isUndefined() && !sense.isBool())
         return fail(QStringLiteral("\"senseAndAvoid\" must be true or false"));
     a.senseAndAvoid = sense.toBool(true);
-
-    // Each list: an array of objects with these members.
-    const auto units = [&](const char* member, std::initializer_list<const char*> allowed,
-                           QJsonArray* out) -> std::optional<QString> {
-        const QJsonValue v = root.value(QLatin1String(member));
-        if (v.isUndefined())
-            return std::nullopt;
-        if (!v.isArray())
-            return QStringLiteral("\"%1\" must be an array").arg(QLatin1String(member));
-        *out = v.toArray();
-        for (qsizetype i = 0; i < out->size(); ++i) {
-            if (!out->at(i).isObject())
-                return QStringLiteral("%1[%2] must be an object").arg(QLatin1String(member)).arg(i);
-            if (const QString key = unknownMember(out->at(i).toObject(), allowed); !key.isEmpty())
-                return QStringLiteral("%1[%2]: unknown member \"%3\"").arg(QLatin1String(member)).arg(i).arg(key);
-        }
-        return std::nullopt;
-    };
-    const auto text = [](const QJsonObject& o, const char* member) {
-        return o.value(QLatin1String(member)).toString();
-    };
-
-    QJsonArray engines, radios, cameras;
-    if (auto e = units("engines", {"id", "name"}, &engines))
+    if (auto e = readUnits(root, a))
         return fail(*e);
-    if (auto e = units("radios", {"systemId", "name"}, &radios))
-        return fail(*e);
-    if (auto e = units("cameras", {"maker", "number", "name"}, &cameras))
-        return fail(*e);
-
-    std::set<int> engineIds;
-    for (qsizetype i = 0; i < engines.size(); ++i) {
-        const QJsonObject o = engines[i].toObject();
-        const QJsonValue id = o.value(QStringLiteral("id"));
-        const double n = id.toDouble(-1);
-        if (!id.isDouble() || n != double(int(n)) || n < 0 || n > 255)
-            return fail(QStringLiteral("engines[%1]: \"id\" must be a whole number 0..255").arg(i));
-        if (!engineIds.insert(int(n)).second)
-            return fail(QStringLiteral("engines[%1]: engine %2 is listed twice").arg(i).arg(int(n)));
-        a.engines.push_back({std::uint8_t(n), text(o, "name").toStdString()});
-    }
-    std::set<QString> radioIds;
-    for (qsizetype i = 0; i < radios.size(); ++i) {
-        const QJsonObject o = radios[i].toObject();
-        const QString id = text(o, "systemId");
-        if (!printableAscii(id, 1, 8) || id.endsWith(QLatin1Char(' ')))
-            return fail(QStringLiteral("radios[%1]: \"systemId\" must be 1 to 8 printable ASCII characters, "
-                                       "not ending in a space")
-                            .arg(i));
-        if (!radioIds.insert(id).second)
-            return fail(QStringLiteral("radios[%1]: radio %2 is listed twice").arg(i).arg(id));
-        a.radios.push_back({id.toStdString(), text(o, "name").toStdString()});
-    }
-    std::set<std::pair<QString, int>> cameraIds;
-    for (qsizetype i = 0; i < cameras.size(); ++i) {
-        const QJsonObject o = cameras[i].toObject();
-        const QString maker = text(o, "maker");
-        const QJsonValue number = o.value(QStringLiteral("number"));
-        const double n = number.toDouble(-1);
-        if (!printableAscii(maker, 3, 3))
-            return fail(QStringLiteral("cameras[%1]: \"maker\" must be 3 printable ASCII characters").arg(i));
-        if (!number.isDouble() || n != double(int(n)) || n < 0 || n > 255)
-            return fail(QStringLiteral("cameras[%1]: \"number\" must be a whole number 0..255").arg(i));
-        if (!cameraIds.insert({maker, int(n)}).second)
-            return fail(QStringLiteral("cameras[%1]: camera %2 %3 is listed twice").arg(i).arg(maker).arg(int(n)));
-        a.cameras.push_back({maker.toStdString(), std::uint8_t(n), text(o, "name").toStdString()});
-    }
 
     // The units must fit in one frame, resting command and all.
     const rcm::Diagnostics problems = rcm::validate(rcm::restingCommand(a));

@@ -1,7 +1,6 @@
 #include "link/rehearsal/RehearsalProxy.h"
 
 #include "codec/frame/Frame.h"
-#include "link/satmodem/PseudoTerminal.h"
 #include "link/transport/UdpLink.h"
 
 #include <cerrno>
@@ -53,12 +52,8 @@ bool RehearsalProxy::openSerial(QString* error)
 {
     for (int side = 0; side < 2; ++side) {
         Pty& p = m_ptys[std::size_t(side)];
-        PseudoTerminal pty;
-        if (!openRawPseudoTerminal(pty, error))
+        if (!openRawPseudoTerminal(p, error))
             return false;
-        p.master = pty.master;
-        p.slave = pty.slave;
-        p.device = pty.device;
         p.notifier = std::make_unique<QSocketNotifier>(p.master, QSocketNotifier::Read);
         connect(p.notifier.get(), &QSocketNotifier::activated, this, [this, side] { readPty(side); });
     }

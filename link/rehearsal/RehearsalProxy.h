@@ -11,6 +11,7 @@
 // fault's "per frame" means a frame.
 
 #include "link/rehearsal/RehearsalChannel.h"
+#include "link/satmodem/PseudoTerminal.h"
 
 #include <QObject>
 #include <QSocketNotifier>
@@ -41,10 +42,8 @@ public:
     QString aircraftDevice() const { return m_ptys[1].device; }
 
 private:
-    struct Pty {
-        int master = -1;
-        int slave = -1;  // held, so the master never reads "no one there" before a program opens it
-        QString device;
+    // Its slave held, so the master never reads "no one there" before a program opens it.
+    struct Pty : PseudoTerminal {
         QByteArray pending;  // bytes read, short of a whole frame
         std::unique_ptr<QSocketNotifier> notifier;
     };

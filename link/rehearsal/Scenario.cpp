@@ -296,6 +296,296 @@ std::optional<Scenario> Scenario::load(const QString& path, const PlanLoader& lo
     return fromJson(file.readAll(), path, loadPlan, error);
 }
 
+namespace {
+
+// The members of a scenario beside its steps: name, airframe, transport, key, speed, duration.
+bool readSettings(const Reader& reader, const QJsonObject& root, const QDir& base, Scenario& scenario)
+{
+    using Transport = Scenario::Transport;
+    static const QStringList known = {QStringLiteral("name"), QStringLiteral("airframe"), QStringLiteral("transport"),
+                                      QStringLiteral("key"),  QStringLiteral("speed"),    QStringLiteral("duration"),
+                                      QStringLiteral("steps")};
+    for (auto it = root.begin(); it != root.end(); ++it)
+        if (!known.contains(it.key()))
+            return reader.fail(
+                QStringLiteral("/") + it.key(), -1,
+                QStringLiteral("unknown member \"%1\" (known: %2)").arg(it.key(), known.join(QStringLiteral(", "))));
+
+    scenario.name = root.value(QStringLiteral("name")).toString(QFileInfo(scenario.path).completeBaseName());
+    scenario.airframeName = root.value(QStringLiteral("airframe")).toString(QStringLiteral("well-equipped"));
+    QString airframeError;
+    const QString builtIn = QStringLiteral(":/airframes/%1.json").arg(scenario.airframeName);
+    const QString airframePath =
+        AirframeLoader::builtIn().contains(builtIn) ? builtIn : base.absoluteFilePath(scenario.airframeName);
+    const auto airframe = AirframeLoader::load(airframePath, &airframeError);
+    if (!airframe)
+        return reader.fail(QStringLiteral("/airframe"), -1, airframeError);
+    scenario.airframe = *airframe;
+
+    const QString transport = root.value(QStringLiteral("transport")).toString(QStringLiteral("udp"));
+    static const QStringList transports = {QStringLiteral("udp"), QStringLiteral("serial"), QStringLiteral("modem")};
+    if (!transports.contains(transport))
+        return reader.fail(QStringLiteral("/transport"), -1,
+                           QStringLiteral("transport is \"udp\", \"serial\" or \"modem\""));
+    scenario.transport = Transport(transports.indexOf(transport));
+    if (root.contains(QStringLiteral("key")) && !root.value(QStringLiteral("key")).isBool())
+        return reader.fail(QStringLiteral("/key"), -1, QStringLiteral("key is true or false"));
+    scenario.key = root.value(QStringLiteral("key")).toBool();
+    scenario.speed = root.value(QStringLiteral("speed")).toDouble(1);
+    if (!(scenario.speed >= 1))
+        return reader.fail(QStringLiteral("/speed"), -1, QStringLiteral("speed is a number, 1 or more"));
+    if (scenario.transport == Transport::Modem && scenario.speed != 1)
+        return reader.fail(QStringLiteral("/speed"), -1,
+                           QStringLiteral("the modem transport runs at speed 1: the modem model keeps real time"));
+    scenario.duration = root.value(QStringLiteral("duration")).toDouble(-1);
+    if (!(scenario.duration > 0))
+        return reader.fail(QStringLiteral("/duration"), -1, QStringLiteral("duration is seconds, more than 0"));
+    return true;
+}
+
+// Reads one member of "steps"; its errors name the step and the member.
+class StepReader {
+public:
+    StepReader(const Reader& reader, const Scenario& scenario, const rcm::Message& command, const QDir& base,
+               const Scenario::PlanLoader& loadPlan, int index)
+        : m_reader(reader),
+          m_scenario(scenario),
+          m_command(command),
+          m_base(base),
+          m_loadPlan(loadPlan),
+          m_where(QStringLiteral("/steps/%1").arg(index)),
+          m_number(index + 1)
+    {
+    }
+
+    bool read(const QJsonValue& json, ScenarioStep& step) const
+    {
+        if (!json.isObject())
+            return fail(QString(), QStringLiteral("a step is an object"));
+        const QJsonObject object = json.toObject();
+        step.number = m_number;
+        const JsonLineColumn at = jsonLineColumn(m_reader.text, m_reader.offsets.at(m_where));
+        step.line = at.line;
+        step.column = at.column;
+        if (object.contains(QStringLiteral("at"))) {
+            const double at = object.value(QStringLiteral("at")).toDouble(-1);
+            if (at < 0 || at > m_scenario.duration)
+                return fail(QStringLiteral("at"),
+                            QStringLiteral("at is seconds from 0 to the duration, %1").arg(m_scenario.duration));
+            step.at = at;
+        }
+        QString action;
+        if (!readAction(object, step, &action))
+            return false;
+        const QJsonValue value = object.value(action);
+        if (action == QLatin1String("set"))
+            return readSet(value, step);
+        if (action == QLatin1String("upload"))
+            return readUpload(value, step);
+        if (action == QLatin1String("fault"))
+            return readFault(value, step);
+        return readExpect(object, value, step);
+    }
+
+private:
+    bool fail(const QString& member, const QString& message) const
+    {
+        return m_reader.fail(member.isEmpty() ? m_where : m_where + QLatin1Char('/') + member, m_number, message);
+    }
+
+    // The one action of a step (set, fault, upload or expect), its members checked.
+    bool readAction(const QJsonObject& object, const ScenarioStep& step, QString* action) const
+    {
+        const QStringList actions = {QStringLiteral("set"), QStringLiteral("fault"), QStringLiteral("upload"),
+                                     QStringLiteral("expect")};
+        QStringList found;
+        for (auto it = object.begin(); it != object.end(); ++it) {
+            if (actions.contains(it.key()))
+                found << it.key();
+            else if (it.key() != QLatin1String("at") && it.key() != QLatin1String("within"))
+                return fail(it.key(), QStringLiteral("unknown member \"%1\" (a step has at, one of %2, and within "
+                                                     "with expect)")
+                                          .arg(it.key(), actions.join(QStringLiteral(", "))));
+        }
+        if (found.size() != 1)
+            return fail(QString(), QStringLiteral("a step has exactly one of set, fault, upload, expect"));
+        *action = found.front();
+        if (*action != QLatin1String("expect") && !step.at)
+            return fail(QString(), QStringLiteral("%1 needs \"at\"").arg(*action));
+        // "within" belongs to an expectation: beside "expect", as
+        // docs/rehearsal.md writes it, or inside it.
+        if (object.contains(QStringLiteral("within")) && *action != QLatin1String("expect"))
+            return fail(QStringLiteral("within"),
+                        QStringLiteral("within goes with expect: the seconds after \"at\" it may take to hold"));
+        return true;
+    }
+
+    bool readSet(const QJsonValue& value, ScenarioStep& step) const
+    {
+        step.kind = ScenarioStep::Kind::Set;
+        step.text = value.toString();
+        return readItems(QStringLiteral("set"), step);
+    }
+
+    // The items a step's text ("camera 1: cam_zoom_set 40") names, read at `member`.
+    bool readItems(const QString& member, ScenarioStep& step) const
+    {
+        QString why;
+        const auto items = parseUnitLine(step.text, m_command, &why);
+        if (!items)
+            return fail(member, why);
+        step.items = *items;
+        return true;
+    }
+
+    bool readUpload(const QJsonValue& value, ScenarioStep& step) const
+    {
+        step.kind = ScenarioStep::Kind::Upload;
+        step.text = value.toString();
+        QString why = QStringLiteral("no plan loader");
+        const auto plan = m_loadPlan ? m_loadPlan(m_base.absoluteFilePath(step.text), &why) : std::nullopt;
+        if (!plan)
+            return fail(QStringLiteral("upload"), why);
+        step.plan = *plan;
+        return true;
+    }
+
+    bool readFault(const QJsonValue& value, ScenarioStep& step) const
+    {
+        step.kind = ScenarioStep::Kind::Fault;
+        const bool modem = m_scenario.transport == Scenario::Transport::Modem;
+        if (value.toString() == QLatin1String("clear")) {
+            step.fault.kind = FaultSpec::Kind::Clear;
+            return true;
+        }
+        if (value.toString() == QLatin1String("call-drop")) {
+            if (!modem)
+                return fail(QStringLiteral("fault"), QStringLiteral("call-drop needs \"transport\": \"modem\""));
+            step.fault.kind = FaultSpec::Kind::CallDrop;
+            return true;
+        }
+        if (modem)
+            return fail(QStringLiteral("fault"),
+                        QStringLiteral("the modem transport's faults are \"call-drop\" and \"clear\": "
+                                       "its bytes go through the modem model, not the fault channel"));
+        if (!value.isObject())
+            return fail(QStringLiteral("fault"), QStringLiteral("a fault is an object, \"clear\" or \"call-drop\""));
+        return readChannelFault(value.toObject(), step.fault);
+    }
+
+    // {"ber": p}, {"outage": s}, {"slip": p} or {"burst": p}, with an optional direction.
+    bool readChannelFault(const QJsonObject& object, FaultSpec& fault) const
+    {
+        static const QStringList kinds = {QStringLiteral("ber"), QStringLiteral("outage"), QStringLiteral("slip"),
+                                          QStringLiteral("burst")};
+        QStringList given;
+        for (auto it = object.begin(); it != object.end(); ++it) {
+            if (kinds.contains(it.key()))
+                given << it.key();
+            else if (it.key() != QLatin1String("direction"))
+                return fail(QStringLiteral("fault/") + it.key(),
+                            QStringLiteral("unknown fault \"%1\" (ber, outage, slip, burst, direction)").arg(it.key()));
+        }
+        if (given.size() != 1)
+            return fail(QStringLiteral("fault"), QStringLiteral("a fault step has one of ber, outage, slip, burst"));
+        fault.kind = FaultSpec::Kind(kinds.indexOf(given.front()));
+        fault.value = object.value(given.front()).toDouble(-1);
+        const bool seconds = fault.kind == FaultSpec::Kind::Outage;
+        if (seconds ? !(fault.value > 0) : !(fault.value >= 0 && fault.value <= 1))
+            return fail(QStringLiteral("fault/") + given.front(),
+                        seconds ? QStringLiteral("outage is seconds, more than 0")
+                                : QStringLiteral("%1 is a probability from 0 to 1").arg(given.front()));
+        const QString direction = object.value(QStringLiteral("direction")).toString(QStringLiteral("both"));
+        static const QStringList directions = {QStringLiteral("both"), QStringLiteral("up"), QStringLiteral("down")};
+        if (!directions.contains(direction))
+            return fail(QStringLiteral("fault/direction"), QStringLiteral("direction is \"up\" or \"down\""));
+        fault.direction = FaultDirection(directions.indexOf(direction));
+        return true;
+    }
+
+    bool readExpect(const QJsonObject& object, const QJsonValue& value, ScenarioStep& step) const
+    {
+        if (!value.isObject())
+            return fail(QStringLiteral("expect"), QStringLiteral("expect is an object"));
+        const QJsonObject expect = value.toObject();
+        const bool withinBeside = object.contains(QStringLiteral("within"));
+        if (withinBeside && expect.contains(QStringLiteral("within")))
+            return fail(QStringLiteral("within"),
+                        QStringLiteral("within is given twice, beside expect and in it; give it once"));
+        const QJsonValue within =
+            withinBeside ? object.value(QStringLiteral("within")) : expect.value(QStringLiteral("within"));
+        if (expect.contains(QStringLiteral("reported"))) {
+            step.kind = ScenarioStep::Kind::ExpectReported;
+            step.text = expect.value(QStringLiteral("reported")).toString();
+            return readItems(QStringLiteral("expect/reported"), step) && readWithin(within, step);
+        }
+        if (expect.contains(QStringLiteral("alarm"))) {
+            step.kind = ScenarioStep::Kind::ExpectAlarm;
+            step.text = expect.value(QStringLiteral("alarm")).toString();
+            if (step.text != QLatin1String("link-lost") && step.text != QLatin1String("link-regained"))
+                return fail(QStringLiteral("expect/alarm"),
+                            QStringLiteral("alarm is \"link-lost\" or \"link-regained\""));
+            return readWithin(within, step);
+        }
+        if (expect.contains(QStringLiteral("plan"))) {
+            step.kind = ScenarioStep::Kind::ExpectPlan;
+            step.text = expect.value(QStringLiteral("plan")).toString();
+            if (step.text != QLatin1String("acknowledged"))
+                return fail(QStringLiteral("expect/plan"), QStringLiteral("plan is \"acknowledged\""));
+            return readWithin(within, step);
+        }
+        return readCount(expect, within, withinBeside, step);
+    }
+
+    // An expectation that holds at a time needs "at" and "within".
+    bool readWithin(const QJsonValue& within, ScenarioStep& step) const
+    {
+        step.within = within.toDouble(-1);
+        if (!step.at || step.within < 0)
+            return fail(QStringLiteral("expect"),
+                        QStringLiteral("this expectation needs \"at\" and \"within\" (seconds)"));
+        return true;
+    }
+
+    // A count that holds over the whole run: wrong-frames, frames-lost-at-most, link-lost-at-most.
+    bool readCount(const QJsonObject& expect, const QJsonValue& within, bool withinBeside, ScenarioStep& step) const
+    {
+        static const QStringList counts = {QStringLiteral("wrong-frames"), QStringLiteral("frames-lost-at-most"),
+                                           QStringLiteral("link-lost-at-most")};
+        static const ScenarioStep::Kind kinds[] = {ScenarioStep::Kind::ExpectWrongFrames,
+                                                   ScenarioStep::Kind::ExpectFramesLost,
+                                                   ScenarioStep::Kind::ExpectLinkLostAtMost};
+        const auto found =
+            std::find_if(counts.begin(), counts.end(), [&](const QString& c) { return expect.contains(c); });
+        if (found == counts.end())
+            return fail(QStringLiteral("expect"), QStringLiteral("expect one of reported, alarm, plan, wrong-frames, "
+                                                                 "frames-lost-at-most, link-lost-at-most"));
+        const QString member = *found;
+        step.kind = kinds[found - counts.begin()];
+        const double count = expect.value(member).toDouble(-1);
+        if (!isInteger(count) || count < 0)
+            return fail(QStringLiteral("expect/") + member,
+                        QStringLiteral("%1 is a whole number, 0 or more").arg(member));
+        step.count = qint64(count);
+        if (step.at)
+            return fail(QStringLiteral("at"), QStringLiteral("%1 holds over the whole run: no \"at\"").arg(member));
+        if (!within.isUndefined())
+            return fail(withinBeside ? QStringLiteral("within") : QStringLiteral("expect/within"),
+                        QStringLiteral("%1 holds over the whole run: no \"within\"").arg(member));
+        return true;
+    }
+
+    const Reader& m_reader;
+    const Scenario& m_scenario;
+    const rcm::Message& m_command;
+    const QDir& m_base;
+    const Scenario::PlanLoader& m_loadPlan;
+    const QString m_where;
+    const int m_number;
+};
+
+}  // namespace
+
 std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString& path, const PlanLoader& loadPlan,
                                            ScenarioError* error)
 {
@@ -318,223 +608,14 @@ std::optional<Scenario> Scenario::fromJson(const QByteArray& raw, const QString&
 
     Scenario scenario;
     scenario.path = path;
-    static const QStringList known = {QStringLiteral("name"), QStringLiteral("airframe"), QStringLiteral("transport"),
-                                      QStringLiteral("key"),  QStringLiteral("speed"),    QStringLiteral("duration"),
-                                      QStringLiteral("steps")};
-    for (auto it = root.begin(); it != root.end(); ++it)
-        if (!known.contains(it.key()))
-            return reader.fail(QStringLiteral("/") + it.key(), -1,
-                               QStringLiteral("unknown member \"%1\" (known: %2)")
-                                   .arg(it.key(), known.join(QStringLiteral(", ")))),
-                   std::nullopt;
-
-    scenario.name = root.value(QStringLiteral("name")).toString(QFileInfo(path).completeBaseName());
-    scenario.airframeName = root.value(QStringLiteral("airframe")).toString(QStringLiteral("well-equipped"));
-    QString airframeError;
-    const QString builtIn = QStringLiteral(":/airframes/%1.json").arg(scenario.airframeName);
-    const QString airframePath =
-        AirframeLoader::builtIn().contains(builtIn) ? builtIn : base.absoluteFilePath(scenario.airframeName);
-    const auto airframe = AirframeLoader::load(airframePath, &airframeError);
-    if (!airframe)
-        return reader.fail(QStringLiteral("/airframe"), -1, airframeError), std::nullopt;
-    scenario.airframe = *airframe;
-
-    const QString transport = root.value(QStringLiteral("transport")).toString(QStringLiteral("udp"));
-    static const QStringList transports = {QStringLiteral("udp"), QStringLiteral("serial"), QStringLiteral("modem")};
-    if (!transports.contains(transport))
-        return reader.fail(QStringLiteral("/transport"), -1,
-                           QStringLiteral("transport is \"udp\", \"serial\" or \"modem\"")),
-               std::nullopt;
-    scenario.transport = Transport(transports.indexOf(transport));
-    if (root.contains(QStringLiteral("key")) && !root.value(QStringLiteral("key")).isBool())
-        return reader.fail(QStringLiteral("/key"), -1, QStringLiteral("key is true or false")), std::nullopt;
-    scenario.key = root.value(QStringLiteral("key")).toBool();
-    scenario.speed = root.value(QStringLiteral("speed")).toDouble(1);
-    if (!(scenario.speed >= 1))
-        return reader.fail(QStringLiteral("/speed"), -1, QStringLiteral("speed is a number, 1 or more")), std::nullopt;
-    if (scenario.transport == Transport::Modem && scenario.speed != 1)
-        return reader.fail(QStringLiteral("/speed"), -1,
-                           QStringLiteral("the modem transport runs at speed 1: the modem model keeps real time")),
-               std::nullopt;
-    scenario.duration = root.value(QStringLiteral("duration")).toDouble(-1);
-    if (!(scenario.duration > 0))
-        return reader.fail(QStringLiteral("/duration"), -1, QStringLiteral("duration is seconds, more than 0")),
-               std::nullopt;
-
+    if (!readSettings(reader, root, base, scenario))
+        return std::nullopt;
     const rcm::Message command = rcm::restingCommand(scenario.airframe);
     const QJsonArray steps = root.value(QStringLiteral("steps")).toArray();
     for (int i = 0; i < steps.size(); ++i) {
-        const QString where = QStringLiteral("/steps/%1").arg(i);
-        const auto fail = [&](const QString& member, const QString& message) {
-            return reader.fail(member.isEmpty() ? where : where + QLatin1Char('/') + member, i + 1, message),
-                   std::nullopt;
-        };
-        if (!steps[i].isObject())
-            return fail(QString(), QStringLiteral("a step is an object"));
-        const QJsonObject object = steps[i].toObject();
         ScenarioStep step;
-        step.number = i + 1;
-        const JsonLineColumn at = jsonLineColumn(text, offsets.at(where));
-        step.line = at.line;
-        step.column = at.column;
-        if (object.contains(QStringLiteral("at"))) {
-            const double at = object.value(QStringLiteral("at")).toDouble(-1);
-            if (at < 0 || at > scenario.duration)
-                return fail(QStringLiteral("at"),
-                            QStringLiteral("at is seconds from 0 to the duration, %1").arg(scenario.duration));
-            step.at = at;
-        }
-        const QStringList actions = {QStringLiteral("set"), QStringLiteral("fault"), QStringLiteral("upload"),
-                                     QStringLiteral("expect")};
-        QStringList found;
-        for (auto it = object.begin(); it != object.end(); ++it) {
-            if (actions.contains(it.key()))
-                found << it.key();
-            else if (it.key() != QLatin1String("at") && it.key() != QLatin1String("within"))
-                return fail(it.key(), QStringLiteral("unknown member \"%1\" (a step has at, one of %2, and within "
-                                                     "with expect)")
-                                          .arg(it.key(), actions.join(QStringLiteral(", "))));
-        }
-        if (found.size() != 1)
-            return fail(QString(), QStringLiteral("a step has exactly one of set, fault, upload, expect"));
-        const QString action = found.front();
-        const QJsonValue value = object.value(action);
-        if (action != QLatin1String("expect") && !step.at)
-            return fail(QString(), QStringLiteral("%1 needs \"at\"").arg(action));
-        // "within" belongs to an expectation: beside "expect", as
-        // docs/rehearsal.md writes it, or inside it.
-        if (object.contains(QStringLiteral("within")) && action != QLatin1String("expect"))
-            return fail(QStringLiteral("within"),
-                        QStringLiteral("within goes with expect: the seconds after \"at\" it may take to hold"));
-
-        if (action == QLatin1String("set")) {
-            step.kind = ScenarioStep::Kind::Set;
-            step.text = value.toString();
-            QString why;
-            const auto items = parseUnitLine(step.text, command, &why);
-            if (!items)
-                return fail(action, why);
-            step.items = *items;
-        } else if (action == QLatin1String("upload")) {
-            step.kind = ScenarioStep::Kind::Upload;
-            step.text = value.toString();
-            QString why = QStringLiteral("no plan loader");
-            const auto plan = loadPlan ? loadPlan(base.absoluteFilePath(step.text), &why) : std::nullopt;
-            if (!plan)
-                return fail(action, why);
-            step.plan = *plan;
-        } else if (action == QLatin1String("fault")) {
-            step.kind = ScenarioStep::Kind::Fault;
-            const bool modem = scenario.transport == Transport::Modem;
-            if (value.toString() == QLatin1String("clear")) {
-                step.fault.kind = FaultSpec::Kind::Clear;
-            } else if (value.toString() == QLatin1String("call-drop")) {
-                if (!modem)
-                    return fail(action, QStringLiteral("call-drop needs \"transport\": \"modem\""));
-                step.fault.kind = FaultSpec::Kind::CallDrop;
-            } else if (modem) {
-                return fail(action, QStringLiteral("the modem transport's faults are \"call-drop\" and \"clear\": "
-                                                   "its bytes go through the modem model, not the fault channel"));
-            } else if (value.isObject()) {
-                const QJsonObject fault = value.toObject();
-                static const QStringList kinds = {QStringLiteral("ber"), QStringLiteral("outage"),
-                                                  QStringLiteral("slip"), QStringLiteral("burst")};
-                QStringList given;
-                for (auto it = fault.begin(); it != fault.end(); ++it) {
-                    if (kinds.contains(it.key()))
-                        given << it.key();
-                    else if (it.key() != QLatin1String("direction"))
-                        return fail(
-                            QStringLiteral("fault/") + it.key(),
-                            QStringLiteral("unknown fault \"%1\" (ber, outage, slip, burst, direction)").arg(it.key()));
-                }
-                if (given.size() != 1)
-                    return fail(action, QStringLiteral("a fault step has one of ber, outage, slip, burst"));
-                step.fault.kind = FaultSpec::Kind(kinds.indexOf(given.front()));
-                step.fault.value = fault.value(given.front()).toDouble(-1);
-                const bool seconds = step.fault.kind == FaultSpec::Kind::Outage;
-                if (seconds ? !(step.fault.value > 0) : !(step.fault.value >= 0 && step.fault.value <= 1))
-                    return fail(QStringLiteral("fault/") + given.front(),
-                                seconds ? QStringLiteral("outage is seconds, more than 0")
-                                        : QStringLiteral("%1 is a probability from 0 to 1").arg(given.front()));
-                const QString direction = fault.value(QStringLiteral("direction")).toString(QStringLiteral("both"));
-                static const QStringList directions = {QStringLiteral("both"), QStringLiteral("up"),
-                                                       QStringLiteral("down")};
-                if (!directions.contains(direction))
-                    return fail(QStringLiteral("fault/direction"), QStringLiteral("direction is \"up\" or \"down\""));
-                step.fault.direction = FaultDirection(directions.indexOf(direction));
-            } else {
-                return fail(action, QStringLiteral("a fault is an object, \"clear\" or \"call-drop\""));
-            }
-        } else {
-            if (!value.isObject())
-                return fail(action, QStringLiteral("expect is an object"));
-            const QJsonObject expect = value.toObject();
-            const bool withinBeside = object.contains(QStringLiteral("within"));
-            if (withinBeside && expect.contains(QStringLiteral("within")))
-                return fail(QStringLiteral("within"),
-                            QStringLiteral("within is given twice, beside expect and in it; give it once"));
-            const QJsonValue withinValue =
-                withinBeside ? object.value(QStringLiteral("within")) : expect.value(QStringLiteral("within"));
-            const auto within = [&]() -> bool {
-                step.within = withinValue.toDouble(-1);
-                return step.at && step.within >= 0;
-            };
-            const QString needsWithin = QStringLiteral("this expectation needs \"at\" and \"within\" (seconds)");
-            if (expect.contains(QStringLiteral("reported"))) {
-                step.kind = ScenarioStep::Kind::ExpectReported;
-                step.text = expect.value(QStringLiteral("reported")).toString();
-                QString why;
-                const auto items = parseUnitLine(step.text, command, &why);
-                if (!items)
-                    return fail(QStringLiteral("expect/reported"), why);
-                step.items = *items;
-                if (!within())
-                    return fail(action, needsWithin);
-            } else if (expect.contains(QStringLiteral("alarm"))) {
-                step.kind = ScenarioStep::Kind::ExpectAlarm;
-                step.text = expect.value(QStringLiteral("alarm")).toString();
-                if (step.text != QLatin1String("link-lost") && step.text != QLatin1String("link-regained"))
-                    return fail(QStringLiteral("expect/alarm"),
-                                QStringLiteral("alarm is \"link-lost\" or \"link-regained\""));
-                if (!within())
-                    return fail(action, needsWithin);
-            } else if (expect.contains(QStringLiteral("plan"))) {
-                step.kind = ScenarioStep::Kind::ExpectPlan;
-                step.text = expect.value(QStringLiteral("plan")).toString();
-                if (step.text != QLatin1String("acknowledged"))
-                    return fail(QStringLiteral("expect/plan"), QStringLiteral("plan is \"acknowledged\""));
-                if (!within())
-                    return fail(action, needsWithin);
-            } else if (expect.contains(QStringLiteral("wrong-frames")) ||
-                       expect.contains(QStringLiteral("frames-lost-at-most")) ||
-                       expect.contains(QStringLiteral("link-lost-at-most"))) {
-                static const QStringList counts = {QStringLiteral("wrong-frames"),
-                                                   QStringLiteral("frames-lost-at-most"),
-                                                   QStringLiteral("link-lost-at-most")};
-                static const ScenarioStep::Kind kinds[] = {ScenarioStep::Kind::ExpectWrongFrames,
-                                                           ScenarioStep::Kind::ExpectFramesLost,
-                                                           ScenarioStep::Kind::ExpectLinkLostAtMost};
-                const auto found =
-                    std::find_if(counts.begin(), counts.end(), [&](const QString& c) { return expect.contains(c); });
-                const QString member = *found;
-                step.kind = kinds[found - counts.begin()];
-                const double count = expect.value(member).toDouble(-1);
-                if (!isInteger(count) || count < 0)
-                    return fail(QStringLiteral("expect/") + member,
-                                QStringLiteral("%1 is a whole number, 0 or more").arg(member));
-                step.count = qint64(count);
-                if (step.at)
-                    return fail(QStringLiteral("at"),
-                                QStringLiteral("%1 holds over the whole run: no \"at\"").arg(member));
-                if (!withinValue.isUndefined())
-                    return fail(withinBeside ? QStringLiteral("within") : QStringLiteral("expect/within"),
-                                QStringLiteral("%1 holds over the whole run: no \"within\"").arg(member));
-            } else {
-                return fail(action, QStringLiteral("expect one of reported, alarm, plan, wrong-frames, "
-                                                   "frames-lost-at-most, link-lost-at-most"));
-            }
-        }
+        if (!StepReader(reader, scenario, command, base, loadPlan, i).read(steps[i], step))
+            return std::nullopt;
         scenario.steps.push_back(std::move(step));
     }
     return scenario;

@@ -90,7 +90,9 @@ QByteArray numberDialled(QByteArrayView dialString)
 
 }  // namespace
 
-struct SatelliteModem::Port {
+// The pty (master, slave and device): its slave held, so the master never
+// reads "no one there" (EIO) while no program has it.
+struct SatelliteModem::Port : PseudoTerminal {
     enum class Mode { Command, Dialling, Data, OnlineCommand };
     struct InFlight {
         qint64 arrivesAt = 0;
@@ -100,10 +102,7 @@ struct SatelliteModem::Port {
     int side = 0;
 
     // The pty.
-    int master = -1;
-    int slave = -1;  // held, so the master never reads "no one there" (EIO) while no program has it
     int watch = -1;  // of the slave's opens and closes
-    QString device;
     std::unique_ptr<QSocketNotifier> readable;
     std::unique_ptr<QSocketNotifier> writable;
     int users = 0;       // opens of the slave by programs; the model's own is not counted
@@ -277,12 +276,8 @@ void SatelliteModem::flushReports(Port& p)
 bool SatelliteModem::openPort(int side, QString* error)
 {
     Port& p = port(side);
-    PseudoTerminal pty;
-    if (!openRawPseudoTerminal(pty, error))
+    if (!openRawPseudoTerminal(p, error))
         return false;
-    p.master = pty.master;
-    p.slave = pty.slave;
-    p.device = pty.device;
     // Holding the slave hides a program's going away from the master, so its
     // opens and closes are counted instead.
     p.watch = ::inotify_add_watch(m_inotify, p.device.toLocal8Bit().constData(), IN_OPEN | IN_CLOSE);

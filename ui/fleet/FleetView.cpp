@@ -1,11 +1,11 @@
 #include "ui/fleet/FleetView.h"
 
 #include "ui/fleet/FleetModel.h"
+#include "ui/table/RecordTable.h"
 
 #include <QCheckBox>
 #include <QDateTime>
 #include <QHBoxLayout>
-#include <QHeaderView>
 #include <QLabel>
 #include <QTimeZone>
 #include <QSortFilterProxyModel>
@@ -58,28 +58,13 @@ FleetView::FleetView(FleetModel* model, QWidget* parent)
     });
 
     m_table->setModel(m_sorted);
-    m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
-    m_table->setSelectionMode(QAbstractItemView::SingleSelection);
-    m_table->setWordWrap(false);
-    m_table->setShowGrid(false);
-    m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
     m_table->setToolTip(tr("Double-click an aircraft, or press Enter, to observe it read-only"));
-    m_table->verticalHeader()->hide();
-    // Fixed row heights and column widths: a view that measured its rows
-    // would ask for the text of every one of them on each change.
-    m_table->verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
-    m_table->verticalHeader()->setDefaultSectionSize(m_table->fontMetrics().height() + 6);
-    QHeaderView* columns = m_table->horizontalHeader();
-    columns->setSectionResizeMode(QHeaderView::Interactive);
-    columns->setStretchLastSection(true);
-    columns->setHighlightSections(false);
-    const int digit = m_table->fontMetrics().horizontalAdvance(QLatin1Char('0'));
-    m_table->setColumnWidth(FleetModel::AircraftColumn, digit * 12);
-    m_table->setColumnWidth(FleetModel::LinkColumn, digit * 14);
-    m_table->setColumnWidth(FleetModel::InControlColumn, digit * 12);
-    m_table->setColumnWidth(FleetModel::BackupColumn, digit * 12);
-    m_table->setColumnWidth(FleetModel::StationsColumn, digit * 14);
-    m_table->setColumnWidth(FleetModel::LastFrameColumn, digit * 12);
+    setUpRecordTable(m_table, {{FleetModel::AircraftColumn, 12},
+                               {FleetModel::LinkColumn, 14},
+                               {FleetModel::InControlColumn, 12},
+                               {FleetModel::BackupColumn, 12},
+                               {FleetModel::StationsColumn, 14},
+                               {FleetModel::LastFrameColumn, 12}});
     m_table->setSortingEnabled(true);
     m_table->sortByColumn(FleetModel::AircraftColumn, Qt::AscendingOrder);
 

@@ -9,13 +9,13 @@
 #include "ui/framelog/FrameLogModel.h"
 #include "ui/framelog/HexDump.h"
 #include "ui/framelog/SteadyScrollBar.h"
+#include "ui/table/RecordTable.h"
 
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDateTime>
 #include <QFontDatabase>
 #include <QHBoxLayout>
-#include <QHeaderView>
 #include <QLabel>
 #include <QLocale>
 #include <QPlainTextEdit>
@@ -184,32 +184,17 @@ void FrameLogView::setUpTable()
     // first screen of a log opened for replay is painted with the log, not
     // together with everything else that changes when the replay starts.
     connect(m_filter, &QAbstractItemModel::modelReset, m_table, &QTableView::doItemsLayout);
-    m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
-    m_table->setSelectionMode(QAbstractItemView::SingleSelection);
     m_table->setAlternatingRowColors(true);
-    m_table->setWordWrap(false);
-    m_table->setShowGrid(false);
-    m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
-    m_table->verticalHeader()->hide();
     // Always there: a scroll bar that appears when a log fills the view (a
     // replay opened, a live session's first minute) narrows the view, and
     // the whole view and its header are painted again in that pass.
     m_table->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOn);
     m_table->setVerticalScrollBar(new SteadyScrollBar(Qt::Vertical));
-    // Fixed row heights and column widths: a view that measured its rows
-    // would ask for the text of all 200,000 of them.
-    m_table->verticalHeader()->setSectionResizeMode(QHeaderView::Fixed);
-    m_table->verticalHeader()->setDefaultSectionSize(m_table->fontMetrics().height() + 6);
-    QHeaderView* columns = m_table->horizontalHeader();
-    columns->setSectionResizeMode(QHeaderView::Interactive);
-    columns->setStretchLastSection(true);
-    columns->setHighlightSections(false);
-    const int digit = m_table->fontMetrics().horizontalAdvance(QLatin1Char('0'));
-    m_table->setColumnWidth(FrameLogModel::NumberColumn, digit * 9);
-    m_table->setColumnWidth(FrameLogModel::TimeColumn, digit * 15);
-    m_table->setColumnWidth(FrameLogModel::DirectionColumn, digit * 12);
-    m_table->setColumnWidth(FrameLogModel::MessageIdColumn, digit * 12);
-    m_table->setColumnWidth(FrameLogModel::CorrectedColumn, digit * 15);
+    setUpRecordTable(m_table, {{FrameLogModel::NumberColumn, 9},
+                               {FrameLogModel::TimeColumn, 15},
+                               {FrameLogModel::DirectionColumn, 12},
+                               {FrameLogModel::MessageIdColumn, 12},
+                               {FrameLogModel::CorrectedColumn, 15}});
 }
 
 void FrameLogView::setFollowing(bool on)

@@ -3,7 +3,6 @@
 #include "ui/panels/CommandGate.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/ItemText.h"
-#include "ui/panels/CardGrid.h"
 #include "ui/panels/UnitCard.h"
 
 #include <QPushButton>
@@ -15,24 +14,20 @@ constexpr rcm::ItemId kPhoto = rcm::ItemId::take_one_photo;
 }  // namespace
 
 CameraPanel::CameraPanel(CommandState* command, ReportedState* reported, QWidget* parent)
-    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QGridLayout(this))
+    : CardPanel(command, reported, QStringLiteral("CameraPanel"), parent)
 {
-    setObjectName(QStringLiteral("CameraPanel"));
     rebuild();
-    connect(command, &CommandState::airframeChanged, this, &CameraPanel::rebuild);
 }
 
-void CameraPanel::rebuild()
+void CameraPanel::addCards()
 {
-    // Deleted at once, not later: the old cards name units the command no longer has.
-    qDeleteAll(findChildren<UnitCard*>(Qt::FindDirectChildrenOnly));
     using enum rcm::ItemId;
     if (m_command->airframe().senseAndAvoid) {
         auto* sense = new UnitCard(m_command, m_reported, {rcm::UnitKind::Sense, 0},
                                    QString::fromUtf8(rcm::unitLabel(rcm::UnitKind::Sense).data()), this);
         for (rcm::ItemId id : rcm::kSenseAndAvoidZooms)
             sense->addSpinBox(id);
-        CardGrid::add(m_layout, sense);
+        place(sense);
     }
     const auto& cameras = m_command->airframe().cameras;
     for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
@@ -48,7 +43,7 @@ void CameraPanel::rebuild()
         addPhotoButton(card);
         card->addStation(cam_GCS_destination);
         card->addStation(cam_GCS_backup);
-        CardGrid::add(m_layout, card);
+        place(card);
     }
 }
 

@@ -7,25 +7,20 @@
 // CommandState's airframe changes.
 #pragma once
 
-#include <QWidget>
+#include "ui/panels/CardPanel.h"
 
 class CommandState;
 class ReportedState;
-class QGridLayout;
 class QPushButton;
 class UnitCard;
 
-class CameraPanel : public QWidget {
+class CameraPanel : public CardPanel {
     Q_OBJECT
 
 public:
     CameraPanel(CommandState* command, ReportedState* reported, QWidget* parent = nullptr);
 
 private:
-    void rebuild();
+    void addCards() override;
     QPushButton* addPhotoButton(UnitCard* card);
-
-    CommandState* m_command;
-    ReportedState* m_reported;
-    QGridLayout* m_layout;
 };

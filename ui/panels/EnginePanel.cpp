@@ -1,21 +1,16 @@
 #include "ui/panels/EnginePanel.h"
 
 #include "ui/panels/CommandState.h"
-#include "ui/panels/CardGrid.h"
 #include "ui/panels/UnitCard.h"
 
 EnginePanel::EnginePanel(CommandState* command, ReportedState* reported, QWidget* parent)
-    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QGridLayout(this))
+    : CardPanel(command, reported, QStringLiteral("EnginePanel"), parent)
 {
-    setObjectName(QStringLiteral("EnginePanel"));
     rebuild();
-    connect(command, &CommandState::airframeChanged, this, &EnginePanel::rebuild);
 }
 
-void EnginePanel::rebuild()
+void EnginePanel::addCards()
 {
-    // Deleted at once, not later: the old cards name units the command no longer has.
-    qDeleteAll(findChildren<UnitCard*>(Qt::FindDirectChildrenOnly));
     using enum rcm::ItemId;
     const auto& engines = m_command->airframe().engines;
     for (int i = 0; i < static_cast<int>(engines.size()); ++i) {
@@ -27,6 +22,6 @@ void EnginePanel::rebuild()
         card->addComboBox(eng_status, 1);
         card->addSpinBox(eng_prop_pitch);
         card->addSpinBox(eng_carb_SET);
-        CardGrid::add(m_layout, card);
+        place(card);
     }
 }

@@ -3,22 +3,17 @@
 // cards are rebuilt when CommandState's airframe changes.
 #pragma once
 
-#include <QWidget>
+#include "ui/panels/CardPanel.h"
 
 class CommandState;
 class ReportedState;
-class QGridLayout;
 
-class EnginePanel : public QWidget {
+class EnginePanel : public CardPanel {
     Q_OBJECT
 
 public:
     EnginePanel(CommandState* command, ReportedState* reported, QWidget* parent = nullptr);
 
 private:
-    void rebuild();
-
-    CommandState* m_command;
-    ReportedState* m_reported;
-    QGridLayout* m_layout;
+    void addCards() override;
 };

@@ -1,21 +1,16 @@
 #include "ui/panels/RadioPanel.h"
 
 #include "ui/panels/CommandState.h"
-#include "ui/panels/CardGrid.h"
 #include "ui/panels/UnitCard.h"
 
 RadioPanel::RadioPanel(CommandState* command, ReportedState* reported, QWidget* parent)
-    : QWidget(parent), m_command(command), m_reported(reported), m_layout(new QGridLayout(this))
+    : CardPanel(command, reported, QStringLiteral("RadioPanel"), parent)
 {
-    setObjectName(QStringLiteral("RadioPanel"));
     rebuild();
-    connect(command, &CommandState::airframeChanged, this, &RadioPanel::rebuild);
 }
 
-void RadioPanel::rebuild()
+void RadioPanel::addCards()
 {
-    // Deleted at once, not later: the old cards name units the command no longer has.
-    qDeleteAll(findChildren<UnitCard*>(Qt::FindDirectChildrenOnly));
     using enum rcm::ItemId;
     const auto& radios = m_command->airframe().radios;
     for (int i = 0; i < static_cast<int>(radios.size()); ++i) {
@@ -28,6 +23,6 @@ void RadioPanel::rebuild()
         card->addSpinBox(Rx_freq);
         card->addSpinBox(Tx_freq);
         card->addSpinBox(Tx_OP_power);
-        CardGrid::add(m_layout, card);
+        place(card);
     }
 }

@@ -4,22 +4,17 @@
 // rebuilt when CommandState's airframe changes.
 #pragma once
 
-#include <QWidget>
+#include "ui/panels/CardPanel.h"
 
 class CommandState;
 class ReportedState;
-class QGridLayout;
 
-class RadioPanel : public QWidget {
+class RadioPanel : public CardPanel {
     Q_OBJECT
 
 public:
     RadioPanel(CommandState* command, ReportedState* reported, QWidget* parent = nullptr);
 
 private:
-    void rebuild();
-
-    CommandState* m_command;
-    ReportedState* m_reported;
-    QGridLayout* m_layout;
+    void addCards() override;
 };

@@ -27,6 +27,15 @@ UnitCard::UnitCard(CommandState* command, ReportedState* reported, UnitRef ref, 
     m_grid->setColumnStretch(SpareColumn, 1);
 }
 
+UnitCard* UnitCard::ofFields(CommandState* command, ReportedState* reported, UnitRef ref, rcm::ItemId id,
+                             QWidget* parent)
+{
+    auto* card = new UnitCard(command, reported, ref, ItemText::label(id), parent);
+    for (int field = 0; field < static_cast<int>(rcm::itemInfo(id).fields.size()); ++field)
+        card->addButtons(id, field);
+    return card;
+}
+
 ReportedLabel* UnitCard::addRow(QWidget* control, rcm::ItemId id, int field)
 {
     auto* label = new QLabel(ItemText::label(id, field), this);

@@ -25,6 +25,11 @@ public:
     UnitCard(CommandState* command, ReportedState* reported, UnitRef ref, const QString& title,
              QWidget* parent = nullptr);
 
+    // A card titled with the item's label and a button group for each of its
+    // fields (the landing gear's four wheels, the lights).
+    static UnitCard* ofFields(CommandState* command, ReportedState* reported, UnitRef ref, rcm::ItemId id,
+                              QWidget* parent);
+
     UnitRef unitRef() const { return m_ref; }
 
     ItemSpinBox* addSpinBox(rcm::ItemId id);
