@@ -5,7 +5,11 @@
 
 LinkController::LinkController(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log, LinkWorker::Options options,
                                QObject* parent)
-    : LinkEvents(parent), m_thread(new QThread), m_worker(new LinkWorker(std::move(link), std::move(log), std::move(options)))
+    : LinkEvents(parent),
+      m_thread(new QThread),
+      m_worker(new LinkWorker(std::move(link), std::move(log), std::move(options))),
+      m_clock(m_worker->sharedClock()),
+      m_interval(m_worker->options().interval)
 {
     LinkWorker::registerMetaTypes();
     m_thread->setObjectName(QStringLiteral("link"));
