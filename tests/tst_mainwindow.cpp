@@ -571,10 +571,13 @@ void TestMainWindow::previewShowsTheBytesTheLinkSends()
     preview.setClock([clock] { return clock->utcMicros(); });
     connect(&worker, &LinkWorker::frameSent, &preview, &CommandPreview::frameSent);
     preview.setCommand(command.message());
+    preview.resetSent(options.secure->counter->peek());  // as LinkController::firstMessageId() reads it
     worker.setCommand(command.message());
     worker.start();
+    const QByteArray shownFirst = preview.bytes();
     clock->advance(std::chrono::seconds(1));
     QCOMPARE(sent.size(), 1);
+    QCOMPARE(sent[0].toHex(' '), shownFirst.toHex(' '));
     QVERIFY(command.setNumber(UnitRef{rcm::UnitKind::Engine, 1}, rcm::ItemId::eng_prop_pitch, 200));
     preview.setCommand(command.message());
     worker.setCommand(command.message());

@@ -53,6 +53,9 @@ public:
     const std::shared_ptr<Clock>& clock() const { return m_clock; }
     // The worker's tick interval.
     std::chrono::milliseconds interval() const { return m_interval; }
+    // ID_msg of the worker's first frame: Options::firstMessageId, or on a
+    // keyed link the send counter's next ID, read before the worker started.
+    std::uint32_t firstMessageId() const { return m_firstMessageId; }
 
 public slots:
     void start();
@@ -66,5 +69,6 @@ private:
     LinkWorker* m_worker;  // lives in m_thread, deleted there when it finishes
     std::shared_ptr<Clock> m_clock;
     std::chrono::milliseconds m_interval;
+    std::uint32_t m_firstMessageId;
     LinkStatistics m_statistics;
 };

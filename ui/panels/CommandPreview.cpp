@@ -206,10 +206,10 @@ void CommandPreview::changeEvent(QEvent* event)
     }
 }
 
-void CommandPreview::resetSent()
+void CommandPreview::resetSent(quint32 firstMessageId)
 {
     m_lastSent.reset();
-    m_nextId = 0;
+    m_nextId = firstMessageId % rcm::kMessageIdModulus;
     invalidate();
 }
 

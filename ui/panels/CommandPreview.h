@@ -55,8 +55,8 @@ public:
 public slots:
     // The command as it stands went out as frame `messageId`.
     void frameSent(quint32 messageId);
-    // A new link: nothing has been sent on it yet.
-    void resetSent();
+    // A new link: nothing has been sent on it yet; its first frame will be `firstMessageId`.
+    void resetSent(quint32 firstMessageId = 0);
 
 protected:
     // A new theme: the muted colour of the text view follows it.

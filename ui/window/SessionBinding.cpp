@@ -80,7 +80,7 @@ void SessionBinding::linkStarted(const LinkController* controller)
     m_parts.preview->setDatagram(session->isDatagram());
     m_parts.preview->setCipher(sendingCodec(session->logKey()));
     m_parts.preview->setClock([clock = controller->clock()] { return clock->utcMicros(); }, controller->interval());
-    m_parts.preview->resetSent();
+    m_parts.preview->resetSent(controller->firstMessageId());
     m_parts.flightPlan->setLinkReady(!replay && session->commanding());
     // A replay says so, with the log's own time, and raises no link alarm.
     m_notices.alerts()->setReplay(replay);
