@@ -95,6 +95,7 @@ private slots:
     void sendPathBuildsVectorsExactly_data();
     void sendPathBuildsVectorsExactly();
     void sendPathStampsAndEnciphers();
+    void blockDecoderStaysInsideTheCodec();
     void randomRoundTrip();
     void datagramRoundTrip();
     void restingCommandEncodes();
@@ -391,6 +392,32 @@ void TestCodec::sendPathStampsAndEnciphers()
     Diagnostics errors;
     QVERIFY(buildFrame(full, stamp, SendFormat{true, &up}, errors).empty());
     QVERIFY(!errors.empty());
+}
+
+// Outside codec/ a frame is read through codec/receive only, which also
+// decides whether it is accepted: no source of link/, ui/ or app/ reaches the
+// block decoder or deciphers on its own.
+void TestCodec::blockDecoderStaysInsideTheCodec()
+{
+    static const char* const bypasses[] = {"MessageDecoder.h", "decodeFrame(", "decodeBlocks(", "decodeBlock1(",
+                                           "decodeBlock2(", "decryptBlocks(", "openFrame("};
+    QStringList found;
+    int files = 0;
+    for (const char* folder : {"link", "ui", "app"}) {
+        QDirIterator it(QStringLiteral(RCM_SOURCE_DIR "/") + QLatin1String(folder), {"*.cpp", "*.h"}, QDir::Files,
+                        QDirIterator::Subdirectories);
+        while (it.hasNext()) {
+            QFile f(it.next());
+            QVERIFY(f.open(QIODevice::ReadOnly));
+            ++files;
+            const QByteArray text = f.readAll();
+            for (const char* bypass : bypasses)
+                if (text.contains(bypass))
+                    found << QStringLiteral("%1: %2").arg(f.fileName(), QLatin1String(bypass));
+        }
+    }
+    QVERIFY(files > 100);
+    QVERIFY2(found.isEmpty(), qPrintable(found.join(QLatin1Char('\n'))));
 }
 
 void TestCodec::randomRoundTrip()

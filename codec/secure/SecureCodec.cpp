@@ -3,6 +3,7 @@
 #include "codec/secure/Hctr2.h"
 #include "codec/message/DigitPairs.h"
 #include "codec/message/ItemTable.h"
+#include "codec/message/MessageDecoder.h"
 
 #include <openssl/core_names.h>
 #include <openssl/crypto.h>
