@@ -49,7 +49,8 @@ std::vector<std::uint8_t> buildFrame(const Message& message, const SendFormat& f
         const std::optional<EncodedBlocks> b = format.cipher->encode(message, errors);
         if (!b)
             return {};
-        return format.datagram ? toVector(makeDatagram(b->block1, b->block2)) : toVector(makeFrame(b->block1, b->block2));
+        return format.datagram ? toVector(makeDatagram(b->block1, b->block2))
+                               : toVector(makeFrame(b->block1, b->block2));
     }
     if (format.datagram) {
         if (const auto datagram = encodeDatagram(message, errors))

@@ -264,8 +264,9 @@ void ScenarioRunner::received(RehearsalChannel::End sender, const rcm::Message& 
     if (m_modem)
         return;  // what uasim sent through the modem model is not seen here: counted, not judged
     const auto& recent = m_channel.recentFrames(sender);
-    const bool sent = std::any_of(recent.rbegin(), recent.rend(),
-                                  [&](const QByteArray& f) { return sentMessage(f, m_ciphers[sender].get()) == message; });
+    const bool sent = std::any_of(recent.rbegin(), recent.rend(), [&](const QByteArray& f) {
+        return sentMessage(f, m_ciphers[sender].get()) == message;
+    });
     if (!sent) {
         ++m_report.frames.wrong;
         note(QStringLiteral("event"), sender == RehearsalChannel::Console

@@ -217,10 +217,11 @@ void CommandPreview::refresh()
 {
     m_stale = false;
     // Stamped as the link will stamp the next frame.
-    const std::int64_t now = m_utcMicros ? m_utcMicros()
-                                         : std::chrono::duration_cast<std::chrono::microseconds>(
-                                               std::chrono::system_clock::now().time_since_epoch())
-                                               .count();
+    const std::int64_t now =
+        m_utcMicros
+            ? m_utcMicros()
+            : std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+                  .count();
     const rcm::SendStamp stamp{m_nextId, rcm::nextSendMicros(now, m_interval)};
     const rcm::SendFormat format{m_datagram, m_cipher.get()};
     rcm::Message next = m_command;
