@@ -3,9 +3,9 @@
 #include "codec/message/DigitPairs.h"
 
 #include "codec/cli/InputFile.h"
-#include "codec/message/MessageEncoder.h"
 #include "codec/message/TextFormat.h"
 #include "codec/secure/SecureCodec.h"
+#include "codec/send/FrameBuilder.h"
 
 #include <chrono>
 #include <unistd.h>
@@ -17,34 +17,6 @@
 #include <ctime>
 
 namespace rcm::cli {
-namespace {
-
-// The frame (or datagram) bytes, or nothing with the reasons in `errors`.
-std::vector<std::uint8_t> encodeBytes(const Options& o, const std::optional<rcm::secure::SecretKey>& key,
-                                      const rcm::Message& message, rcm::Diagnostics& errors)
-{
-    std::vector<std::uint8_t> bytes;
-    if (key) {
-        const rcm::secure::SecureCodec codec(*key, o.direction.value_or(rcm::secure::Direction::GcsToUa));
-        if (const auto b = codec.encode(message, errors)) {
-            if (o.datagram) {
-                const rcm::DatagramBytes d = rcm::makeDatagram(b->block1, b->block2);
-                bytes.assign(d.begin(), d.end());
-            } else {
-                const rcm::FrameBytes f = rcm::makeFrame(b->block1, b->block2);
-                bytes.assign(f.begin(), f.end());
-            }
-        }
-    } else if (o.datagram) {
-        if (auto d = rcm::encodeDatagram(message, errors))
-            bytes.assign(d->begin(), d->end());
-    } else if (auto f = rcm::encodeFrame(message, errors)) {
-        bytes.assign(f->begin(), f->end());
-    }
-    return bytes;
-}
-
-}  // namespace
 
 void fillHeaderDefaults(rcm::Message& m)
 {
@@ -89,8 +61,12 @@ int encode(const Options& o)
             return kExitFailed;
         }
     }
+    std::optional<rcm::secure::SecureCodec> cipher;
+    if (key)
+        cipher.emplace(*key, o.direction.value_or(rcm::secure::Direction::GcsToUa));
     rcm::Diagnostics errors;
-    const std::vector<std::uint8_t> bytes = encodeBytes(o, key, parsed.message, errors);
+    const std::vector<std::uint8_t> bytes =
+        rcm::buildFrame(parsed.message, rcm::SendFormat{o.datagram, cipher ? &*cipher : nullptr}, errors);
     if (bytes.empty()) {
         for (const rcm::Diagnostic& d : errors)
             std::fprintf(stderr, "%s: %s\n", name.c_str(), d.toString().c_str());

@@ -1,22 +1,19 @@
 // The two data blocks, a frame or a datagram -> Message. Reads everything it
 // can: each problem becomes a Diagnostic saying what and where, and every item
 // read correctly before or after it is kept.
+//
+// Internal to codec/: the receive path (codec/receive) and the secure codec
+// read blocks with it, and the codec's own tests. Nothing outside codec/
+// includes it: a frame is read through codec/receive (FrameReceiver for a
+// link, readLoggedFrame for a logged frame), which also decides whether it
+// is accepted. Its result type is public, in DecodeResult.h.
 #pragma once
 
-#include "codec/message/Diagnostic.h"
-#include "codec/frame/Frame.h"
-#include "codec/message/Message.h"
+#include "codec/message/DecodeResult.h"
 
 #include <span>
 
 namespace rcm {
-
-struct DecodeResult {
-    Message message;
-    Diagnostics diagnostics;  // problems inside the blocks (corrupt fields, unknown IDs ...)
-    Corrections corrected;    // in each codeword, -1 when uncorrectable
-    bool ok() const { return corrected.ok(); }
-};
 
 // `looseBytes`, when given, receives the count of bytes after the first item
 // that are not items (padding, BEGIN, END between or after items): 0 means

@@ -2,6 +2,7 @@
 
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/ItemTable.h"
+#include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/message/ValueCodec.h"
 #include "codec/receive/EncodedItems.h"

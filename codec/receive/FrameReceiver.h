@@ -38,7 +38,7 @@
 #pragma once
 
 #include "codec/frame/StreamSync.h"
-#include "codec/message/MessageDecoder.h"
+#include "codec/message/DecodeResult.h"
 #include "codec/receive/Refusal.h"
 
 #include <array>

@@ -3,6 +3,7 @@
 #include "codec/frame/ReedSolomon.h"
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/message/ItemTable.h"
+#include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/message/MessagePrediction.h"
 #include "codec/receive/EncodedItems.h"

@@ -4,6 +4,7 @@
 #include "codec/message/DigitPairs.h"
 #include "codec/message/HexDigits.h"
 #include "codec/message/ItemTable.h"
+#include "codec/message/MessageDecoder.h"
 
 #include <openssl/core_names.h>
 #include <openssl/crypto.h>

@@ -57,7 +57,7 @@
 
 #include "codec/message/Diagnostic.h"
 #include "codec/frame/Frame.h"
-#include "codec/message/MessageDecoder.h"
+#include "codec/message/DecodeResult.h"
 #include "codec/message/MessageEncoder.h"
 
 #include <array>

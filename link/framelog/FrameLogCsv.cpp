@@ -1,6 +1,5 @@
 #include "link/framelog/FrameLogCsv.h"
 
-#include "codec/message/MessageDecoder.h"
 #include "codec/receive/LoggedFrameReading.h"
 #include "codec/message/TextFormat.h"
 #include "link/framelog/FrameLogReader.h"

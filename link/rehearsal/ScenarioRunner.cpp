@@ -1,8 +1,7 @@
 #include "link/rehearsal/ScenarioRunner.h"
 
-#include "codec/frame/Frame.h"
 #include "codec/message/FlightPlanTransfer.h"
-#include "codec/message/MessageDecoder.h"
+#include "codec/receive/LoggedFrameReading.h"
 #include "codec/secure/SecureCodec.h"
 #include "link/aircraft/AircraftResponder.h"
 #include "link/aircraft/SimulatedAircraft.h"
@@ -44,16 +43,20 @@ constexpr int kQualityWindow = 10;
 // Passes over the plan before the upload gives up, as the console's.
 constexpr int kUploadPasses = 5;
 
-// The message in a frame as sent: deciphered with `cipher` on the secure link.
-rcm::Message decoded(const QByteArray& frame, const rcm::secure::SecureCodec* cipher)
+// The message in a frame as its sender sent it, read through the receive
+// path for logged frames (with the sender's direction of the key on the
+// secure link); nothing when that path refuses it.
+std::optional<rcm::Message> sentMessage(const QByteArray& frame, const rcm::secure::SecureCodec* cipher)
 {
     const auto* bytes = reinterpret_cast<const std::uint8_t*>(frame.constData());
-    if (!cipher)
-        return rcm::decodeFrame(std::span(bytes, std::size_t(frame.size()))).message;
-    const std::size_t start = std::size_t(frame.size()) == rcm::kFrameSize ? rcm::kPreambleSize : 0;
-    const auto blocks =
-        rcm::decodeCodewords(std::span<const std::uint8_t, rcm::kDatagramSize>(bytes + start, rcm::kDatagramSize));
-    return cipher->decryptBlocks(blocks).decoded.message;
+    std::vector<const rcm::secure::SecureCodec*> codecs;
+    if (cipher)
+        codecs.push_back(cipher);
+    rcm::LoggedFrameReading reading =
+        rcm::readLoggedFrame(std::span(bytes, std::size_t(frame.size())), cipher != nullptr, codecs);
+    if (!reading.read())
+        return std::nullopt;
+    return std::move(reading.decoded.message);
 }
 
 }  // namespace
@@ -262,8 +265,9 @@ void ScenarioRunner::received(RehearsalChannel::End sender, const rcm::Message& 
     if (m_modem)
         return;  // what uasim sent through the modem model is not seen here: counted, not judged
     const auto& recent = m_channel.recentFrames(sender);
-    const bool sent = std::any_of(recent.rbegin(), recent.rend(),
-                                  [&](const QByteArray& f) { return decoded(f, m_ciphers[sender].get()) == message; });
+    const bool sent = std::any_of(recent.rbegin(), recent.rend(), [&](const QByteArray& f) {
+        return sentMessage(f, m_ciphers[sender].get()) == message;
+    });
     if (!sent) {
         ++m_report.frames.wrong;
         note(QStringLiteral("event"), sender == RehearsalChannel::Console
@@ -598,8 +602,8 @@ void ScenarioRunner::uasimSaid(const QString& line)
     const std::int64_t id = m.captured(1).toLongLong();
     const auto& recent = m_channel.recentFrames(RehearsalChannel::Console);
     const auto sentFrame = [&](const QByteArray& f) {
-        const rcm::Message sentMessage = decoded(f, m_ciphers[RehearsalChannel::Console].get());
-        return sentMessage.header.has(rcm::ItemId::ID_msg) && sentMessage.header.number(rcm::ItemId::ID_msg) == id;
+        const std::optional<rcm::Message> sent = sentMessage(f, m_ciphers[RehearsalChannel::Console].get());
+        return sent && sent->header.has(rcm::ItemId::ID_msg) && sent->header.number(rcm::ItemId::ID_msg) == id;
     };
     // Through the modem model no channel sees the frames: the console's own word for what it sent.
     const bool sent = m_modem ? std::find(m_sentIds.begin(), m_sentIds.end(), quint32(id)) != m_sentIds.end()

@@ -1,11 +1,19 @@
 #include "link/session/LinkController.h"
 
+#include "codec/secure/SecureCodec.h"
+
 #include <QDeadlineTimer>
 #include <QMetaMethod>
 
 LinkController::LinkController(std::unique_ptr<Link> link, std::unique_ptr<FrameLog> log, LinkWorker::Options options,
                                QObject* parent)
-    : LinkEvents(parent), m_thread(new QThread), m_worker(new LinkWorker(std::move(link), std::move(log), std::move(options)))
+    : LinkEvents(parent),
+      m_thread(new QThread),
+      m_worker(new LinkWorker(std::move(link), std::move(log), std::move(options))),
+      m_clock(m_worker->sharedClock()),
+      m_interval(m_worker->options().interval),
+      m_firstMessageId(m_worker->options().secure ? m_worker->options().secure->counter->peek()
+                                                  : m_worker->options().firstMessageId % LinkWorker::kMessageIdModulus)
 {
     LinkWorker::registerMetaTypes();
     m_thread->setObjectName(QStringLiteral("link"));

@@ -48,6 +48,14 @@ public:
 
     // The latest statistics received from the worker.
     const LinkStatistics& statistics() const { return m_statistics; }
+    // The clock the worker stamps its frames on (its utcMicros() may be read
+    // from any thread): what the console's preview of the next frame uses.
+    const std::shared_ptr<Clock>& clock() const { return m_clock; }
+    // The worker's tick interval.
+    std::chrono::milliseconds interval() const { return m_interval; }
+    // ID_msg of the worker's first frame: Options::firstMessageId, or on a
+    // keyed link the send counter's next ID, read before the worker started.
+    std::uint32_t firstMessageId() const { return m_firstMessageId; }
 
 public slots:
     void start();
@@ -59,5 +67,8 @@ public slots:
 private:
     QThread* m_thread;     // owned; let go, to delete itself, if it will not end in time
     LinkWorker* m_worker;  // lives in m_thread, deleted there when it finishes
+    std::shared_ptr<Clock> m_clock;
+    std::chrono::milliseconds m_interval;
+    std::uint32_t m_firstMessageId;
     LinkStatistics m_statistics;
 };

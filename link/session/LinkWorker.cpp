@@ -5,10 +5,8 @@
 #include "link/session/LinkWorker.h"
 
 #include "codec/message/FlightPlanTransfer.h"
-#include "codec/message/DigitPairs.h"
-#include "codec/message/MessageDecoder.h"
-#include "codec/message/MessageEncoder.h"
 #include "codec/secure/SecureCodec.h"
+#include "codec/send/FrameBuilder.h"
 #include "link/transport/UdpLink.h"
 
 #include <QStringList>
@@ -17,26 +15,12 @@
 
 namespace {
 
-// time_UTC hhmmss and date_UTC yymmdd of that instant.
-void setTimeItems(rcm::Message& message, std::int64_t utcMicros)
-{
-    const std::chrono::sys_time<std::chrono::microseconds> instant{std::chrono::microseconds{utcMicros}};
-    message.header.set(rcm::ItemId::time_UTC, rcm::DigitPairs::timeOf(instant).packed());
-    message.header.set(rcm::ItemId::date_UTC, rcm::DigitPairs::dateOf(instant).packed());
-}
-
 QString joinDiagnostics(const rcm::Diagnostics& diagnostics)
 {
     QStringList lines;
     for (const rcm::Diagnostic& d : diagnostics)
         lines << QString::fromStdString(d.toString());
     return lines.join(QLatin1Char('\n'));
-}
-
-template <std::size_t N>
-QByteArray toByteArray(const std::array<std::uint8_t, N>& bytes)
-{
-    return QByteArray(reinterpret_cast<const char*>(bytes.data()), qsizetype(N));
 }
 
 QByteArray toByteArray(std::span<const std::uint8_t> bytes)
@@ -179,13 +163,7 @@ void LinkWorker::stop()
 
 void LinkWorker::setCommand(const rcm::Message& command, bool withPlanSections)
 {
-    // The items the worker fills in are set to valid placeholders, so only
-    // the operator's part is judged.
-    rcm::Message probe = command;
-    probe.header.set(rcm::ItemId::ID_msg, std::int64_t(0));
-    setTimeItems(probe, 0);
-    const rcm::Diagnostics errors =
-        rcm::validate(probe, m_options.secure ? rcm::secure::encodeOptions() : rcm::EncodeOptions{});
+    const rcm::Diagnostics errors = rcm::validateCommand(command, sendFormat());
     if (!errors.empty()) {
         emit commandRejected(joinDiagnostics(errors));
         return;
@@ -196,9 +174,8 @@ void LinkWorker::setCommand(const rcm::Message& command, bool withPlanSections)
 
 void LinkWorker::armTick()
 {
-    const std::int64_t period = std::chrono::microseconds(m_options.interval).count();
     const std::int64_t now = m_clock->utcMicros();
-    m_idealTickMicros = (now / period + 1) * period;
+    m_idealTickMicros = rcm::nextSendMicros(now, m_options.interval);
     // Rounded up: a timer that fires a little late costs spread, one that
     // fires early would stamp the frame with the previous second.
     m_tickTimer->start(std::chrono::milliseconds((m_idealTickMicros - now + 999) / 1000));
@@ -246,8 +223,7 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
             reportError(m_lastEncodeError);
         }
     }
-    message.header.set(rcm::ItemId::ID_msg, std::int64_t(id));
-    setTimeItems(message, m_clock->utcMicros());
+    rcm::stampMessage(message, rcm::SendStamp{id, m_clock->utcMicros()});
     const std::optional<QByteArray> bytes = encode(message);
     if (!bytes)
         return;
@@ -265,24 +241,19 @@ void LinkWorker::sendFrame(std::int64_t idealTickMicros)
     statisticsDirty();
 }
 
+rcm::SendFormat LinkWorker::sendFormat() const
+{
+    return rcm::SendFormat{!m_link->isStream(), m_options.secure ? m_options.secure->sender.get() : nullptr};
+}
+
 std::optional<QByteArray> LinkWorker::encode(rcm::Message& message)
 {
-    const auto attempt = [this](const rcm::Message& m, rcm::Diagnostics& errors) -> std::optional<QByteArray> {
-        if (m_options.secure) {
-            const std::optional<rcm::EncodedBlocks> b = m_options.secure->sender->encode(m, errors);
-            if (!b)
-                return std::nullopt;
-            if (m_link->isStream())
-                return toByteArray(rcm::makeFrame(b->block1, b->block2));
-            return toByteArray(rcm::makeDatagram(b->block1, b->block2));
-        }
-        if (m_link->isStream()) {
-            if (auto frame = rcm::encodeFrame(m, errors))
-                return toByteArray(*frame);
-        } else if (auto datagram = rcm::encodeDatagram(m, errors)) {
-            return toByteArray(*datagram);
-        }
-        return std::nullopt;
+    const rcm::SendFormat format = sendFormat();
+    const auto attempt = [&format](const rcm::Message& m, rcm::Diagnostics& errors) -> std::optional<QByteArray> {
+        const std::vector<std::uint8_t> bytes = rcm::buildFrame(m, format, errors);
+        if (bytes.empty())
+            return std::nullopt;
+        return toByteArray(bytes);
     };
     rcm::Diagnostics errors;
     std::optional<QByteArray> bytes = attempt(message, errors);

@@ -9,8 +9,8 @@
 // Each of its parts is passed in or owned, never global: the Link moves the
 // bytes, rcm::FrameReceiver (the one receive path: sync, RS, decipher,
 // decode, the acceptance decision of docs/protocol.md section 8) turns what
-// arrives into frames delivered or refused, the codec encodes, FrameLog
-// records.
+// arrives into frames delivered or refused, rcm::buildFrame (the one send
+// path) turns the stamped command into the bytes sent, FrameLog records.
 
 #include "codec/message/Message.h"
 #include "link/clock/Clock.h"
@@ -35,6 +35,7 @@
 namespace rcm {
 class FrameReceiver;
 struct ReceivedFrame;
+struct SendFormat;
 namespace secure {
 struct SecureEndpoint;
 }  // namespace secure
@@ -97,6 +98,7 @@ public:
     Link* link() const { return m_link.get(); }
     // options().clock, or the system clock the worker made for itself.
     Clock& clock() const { return *m_clock; }
+    std::shared_ptr<Clock> sharedClock() const { return m_clock; }
 
 public slots:
     // Opens the link and starts the cadence.
@@ -115,6 +117,10 @@ private:
     void armTick();
     void tick();
     void sendFrame(std::int64_t idealTickMicros);
+    // The link's framing and, keyed, the sending direction's codec.
+    rcm::SendFormat sendFormat() const;
+    // The stamped message through the send path (codec/send/FrameBuilder.h);
+    // a flight plan section that cannot go is dropped, and said so, once.
     std::optional<QByteArray> encode(rcm::Message& message);
     void receiveBytes(const QByteArray& bytes);
     void receiveDatagram(const QByteArray& datagram);

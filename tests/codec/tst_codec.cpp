@@ -7,6 +7,9 @@
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/frame/ReedSolomon.h"
+#include "codec/receive/LoggedFrameReading.h"
+#include "codec/secure/SecureCodec.h"
+#include "codec/send/FrameBuilder.h"
 
 #include <QtTest>
 
@@ -89,6 +92,10 @@ private slots:
     void vectorsDecode();
     void vectorsReencodeExactly_data();
     void vectorsReencodeExactly();
+    void sendPathBuildsVectorsExactly_data();
+    void sendPathBuildsVectorsExactly();
+    void sendPathStampsAndEnciphers();
+    void blockDecoderStaysInsideTheCodec();
     void randomRoundTrip();
     void datagramRoundTrip();
     void restingCommandEncodes();
@@ -299,6 +306,118 @@ void TestCodec::vectorsReencodeExactly()
     QVERIFY2(frame, dump(errors));
     const QByteArray clean = readVector(file == "well-equipped.errors.bin" ? "well-equipped.bin" : file.toLatin1().constData());
     QCOMPARE(hex(*frame), hex(bytesOf(clean)));
+}
+
+void TestCodec::sendPathBuildsVectorsExactly_data() { vectorsDecode_data(); }
+
+// The one send path, given the vector's command and its stamp, builds the
+// separate implementation's bytes: the frame, and the datagram within it.
+void TestCodec::sendPathBuildsVectorsExactly()
+{
+    QFETCH(QString, file);
+    const Message sent = decodeFrame(bytesOf(readVector(file.toLatin1().constData()))).message;
+    // The damaged copy, once corrected, is the clean frame.
+    const QByteArray raw = readVector(file == "well-equipped.errors.bin" ? "well-equipped.bin" : file.toLatin1().constData());
+    const std::optional<std::int64_t> seconds = secure::stampSeconds(
+        std::uint32_t(sent.header.number(ItemId::time_UTC)), std::uint32_t(sent.header.number(ItemId::date_UTC)));
+    QVERIFY(seconds);
+    Message command = sent;
+    for (ItemId id : {ItemId::ID_msg, ItemId::time_UTC, ItemId::date_UTC})
+        command.header.set(id, std::int64_t(0));
+    // Any instant within the stamped second gives the same bytes.
+    const SendStamp stamp{std::uint32_t(sent.header.number(ItemId::ID_msg)), *seconds * 1'000'000 + 999'999};
+    QVERIFY(validateCommand(command, SendFormat{}).empty());
+    Diagnostics errors;
+    const std::vector<std::uint8_t> frame = buildFrame(command, stamp, SendFormat{false, nullptr}, errors);
+    QVERIFY2(!frame.empty(), dump(errors));
+    QCOMPARE(hex(frame), hex(bytesOf(raw)));
+    const std::vector<std::uint8_t> datagram = buildFrame(command, stamp, SendFormat{true, nullptr}, errors);
+    QCOMPARE(hex(datagram), hex(bytesOf(raw).subspan(kPreambleSize)));
+}
+
+// Keyed, the send path enciphers what it stamped; the receive path reads
+// back exactly that message. Its checks follow the format: what leaves no
+// room for the checked padding is refused on the secure link only.
+void TestCodec::sendPathStampsAndEnciphers()
+{
+    QCOMPARE(nextSendMicros(1'795'334'400'250'000, std::chrono::seconds(1)), 1'795'334'401'000'000);
+    QCOMPARE(nextSendMicros(1'795'334'401'000'000, std::chrono::seconds(1)), 1'795'334'402'000'000);
+
+    const secure::SecretKey psk = secure::generateKey();
+    const secure::SecureCodec up(psk, secure::Direction::GcsToUa);
+    const Message command = restingCommand(Airframe::wellEquipped());
+    const SendStamp stamp{0x123456, 1'795'334'401'000'000};  // 2026-11-22 08:00:01 UTC
+    for (const bool datagram : {false, true}) {
+        Diagnostics errors;
+        const std::vector<std::uint8_t> bytes = buildFrame(command, stamp, SendFormat{datagram, &up}, errors);
+        QVERIFY2(!bytes.empty(), dump(errors));
+        QCOMPARE(bytes.size(), datagram ? kDatagramSize : kFrameSize);
+        Message stamped = command;
+        stampMessage(stamped, stamp);
+        QCOMPARE(stamped.header.number(ItemId::ID_msg), 0x123456);
+        QCOMPARE(stamped.header.number(ItemId::time_UTC), 80001);
+        QCOMPARE(stamped.header.number(ItemId::date_UTC), 261122);
+        const std::optional<EncodedBlocks> blocks = up.encode(stamped, errors);
+        QVERIFY(blocks);
+        const DatagramBytes d = makeDatagram(blocks->block1, blocks->block2);
+        const FrameBytes f = makeFrame(blocks->block1, blocks->block2);
+        const auto expected = datagram ? std::vector<std::uint8_t>(d.begin(), d.end())
+                                       : std::vector<std::uint8_t>(f.begin(), f.end());
+        QCOMPARE(hex(bytes), hex(expected));
+        const LogKey key(psk);
+        const LoggedFrameReading reading = readLoggedFrame(bytes, true, &key);
+        QVERIFY2(reading.read(), reading.detail.c_str());
+        QVERIFY(reading.decoded.message == stamped);
+    }
+
+    // 209 bytes of items: plain they fit, keyed the 16 checked bytes of
+    // padding do not (as in encoderKeepsRequiredPadding).
+    Message full = command;
+    for (ItemId id : {ItemId::ID_UA_source, ItemId::ID_GCS_destination, ItemId::ID_GCS_backup})
+        full.header.set(id, Value::pair(44, 1));
+    full.header.set(ItemId::ID_BLK12_format, Value::pair(0, 0));
+    for (Unit& cam : full.cameras)
+        for (ItemId id : {ItemId::cam_GCS_destination, ItemId::cam_GCS_backup})
+            cam.set(id, Value::pair(44, 2));
+    Unit& fourth = full.addEngine(4);
+    fourth.set(ItemId::eng_status, 0x50);
+    fourth.set(ItemId::eng_prop_pitch, 1);
+    fourth.set(ItemId::eng_carb_SET, 1);
+    full.addEngine(5);
+    QVERIFY(validateCommand(full, SendFormat{}).empty());
+    const Diagnostics refused = validateCommand(full, SendFormat{true, &up});
+    QCOMPARE(refused.size(), std::size_t{1});
+    QCOMPARE(QString::fromStdString(refused[0].message),
+             QString("the items need 209 bytes plus 16 bytes of required padding, 2 more than the 223 a block holds"));
+    Diagnostics errors;
+    QVERIFY(buildFrame(full, stamp, SendFormat{true, &up}, errors).empty());
+    QVERIFY(!errors.empty());
+}
+
+// Outside codec/ a frame is read through codec/receive only, which also
+// decides whether it is accepted: no source of link/, ui/ or app/ reaches the
+// block decoder or deciphers on its own.
+void TestCodec::blockDecoderStaysInsideTheCodec()
+{
+    static const char* const bypasses[] = {"MessageDecoder.h", "decodeFrame(", "decodeBlocks(", "decodeBlock1(",
+                                           "decodeBlock2(", "decryptBlocks(", "openFrame("};
+    QStringList found;
+    int files = 0;
+    for (const char* folder : {"link", "ui", "app"}) {
+        QDirIterator it(QStringLiteral(RCM_SOURCE_DIR "/") + QLatin1String(folder), {"*.cpp", "*.h"}, QDir::Files,
+                        QDirIterator::Subdirectories);
+        while (it.hasNext()) {
+            QFile f(it.next());
+            QVERIFY(f.open(QIODevice::ReadOnly));
+            ++files;
+            const QByteArray text = f.readAll();
+            for (const char* bypass : bypasses)
+                if (text.contains(bypass))
+                    found << QStringLiteral("%1: %2").arg(f.fileName(), QLatin1String(bypass));
+        }
+    }
+    QVERIFY(files > 100);
+    QVERIFY2(found.isEmpty(), qPrintable(found.join(QLatin1Char('\n'))));
 }
 
 void TestCodec::randomRoundTrip()

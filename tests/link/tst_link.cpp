@@ -436,6 +436,7 @@ void TestLink::messageIdWrapsAt24Bits()
     options.clock = clock;
     options.firstMessageId = 0xFFFFFE;
     LinkController controller(udpTo(far.port()), nullptr, options);
+    QCOMPARE(controller.firstMessageId(), 0xFFFFFEu);
     QSignalSpy started(&controller, &LinkController::started);
     controller.setCommand(command(2));
     controller.start();

@@ -7,13 +7,16 @@
 // a broken build.
 
 #include "AnswerBox.h"
+#include "InProcessLink.h"
 #include "ResumeCommanding.h"
 #include "codec/message/Airframe.h"
 #include "codec/message/MessageDecoder.h"
 #include "codec/message/MessageEncoder.h"
 #include "codec/frame/Frame.h"
 #include "codec/secure/SecureCodec.h"
+#include "link/clock/VirtualClock.h"
 #include "link/framelog/FrameLog.h"
+#include "link/session/LinkWorker.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/airframe/AirframeLoader.h"
 #include "link/transport/UdpLink.h"
@@ -132,6 +135,7 @@ private slots:
     void refusedPlanFileSaysWhyNotHow();
     void previewMarksChangedItems();
     void previewFollowsOncePerPass();
+    void previewShowsTheBytesTheLinkSends();
     void linkLostAlarm();
     void statusFiguresNameTheirValues();
     void linkSettingsAreKept();
@@ -537,6 +541,53 @@ void TestMainWindow::previewFollowsOncePerPass()
     QCOMPARE(hex->toPlainText(), hexBefore);  // its tab is not shown
     preview.findChild<QTabWidget*>()->setCurrentWidget(hex);
     QVERIFY(hex->toPlainText() != hexBefore);
+}
+
+// The preview builds the next frame through the link's own send path, on
+// its clock and with its key: the bytes it shows are the bytes the worker
+// then sends, to the byte.
+void TestMainWindow::previewShowsTheBytesTheLinkSends()
+{
+    // 2026-11-22 08:00:00.3 UTC: between two ticks.
+    const auto clock = std::make_shared<VirtualClock>(1'795'334'400'300'000);
+    std::string error;
+    LinkWorker::Options options;
+    options.clock = clock;
+    options.secure = rcm::secure::SecureEndpoint::fromKey(
+        rcm::secure::generateKey(), rcm::secure::Direction::GcsToUa, std::string(), error,
+        {rcm::secure::kDefaultWindowSeconds, false, [clock] { return clock->utcMicros() / 1'000'000; }});
+    QVERIFY2(options.secure, error.c_str());
+    auto [near, far] = rcm::test::InProcessLink::pair(rcm::test::InProcessLink::Kind::Datagrams);
+    QList<QByteArray> sent;
+    connect(far.get(), &Link::datagramReceived, this, [&sent](const QByteArray& bytes) { sent << bytes; });
+    far->open();
+    const std::shared_ptr<const rcm::secure::SecureCodec> cipher(options.secure, options.secure->sender.get());
+    LinkWorker worker(std::move(near), nullptr, options);
+
+    CommandState command;
+    CommandPreview preview;
+    preview.setDatagram(true);
+    preview.setCipher(cipher);
+    preview.setClock([clock] { return clock->utcMicros(); });
+    connect(&worker, &LinkWorker::frameSent, &preview, &CommandPreview::frameSent);
+    preview.setCommand(command.message());
+    preview.resetSent(options.secure->counter->peek());  // as LinkController::firstMessageId() reads it
+    worker.setCommand(command.message());
+    worker.start();
+    const QByteArray shownFirst = preview.bytes();
+    clock->advance(std::chrono::seconds(1));
+    QCOMPARE(sent.size(), 1);
+    QCOMPARE(sent[0].toHex(' '), shownFirst.toHex(' '));
+    QVERIFY(command.setNumber(UnitRef{rcm::UnitKind::Engine, 1}, rcm::ItemId::eng_prop_pitch, 200));
+    preview.setCommand(command.message());
+    worker.setCommand(command.message());
+    const QByteArray shown = preview.bytes();
+    QCOMPARE(shown.size(), qsizetype(rcm::kDatagramSize));
+    QCOMPARE(preview.changedItems(), 1);
+    clock->advance(std::chrono::seconds(1));
+    QCOMPARE(sent.size(), 2);
+    QCOMPARE(sent[1].toHex(' '), shown.toHex(' '));
+    worker.stop();
 }
 
 // Each figure is its name and its value as plain text, the value red when

@@ -1,7 +1,6 @@
 #include "ui/framelog/FrameLogModel.h"
 
 #include "codec/frame/Frame.h"
-#include "codec/message/MessageDecoder.h"
 #include "codec/receive/LoggedFrameReading.h"
 
 #include <QBrush>

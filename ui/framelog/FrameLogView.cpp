@@ -1,7 +1,6 @@
 #include "ui/framelog/FrameLogView.h"
 
 #include "codec/frame/Frame.h"
-#include "codec/message/MessageDecoder.h"
 #include "codec/message/TextFormat.h"
 #include "codec/receive/LoggedFrameReading.h"
 #include "ui/framelog/FrameLogDelegate.h"

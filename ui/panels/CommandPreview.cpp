@@ -1,11 +1,9 @@
 #include "ui/panels/CommandPreview.h"
 
-#include "codec/message/DigitPairs.h"
-#include "codec/message/MessageEncoder.h"
 #include "codec/message/TextFormat.h"
+#include "codec/send/FrameBuilder.h"
 #include "ui/framelog/HexDump.h"
 
-#include <QDateTime>
 #include <QEvent>
 #include <QFontDatabase>
 #include <QHash>
@@ -17,16 +15,6 @@
 #include <QVBoxLayout>
 
 namespace {
-
-// The items the link fills in for every frame: the ID, time and date of the
-// next whole second, as LinkWorker stamps them.
-void stampAsLink(rcm::Message& message, quint32 messageId)
-{
-    const std::chrono::sys_seconds next{std::chrono::seconds(QDateTime::currentSecsSinceEpoch() + 1)};
-    message.header.set(rcm::ItemId::ID_msg, std::int64_t(messageId));
-    message.header.set(rcm::ItemId::time_UTC, rcm::DigitPairs::timeOf(next).packed());
-    message.header.set(rcm::ItemId::date_UTC, rcm::DigitPairs::dateOf(next).packed());
-}
 
 // Each line of a message's text with a key naming the item it sets: the
 // sections it is in, the key item line of its unit, and the item's name. Two
@@ -127,6 +115,21 @@ void CommandPreview::setDatagram(bool datagram)
     invalidate();
 }
 
+void CommandPreview::setCipher(std::shared_ptr<const rcm::secure::SecureCodec> cipher)
+{
+    if (cipher == m_cipher)
+        return;
+    m_cipher = std::move(cipher);
+    invalidate();
+}
+
+void CommandPreview::setClock(std::function<std::int64_t()> utcMicros, std::chrono::milliseconds interval)
+{
+    m_utcMicros = std::move(utcMicros);
+    m_interval = interval;
+    invalidate();
+}
+
 QString CommandPreview::text() const
 {
     ensureFresh();
@@ -139,6 +142,12 @@ QString CommandPreview::hex() const
     if (m_hexStale)
         const_cast<CommandPreview*>(this)->refreshHex();
     return m_hex->toPlainText();
+}
+
+QByteArray CommandPreview::bytes() const
+{
+    ensureFresh();
+    return m_bytes;
 }
 
 int CommandPreview::changedItems() const
@@ -197,21 +206,29 @@ void CommandPreview::changeEvent(QEvent* event)
     }
 }
 
-void CommandPreview::resetSent()
+void CommandPreview::resetSent(quint32 firstMessageId)
 {
     m_lastSent.reset();
-    m_nextId = 0;
+    m_nextId = firstMessageId % rcm::kMessageIdModulus;
     invalidate();
 }
 
 void CommandPreview::refresh()
 {
     m_stale = false;
+    // Stamped as the link will stamp the next frame.
+    const std::int64_t now =
+        m_utcMicros
+            ? m_utcMicros()
+            : std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+                  .count();
+    const rcm::SendStamp stamp{m_nextId, rcm::nextSendMicros(now, m_interval)};
+    const rcm::SendFormat format{m_datagram, m_cipher.get()};
     rcm::Message next = m_command;
-    stampAsLink(next, m_nextId);
+    rcm::stampMessage(next, stamp);
     std::optional<rcm::Message> before = m_lastSent;
     if (before)
-        stampAsLink(*before, m_nextId);  // the same stamp, so only the command's changes differ
+        rcm::stampMessage(*before, stamp);  // the same stamp, so only the command's changes differ
 
     // Items.
     QHash<QString, QString> previous;
@@ -231,12 +248,8 @@ void CommandPreview::refresh()
     // Bytes.
     rcm::Diagnostics errors;
     const auto encode = [&](const rcm::Message& m, rcm::Diagnostics& e) -> QByteArray {
-        if (m_datagram) {
-            const auto d = rcm::encodeDatagram(m, e);
-            return d ? QByteArray(reinterpret_cast<const char*>(d->data()), qsizetype(d->size())) : QByteArray();
-        }
-        const auto f = rcm::encodeFrame(m, e);
-        return f ? QByteArray(reinterpret_cast<const char*>(f->data()), qsizetype(f->size())) : QByteArray();
+        const std::vector<std::uint8_t> bytes = rcm::buildFrame(m, format, e);
+        return QByteArray(reinterpret_cast<const char*>(bytes.data()), qsizetype(bytes.size()));
     };
     m_bytes = encode(next, errors);
     m_encodeErrors.clear();

@@ -3,14 +3,25 @@
 // The next frame before it goes: the command in the text format and the
 // bytes the link will send, with what changed since the last frame sent
 // marked, so that the operator sees exactly what a click will do to the
-// aircraft one second later. ID_msg, time_UTC and date_UTC are shown as the
-// link will stamp them; they change every frame and are not marked.
+// aircraft one second later. The bytes are those the link's send path
+// (codec/send/FrameBuilder.h) builds: ID_msg is the one after the last frame
+// sent, time_UTC and date_UTC those of the link's next tick on the link's
+// clock, enciphered when the link is keyed. They change every frame and are
+// not marked.
 
 #include "codec/message/Message.h"
 
 #include <QTabWidget>
 
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
+
+namespace rcm::secure {
+class SecureCodec;
+}
 
 class QLabel;
 class QTextEdit;
@@ -23,10 +34,20 @@ public:
 
     // Serial frames carry the 90-byte preamble; UDP datagrams do not.
     void setDatagram(bool datagram);
+    // The keyed link's codec for what the console sends (GCS->UA); null for
+    // the plain link.
+    void setCipher(std::shared_ptr<const rcm::secure::SecureCodec> cipher);
+    // The UTC clock (microseconds) the link stamps its frames on, and its
+    // interval; unset, the system clock at 1 s, as a LinkWorker by default.
+    void setClock(std::function<std::int64_t()> utcMicros,
+                  std::chrono::milliseconds interval = std::chrono::milliseconds(1000));
     // Items of the next frame that differ from the last frame sent; 0 before any.
     int changedItems() const;
     QString text() const;  // plain, without marks
     QString hex() const;
+    // The bytes of the next frame as the link will send them; empty when the
+    // command cannot be encoded.
+    QByteArray bytes() const;
     // Not a slot: rcm::Message's meta type is declared in link/session/MessageMetaType.h,
     // which this widget has no need of.
     void setCommand(const rcm::Message& command);
@@ -34,8 +55,8 @@ public:
 public slots:
     // The command as it stands went out as frame `messageId`.
     void frameSent(quint32 messageId);
-    // A new link: nothing has been sent on it yet.
-    void resetSent();
+    // A new link: nothing has been sent on it yet; its first frame will be `firstMessageId`.
+    void resetSent(quint32 firstMessageId = 0);
 
 protected:
     // A new theme: the muted colour of the text view follows it.
@@ -69,6 +90,9 @@ private:
     std::optional<rcm::Message> m_lastSent;
     quint32 m_nextId = 0;
     bool m_datagram = true;
+    std::shared_ptr<const rcm::secure::SecureCodec> m_cipher;
+    std::function<std::int64_t()> m_utcMicros;  // empty: the system clock
+    std::chrono::milliseconds m_interval{1000};
     int m_changedItems = 0;
     bool m_stale = true;
     bool m_refreshQueued = false;

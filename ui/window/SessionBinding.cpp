@@ -1,5 +1,6 @@
 #include "ui/window/SessionBinding.h"
 
+#include "codec/receive/LoggedFrameReading.h"
 #include "link/session/ConsoleSession.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/framelog/FrameLogModel.h"
@@ -17,6 +18,21 @@
 
 #include <QDateTime>
 #include <QDir>
+
+namespace {
+
+// What the console sends is enciphered with this codec of the link's key;
+// null for the plain link. It keeps the key alive.
+std::shared_ptr<const rcm::secure::SecureCodec> sendingCodec(const std::shared_ptr<const rcm::LogKey>& key)
+{
+    if (key)
+        for (const rcm::secure::SecureCodec* codec : key->codecs())
+            if (codec->direction() == rcm::secure::Direction::GcsToUa)
+                return std::shared_ptr<const rcm::secure::SecureCodec>(key, codec);
+    return nullptr;
+}
+
+}  // namespace
 
 SessionBinding::SessionBinding(const Parts& parts, const ConsoleNotices& notices, QObject* parent)
     : QObject(parent), m_parts(parts), m_notices(notices)
@@ -59,8 +75,12 @@ void SessionBinding::linkStarted(const LinkController* controller)
         m_parts.readOnly->withdraw();
         m_parts.replay->hide();
     }
+    // The next frame as this link's send path builds it: its framing, its
+    // key, its clock.
     m_parts.preview->setDatagram(session->isDatagram());
-    m_parts.preview->resetSent();
+    m_parts.preview->setCipher(sendingCodec(session->logKey()));
+    m_parts.preview->setClock([clock = controller->clock()] { return clock->utcMicros(); }, controller->interval());
+    m_parts.preview->resetSent(controller->firstMessageId());
     m_parts.flightPlan->setLinkReady(!replay && session->commanding());
     // A replay says so, with the log's own time, and raises no link alarm.
     m_notices.alerts()->setReplay(replay);
