@@ -33,7 +33,8 @@ double luminance(const QColor& c)
 QColor over(const QColor& c, const QColor& under)
 {
     const double a = c.alphaF();
-    return QColor::fromRgbF(float(c.redF() * a + under.redF() * (1 - a)), float(c.greenF() * a + under.greenF() * (1 - a)),
+    return QColor::fromRgbF(float(c.redF() * a + under.redF() * (1 - a)),
+                            float(c.greenF() * a + under.greenF() * (1 - a)),
                             float(c.blueF() * a + under.blueF() * (1 - a)));
 }
 

@@ -21,8 +21,9 @@ GearPanel::GearPanel(CommandState* command, ReportedState* reported, QWidget* pa
 {
     setObjectName(QStringLiteral("GearPanel"));
     const auto& wheels = rcm::itemInfo(kItem);
-    auto* card = new UnitCard(command, reported, kUnit,
-                              QString::fromUtf8(wheels.label.data(), static_cast<qsizetype>(wheels.label.size())), this);
+    auto* card =
+        new UnitCard(command, reported, kUnit,
+                     QString::fromUtf8(wheels.label.data(), static_cast<qsizetype>(wheels.label.size())), this);
     for (int field = 0; field < static_cast<int>(wheels.fields.size()); ++field)
         card->addButtons(kItem, field);
     m_allUp = new QPushButton(tr("All up"));
@@ -65,8 +66,8 @@ bool GearPanel::setAll(unsigned code)
         return true;
     // Retraction goes through the item table's rule like a single wheel's,
     // one question for all of them; lowering never asks.
-    return CommandGate::of(m_command)->setItem(code == rcm::code::kRetracted ? m_allUp : m_allDown, kUnit, kItem, to, {},
-                                               tr("Retract all wheels"));
+    return CommandGate::of(m_command)->setItem(code == rcm::code::kRetracted ? m_allUp : m_allDown, kUnit, kItem, to,
+                                               {}, tr("Retract all wheels"));
 }
 
 void GearPanel::refresh()
