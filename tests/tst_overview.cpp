@@ -279,13 +279,14 @@ private slots:
         QVERIFY(page.commandedText(engine2, ItemId::eng_prop_pitch).isEmpty());
     }
 
-    // The cards flow into as many columns as the width holds, never wider.
+    // The cards flow into columns, as many as it takes to show them all
+    // and as the width holds, never wider.
     void flowsIntoColumns()
     {
         CommandState command;
         ReportedState reported(&command);
         OverviewPage page(&command, &reported);
-        page.resize(1300, 700);
+        page.resize(1300, 500);
         page.show();
         QVERIFY(QTest::qWaitForWindowExposed(&page));
         QVERIFY2(page.cardColumns() >= 3, qPrintable(QString::number(page.cardColumns())));
@@ -309,7 +310,7 @@ private slots:
         auto now = std::chrono::steady_clock::time_point{} + std::chrono::hours(1);
         ReportedState reported(&command, nullptr, [&now] { return now; });
         OverviewPage page(&command, &reported);
-        page.resize(1080, 560);
+        page.resize(1080, 440);
         page.show();
         QVERIFY(QTest::qWaitForWindowExposed(&page));
         QTRY_COMPARE(page.cardColumns(), 4);
@@ -360,11 +361,15 @@ private slots:
                                         .arg(card->width())
                                         .arg(card->height())));
         }
-        // The width alone decides: narrower, fewer columns, and back.
-        page.resize(800, 560);
+        // The size alone decides: narrower, fewer columns, and back; taller,
+        // the fewest columns in which every card shows (wider cards).
+        page.resize(800, 440);
         QTRY_COMPARE(page.cardColumns(), 3);
-        page.resize(1080, 560);
+        page.resize(1080, 440);
         QTRY_COMPARE(page.cardColumns(), 4);
+        page.resize(1080, 900);
+        QTRY_VERIFY(page.cardColumns() < 4);
+        QTRY_COMPARE(scroll->verticalScrollBar()->maximum(), 0);
     }
 };
 

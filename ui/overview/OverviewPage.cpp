@@ -428,34 +428,55 @@ void OverviewPage::reflowFigures()
     }
 }
 
+std::vector<int> OverviewPage::columnHeights(int columns, std::vector<std::size_t>* placed) const
+{
+    // Cards in order, each into the shortest column so far.
+    std::vector<int> heights(std::size_t(columns), 0);
+    for (QGroupBox* card : m_cards) {
+        const auto shortest = std::size_t(std::min_element(heights.begin(), heights.end()) - heights.begin());
+        if (placed)
+            placed->push_back(shortest);
+        heights[shortest] += card->sizeHint().height() + kCardSpacing;
+    }
+    return heights;
+}
+
 void OverviewPage::reflow()
 {
-    // From the page's width and the cards' fixed width alone: never from
-    // the values shown, so a stale mark or a long value cannot make the
-    // columns switch.
+    // From the page's size and the cards' sizes alone, never from the
+    // values shown, so that a stale mark or a long value cannot make the
+    // columns switch: as many as the width holds at most, and of those the
+    // fewest in which every card shows without scrolling (the widest cards,
+    // whose names are cut least).
     const int available = std::max(1, width() - 12 - style()->pixelMetric(QStyle::PM_ScrollBarExtent));
-    const int columns =
+    const int widest =
         std::max(1, std::min<int>(int(m_cards.size()), (available + kCardSpacing) / (m_cardWidth + kCardSpacing)));
+    const int room = height() - 18 - m_top->sizeHint().height();
+    int columns = widest;
+    for (int c = 1; c < widest; ++c) {
+        const std::vector<int> heights = columnHeights(c, nullptr);
+        if (*std::max_element(heights.begin(), heights.end()) <= room) {
+            columns = c;
+            break;
+        }
+    }
     if (columns == m_columns)
         return;
     m_columns = columns;
-    // Cards in order, each into the shortest column so far.
     // The column layouts go; the cards in them stay, children of the area.
     while (QLayoutItem* item = m_unitColumns->takeAt(0))
         delete item;
     std::vector<QVBoxLayout*> stacks;
-    std::vector<int> heights(std::size_t(columns), 0);
     for (int c = 0; c < columns; ++c) {
         auto* stack = new QVBoxLayout;
         stack->setSpacing(kCardSpacing);
         m_unitColumns->addLayout(stack, 1);
         stacks.push_back(stack);
     }
-    for (QGroupBox* card : m_cards) {
-        const auto shortest = std::size_t(std::min_element(heights.begin(), heights.end()) - heights.begin());
-        stacks[shortest]->addWidget(card);
-        heights[shortest] += card->sizeHint().height();
-    }
+    std::vector<std::size_t> placed;
+    columnHeights(columns, &placed);
+    for (std::size_t i = 0; i < m_cards.size(); ++i)
+        stacks[placed[i]]->addWidget(m_cards[i]);
     for (QVBoxLayout* stack : stacks)
         stack->addStretch(1);
 }

@@ -88,6 +88,9 @@ private:
     void rebuildUnits();
     void refreshCommanded();
     void reflow();
+    // The height of each of `columns` columns with the cards placed in order,
+    // each into the shortest; `placed` gets each card's column.
+    std::vector<int> columnHeights(int columns, std::vector<std::size_t>* placed) const;
     void reflowFigures();
     void updateFigures();
     const Row* findRow(UnitRef ref, rcm::ItemId id, int field) const;
