@@ -771,6 +771,17 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
     const rcm::Message shown = command->message();
     QTest::mouseClick(retract, Qt::LeftButton);
     QCOMPARE(command->message(), shown);
+    // The flight plan page is no command of the log's: it still takes clicks.
+    window.showPanel(window.panels()->indexOf(window.flightPlan()));
+    QPushButton* editPlan = nullptr;
+    for (QPushButton* b : window.flightPlan()->findChildren<QPushButton*>())
+        if (b->text() == QStringLiteral("Edit plan"))
+            editPlan = b;
+    QVERIFY(editPlan);
+    QTest::mouseClick(editPlan, Qt::LeftButton);
+    QVERIFY(window.flightPlan()->isEditing());
+    QTest::mouseClick(editPlan, Qt::LeftButton);
+    QVERIFY(!window.flightPlan()->isEditing());
 
     // The log's silence after its end is the link's Lost, but no alarm, and
     // the reports age in the log's time: not stale.

@@ -70,8 +70,10 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     setDockOptions(QMainWindow::AnimatedDocks | QMainWindow::AllowTabbedDocks);
     setCentralWidget(m_panels);
     m_readOnly->attach(m_reported, m_panels->tabs());
-    // The flight plan a page of its own, where the map has the panels' room.
+    // The flight plan a page of its own, where the map has the panels' room;
+    // not a command panel, so a replay leaves it to the operator.
     m_panels->addPage(m_flightPlan, tr("Flight plan"));
+    m_flightPlan->setProperty(ReadOnlyPanels::kKeepsInput, true);
     buildDocks();
     m_menus = new ConsoleMenus(this, {m_panels->tabs(), m_airframes, m_flightPlan, m_linkPane->settings()});
     bindMenus();
