@@ -27,6 +27,9 @@ constexpr auto kPhoto = codeNames({{code::kNone, "NONE"}, {code::kTake, "TAKE"}}
 // The same codes for people.
 constexpr std::array<std::string_view, 4> kControlWords{"", "Automatic", "Ground station", "RC transmitter"};
 constexpr std::array<std::string_view, 4> kSlaveWords{"", "Independent", "Master and slave", ""};
+// Every engine's status carries the mode that pairs engine 1 (master) with
+// engine 3 (slave); the panels say on each engine's card what it means there.
+constexpr std::array<std::string_view, 4> kEngineSlaveWords{"", "Independent", "Engine 1 master, engine 3 slave", ""};
 constexpr std::array<std::string_view, 4> kOnOffWords{"", "Off", "On", ""};
 constexpr std::array<std::string_view, 4> kWheelWords{"", "Out (down)", "Retracted", ""};
 constexpr std::array<std::string_view, 4> kDumpWords{"", "Keep fuel", "Dump", ""};
@@ -76,7 +79,7 @@ constexpr LargeChange kTransmitterOn{kAnyStep, false, "",
 
 constexpr FieldInfo kEngStatus[] = {
     {"control", kControl, "Control source", kControlWords},
-    {"slave", kSlave, "Master engine 1 + slave engine 3", kSlaveWords},
+    {"slave", kSlave, "Master/slave mode", kEngineSlaveWords},
 };
 constexpr FieldInfo kFlapStatus[] = {
     {"control", kControl, "Control source", kControlWords},

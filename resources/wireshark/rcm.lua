@@ -148,7 +148,7 @@ items[0x30] = {
         {name = "control", codes = {[0] = "", [1] = "AUTO", [2] = "GCS", [3] = "RC"},
             f = field(ProtoField.uint8("rcm.item.eng_status.control", "control", base.DEC, {[0] = "corrupt", [1] = "AUTO", [2] = "GCS", [3] = "RC"}, 0xC0, "Control source"))},
         {name = "slave", codes = {[0] = "", [1] = "NO_SLAVE", [2] = "MASTER_SLAVE", [3] = ""},
-            f = field(ProtoField.uint8("rcm.item.eng_status.slave", "slave", base.DEC, {[0] = "corrupt", [1] = "NO_SLAVE", [2] = "MASTER_SLAVE", [3] = "corrupt"}, 0x30, "Master engine 1 + slave engine 3"))},
+            f = field(ProtoField.uint8("rcm.item.eng_status.slave", "slave", base.DEC, {[0] = "corrupt", [1] = "NO_SLAVE", [2] = "MASTER_SLAVE", [3] = "corrupt"}, 0x30, "Master/slave mode"))},
     },
     reserved = field(ProtoField.uint8("rcm.item.eng_status.reserved", "reserved bits", base.HEX, nil, 0x0F, "Bits the profile fixes at 0")),
 }

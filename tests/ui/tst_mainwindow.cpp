@@ -199,11 +199,14 @@ void TestMainWindow::buildsWithTheDefaultAirframe()
     MainWindow window(options());
     compareAirframes(window.command()->airframe(), rcm::Airframe::wellEquipped());
     QVERIFY(window.windowTitle().contains(QStringLiteral("Well-equipped UA")));
-    // The overview and the eight panels, each behind its Alt+digit.
+    // The overview, the eight panels and the flight plan, each behind its Alt+digit.
     auto* panels = window.findChild<QTabWidget*>(QStringLiteral("panels"));
     QVERIFY(panels);
-    QCOMPARE(panels->count(), 9);
+    QCOMPARE(panels->count(), 10);
     QCOMPARE(panels->widget(0), window.overview());
+    QCOMPARE(panels->widget(9), window.flightPlan());
+    QCOMPARE(panels->tabText(9), QStringLiteral("Flight plan"));
+    QCOMPARE(panels->tabToolTip(9), QStringLiteral("Flight plan (Alt+0)"));
     window.showPanel(6);
     QCOMPARE(panels->currentIndex(), 6);
     // The docks the layout is saved by.
@@ -211,8 +214,8 @@ void TestMainWindow::buildsWithTheDefaultAirframe()
     for (QDockWidget* d : window.findChildren<QDockWidget*>())
         docks.insert(d->objectName());
     QCOMPARE(docks, (std::set<QString>{QStringLiteral("linkDock"), QStringLiteral("previewDock"),
-                                       QStringLiteral("frameLogDock"), QStringLiteral("flightPlanDock"),
-                                       QStringLiteral("voiceDock"), QStringLiteral("eventsDock")}));
+                                       QStringLiteral("frameLogDock"), QStringLiteral("voiceDock"),
+                                       QStringLiteral("eventsDock")}));
     window.resize(1400, 900);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
@@ -222,6 +225,8 @@ void TestMainWindow::buildsWithTheDefaultAirframe()
     QCOMPARE(panels->currentIndex(), 2);
     QTest::keyClick(&window, Qt::Key_8, Qt::AltModifier);
     QCOMPARE(panels->currentIndex(), 7);
+    QTest::keyClick(&window, Qt::Key_0, Qt::AltModifier);
+    QCOMPARE(panels->currentIndex(), 9);
     QVERIFY(!window.isLinkRunning());
     QVERIFY(!window.linkStatus()->alarmActive());
 
@@ -324,8 +329,11 @@ void TestMainWindow::importsTheSamplePlan()
 {
     MainWindow window(options());
     FlightPlanWidget* widget = window.flightPlan();
+    QCOMPARE(window.panels()->currentIndex(), 0);
     QString error;
     QVERIFY2(widget->loadPlan(kSamplePlan, &error), qPrintable(error));
+    // The plan opened is brought forward: its page.
+    QCOMPARE(window.panels()->currentWidget(), widget);
     const MissionPlan& plan = *widget->plan();
     QCOMPARE(plan.items.size(), 9);
     QCOMPARE(widget->table()->rowCount(), 9);
@@ -432,8 +440,7 @@ void TestMainWindow::refusesPlansItCannotSend()
 // first layout and after it.
 void TestMainWindow::openedPlanIsBroughtForward()
 {
-    // A dock behind another in its tabs stays "visible", moved out of sight:
-    // in front is what the window shows of it.
+    // A page behind another in its tabs is hidden: in front is what the window shows of it.
     const auto inFront = [](QWidget* content) { return !content->visibleRegion().isEmpty(); };
     {
         MainWindow window(options());
@@ -441,16 +448,18 @@ void TestMainWindow::openedPlanIsBroughtForward()
         window.show();
         QVERIFY(QTest::qWaitForWindowExposed(&window));
         QTRY_VERIFY(inFront(window.flightPlan()));
-        QVERIFY(!inFront(window.findChild<FrameLogView*>()));
+        QVERIFY(!inFront(window.overview()));
     }
     MainWindow window(options());
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    QTRY_VERIFY(inFront(window.findChild<FrameLogView*>()));  // the frame log in front by default
+    QTRY_VERIFY(inFront(window.overview()));  // the overview in front by default
     QVERIFY(!inFront(window.flightPlan()));
     QVERIFY(window.flightPlan()->loadPlan(kSamplePlan));
     QTRY_VERIFY(inFront(window.flightPlan()));
-    QVERIFY(!inFront(window.findChild<FrameLogView*>()));
+    QVERIFY(!inFront(window.overview()));
+    // The plan is a page of its own: the frame log stays in view below it.
+    QVERIFY(inFront(window.findChild<FrameLogView*>()));
 }
 
 // A plan file gcs --plan cannot read: the file, the line and what is wrong,
@@ -813,6 +822,17 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
     const rcm::Message shown = command->message();
     QTest::mouseClick(retract, Qt::LeftButton);
     QCOMPARE(command->message(), shown);
+    // The flight plan page is no command of the log's: it still takes clicks.
+    window.showPanel(window.panels()->indexOf(window.flightPlan()));
+    QPushButton* editPlan = nullptr;
+    for (QPushButton* b : window.flightPlan()->findChildren<QPushButton*>())
+        if (b->text() == QStringLiteral("Edit plan"))
+            editPlan = b;
+    QVERIFY(editPlan);
+    QTest::mouseClick(editPlan, Qt::LeftButton);
+    QVERIFY(window.flightPlan()->isEditing());
+    QTest::mouseClick(editPlan, Qt::LeftButton);
+    QVERIFY(!window.flightPlan()->isEditing());
 
     // The log's silence after its end is the link's Lost, but no alarm, and
     // the reports age in the log's time: not stale.
@@ -1445,6 +1465,8 @@ void TestMainWindow::fitsASmallScreen()
     QTabWidget* panels = window.panels();
     QVERIFY(panels->tabBar()->width() >= panels->tabBar()->sizeHint().width());
     for (int i = 0; i < panels->count(); ++i) {
+        if (panels->widget(i) == window.flightPlan())
+            continue;  // the plan's table of ten columns scrolls sideways beside the map, as planners' tables do
         window.showPanel(i);
         QCoreApplication::processEvents();
         for (QScrollBar* bar : panels->currentWidget()->findChildren<QScrollBar*>())
@@ -1452,6 +1474,26 @@ void TestMainWindow::fitsASmallScreen()
                 QVERIFY2(!bar->isVisible(), qPrintable(panels->tabText(i)));
     }
     QVERIFY(window.linkSettings()->width() >= window.linkSettings()->minimumSizeHint().width());
+
+    // Issue 28: the overview shows every unit at once, its cards in a grid
+    // that does not scroll.
+    window.showPanel(0);
+    QCoreApplication::processEvents();
+    OverviewPage* overview = window.overview();
+    auto* cardArea = overview->findChild<QScrollArea*>();
+    QVERIFY(cardArea);
+    const auto cards = overview->findChildren<QGroupBox*>();
+    QCOMPARE(cards.size(), 12);
+    QTRY_COMPARE(cardArea->verticalScrollBar()->maximum(), 0);
+    for (QGroupBox* card : cards) {
+        const QRect shown(card->mapTo(cardArea->viewport(), QPoint(0, 0)), card->size());
+        QVERIFY2(cardArea->viewport()->rect().contains(shown),
+                 qPrintable(card->objectName() + QStringLiteral(" at %1,%2 %3x%4")
+                                                     .arg(shown.x())
+                                                     .arg(shown.y())
+                                                     .arg(shown.width())
+                                                     .arg(shown.height())));
+    }
 
     // Each reported value right beside its control, however wide the card:
     // the control column no wider than its widest control wants.

@@ -22,6 +22,9 @@
 #include <QScrollBar>
 #include <QTest>
 
+#include <chrono>
+#include <map>
+
 using namespace rcm;
 
 namespace {
@@ -276,13 +279,14 @@ private slots:
         QVERIFY(page.commandedText(engine2, ItemId::eng_prop_pitch).isEmpty());
     }
 
-    // The cards flow into as many columns as the width holds, never wider.
+    // The cards flow into columns, as many as it takes to show them all
+    // and as the width holds, never wider.
     void flowsIntoColumns()
     {
         CommandState command;
         ReportedState reported(&command);
         OverviewPage page(&command, &reported);
-        page.resize(1300, 700);
+        page.resize(1300, 500);
         page.show();
         QVERIFY(QTest::qWaitForWindowExposed(&page));
         QVERIFY2(page.cardColumns() >= 3, qPrintable(QString::number(page.cardColumns())));
@@ -293,6 +297,79 @@ private slots:
         auto* scroll = page.findChild<QScrollArea*>();
         QVERIFY(scroll);
         QVERIFY(!scroll->horizontalScrollBar()->isVisible());
+    }
+
+    // Issue 28: a compact grid of equal cards whose column count follows the
+    // page's width alone: stale reports are marked by their look (the age in
+    // the tool tip), so no card grows, no value leaves its card and the
+    // columns do not switch. Every unit shows at the overview's size in a
+    // 1366x768 window (tst_mainwindow fitsASmallScreen) without scrolling.
+    void staleMarksStayInTheirCards()
+    {
+        CommandState command;
+        auto now = std::chrono::steady_clock::time_point{} + std::chrono::hours(1);
+        ReportedState reported(&command, nullptr, [&now] { return now; });
+        OverviewPage page(&command, &reported);
+        page.resize(1080, 440);
+        page.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&page));
+        QTRY_COMPARE(page.cardColumns(), 4);
+        const auto cards = page.findChildren<QGroupBox*>();
+        QCOMPARE(cards.size(), 12);
+        auto* scroll = page.findChild<QScrollArea*>();
+        QTRY_COMPARE(scroll->verticalScrollBar()->maximum(), 0);
+        std::map<QString, QRect> before;
+        for (QGroupBox* card : cards)
+            before[card->objectName()] = card->geometry();
+        // The column headings beside each card's name, in its first row.
+        auto* engine1 = page.findChild<QGroupBox*>(QStringLiteral("overview:Engine 1"));
+        QVERIFY(engine1);
+        QCOMPARE(engine1->findChild<QLabel*>(QStringLiteral("title"))->text(), QStringLiteral("Engine 1"));
+        QCOMPARE(engine1->findChild<QLabel*>(QStringLiteral("heading:Commanded"))->y(),
+                 engine1->findChild<QLabel*>(QStringLiteral("title"))->y());
+
+        reported.onStatus(command.message());
+        now += std::chrono::seconds(125);
+        reported.checkAge();
+        const UnitRef radio{UnitKind::Radio, 0};
+        ReportedLabel* frequency = page.reportedLabel(radio, ItemId::Rx_freq);
+        QVERIFY(frequency);
+        QVERIFY(frequency->stale());
+        QCOMPARE(frequency->text(), ItemText::value(ItemId::Rx_freq, *command.value(radio, ItemId::Rx_freq)));
+        QCOMPARE(frequency->toolTip(), QStringLiteral("Receive frequency as the aircraft reported it 125 s ago; no "
+                                                      "status frame since"));
+        // The labels fit themselves to the stale look a pass of the event loop later, and their cards lay out again.
+        const auto inside = [&] {
+            for (QGroupBox* card : cards)
+                for (ReportedLabel* label : card->findChildren<ReportedLabel*>())
+                    if (!card->contentsRect().contains(label->geometry()))
+                        return false;
+            return true;
+        };
+        QTRY_VERIFY(inside());
+        QCOMPARE(page.cardColumns(), 4);
+        for (QGroupBox* card : cards) {
+            QCOMPARE(card->geometry(), before[card->objectName()]);
+            for (ReportedLabel* label : card->findChildren<ReportedLabel*>())
+                QVERIFY2(card->contentsRect().contains(label->geometry()),
+                         qPrintable(card->objectName() + QLatin1Char(' ') + label->objectName() +
+                                    QStringLiteral(" %1,%2 %3x%4 in %5x%6")
+                                        .arg(label->x())
+                                        .arg(label->y())
+                                        .arg(label->width())
+                                        .arg(label->height())
+                                        .arg(card->width())
+                                        .arg(card->height())));
+        }
+        // The size alone decides: narrower, fewer columns, and back; taller,
+        // the fewest columns in which every card shows (wider cards).
+        page.resize(800, 440);
+        QTRY_COMPARE(page.cardColumns(), 3);
+        page.resize(1080, 440);
+        QTRY_COMPARE(page.cardColumns(), 4);
+        page.resize(1080, 900);
+        QTRY_VERIFY(page.cardColumns() < 4);
+        QTRY_COMPARE(scroll->verticalScrollBar()->maximum(), 0);
     }
 };
 

@@ -36,6 +36,7 @@
 #include <QAbstractButton>
 #include <QAbstractItemView>
 #include <QAction>
+#include <QApplication>
 #include <QClipboard>
 #include <QGuiApplication>
 #include <QGroupBox>
@@ -44,6 +45,7 @@
 #include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QStyle>
 #include <QStyleOptionFrame>
 #include <QPushButton>
@@ -51,9 +53,11 @@
 #include <QSignalSpy>
 #include <QSpinBox>
 #include <QTest>
+#include <QTimer>
 #include <QVBoxLayout>
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 
@@ -293,7 +297,8 @@ private slots:
                     QVERIFY2(
                         ItemText::fieldCodeWord(item.id, field, code) != ItemText::fieldCodeName(item.id, field, code),
                         qPrintable(ItemText::fieldCodeName(item.id, field, code)));
-        QCOMPARE(ItemText::fieldCodeWord(eng_status, 1, 2), QStringLiteral("Master and slave"));
+        QCOMPARE(ItemText::fieldCodeWord(eng_status, 1, 2), QStringLiteral("Engine 1 master, engine 3 slave"));
+        QCOMPARE(ItemText::fieldCodeWord(FLAP_status, 1, 2), QStringLiteral("Master and slave"));
         QCOMPARE(ItemText::fieldCodeWord(ENABLE_fuel_dump, 1, 1), QStringLiteral("Keep fuel"));
         QCOMPARE(ItemText::fieldCodeWord(eng_status, 1, 3), QStringLiteral("corrupt (11)"));
 
@@ -515,6 +520,151 @@ private slots:
         QCOMPARE(fieldName(m_command.message().fuelDump, ENABLE_fuel_dump, 0), QStringLiteral("DISABLED"));
         QCOMPARE(changedItems(before, m_command.message()),
                  QStringList{QStringLiteral("FCU_general ENABLE_fuel_dump")});
+    }
+
+    // Issue 28: the question is named by its verb, and behind it the panel
+    // shows what is commanded, not the box the click would tick.
+    void fuelDumpQuestionShowsTheCommand()
+    {
+        auto panel = shown<FuelDumpPanel>();
+        auto* dump1 = codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.tank1"), QStringLiteral("DUMP"));
+        auto* keep1 = codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.tank1"), QStringLiteral("NO_DUMP"));
+        QVERIFY(dump1 && keep1);
+        QStringList actions;
+        bool dumpTickedWhileAsked = true;
+        bool keepTickedWhileAsked = false;
+        CommandGate::of(&m_command)->setAsker([&](const Confirmation& question, QWidget*) {
+            actions << question.action;
+            dumpTickedWhileAsked = dump1->isChecked();
+            keepTickedWhileAsked = keep1->isChecked();
+            return false;
+        });
+        QTest::mouseClick(dump1, Qt::LeftButton);
+        QCOMPARE(actions, QStringList{QStringLiteral("Dump tank 1")});
+        QVERIFY(!dumpTickedWhileAsked);
+        QVERIFY(keepTickedWhileAsked);
+        QVERIFY(keep1->isChecked());
+        QCOMPARE(fieldName(m_command.message().fuelDump, ENABLE_fuel_dump, 1), QStringLiteral("NO_DUMP"));
+    }
+
+    // The dialog itself: the action button says the verb, the other Cancel,
+    // and Cancel is the default.
+    void confirmationButtonsNamedByTheirVerb()
+    {
+        auto panel = shown<FuelDumpPanel>();
+        CommandGate::of(&m_command)->setAsker({});
+        QStringList buttons;
+        QString defaultButton;
+        // Answered from the dialog's own event loop, once it is up.
+        std::function<void()> answer = [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) {
+                QTimer::singleShot(0, this, answer);
+                return;
+            }
+            for (QAbstractButton* b : box->buttons())
+                buttons << b->text().remove(QLatin1Char('&'));
+            defaultButton = box->defaultButton()->text().remove(QLatin1Char('&'));
+            box->reject();
+        };
+        QTimer::singleShot(0, this, answer);
+        QTest::mouseClick(codeButton(panel.get(), QStringLiteral("ENABLE_fuel_dump.tank3"), QStringLiteral("DUMP")),
+                          Qt::LeftButton);
+        buttons.sort();
+        QCOMPARE(buttons, (QStringList{QStringLiteral("Cancel"), QStringLiteral("Dump tank 3")}));
+        QCOMPARE(defaultButton, QStringLiteral("Cancel"));
+        QCOMPARE(fieldName(m_command.message().fuelDump, ENABLE_fuel_dump, 3), QStringLiteral("NO_DUMP"));
+    }
+
+    // Issue 28: All down and All up; retracting them all is one question, named by its verb.
+    void gearAllUpAllDown()
+    {
+        auto panel = shown<GearPanel>();
+        auto* up = child<QPushButton>(panel.get(), QStringLiteral("allUp"));
+        auto* down = child<QPushButton>(panel.get(), QStringLiteral("allDown"));
+        QVERIFY(up && down);
+        QCOMPARE(up->text(), QStringLiteral("All up"));
+        QCOMPARE(down->text(), QStringLiteral("All down"));
+        QVERIFY(up->isEnabled());
+        QVERIFY(!down->isEnabled());  // all out already
+        QStringList actions;
+        CommandGate::of(&m_command)->setAsker([&](const Confirmation& question, QWidget*) {
+            actions << question.action;
+            m_questions << question.text + QLatin1Char('\n') + question.informativeText;
+            return m_answer;
+        });
+        const Message before = m_command.message();
+        m_answer = false;
+        QTest::mouseClick(up, Qt::LeftButton);
+        QCOMPARE(actions, QStringList{QStringLiteral("Retract all wheels")});
+        QCOMPARE(m_questions.last(), QStringLiteral("Retract all wheels?\n"
+                                                    "Left wheel: Out (down) to Retracted\n"
+                                                    "Right wheel: Out (down) to Retracted\n"
+                                                    "Nose wheel: Out (down) to Retracted\n"
+                                                    "Tail wheel: Out (down) to Retracted\n"
+                                                    "A retracted wheel cannot carry the aircraft on the ground.\n"
+                                                    "Cancel keeps the landing gear as it is."));
+        QCOMPARE(m_command.message(), before);
+
+        m_answer = true;
+        QTest::mouseClick(up, Qt::LeftButton);
+        QCOMPARE(actions.size(), 2);
+        QCOMPARE(changedItems(before, m_command.message()), QStringList{QStringLiteral("SETTINGS land_wheels")});
+        for (int wheel = 0; wheel < 4; ++wheel)
+            QCOMPARE(fieldName(m_command.message().settings, land_wheels, wheel), QStringLiteral("RETRACTED"));
+        QVERIFY(!up->isEnabled());
+        QVERIFY(down->isEnabled());
+
+        // Lowering asks nothing.
+        QTest::mouseClick(down, Qt::LeftButton);
+        QCOMPARE(actions.size(), 2);
+        for (int wheel = 0; wheel < 4; ++wheel)
+            QCOMPARE(fieldName(m_command.message().settings, land_wheels, wheel), QStringLiteral("OUT"));
+
+        // One wheel up, then All up: the question names the three still out.
+        QVERIFY(m_command.setFieldCode({UnitKind::Settings, 0}, land_wheels, 2, code::kRetracted));
+        QTest::mouseClick(up, Qt::LeftButton);
+        QCOMPARE(actions.size(), 3);
+        QVERIFY(!m_questions.last().contains(QStringLiteral("Nose wheel")));
+        QVERIFY(m_questions.last().contains(QStringLiteral("Tail wheel: Out (down) to Retracted")));
+    }
+
+    // Issue 28: each card heads its columns, and an engine's master/slave
+    // mode says what it means on that engine.
+    void headingsAndEngineWords()
+    {
+        auto panel = shown<EnginePanel>();
+        for (const QString& name : {QStringLiteral("engine 1"), QStringLiteral("engine 2"), QStringLiteral("engine 3")}) {
+            auto* card = child<UnitCard>(panel.get(), name);
+            QVERIFY(card);
+            QCOMPARE(child<QLabel>(card, QStringLiteral("heading:Commanded"))->text(), QStringLiteral("Commanded"));
+            QCOMPARE(child<QLabel>(card, QStringLiteral("heading:Reported"))->text(), QStringLiteral("Reported"));
+            for (QLabel* label : card->findChildren<QLabel*>())
+                QVERIFY2(!label->text().contains(QStringLiteral("slave engine 3")), qPrintable(label->text()));
+        }
+        const auto words = [&](const QString& card) {
+            auto* box = child<FieldComboBox>(child<UnitCard>(panel.get(), card), QStringLiteral("eng_status.slave"));
+            QStringList items;
+            for (int i = 0; i < box->count(); ++i)
+                items << box->itemText(i);
+            return items;
+        };
+        QCOMPARE(words(QStringLiteral("engine 1")), (QStringList{QStringLiteral("Independent"), QStringLiteral("Master of engine 3")}));
+        QCOMPARE(words(QStringLiteral("engine 2")),
+                 (QStringList{QStringLiteral("Independent"), QStringLiteral("Engine 1 master, engine 3 slave")}));
+        QCOMPARE(words(QStringLiteral("engine 3")), (QStringList{QStringLiteral("Independent"), QStringLiteral("Slave of engine 1")}));
+        QCOMPARE(ItemText::label(eng_status, 1), QStringLiteral("Master/slave mode"));
+
+        // The reported value says it the same way.
+        Message status = m_command.message();
+        status.engines[2].setFieldCode(eng_status, 1, code::kMasterSlave);
+        m_reported.onStatus(status);
+        QCOMPARE(child<ReportedLabel>(child<UnitCard>(panel.get(), QStringLiteral("engine 3")),
+                                      QStringLiteral("reported:eng_status.slave"))
+                     ->text(),
+                 QStringLiteral("Slave of engine 1"));
+        auto gear = shown<GearPanel>();
+        QVERIFY(child<QLabel>(gear.get(), QStringLiteral("heading:Reported")));
     }
 
     void radioPanel()

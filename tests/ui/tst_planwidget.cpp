@@ -6,6 +6,7 @@
 #include "codec/message/FlightPlanTransfer.h"
 #include "codec/plan/PlanContents.h"
 #include "link/plan/PlanFile.h"
+#include "ui/look/NoteLabel.h"
 #include "ui/plan/FlightPlanUpload.h"
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/plan/PlanMapView.h"
@@ -21,7 +22,9 @@
 #include <QPushButton>
 #include <QRegularExpression>
 #include <QSettings>
+#include <QTabWidget>
 #include <QSignalSpy>
+#include <QSplitter>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -80,6 +83,8 @@ private slots:
     void aircraftReportsFenceAndRally();
     void tableSpeaksAsThePlannersDo();
     void oneSectionIsOneSection();
+    void mapHasThePage();
+    void uploadNeedsAPlanAndALink();
 
 private:
     QTemporaryDir m_dir;
@@ -395,10 +400,11 @@ void TestPlanWidget::fenceForbidsAWaypoint()
                                                "every inclusion area; mission item 5 is inside exclusion circle 1. "
                                                "Upload it anyway?")});
     QCOMPARE(upload.progress().state, FlightPlanUpload::State::Idle);
-    const auto labels = widget.findChildren<QLabel*>();
-    QVERIFY(std::any_of(labels.begin(), labels.end(), [](const QLabel* l) {
-        return l->text().contains(QStringLiteral("Fence: mission item 4 is outside every inclusion area"));
-    }));
+    auto* fenceNote = widget.findChild<NoteLabel*>(QStringLiteral("planEdits"));
+    QVERIFY(fenceNote);
+    QCOMPARE(fenceNote->note(), QStringLiteral("Fence: mission item 4 is outside every inclusion area; mission item 5 "
+                                               "is inside exclusion circle 1"));
+    QCOMPARE(fenceNote->severity(), SeverityColours::Severity::Error);
 
     // 0 N 0 E is "no position" (Mission Planner writes it for DO_LAND_START): not on the map, not a violation.
     MissionItem land;
@@ -614,3 +620,92 @@ void TestPlanWidget::oneSectionIsOneSection()
 
 QTEST_MAIN(TestPlanWidget)
 #include "tst_planwidget.moc"
+
+// Issue 28: at 1366x768 the plan is a page of the window's middle, its map
+// takes most of the page with the table beside it in a splitter, and a
+// refused plan's long message keeps to its two lines (whole in the tool tip):
+// the map keeps its size.
+void TestPlanWidget::mapHasThePage()
+{
+    MainWindow::Options options;
+    options.restoreSettings = false;
+    options.frameLogDirectory = m_dir.filePath(QStringLiteral("framelogs"));
+    MainWindow window(options);
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    FlightPlanWidget* widget = window.flightPlan();
+    QVERIFY(widget->loadPlan(kSamplePlan));
+    QCOMPARE(window.panels()->currentWidget(), widget);
+    auto* split = widget->findChild<QSplitter*>(QStringLiteral("planSplitter"));
+    QVERIFY(split);
+    QCOMPARE(split->orientation(), Qt::Horizontal);
+    QCOMPARE(split->indexOf(widget->table()), 1);
+    PlanMapView* map = widget->map();
+    QTRY_VERIFY(map->isVisible());
+    // About 375x170 when the plan was a dock under the panels.
+    QVERIFY2(map->width() >= 560 && map->height() >= 280,
+             qPrintable(QStringLiteral("%1x%2").arg(map->width()).arg(map->height())));
+    QVERIFY(map->width() > widget->table()->width());
+    window.close();
+
+    // The page on its own (the window's error banner above the tabs takes its height from every page alike).
+    FlightPlanUpload upload;
+    FlightPlanWidget page(&upload);
+    page.resize(1080, 480);
+    page.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&page));
+    QVERIFY(page.loadPlan(kSamplePlan));
+    QCoreApplication::processEvents();
+    map = page.map();
+    widget = &page;
+    const QSize before = map->size();
+
+    const QString refused = m_dir.filePath(QStringLiteral("a-plan-file-whose-name-is-long-enough-to-wrap-twice-over-"
+                                                          "in-the-state-line-of-the-flight-plan-page.plan"));
+    QFile file(refused);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("{ this is not JSON at all, and the message that says so names the whole path }");
+    file.close();
+    QString error;
+    QVERIFY(!widget->loadPlan(refused, &error));
+    QVERIFY(error.size() > 120);
+    auto* state = widget->findChild<NoteLabel*>(QStringLiteral("planState"));
+    QVERIFY(state);
+    QCOMPARE(state->note(), error);
+    QCOMPARE(state->severity(), SeverityColours::Severity::Error);
+    QTRY_VERIFY(state->isCut());
+    QCOMPARE(state->toolTip(), error);
+    QVERIFY(state->text().contains(QStringLiteral("\u2026")));
+    QCoreApplication::processEvents();
+    QVERIFY2(map->size() == before, qPrintable(QStringLiteral("%1x%2 then %3x%4, table %5")
+                                                  .arg(before.width())
+                                                  .arg(before.height())
+                                                  .arg(map->width())
+                                                  .arg(map->height())
+                                                  .arg(widget->table()->width())));
+}
+
+// Upload is offered only with a plan that holds something and a link that can send it.
+void TestPlanWidget::uploadNeedsAPlanAndALink()
+{
+    FlightPlanUpload upload;
+    FlightPlanWidget widget(&upload);
+    QPushButton* send = nullptr;
+    for (QPushButton* b : widget.findChildren<QPushButton*>())
+        if (b->text() == QStringLiteral("Upload to aircraft"))
+            send = b;
+    QVERIFY(send);
+    QVERIFY(!send->isEnabled());
+    QCOMPARE(send->toolTip(), QStringLiteral("Open a plan and connect a link first"));
+    widget.setLinkReady(true);
+    QVERIFY(!send->isEnabled());
+    QCOMPARE(send->toolTip(), QStringLiteral("Open a plan first"));
+    QVERIFY(widget.loadPlan(kSamplePlan));
+    QVERIFY(send->isEnabled());
+    QCOMPARE(send->toolTip(),
+             QStringLiteral("Send the plan in BLOCK 2 sections, one per frame, until the aircraft acknowledges it"));
+    widget.setLinkReady(false);
+    QVERIFY(!send->isEnabled());
+    QCOMPARE(send->toolTip(), QStringLiteral("Connect a link first"));
+}

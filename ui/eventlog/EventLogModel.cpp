@@ -1,28 +1,27 @@
 #include "ui/eventlog/EventLogModel.h"
 
 #include "link/eventlog/EventLog.h"
+#include "ui/look/SeverityColours.h"
 
 #include <QBrush>
 #include <QColor>
 #include <QDateTime>
+#include <QGuiApplication>
 
 #include <algorithm>
 
 namespace {
 
-// Dark text on a light tint: over 7:1 contrast whatever the window's palette.
-struct Colours {
-    QColor text;
-    QColor background;
-};
-
-std::optional<Colours> coloursOf(EventSeverity severity)
+// Errors and warnings as tinted rows: dark text on a light tint by day, light
+// text on a dark tint by night (SeverityColours), 7:1 or more either way.
+std::optional<SeverityColours::Row> coloursOf(EventSeverity severity)
 {
+    const QPalette palette = QGuiApplication::palette();
     switch (severity) {
     case EventSeverity::Error:
-        return Colours{QColor(0x7f, 0x00, 0x00), QColor(0xff, 0xd6, 0xd6)};
+        return SeverityColours::row(SeverityColours::Severity::Error, palette);
     case EventSeverity::Warning:
-        return Colours{QColor(0x3d, 0x2b, 0x00), QColor(0xff, 0xe5, 0x99)};
+        return SeverityColours::row(SeverityColours::Severity::Warning, palette);
     case EventSeverity::Info:
         break;
     }

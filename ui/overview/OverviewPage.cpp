@@ -14,6 +14,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLocale>
+#include <QPainter>
 #include <QResizeEvent>
 #include <QScrollArea>
 #include <QStyle>
@@ -72,6 +73,28 @@ QString stateColour(LinkState state, bool replay, bool dark)
     return {};
 }
 
+// An item's name in a card: whole when the card has the room, else cut with
+// an ellipsis (whole in the tool tip), never widening the card.
+class NameLabel : public QLabel {
+public:
+    NameLabel(const QString& text, QWidget* parent) : QLabel(text, parent) {}
+
+    QSize minimumSizeHint() const override
+    {
+        return {fontMetrics().horizontalAdvance(QStringLiteral("Xxxx…")), QLabel::minimumSizeHint().height()};
+    }
+
+protected:
+    void paintEvent(QPaintEvent*) override
+    {
+        QPainter painter(this);
+        const QRect room = contentsRect();
+        painter.setPen(palette().color(foregroundRole()));
+        painter.drawText(room, Qt::AlignLeft | Qt::AlignVCenter,
+                         fontMetrics().elidedText(text(), Qt::ElideRight, room.width()));
+    }
+};
+
 }  // namespace
 
 OverviewPage::OverviewPage(CommandState* command, ReportedState* reported, QWidget* parent)
@@ -85,18 +108,29 @@ OverviewPage::OverviewPage(CommandState* command, ReportedState* reported, QWidg
 {
     setObjectName(QStringLiteral("overview"));
     m_unitColumns->setContentsMargins(0, 0, 0, 0);
-    m_unitColumns->setSpacing(8);
+    m_unitColumns->setSpacing(kCardSpacing);
     auto* scroll = new QScrollArea;
+    // The cards a little smaller than the page's text: every unit at a glance
+    // on a 1366x768 screen, four cards to a row.
+    QFont cardFont = font();
+    cardFont.setPointSizeF(cardFont.pointSizeF() * 0.9);
+    m_unitArea->setFont(cardFont);
     scroll->setWidget(m_unitArea);
     scroll->setWidgetResizable(true);
     scroll->setFrameShape(QFrame::NoFrame);
     scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
 
+    // The figures and the plot side by side on a wide page, so that the
+    // cards keep the height; one over the other on a narrow one.
+    m_top = new QBoxLayout(QBoxLayout::LeftToRight);
+    m_top->setSpacing(8);
+    m_top->addWidget(buildHealth(), 3);
+    m_top->addWidget(m_plot, 2);
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(6, 6, 6, 6);
-    layout->addWidget(buildHealth());
+    layout->setSpacing(6);
+    layout->addLayout(m_top);
     layout->addWidget(scroll, 1);
-    layout->addWidget(m_plot);
 
     reflowFigures();
     rebuildUnits();
@@ -252,24 +286,45 @@ void OverviewPage::rebuildUnits()
         delete card;
     m_cards.clear();
     m_rows.clear();
-    QFont captionFont = font();
-    captionFont.setPointSizeF(captionFont.pointSizeF() * 0.9);
+    QFont captionFont = m_unitArea->font();
     captionFont.setItalic(true);  // a heading, told from the values by shape rather than a faint colour
+    QFont titleFont = m_unitArea->font();
+    titleFont.setBold(true);
+    // Every card the same width, from the font rather than the values shown,
+    // so that the number of columns follows the page's width alone: a name
+    // cut to its room (whole in its tool tip) and two values of a dozen
+    // characters each.
+    const QFontMetrics metrics(m_unitArea->font());
+    const int nameWidth = metrics.horizontalAdvance(QStringLiteral("Carburettor"));
+    const int valueWidth = metrics.horizontalAdvance(QStringLiteral("Independent"));
+    m_cardWidth = nameWidth + 2 * valueWidth + 2 * 8 + 2 * 5 + 4;
+    // The reported value's least width is that of its longest word ("RETRACTED").
+    m_cardWidth = std::max(m_cardWidth, nameWidth + valueWidth + metrics.horizontalAdvance(QStringLiteral("RETRACTED")) + 30);
     for (int k = 0; k < rcm::kUnitKindCount; ++k) {
         const auto kind = rcm::UnitKind(k);
         if (kind == rcm::UnitKind::Header)
             continue;  // who talks to whom, not what the aircraft does: the Header panel has it
         for (int index = 0; index < m_command->unitCount(kind); ++index) {
             const UnitRef ref{kind, index};
-            auto* card = new SteadyGroupBox(unitTitle(*m_command, ref));
-            card->setObjectName(QStringLiteral("overview:") + card->title());
+            // A frame without a title: the unit's name is the first row's
+            // first cell, beside the column headings, so no line goes to a
+            // title of its own.
+            const QString title = unitTitle(*m_command, ref);
+            auto* card = new SteadyGroupBox(QString());
+            card->setObjectName(QStringLiteral("overview:") + title);
+            card->setFont(m_unitArea->font());  // before its labels are made: they measure their values in it
             auto* grid = new QGridLayout(card);
-            grid->setContentsMargins(6, 4, 6, 4);
-            grid->setHorizontalSpacing(10);
-            grid->setVerticalSpacing(1);
+            grid->setContentsMargins(5, 2, 5, 3);
+            grid->setHorizontalSpacing(8);
+            grid->setVerticalSpacing(0);
+            auto* name = new QLabel(title, card);
+            name->setObjectName(QStringLiteral("title"));
+            name->setFont(titleFont);
+            grid->addWidget(name, 0, 0);
             int column = 1;
             for (const QString& heading : {tr("Commanded"), tr("Reported")}) {
-                auto* label = new QLabel(heading);
+                auto* label = new QLabel(heading, card);
+                label->setObjectName(QStringLiteral("heading:") + heading);
                 label->setFont(captionFont);
                 grid->addWidget(label, 0, column++);
             }
@@ -279,11 +334,14 @@ void OverviewPage::rebuildUnits()
                     continue;
                 const int fields = info.kind == rcm::ValueKind::Fields ? int(info.fields.size()) : 0;
                 for (int field = fields ? 0 : -1; field < fields; ++field) {
-                    auto* name = new QLabel(ItemText::label(info.id, field));
+                    const QString label = ItemText::label(info.id, field);
+                    auto* name = new NameLabel(label, card);
+                    name->setSizePolicy(QSizePolicy::Preferred, QSizePolicy::Preferred);
                     name->setToolTip(field < 0 ? ItemText::toolTip(info.id) : ItemText::fieldToolTip(info.id, field));
-                    auto* commanded = new SteadyLabel;
+                    auto* commanded = new SteadyLabel(card);
                     commanded->setObjectName(QStringLiteral("commanded:") + ItemText::name(info.id, field));
-                    auto* reported = new ReportedLabel(m_command, m_reported, ref, info.id, field);
+                    auto* reported = new ReportedLabel(m_command, m_reported, ref, info.id, field, card);
+                    reported->setAgeShown(false);  // the look says stale; the age is the figure above, and the tool tip's
                     grid->addWidget(name, row, 0);
                     grid->addWidget(commanded, row, 1);
                     grid->addWidget(reported, row, 2);
@@ -291,8 +349,8 @@ void OverviewPage::rebuildUnits()
                     ++row;
                 }
             }
-            // Values right beside their names; the card's spare width after them.
-            grid->setColumnStretch(3, 1);
+            // The names take the card's spare width, and are cut only when it has none.
+            grid->setColumnStretch(0, 1);
             m_cards.push_back(card);
         }
     }
@@ -312,13 +370,14 @@ void OverviewPage::refreshCommanded()
         row.shownOnce = true;
         row.commanded->setText(!v ? QStringLiteral("\u2014")
                                : row.field < 0 ? ItemText::value(row.id, *v)
-                                               : ItemText::fieldValue(row.id, row.field, *v));
+                                               : ItemText::fieldValue(row.id, row.field, *v, m_command->unit(row.ref)));
     }
 }
 
 void OverviewPage::resizeEvent(QResizeEvent* event)
 {
     QWidget::resizeEvent(event);
+    m_top->setDirection(width() >= kSideBySideWidth ? QBoxLayout::LeftToRight : QBoxLayout::TopToBottom);
     reflow();
 }
 
@@ -338,13 +397,26 @@ bool OverviewPage::eventFilter(QObject* watched, QEvent* event)
 
 void OverviewPage::reflowFigures()
 {
-    // The figures: as many to a row as fit, in rows of equal count.
-    int figureWidth = 1;
-    for (QWidget* box : m_figureBoxes)
-        figureWidth = std::max(figureWidth, box->sizeHint().width());
+    // The figures: in as few rows as the width holds, each column as wide
+    // as its widest figure.
     const int figureCount = int(m_figureBoxes.size());
-    const int fit = std::clamp((m_healthGrid->parentWidget()->width() - 20) / (figureWidth + 18), 1, figureCount);
-    const int perRow = (figureCount + (figureCount + fit - 1) / fit - 1) / ((figureCount + fit - 1) / fit);
+    const int room = m_healthGrid->parentWidget()->width() - 20;
+    int perRow = 1;
+    for (int n = figureCount; n > 1; --n) {
+        const int rows = (figureCount + n - 1) / n;
+        const int even = (figureCount + rows - 1) / rows;  // rows of equal count
+        int needed = 0;
+        for (int c = 0; c < even; ++c) {
+            int widest = 0;
+            for (int i = c; i < figureCount; i += even)
+                widest = std::max(widest, m_figureBoxes[std::size_t(i)]->sizeHint().width());
+            needed += widest + (c ? 18 : 0);
+        }
+        if (needed <= room) {
+            perRow = even;
+            break;
+        }
+    }
     if (perRow != m_figuresPerRow) {
         m_figuresPerRow = perRow;
         for (int i = 0; i < figureCount; ++i) {
@@ -356,33 +428,55 @@ void OverviewPage::reflowFigures()
     }
 }
 
+std::vector<int> OverviewPage::columnHeights(int columns, std::vector<std::size_t>* placed) const
+{
+    // Cards in order, each into the shortest column so far.
+    std::vector<int> heights(std::size_t(columns), 0);
+    for (QGroupBox* card : m_cards) {
+        const auto shortest = std::size_t(std::min_element(heights.begin(), heights.end()) - heights.begin());
+        if (placed)
+            placed->push_back(shortest);
+        heights[shortest] += card->sizeHint().height() + kCardSpacing;
+    }
+    return heights;
+}
+
 void OverviewPage::reflow()
 {
-    int cardWidth = 1;
-    for (QGroupBox* card : m_cards)
-        cardWidth = std::max(cardWidth, card->sizeHint().width());
+    // From the page's size and the cards' sizes alone, never from the
+    // values shown, so that a stale mark or a long value cannot make the
+    // columns switch: as many as the width holds at most, and of those the
+    // fewest in which every card shows without scrolling (the widest cards,
+    // whose names are cut least).
     const int available = std::max(1, width() - 12 - style()->pixelMetric(QStyle::PM_ScrollBarExtent));
-    const int columns = std::max(1, std::min<int>(int(m_cards.size()), (available + 8) / (cardWidth + 8)));
+    const int widest =
+        std::max(1, std::min<int>(int(m_cards.size()), (available + kCardSpacing) / (m_cardWidth + kCardSpacing)));
+    const int room = height() - 18 - m_top->sizeHint().height();
+    int columns = widest;
+    for (int c = 1; c < widest; ++c) {
+        const std::vector<int> heights = columnHeights(c, nullptr);
+        if (*std::max_element(heights.begin(), heights.end()) <= room) {
+            columns = c;
+            break;
+        }
+    }
     if (columns == m_columns)
         return;
     m_columns = columns;
-    // Cards in order, each into the shortest column so far.
     // The column layouts go; the cards in them stay, children of the area.
     while (QLayoutItem* item = m_unitColumns->takeAt(0))
         delete item;
     std::vector<QVBoxLayout*> stacks;
-    std::vector<int> heights(std::size_t(columns), 0);
     for (int c = 0; c < columns; ++c) {
         auto* stack = new QVBoxLayout;
-        stack->setSpacing(8);
+        stack->setSpacing(kCardSpacing);
         m_unitColumns->addLayout(stack, 1);
         stacks.push_back(stack);
     }
-    for (QGroupBox* card : m_cards) {
-        const auto shortest = std::size_t(std::min_element(heights.begin(), heights.end()) - heights.begin());
-        stacks[shortest]->addWidget(card);
-        heights[shortest] += card->sizeHint().height();
-    }
+    std::vector<std::size_t> placed;
+    columnHeights(columns, &placed);
+    for (std::size_t i = 0; i < m_cards.size(); ++i)
+        stacks[placed[i]]->addWidget(m_cards[i]);
     for (QVBoxLayout* stack : stacks)
         stack->addStretch(1);
 }

@@ -27,6 +27,7 @@
 
 class CommandState;
 class LinkQualityPlot;
+class QBoxLayout;
 class QGroupBox;
 class QHBoxLayout;
 class QLabel;
@@ -54,6 +55,9 @@ public:
     ReportedLabel* reportedLabel(UnitRef ref, rcm::ItemId id, int field = -1) const;
     int rowCount() const { return int(m_rows.size()); }
     int cardColumns() const { return m_columns; }
+    // Below this width the plot goes under the figures rather than beside them.
+    static constexpr int kSideBySideWidth = 900;
+    static constexpr int kCardSpacing = 5;
 
 public slots:
     void setStatistics(const LinkStatistics& statistics);
@@ -84,6 +88,9 @@ private:
     void rebuildUnits();
     void refreshCommanded();
     void reflow();
+    // The height of each of `columns` columns with the cards placed in order,
+    // each into the shortest; `placed` gets each card's column.
+    std::vector<int> columnHeights(int columns, std::vector<std::size_t>* placed) const;
     void reflowFigures();
     void updateFigures();
     const Row* findRow(UnitRef ref, rcm::ItemId id, int field) const;
@@ -107,5 +114,7 @@ private:
     std::vector<QGroupBox*> m_cards;
     std::vector<Row> m_rows;
     int m_columns = 0;
+    int m_cardWidth = 1;  // every card's, from the font (rebuildUnits())
+    QBoxLayout* m_top = nullptr;
     LinkQualityPlot* m_plot;
 };

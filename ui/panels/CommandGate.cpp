@@ -29,7 +29,7 @@ CommandGate* CommandGate::of(CommandState* command)
 }
 
 std::optional<Confirmation> CommandGate::question(UnitRef ref, rcm::ItemId id, const rcm::Value& to,
-                                                  const QString& detail) const
+                                                  const QString& detail, const QString& action) const
 {
     const rcm::ItemInfo& info = rcm::itemInfo(id);
     const rcm::Value* from = m_command->value(ref, id);
@@ -39,7 +39,7 @@ std::optional<Confirmation> CommandGate::question(UnitRef ref, rcm::ItemId id, c
     using Rule = rcm::LargeChangeFound::Rule;
     const int field = found->field;
     const auto shown = [&](const rcm::Value& v) {
-        return field >= 0 ? ItemText::fieldValue(id, field, v) : ItemText::value(id, v);
+        return field >= 0 ? ItemText::fieldValue(id, field, v, m_command->unit(ref)) : ItemText::value(id, v);
     };
     const QString before = from ? shown(*from) : tr("nothing");
     const QString after = shown(to);
@@ -47,6 +47,34 @@ std::optional<Confirmation> CommandGate::question(UnitRef ref, rcm::ItemId id, c
     if (rcm::isRepeated(ref.kind))
         if (const rcm::Unit* unit = m_command->unit(ref))
             what = tr("%1 of %2").arg(what, QString::fromStdString(rcm::describeUnit(*unit)));
+
+    // Every field this one change moves to the code that asks, when it is more than one.
+    QStringList fieldsAsking;
+    if (found->rule == Rule::FieldCode) {
+        const auto code = [](const rcm::Value& v, int f) { return rcm::fieldCode(std::uint8_t(v.number), f); };
+        for (int f = 0; f < int(info.fields.size()); ++f) {
+            const rcm::FieldConfirmation& asks = info.largeChange.fields[std::size_t(f)];
+            if (asks.code != 0 && code(to, f) == asks.code && (!from || code(*from, f) != asks.code))
+                fieldsAsking << tr("%1: %2 to %3")
+                                    .arg(ItemText::label(id, f),
+                                         from ? ItemText::fieldValue(id, f, *from, m_command->unit(ref)) : tr("nothing"),
+                                         ItemText::fieldValue(id, f, to, m_command->unit(ref)));
+        }
+    }
+    if (fieldsAsking.size() > 1) {
+        Confirmation ask;
+        ask.title = ItemText::label(id);
+        ask.action = action.isEmpty() ? fromView(found->action) : action;
+        ask.text = tr("%1?").arg(ask.action);
+        QStringList lines = fieldsAsking;
+        if (!info.largeChange.note.empty())
+            lines << fromView(info.largeChange.note);
+        if (!detail.isEmpty())
+            lines << detail;
+        lines << tr("Cancel keeps the %1 as it is.").arg(ItemText::label(id).toLower());
+        ask.informativeText = lines.join(QLatin1Char('\n'));
+        return ask;
+    }
 
     QStringList why;
     switch (found->rule) {
@@ -73,13 +101,14 @@ std::optional<Confirmation> CommandGate::question(UnitRef ref, rcm::ItemId id, c
     ask.title = ItemText::label(id);
     ask.text = tr("%1 from %2 to %3?").arg(what, before, after);
     ask.informativeText = why.join(QLatin1Char('\n'));
-    ask.action = fromView(found->action);
+    ask.action = action.isEmpty() ? fromView(found->action) : action;
     return ask;
 }
 
-bool CommandGate::setItem(QWidget* control, UnitRef ref, rcm::ItemId id, const rcm::Value& to, const QString& detail)
+bool CommandGate::setItem(QWidget* control, UnitRef ref, rcm::ItemId id, const rcm::Value& to, const QString& detail,
+                          const QString& action)
 {
-    if (const auto ask = question(ref, id, to, detail)) {
+    if (const auto ask = question(ref, id, to, detail, action)) {
         m_asking = true;
         QWidget* parent = control ? control->window() : nullptr;
         const bool confirmed = m_asker ? m_asker(*ask, parent) : ask->ask(parent);

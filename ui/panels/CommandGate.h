@@ -39,14 +39,17 @@ public:
     // The question for changing the item to `to` from the value in force,
     // nothing when the table lets one action make it unasked. `detail` is a
     // panel's word on what the change would do, added to the question.
+    // `action` names one control's change of several fields at once ("Retract
+    // all wheels"): the question then lists every field that asks.
     std::optional<Confirmation> question(UnitRef ref, rcm::ItemId id, const rcm::Value& to,
-                                         const QString& detail = {}) const;
+                                         const QString& detail = {}, const QString& action = {}) const;
 
     // Commands `to`, asking first when question() has one. False when the
     // operator cancels or CommandState refuses the change: the command is as
     // it was, and the control shows it again (it hears changed() only when
     // the command changes, so a control refreshes itself on false).
-    bool setItem(QWidget* control, UnitRef ref, rcm::ItemId id, const rcm::Value& to, const QString& detail = {});
+    bool setItem(QWidget* control, UnitRef ref, rcm::ItemId id, const rcm::Value& to, const QString& detail = {},
+                 const QString& action = {});
     bool setNumber(QWidget* control, UnitRef ref, rcm::ItemId id, std::int64_t number);
     bool setFieldCode(QWidget* control, UnitRef ref, rcm::ItemId id, int field, unsigned code,
                       const QString& detail = {});

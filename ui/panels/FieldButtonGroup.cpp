@@ -77,6 +77,9 @@ void FieldButtonGroup::commit(int code)
     if (wanted == m_command->fieldCode(m_ref, m_id, m_field))
         return;
     const QString detail = m_detail ? m_detail(wanted) : QString();
+    // The click checked the button already: until the operator confirms, it
+    // shows what is commanded, not what the question asks about.
+    refresh();
     if (!CommandGate::of(m_command)->setFieldCode(this, m_ref, m_id, m_field, wanted, detail))
         refresh();
 }

@@ -13,7 +13,7 @@ FieldComboBox::FieldComboBox(CommandState* command, UnitRef ref, rcm::ItemId id,
 {
     setObjectName(ItemText::name(id, field));
     for (unsigned code : ItemText::validFieldCodes(id, field))
-        addItem(ItemText::fieldCodeWord(id, field, code), code);
+        addItem(ItemText::fieldCodeWord(id, field, code, command->unit(ref)), code);
     const QString rule = CommandGate::ruleText(id, field);
     setToolTip(ItemText::fieldToolTip(id, field) + (rule.isEmpty() ? QString() : QLatin1Char('\n') + rule));
     setAccessibleName(ItemText::label(id, field));

@@ -139,6 +139,21 @@ QString fieldCodeWord(rcm::ItemId id, int field, unsigned code)
     return fieldCodeName(id, field, code);
 }
 
+QString fieldCodeWord(rcm::ItemId id, int field, unsigned code, const rcm::Unit* unit)
+{
+    // eng_status MASTER_SLAVE: "master eng 1 + slave eng 3" (PROFILE.md), by eng_ID.
+    constexpr std::int64_t kMasterEngine = 1;
+    constexpr std::int64_t kSlaveEngine = 3;
+    if (id == rcm::ItemId::eng_status && field == 1 && code == rcm::code::kMasterSlave && unit) {
+        const rcm::Value* key = unit->find(rcm::ItemId::eng_ID);
+        if (key && key->number == kMasterEngine)
+            return QCoreApplication::translate("ItemText", "Master of engine %1").arg(kSlaveEngine);
+        if (key && key->number == kSlaveEngine)
+            return QCoreApplication::translate("ItemText", "Slave of engine %1").arg(kMasterEngine);
+    }
+    return fieldCodeWord(id, field, code);
+}
+
 QString fieldCodeName(rcm::ItemId id, int field, unsigned code)
 {
     const rcm::FieldInfo& info = rcm::itemInfo(id).fields[static_cast<std::size_t>(field)];
@@ -194,9 +209,9 @@ QString value(rcm::ItemId id, const rcm::Value& v)
     return {};
 }
 
-QString fieldValue(rcm::ItemId id, int field, const rcm::Value& v)
+QString fieldValue(rcm::ItemId id, int field, const rcm::Value& v, const rcm::Unit* unit)
 {
-    return fieldCodeWord(id, field, rcm::fieldCode(static_cast<std::uint8_t>(v.number), field));
+    return fieldCodeWord(id, field, rcm::fieldCode(static_cast<std::uint8_t>(v.number), field), unit);
 }
 
 QString unitName(rcm::UnitKind kind, const std::optional<rcm::Value>& key)

@@ -36,12 +36,16 @@ QString fieldToolTip(rcm::ItemId id, int field);
 QString fieldCodeName(rcm::ItemId id, int field, unsigned code);
 // The code in words ("Ground station"), as panels show it; "corrupt (00)" likewise.
 QString fieldCodeWord(rcm::ItemId id, int field, unsigned code);
+// The same on the card of `unit`, where a word depends on which unit it is:
+// an engine's master/slave mode reads "Master of engine 3" on engine 1,
+// "Slave of engine 1" on engine 3. `unit` may be null: the words above.
+QString fieldCodeWord(rcm::ItemId id, int field, unsigned code, const rcm::Unit* unit);
 // The valid codes of a field, in code order.
 QList<unsigned> validFieldCodes(rcm::ItemId id, int field);
 // A value as people read it, with the unit: "47.1 %", "-54.64°", "127.712 MHz", "GB_133", "NIK 1".
 QString value(rcm::ItemId id, const rcm::Value& value);
-// One field of a Fields item's value, in words.
-QString fieldValue(rcm::ItemId id, int field, const rcm::Value& value);
+// One field of a Fields item's value, in words; on the card of `unit` as fieldCodeWord says.
+QString fieldValue(rcm::ItemId id, int field, const rcm::Value& value, const rcm::Unit* unit = nullptr);
 
 // A unit for people: "Engine 1", "Radio VHF1", "Camera NIK 1", "Flaps";
 // `key` its key item's value (none for the single units).

@@ -51,11 +51,20 @@ ReportedLabel::ReportedLabel(const CommandState* command, const ReportedState* r
     connect(command, &CommandState::changed, this, &ReportedLabel::refresh);
 }
 
+void ReportedLabel::setAgeShown(bool shown)
+{
+    if (shown == m_ageShown)
+        return;
+    m_ageShown = shown;
+    m_shown.reset();
+    refresh();
+}
+
 QString ReportedLabel::valueText(const rcm::Value* value) const
 {
     if (!value)
         return kNothing;
-    return m_field < 0 ? ItemText::value(m_id, *value) : ItemText::fieldValue(m_id, m_field, *value);
+    return m_field < 0 ? ItemText::value(m_id, *value) : ItemText::fieldValue(m_id, m_field, *value, m_command->unit(m_ref));
 }
 
 void ReportedLabel::refresh()
@@ -75,7 +84,7 @@ void ReportedLabel::refresh()
     if (facts == m_shown)
         return;
     m_shown = facts;
-    setText(age ? tr("%1 (stale, %2 s)").arg(text(reported)).arg(seconds) : text(reported));
+    setText(age && m_ageShown ? tr("%1 (stale, %2 s)").arg(text(reported)).arg(seconds) : text(reported));
 
     if (mismatch != property("mismatch").toBool() || stale != property("stale").toBool()) {
         setProperty("mismatch", mismatch);

@@ -27,6 +27,10 @@ public:
 
     bool mismatch() const { return property("mismatch").toBool(); }
     bool stale() const { return property("stale").toBool(); }
+    // Where room is short (the overview's cards): a stale value is marked by
+    // its look alone and its age is in the tool tip, "77" rather than
+    // "77 (stale, 12 s)", so that the label keeps the width of its values.
+    void setAgeShown(bool shown);
 
 private:
     void refresh();
@@ -51,4 +55,5 @@ private:
     UnitRef m_ref;
     rcm::ItemId m_id;
     int m_field;
+    bool m_ageShown = true;
 };

@@ -25,6 +25,17 @@ UnitCard::UnitCard(CommandState* command, ReportedState* reported, UnitRef ref, 
     // Controls at their own width and the reported value right beside each;
     // the spare width goes after them, not between a control and its report.
     m_grid->setColumnStretch(SpareColumn, 1);
+    // What the operator sets and what the aircraft says, headed as such: a
+    // heading, told from the values by its shape (italic) rather than a faint colour.
+    QFont headingFont = font();
+    headingFont.setItalic(true);
+    for (const auto& [column, text] : {std::pair{ControlColumn, tr("Commanded")}, std::pair{ReportedColumn, tr("Reported")}}) {
+        auto* heading = new QLabel(text, this);
+        heading->setObjectName(QStringLiteral("heading:") + text);
+        heading->setFont(headingFont);
+        m_grid->addWidget(heading, m_rows, column);
+    }
+    ++m_rows;
 }
 
 UnitCard* UnitCard::ofFields(CommandState* command, ReportedState* reported, UnitRef ref, rcm::ItemId id,

@@ -5,6 +5,7 @@
 #include "link/plan/MavCommand.h"
 #include "link/plan/PlanFile.h"
 #include "ui/alerts/Confirmation.h"
+#include "ui/look/NoteLabel.h"
 #include "ui/plan/PlanMapView.h"
 
 #include <QDialog>
@@ -29,6 +30,8 @@
 
 namespace {
 
+using Severity = SeverityColours::Severity;
+
 QString number(const std::optional<double>& value, int decimals)
 {
     return value ? QString::number(*value, 'f', decimals) : QStringLiteral("\u2014");
@@ -43,11 +46,6 @@ QString param(double value)
 QString planIdText(quint32 id)
 {
     return QString::fromStdString(rcm::planIdText(id));
-}
-
-QString red(const QString& text)
-{
-    return QStringLiteral("<span style=\"color:#b01c1c\"><b>%1</b></span>").arg(text.toHtmlEscaped());
 }
 
 QString count(qsizetype n, const QString& one, const QString& many)
@@ -92,8 +90,8 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
       m_upload(upload),
       m_tiles(new MapTiles(this)),
       m_file(new QLabel(tr("No flight plan loaded"))),
-      m_summary(new QLabel),
-      m_edits(new QLabel),
+      m_summary(new NoteLabel(2)),
+      m_edits(new NoteLabel(2)),
       m_mapSource(new QLabel),
       m_table(new QTableWidget(0, kColumnCount)),
       m_map(new PlanMapView),
@@ -104,7 +102,7 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
       m_send(new QPushButton(tr("Upload to aircraft"))),
       m_cancel(new QPushButton(tr("Cancel upload"))),
       m_progress(new QProgressBar),
-      m_state(new QLabel)
+      m_state(new NoteLabel(2))
 {
     m_confirm = [this](const QString& text, const QString& action) {
         return Confirmation{QMessageBox::Question, tr("Flight plan"), text, QString(), action, QMessageBox::AcceptRole}
@@ -124,18 +122,13 @@ FlightPlanWidget::FlightPlanWidget(FlightPlanUpload* upload, QWidget* parent)
            "table to change it. Edits are not sent until you upload."));
     m_tileButton->setToolTip(tr("Choose an MBTiles file for offline maps, or a tile server"));
     m_file->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    m_summary->setWordWrap(true);
-    m_edits->setTextFormat(Qt::RichText);
-    m_state->setTextFormat(Qt::RichText);
     // Long states (an acknowledgement that lists the fence, a refusal that
-    // names a file) wrap: they must never widen the window.
-    m_state->setWordWrap(true);
-    m_state->setMinimumWidth(0);
-    m_state->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
-    for (QLabel* label : {m_edits, m_mapSource}) {
-        label->setWordWrap(true);
-        label->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
-    }
+    // names a file) wrap in two lines of their own and are cut there, whole
+    // in the tool tip: they never widen the window nor take the map's room.
+    m_state->setObjectName(QStringLiteral("planState"));
+    m_edits->setObjectName(QStringLiteral("planEdits"));
+    m_mapSource->setWordWrap(true);
+    m_mapSource->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     m_file->setWordWrap(true);
     m_file->setMaximumWidth(260);
     m_mapSource->setTextFormat(Qt::PlainText);
@@ -173,6 +166,10 @@ void FlightPlanWidget::setUpTable()
 
 void FlightPlanWidget::layOut()
 {
+    // The map takes the page; the table beside it in a splitter (the
+    // operator moves the handle), the file and the upload in a line each
+    // above and below, and the notes in rooms of their own that never
+    // squeeze the map.
     auto* top = new QHBoxLayout;
     top->addWidget(m_open);
     top->addWidget(m_save);
@@ -180,7 +177,7 @@ void FlightPlanWidget::layOut()
     top->addWidget(m_summary, 1);
     auto* mapBar = new QHBoxLayout;
     mapBar->addWidget(m_editOnMap);
-    mapBar->addWidget(m_edits, 1);
+    mapBar->addWidget(m_edits, 3);
     mapBar->addWidget(m_mapSource, 2);
     mapBar->addWidget(m_tileButton);
     auto* mapBox = new QWidget;
@@ -188,12 +185,15 @@ void FlightPlanWidget::layOut()
     mapLayout->setContentsMargins(0, 0, 0, 0);
     mapLayout->addLayout(mapBar);
     mapLayout->addWidget(m_map, 1);
-    auto* split = new QSplitter(Qt::Horizontal);
-    split->addWidget(m_table);
-    split->addWidget(mapBox);
-    split->setStretchFactor(0, 1);
-    split->setStretchFactor(1, 1);
-    split->setChildrenCollapsible(false);
+    m_split = new QSplitter(Qt::Horizontal);
+    m_split->setObjectName(QStringLiteral("planSplitter"));
+    m_split->addWidget(mapBox);
+    m_split->addWidget(m_table);
+    m_split->setStretchFactor(0, 3);
+    m_split->setStretchFactor(1, 2);
+    m_split->setChildrenCollapsible(false);
+    m_table->setMinimumWidth(200);
+    m_map->setMinimumSize(240, 160);
     auto* bottom = new QHBoxLayout;
     bottom->addWidget(m_send);
     bottom->addWidget(m_cancel);
@@ -202,7 +202,7 @@ void FlightPlanWidget::layOut()
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(6, 6, 6, 6);
     layout->addLayout(top);
-    layout->addWidget(split, 1);
+    layout->addWidget(m_split, 1);
     layout->addLayout(bottom);
 }
 
@@ -255,7 +255,7 @@ bool FlightPlanWidget::loadPlan(const QString& path, QString* error)
             plan.reset(), reason = QStringLiteral("%1: %2").arg(QDir::toNativeSeparators(path), reason);
     }
     if (!plan) {
-        m_state->setText(red(reason));
+        m_state->setNote(reason, Severity::Error);
         emit problem(reason);
         if (error)
             *error = reason;
@@ -273,8 +273,8 @@ bool FlightPlanWidget::loadPlan(const QString& path, QString* error)
     m_map->fitToPlan();
     // An earlier refusal, or the last plan's acknowledgement, no longer stands beside the new plan.
     if (m_upload->progress().state != FlightPlanUpload::State::Sending)
-        m_state->setText(tr("Not sent"));
-    emit message(tr("Flight plan opened: %1: %2").arg(QDir::toNativeSeparators(path), m_summary->text()));
+        m_state->setNote(tr("Not sent"));
+    emit message(tr("Flight plan opened: %1: %2").arg(QDir::toNativeSeparators(path), m_summary->note()));
     emit planOpened(path);
     return true;
 }
@@ -383,7 +383,7 @@ void FlightPlanWidget::uploadPlan()
     QString error;
     const std::optional<QByteArray> bytes = m_plan->encode(&error);
     if (!bytes) {
-        m_state->setText(red(error));
+        m_state->setNote(error, Severity::Error);
         emit problem(error);
         return;
     }
@@ -409,7 +409,7 @@ void FlightPlanWidget::uploadPlan()
                    tr("Upload")))
         return;
     if (!m_upload->start(*bytes, &error)) {
-        m_state->setText(red(error));
+        m_state->setNote(error, Severity::Error);
         emit problem(error);
         return;
     }
@@ -506,7 +506,7 @@ void FlightPlanWidget::showSummary()
     }
     parts << tr("%1 bytes").arg(bytes) << count(sections, tr("BLOCK 2 section"), tr("BLOCK 2 sections"))
           << tr("%1 a pass").arg(duration(sections * kNominalSecondsPerSection));
-    m_summary->setText(parts.join(QStringLiteral(", ")));
+    m_summary->setNote(parts.join(QStringLiteral(", ")));
     if (m_upload->progress().state != FlightPlanUpload::State::Sending) {
         setProgressRange(sections);
         m_progress->setValue(0);
@@ -516,37 +516,37 @@ void FlightPlanWidget::showSummary()
 
 void FlightPlanWidget::planEdited()
 {
-    if (!m_plan)
+    if (!m_plan) {
+        updateButtons();  // nothing to upload
         return;
+    }
     const FlightPlanUpload::State state = m_upload->progress().state;
     const bool sending = state == FlightPlanUpload::State::Sending;
     const bool notSent = state == FlightPlanUpload::State::Cancelled || state == FlightPlanUpload::State::GaveUp;
     const QStringList fence = m_plan->fenceViolations();
     if (!fence.isEmpty())
-        m_edits->setText(red(tr("Fence: %1").arg(fence.join(QStringLiteral("; ")))));
+        m_edits->setNote(tr("Fence: %1").arg(fence.join(QStringLiteral("; "))), Severity::Error);
     else if (!m_edited && notSent && m_sentPlan)
-        m_edits->setText(QStringLiteral("<span style=\"color:#9a5b00\"><b>%1</b></span>")
-                             .arg(tr("Not on the aircraft: the upload did not finish; the aircraft holds the plan "
-                                     "it last acknowledged")));
+        m_edits->setNote(tr("Not on the aircraft: the upload did not finish; the aircraft holds the plan it last "
+                            "acknowledged"),
+                         Severity::Warning);
     else if (!m_edited)
-        m_edits->clear();
+        m_edits->clearNote();
     else if (sending)
-        m_edits->setText(QStringLiteral("<span style=\"color:#9a5b00\"><b>%1</b></span>")
-                             .arg(tr("Edited: the upload in progress sends the plan as it was before")));
+        m_edits->setNote(tr("Edited: the upload in progress sends the plan as it was before"), Severity::Warning);
     else
-        m_edits->setText(QStringLiteral("<span style=\"color:#9a5b00\"><b>%1</b></span>")
-                             .arg(tr("Edited: not sent until you upload")));
+        m_edits->setNote(tr("Edited: not sent until you upload"), Severity::Warning);
     updateButtons();
 }
 
 QString FlightPlanWidget::summary() const
 {
-    return m_summary->text();
+    return m_summary->note();
 }
 
 QString FlightPlanWidget::uploadState() const
 {
-    return m_state->text();
+    return m_state->note();
 }
 
 void FlightPlanWidget::selectRow(int row)
@@ -658,17 +658,17 @@ void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
     m_progress->setValue(progress.state == FlightPlanUpload::State::Acknowledged ? progress.total : progress.sent);
     switch (progress.state) {
         case FlightPlanUpload::State::Idle:
-            m_state->setText(tr("Not sent"));
+            m_state->setNote(tr("Not sent"));
             break;
         case FlightPlanUpload::State::Sending: {
             if (progress.pass == 0) {
-                m_state->setText(tr("Flight plan %1: waiting for the next frame").arg(planIdText(progress.planId)));
+                m_state->setNote(tr("Flight plan %1: waiting for the next frame").arg(planIdText(progress.planId)));
                 break;
             }
             const double left = progress.secondsLeftInPass(kNominalSecondsPerSection);
             const QString rate = progress.rateMeasured ? tr("%1 s a section").arg(progress.secondsPerSection, 0, 'f', 1)
                                                        : tr("a section a frame");
-            m_state->setText(left > 0 ? tr("Pass %1 of %2: %3 of %4, %5 left in this pass (%6)")
+            m_state->setNote(left > 0 ? tr("Pass %1 of %2: %3 of %4, %5 left in this pass (%6)")
                                             .arg(progress.pass)
                                             .arg(progress.maxPasses)
                                             .arg(progress.inPass)
@@ -686,12 +686,12 @@ void FlightPlanWidget::showProgress(const FlightPlanUpload::Progress& progress)
         case FlightPlanUpload::State::GaveUp: {
             const QString text = tr("Flight plan upload gave up: no acknowledgement after %1")
                                      .arg(count(progress.maxPasses, tr("pass"), tr("passes")));
-            m_state->setText(red(text));
+            m_state->setNote(text, Severity::Error);
             emit problem(text);
             break;
         }
         case FlightPlanUpload::State::Cancelled:
-            m_state->setText(tr("Cancelled"));
+            m_state->setNote(tr("Cancelled"));
             break;
     }
     planEdited();
@@ -706,7 +706,7 @@ void FlightPlanWidget::showAcknowledgement(const FlightPlanUpload::Progress& pro
         const QString text =
             tr("The aircraft acknowledged the flight plan but holds %1; %2 were sent")
                 .arg(QString::fromStdString(held->describe()), QString::fromStdString(sent.describe()));
-        m_state->setText(red(text));
+        m_state->setNote(text, Severity::Error);
         emit problem(text);
         return;
     }
@@ -714,13 +714,12 @@ void FlightPlanWidget::showAcknowledgement(const FlightPlanUpload::Progress& pro
         const QString text =
             tr("The aircraft acknowledged the flight plan's bytes but did not say it holds the "
                "geofence and rally points (it may read only plan format 1)");
-        m_state->setText(red(text));
+        m_state->setNote(text, Severity::Error);
         emit problem(text);
         return;
     }
     const QString holds = held ? tr(": it holds %1").arg(QString::fromStdString(held->describe())) : QString();
-    m_state->setText(QStringLiteral("<span style=\"color:#1d7a35\"><b>%1</b></span>")
-                         .arg((tr("Acknowledged by the aircraft") + holds).toHtmlEscaped()));
+    m_state->setNote(tr("Acknowledged by the aircraft") + holds, Severity::Success);
     emit message(tr("Flight plan acknowledged by the aircraft") + holds);
 }
 
@@ -732,9 +731,14 @@ void FlightPlanWidget::updateButtons()
     m_send->setEnabled(somethingToSend && m_linkReady && !sending);
     m_cancel->setEnabled(sending);
     m_save->setEnabled(m_plan.has_value());
-    m_send->setToolTip(m_linkReady ? tr("Send the plan in BLOCK 2 sections, one per frame, until the aircraft "
-                                        "acknowledges it")
-                                   : tr("Connect a link first"));
+    if (!somethingToSend && !m_linkReady)
+        m_send->setToolTip(tr("Open a plan and connect a link first"));
+    else if (!somethingToSend)
+        m_send->setToolTip(tr("Open a plan first"));
+    else if (!m_linkReady)
+        m_send->setToolTip(tr("Connect a link first"));
+    else
+        m_send->setToolTip(tr("Send the plan in BLOCK 2 sections, one per frame, until the aircraft acknowledges it"));
 }
 
 void FlightPlanWidget::setEditing(bool on)

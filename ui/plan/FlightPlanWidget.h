@@ -1,8 +1,8 @@
 #pragma once
 
-// The flight plan tab: a plan loaded from a file of another program
-// (QGroundControl, Mission Planner, KML), its items in a table and on a map
-// beside it, edited on the map, saved as a .plan, and its upload to the
+// The flight plan page: a plan loaded from a file of another program
+// (QGroundControl, Mission Planner, KML), on a map that takes the page and
+// in a table beside it, edited on the map, saved as a .plan, and its upload to the
 // aircraft in BLOCK 2 sections with the progress of each pass, the time left
 // at the rate the link really sends, and what the aircraft says it holds.
 //
@@ -19,8 +19,10 @@
 #include <functional>
 #include <optional>
 
+class NoteLabel;
 class PlanMapView;
 class QLabel;
+class QSplitter;
 class QProgressBar;
 class QPushButton;
 class QTableWidget;
@@ -132,8 +134,8 @@ private:
     bool m_filling = false;  // the table is being filled, not edited
     Confirm m_confirm;
     QLabel* m_file;
-    QLabel* m_summary;
-    QLabel* m_edits;
+    NoteLabel* m_summary;
+    NoteLabel* m_edits;
     QLabel* m_mapSource;
     QTableWidget* m_table;
     PlanMapView* m_map;
@@ -144,5 +146,6 @@ private:
     QPushButton* m_send;
     QPushButton* m_cancel;
     QProgressBar* m_progress;
-    QLabel* m_state;
+    NoteLabel* m_state;
+    QSplitter* m_split = nullptr;
 };

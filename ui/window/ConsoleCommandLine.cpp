@@ -61,7 +61,9 @@ ConsoleCommandLine::ConsoleCommandLine(QCommandLineParser& parser)
               QStringLiteral("Seconds the link runs before the picture (default 0)."), QStringLiteral("s"),
               QStringLiteral("0")),
       m_night(QStringLiteral("night"), QStringLiteral("The night theme.")),
-      m_page(QStringLiteral("page"), QStringLiteral("The tab shown, 1 to 9 (Alt+1 ..)."), QStringLiteral("n"),
+      m_page(QStringLiteral("page"),
+             QStringLiteral("The tab shown, 1 to 10 (Alt+1 .. Alt+9, Alt+0): 1 the overview, 10 the flight plan."),
+             QStringLiteral("n"),
              QStringLiteral("1"))
 {
     parser.setApplicationDescription(describe());

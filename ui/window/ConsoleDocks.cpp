@@ -36,7 +36,6 @@ ConsoleDocks::ConsoleDocks(QMainWindow* window, const Contents& contents)
       m_link(dock(tr("Link"), QStringLiteral("linkDock"), contents.link, window)),
       m_preview(dock(tr("Next frame"), QStringLiteral("previewDock"), contents.preview, window)),
       m_log(dock(tr("Frame log"), QStringLiteral("frameLogDock"), contents.frameLog, window)),
-      m_plan(dock(tr("Flight plan"), QStringLiteral("flightPlanDock"), contents.flightPlan, window)),
       m_voice(dock(tr("Voice"), QStringLiteral("voiceDock"), contents.voice, window)),
       m_events(dock(tr("Events"), QStringLiteral("eventsDock"), contents.events, window))
 {
@@ -45,7 +44,7 @@ ConsoleDocks::ConsoleDocks(QMainWindow* window, const Contents& contents)
 
 void ConsoleDocks::place()
 {
-    for (QDockWidget* d : {m_link, m_voice, m_log, m_plan, m_preview, m_events}) {
+    for (QDockWidget* d : {m_link, m_voice, m_log, m_preview, m_events}) {
         d->setFloating(false);
         d->show();
     }
@@ -60,17 +59,16 @@ void ConsoleDocks::place()
     m_window->splitDockWidget(m_link, m_voice, Qt::Vertical);
     m_window->addDockWidget(Qt::BottomDockWidgetArea, m_log);
     m_window->splitDockWidget(m_log, m_preview, Qt::Horizontal);
-    m_window->tabifyDockWidget(m_log, m_plan);
     // The events in front beside the frame log; the next frame behind them.
     m_window->tabifyDockWidget(m_preview, m_events);
-    (m_planInFront ? m_plan : m_log)->raise();
     m_events->raise();
-    // In proportion to the window: the panels keep the larger part of the
-    // height, the frame log enough for a dozen rows.
+    // In proportion to the window: the panels and the plan keep 70 % of
+    // the height (the overview's cards all show at 768 pixels), the frame
+    // log and the events the rest.
     const QSize area = m_window->size();
     m_window->resizeDocks({m_link}, {std::clamp(area.width() / 5, 250, 320)}, Qt::Horizontal);
     m_window->resizeDocks({m_log, m_preview}, {area.width() * 3 / 5, area.width() * 2 / 5}, Qt::Horizontal);
-    m_window->resizeDocks({m_log}, {area.height() * 2 / 5}, Qt::Vertical);
+    m_window->resizeDocks({m_log}, {area.height() * 3 / 10}, Qt::Vertical);
 }
 
 void ConsoleDocks::placeOnFirstShow(bool restored)
@@ -78,13 +76,6 @@ void ConsoleDocks::placeOnFirstShow(bool restored)
     if (!m_placed && !restored)
         place();
     m_placed = true;
-}
-
-void ConsoleDocks::bringPlanForward()
-{
-    m_planInFront = true;
-    m_plan->show();
-    m_plan->raise();
 }
 
 void ConsoleDocks::addFleet(QWidget* fleetView)

@@ -1,9 +1,10 @@
 #pragma once
 
 // The window's docks around the panels, and where they go: the link and
-// the voice down the left, the frame log and the flight plan at the bottom
-// beside the next frame and the events; the fleet beside the events once a
-// broker is joined. place() puts each back in its first place.
+// the voice down the left, the frame log at the bottom beside the next frame
+// and the events; the fleet beside the events once a broker is joined.
+// place() puts each back in its first place. (The flight plan is a page of
+// the panels, where its map has room: PanelArea.)
 
 #include <QObject>
 
@@ -21,7 +22,6 @@ public:
         QWidget* link;
         QWidget* voice;
         QWidget* frameLog;
-        QWidget* flightPlan;
         QWidget* preview;
         QWidget* events;
     };
@@ -33,8 +33,6 @@ public:
     // The first time the window shows, at its real size, unless `restored`
     // (the last session's layout) placed them already.
     void placeOnFirstShow(bool restored);
-    // A plan was opened: the flight plan, not the frame log, in front, now and after place().
-    void bringPlanForward();
     // The Fleet dock, in front beside the events.
     void addFleet(QWidget* fleetView);
 
@@ -44,9 +42,7 @@ private:
     QDockWidget* m_link;
     QDockWidget* m_preview;
     QDockWidget* m_log;
-    QDockWidget* m_plan;
     QDockWidget* m_voice;
     QDockWidget* m_events;
     bool m_placed = false;
-    bool m_planInFront = false;
 };

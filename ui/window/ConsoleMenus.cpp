@@ -60,7 +60,8 @@ void ConsoleMenus::addViewMenu(const Parts& parts)
     for (int i = 0; i < parts.panels->count(); ++i) {
         const QString name = parts.panels->tabText(i);
         QAction* a = view->addAction(name, this, [this, i] { emit panelRequested(i); });
-        a->setShortcut(QKeySequence(Qt::ALT | Qt::Key(Qt::Key_1 + i)));
+        if (i < 10)  // Alt+1 .. Alt+9, Alt+0
+            a->setShortcut(QKeySequence(Qt::ALT | Qt::Key(i < 9 ? Qt::Key_1 + i : Qt::Key_0)));
         a->setToolTip(tr("Show the %1 panel").arg(name));
     }
     view->addSeparator();

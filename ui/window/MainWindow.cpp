@@ -70,6 +70,10 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     setDockOptions(QMainWindow::AnimatedDocks | QMainWindow::AllowTabbedDocks);
     setCentralWidget(m_panels);
     m_readOnly->attach(m_reported, m_panels->tabs());
+    // The flight plan a page of its own, where the map has the panels' room;
+    // not a command panel, so a replay leaves it to the operator.
+    m_panels->addPage(m_flightPlan, tr("Flight plan"));
+    m_flightPlan->setProperty(ReadOnlyPanels::kKeepsInput, true);
     buildDocks();
     m_menus = new ConsoleMenus(this, {m_panels->tabs(), m_airframes, m_flightPlan, m_linkPane->settings()});
     bindMenus();
@@ -143,9 +147,10 @@ void MainWindow::buildDocks()
                                                  .arg(replayed));
     });
     m_docks = new ConsoleDocks(
-        this, {m_linkPane, new PushToTalkWidget(m_voice), m_logView, m_flightPlan, m_preview, m_alerts->eventView()});
+        this, {m_linkPane, new PushToTalkWidget(m_voice), m_logView, m_preview, m_alerts->eventView()});
     // A plan opened (gcs --plan, File > Open flight plan) is shown.
-    connect(m_flightPlan, &FlightPlanWidget::planOpened, m_docks, &ConsoleDocks::bringPlanForward);
+    connect(m_flightPlan, &FlightPlanWidget::planOpened, this,
+            [this] { m_panels->showPanel(m_panels->tabs()->indexOf(m_flightPlan)); });
 }
 
 void MainWindow::bindMenus()

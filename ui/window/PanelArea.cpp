@@ -64,8 +64,10 @@ PanelArea::PanelArea(CommandState* command, ReportedState* reported, ConsoleSess
     };
     for (const auto& p : panels) {
         // The overview fits itself to the width and scrolls its own cards.
-        const int index = m_tabs->addTab(p.panel == m_overview ? p.panel : scrolled(p.panel), p.title);
-        m_tabs->setTabToolTip(index, tr("%1 (Alt+%2)").arg(p.title).arg(index + 1));
+        if (p.panel == m_overview)
+            addPage(p.panel, p.title);
+        else
+            addPage(scrolled(p.panel), p.title);
     }
     // The link-loss alarm and the errors above the panels, where the operator is looking.
     auto* layout = new QVBoxLayout(this);
@@ -74,6 +76,13 @@ PanelArea::PanelArea(CommandState* command, ReportedState* reported, ConsoleSess
     layout->addWidget(banners);
     layout->addWidget(m_holdBar);
     layout->addWidget(m_tabs, 1);
+}
+
+void PanelArea::addPage(QWidget* page, const QString& title)
+{
+    const int index = m_tabs->addTab(page, title);
+    // Alt+1 .. Alt+9, then Alt+0 for the tenth (ConsoleMenus).
+    m_tabs->setTabToolTip(index, tr("%1 (Alt+%2)").arg(title).arg((index + 1) % 10));
 }
 
 void PanelArea::showPanel(int index)

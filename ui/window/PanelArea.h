@@ -2,7 +2,8 @@
 
 // The middle of the window, where the operator looks: the link-loss alarm
 // and the errors on top, the band of the held command below them, then the
-// command panels, a tab each (Overview, Header, Engines, ... Cameras).
+// command panels, a tab each (Overview, Header, Engines, ... Cameras), and
+// pages added after them (the flight plan).
 
 #include <QWidget>
 
@@ -26,6 +27,8 @@ public:
     CommandHoldBar* holdBar() const { return m_holdBar; }
     // Brings up tab `index` and gives its page the focus.
     void showPanel(int index);
+    // A page after the panels, as it is (it lays out and scrolls itself).
+    void addPage(QWidget* page, const QString& title);
 
 private:
     QTabWidget* m_tabs;

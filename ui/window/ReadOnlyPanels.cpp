@@ -36,6 +36,10 @@ protected:
         if (!widget || !m_area->isAncestorOf(widget) || qobject_cast<QTabBar*>(widget) ||
             qobject_cast<QScrollBar*>(widget))
             return false;
+        // A page that is not the log's command (the flight plan) keeps its input.
+        for (QWidget* w = widget; w && w != m_area; w = w->parentWidget())
+            if (w->property(ReadOnlyPanels::kKeepsInput).toBool())
+                return false;
         return true;
     }
 

@@ -23,6 +23,10 @@ class ReadOnlyPanels : public QObject {
     Q_OBJECT
 
 public:
+    // A page of the tabs with this property true keeps its clicks and keys
+    // (the flight plan: planning goes on while a log plays).
+    static constexpr const char* kKeepsInput = "keepsInputInReplay";
+
     ReadOnlyPanels(CommandState* command, QObject* parent = nullptr);
 
     // Once: the reports to clear at each change, the tabs to make read only

@@ -1,12 +1,14 @@
 #include "ui/window/StatusBarWidget.h"
 
 #include "codec/receive/Refusal.h"
+#include "ui/look/SeverityColours.h"
 #include "ui/panels/SteadyLabel.h"
 #include "ui/window/SignalBars.h"
 #include "ui/window/StatusFigure.h"
 
 #include <QDateTime>
 #include <QEvent>
+#include <QGuiApplication>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLocale>
@@ -24,9 +26,15 @@ QLabel* counter(const QString& toolTip)
     return label;
 }
 
+// The names beside the figures: a grey at 4.5:1 or more on the status bar in either theme.
+QString muted()
+{
+    return SeverityColours::isDark(QGuiApplication::palette()) ? QStringLiteral("#a8a8a8") : QStringLiteral("#6b6b6b");
+}
+
 QString field(const QString& name, const QString& value)
 {
-    return QStringLiteral("<span style=\"color:#6b6b6b\">%1</span> <b>%2</b>").arg(name, value);
+    return QStringLiteral("<span style=\"color:%1\">%2</span> <b>%3</b>").arg(muted(), name, value);
 }
 
 QFrame* separator()
@@ -204,21 +212,21 @@ void StatusBarWidget::updateSecurity()
 {
     if (m_statistics.secure) {
         m_security->setText(
-            QStringLiteral("<span style=\"color:#1d7a35\"><b>%1</b></span>").arg(securityText().toHtmlEscaped()));
+            SeverityColours::span(SeverityColours::Severity::Success, QGuiApplication::palette(), securityText()));
         m_security->setToolTip(
             tr("Every frame sent is enciphered with the aircraft's key and every frame received must "
                "authenticate, be newer than the last and carry the current time (docs/security.md).") +
             (m_fingerprint.isEmpty() ? QString() : tr("\nKey fingerprint: %1").arg(m_fingerprint)));
     } else {
         m_security->setText(
-            QStringLiteral("<span style=\"color:#6b6b6b\">%1</span>").arg(securityText().toHtmlEscaped()));
+            QStringLiteral("<span style=\"color:%1\">%2</span>").arg(muted(), securityText().toHtmlEscaped()));
         m_security->setToolTip(
             tr("No key file: frames go in the clear and are not authenticated. Choose the aircraft's key file "
                "in the link settings for a secure link."));
     }
     const QString rejected = rejectedText();
     m_rejected->setText(
-        field(tr("Refused"), QStringLiteral("<span style=\"color:#b01c1c\">%1</span>").arg(rejected.toHtmlEscaped())));
+        field(tr("Refused"), QStringLiteral("<span style=\"color:%1\">%2</span>").arg(SeverityColours::text(SeverityColours::Severity::Error, QGuiApplication::palette()).name(), rejected.toHtmlEscaped())));
     m_rejected->setVisible(!rejected.isEmpty());
     m_rejectedSeparator->setVisible(!rejected.isEmpty());
 }
@@ -298,7 +306,7 @@ void StatusBarWidget::renderState()
                              fontMetrics().horizontalAdvance(QStringLiteral("   "));
             shown = fontMetrics().elidedText(m_description, Qt::ElideMiddle, std::max(room, 0));
         }
-        text += QStringLiteral(" <span style=\"color:#6b6b6b\">%1</span>").arg(shown.toHtmlEscaped());
+        text += QStringLiteral(" <span style=\"color:%1\">%2</span>").arg(muted(), shown.toHtmlEscaped());
     }
     if (text != m_state->text())
         m_state->setText(text);

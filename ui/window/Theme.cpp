@@ -13,7 +13,8 @@ QPalette nightPalette()
     const QColor window(0x20, 0x21, 0x24);
     const QColor base(0x14, 0x15, 0x17);
     const QColor text(0xe6, 0xe6, 0xe6);
-    const QColor disabledText(0x80, 0x80, 0x80);
+    // Dimmer than the text, still 4.5:1 on the buttons: a disabled control's value is still read.
+    const QColor disabledText(0x9a, 0x9a, 0x9a);
     QPalette p;
     p.setColor(QPalette::Window, window);
     p.setColor(QPalette::WindowText, text);
@@ -55,8 +56,20 @@ QPalette Theme::palette(Kind kind)
     if (kind == Kind::Night)
         return nightPalette();
     QStyle* fusion = QStyleFactory::create(QStringLiteral("Fusion"));
-    const QPalette day = fusion ? fusion->standardPalette() : QPalette();
+    QPalette day = fusion ? fusion->standardPalette() : QPalette();
     delete fusion;
+    // Fusion greys disabled text to about 1.6:1, and the replay's read-only
+    // panels and a disabled Upload are still read: a grey at 4.5:1 or more,
+    // plainly lighter than the black of enabled text.
+    const QColor disabledText(0x6a, 0x6a, 0x6a);
+    for (QPalette::ColorRole role : {QPalette::WindowText, QPalette::Text, QPalette::ButtonText})
+        day.setColor(QPalette::Disabled, role, disabledText);
+    // Fusion's selection blue (white on it 3.7:1), its half-transparent
+    // placeholder (4:1) and its magenta visited link (3.1:1), each at 4.5:1 or more.
+    day.setColor(QPalette::Highlight, QColor(0x1f, 0x6f, 0xb2));
+    day.setColor(QPalette::Disabled, QPalette::Highlight, QColor(0x6e, 0x6e, 0x6e));
+    day.setColor(QPalette::PlaceholderText, QColor(0x6a, 0x6a, 0x6a));
+    day.setColor(QPalette::LinkVisited, QColor(0x7b, 0x1f, 0xa2));
     return day;
 }
 

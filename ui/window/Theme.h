@@ -1,9 +1,12 @@
 // The console's two looks, for the light it is used in: Day, the Fusion
-// style's own light palette, and Night, light grey text on near black with no
-// large bright area, for a dim ground station or a night operation. Both keep
-// text at a contrast ratio of 7:1 or more against its background (WCAG AAA).
-// The warning colours the panels paint themselves (amber mismatch, blue
-// "edited") carry their own dark text and read the same in both.
+// style's own light palette (disabled text darkened), and Night, light grey
+// text on near black with no large bright area, for a dim ground station or a
+// night operation. Every text colour of both, disabled text included, keeps a
+// contrast ratio of 4.5:1 or more against its background (WCAG AA;
+// tests/tst_theme measures each pair). The warning colours the panels paint
+// themselves (amber mismatch, blue "edited") carry their own dark text and
+// read the same in both; the colours of errors, warnings and successes follow
+// the palette (ui/look/SeverityColours.h).
 #pragma once
 
 #include <QPalette>
