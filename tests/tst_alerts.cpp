@@ -516,6 +516,36 @@ private slots:
                  QStringLiteral("no sound card: the link-loss alarm is shown but not heard"));
         QVERIFY(!tone.isPlaying());
     }
+
+    // An error whose cause cleared leaves the banner, however many times it
+    // came; the others stay in their order. The event log keeps it.
+    void errorBannerWithdrawsAClearedError()
+    {
+        ErrorBanner banner;
+        QSignalSpy counts(&banner, &ErrorBanner::countChanged);
+        banner.showError(QStringLiteral("key file refused"));
+        banner.showError(QStringLiteral("call dropped; redialling in 10 s"));
+        banner.showError(QStringLiteral("call dropped; redialling in 10 s"));
+        QCOMPARE(banner.count(), 2);
+        QVERIFY(banner.withdraw(QStringLiteral("call dropped; redialling in 10 s")));
+        QCOMPARE(banner.count(), 1);
+        QCOMPARE(banner.currentText(), QStringLiteral("key file refused"));
+        QCOMPARE(banner.countText(), QString());
+        QVERIFY(!banner.withdraw(QStringLiteral("call dropped; redialling in 10 s")));
+        QCOMPARE(counts.size(), 3);
+
+        FakeSound sound;
+        ConsoleAlerts alerts(&sound);
+        alerts.banners();
+        alerts.error(EventSource::Link, QStringLiteral("call dropped; redialling in 10 s"));
+        alerts.withdraw(QStringLiteral("call dropped; redialling in 10 s"), QStringLiteral("the link was closed"));
+        QCOMPARE(alerts.errorBanner()->count(), 0);
+        QCOMPARE(texts(*alerts.model()),
+                 (QStringList{QStringLiteral("error link: call dropped; redialling in 10 s"),
+                              QStringLiteral("info console: Off the banner, the link was closed: call dropped; "
+                                             "redialling in 10 s")}));
+    }
+
 };
 
 QTEST_MAIN(TestAlerts)

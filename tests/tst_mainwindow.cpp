@@ -156,6 +156,10 @@ private slots:
     void fitsASmallScreen();
     void resetLayoutRestoresTheDefault();
     void nightThemeIsKept();
+    void statusBarMessagesShow();
+    void defaultGeometryFitsTheScreen();
+    void controlBannerClearsOnceTaken();
+    void redialBannerClearsWithItsCause();
 
 private:
     MainWindow::Options options() const;
@@ -1381,6 +1385,158 @@ void TestMainWindow::satelliteRoundTripIsNoMismatch()
     QVERIFY(uasim.waitForFinished());
 }
 
+namespace {
+
+// The rows of `events` whose text is `text`.
+int eventRow(const EventLogModel* events, const QString& text)
+{
+    for (int row = events->rowCount() - 1; row >= 0; --row)
+        if (events->event(row).text == text)
+            return row;
+    return -1;
+}
+
+}  // namespace
+
+// The status bar's messages (an export, a refused frame) were never seen: the
+// link's figures took the whole bar. They show among the figures now, whole
+// in the room left at 1366 px, beside the link's state.
+void TestMainWindow::statusBarMessagesShow()
+{
+    MainWindow window(options());
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const QString message = QStringLiteral("Exported /tmp/session-2026-11-26.csv");
+    window.statusBar()->showMessage(message, 8000);
+    QCOMPARE(window.linkStatus()->messageText(), message);
+    const QLabel* shown = window.linkStatus()->messageLabel();
+    QVERIFY(shown->isVisible());
+    QVERIFY2(shown->width() >= shown->fontMetrics().horizontalAdvance(message),
+             qPrintable(QStringLiteral("%1 px for the message").arg(shown->width())));
+    QCOMPARE(window.linkStatus()->stateText().contains(QStringLiteral("Not connected")), true);
+    window.statusBar()->clearMessage();
+    QCOMPARE(window.linkStatus()->messageText(), QString());
+}
+
+// The window's first size leaves room for the window manager's frame, so the
+// status bar is on the screen at 1366x768 and 1600x1000, and the window can
+// be that small.
+void TestMainWindow::defaultGeometryFitsTheScreen()
+{
+    const QMargins frame(4, 32, 4, 4);
+    QCOMPARE(MainWindow::fittingSize(QSize(1366, 768), frame), QSize(1358, 732));
+    QCOMPARE(MainWindow::fittingSize(QSize(1600, 1000), frame), QSize(1592, 964));
+    QCOMPARE(MainWindow::fittingSize(QSize(2560, 1440), frame), QSize(1600, 1000));
+    MainWindow window(options());
+    const QSize minimum = window.minimumSizeHint();
+    QVERIFY2(minimum.width() <= 1358 && minimum.height() <= 732,
+             qPrintable(QStringLiteral("%1x%2").arg(minimum.width()).arg(minimum.height())));
+    window.resize(1358, 732);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QCOMPARE(window.size(), QSize(1358, 732));
+    QVERIFY(window.statusBar()->isVisible());
+    QCOMPARE(window.statusBar()->geometry().bottom(), window.height() - 1);
+    QVERIFY(window.linkStatus()->isVisible());
+    // The window's own default on this screen, inside its available area with the frame.
+    const QRect available = window.screen()->availableGeometry();
+    const QSize fitted = window.defaultSize();
+    QVERIFY(fitted.width() <= available.width() && fitted.height() <= available.height());
+}
+
+// "Take control" on the banner went on asking after control was taken.
+void TestMainWindow::controlBannerClearsOnceTaken()
+{
+    MainWindow window(options());
+    window.stationControl()->setStationText(QStringLiteral("GB_30226"));
+    StationControl* control = window.session()->stationControl();
+    const auto status = [](rcm::StationId c, rcm::StationId b) {
+        rcm::Message m;
+        m.header.set(rcm::ItemId::ID_GCS_destination, rcm::Value::station(c));
+        m.header.set(rcm::ItemId::ID_GCS_backup, rcm::Value::station(b));
+        return m;
+    };
+    const rcm::StationId self{44, 30226}, other{44, 41251};
+    control->statusReceived(status(other, self));
+    QCOMPARE(control->role(), StationControl::Role::Backup);
+    ErrorBanner* banner = window.alerts()->errorBanner();
+    const int before = banner->count();
+    control->statusReceived(status(self, other));
+    const QString offer = QStringLiteral(
+        "The aircraft gave control to this station (GB_41251 was in control): check what it reports, then Take "
+        "control to command it");
+    QCOMPARE(banner->currentText(), offer);
+    QCOMPARE(banner->count(), before + 1);
+    control->takeControl();
+    QCOMPARE(control->role(), StationControl::Role::InControl);
+    QCOMPARE(banner->count(), before);
+    QVERIFY(banner->currentText() != offer);
+    const EventLogModel* events = window.alerts()->model();
+    QCOMPARE(events->event(events->rowCount() - 1).text,
+             QStringLiteral("Off the banner, control was taken: ") + offer);
+}
+
+// A satellite call dropped and redialled: "redialling in 10 s" leaves the
+// banner once frames come again, and again at Hang up; the title names the
+// link and its state, never "dialling" during the call.
+void TestMainWindow::redialBannerClearsWithItsCause()
+{
+    SatelliteModem::Options satellite;
+    satellite.callSetupTime = std::chrono::milliseconds(200);
+    satellite.oneWayDelay = std::chrono::milliseconds(100);
+    SatelliteModemThread model(satellite);
+    QString error;
+    QVERIFY2(model.open(&error), qPrintable(error));
+    QProcess uasim;
+    QByteArray said;
+    connect(&uasim, &QProcess::readyReadStandardError, this, [&] { said += uasim.readAllStandardError(); });
+    uasim.start(QStringLiteral(RCM_BIN_DIR "/uasim"),
+                {QStringLiteral("--serial"), model.device(SatelliteModem::Aircraft), QStringLiteral("--modem"),
+                 QStringLiteral("--verbose")});
+    QVERIFY(uasim.waitForStarted());
+    QTRY_VERIFY_WITH_TIMEOUT(said.contains("waiting for a call"), kLinkTimeoutMs);
+
+    MainWindow window(options());
+    LinkSettings modem = *LinkSettings::serial(model.device(SatelliteModem::Ground), QStringLiteral("9600"));
+    modem.dialNumber = QStringLiteral("881612345678");
+    modem.modemInit = QStringLiteral("ATE0V1&C1&D2S12=5");
+    window.connectWith(modem);
+    QTRY_VERIFY_WITH_TIMEOUT(window.statistics().framesReceived >= 2, 4 * kLinkTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(window.windowTitle().endsWith(QStringLiteral(" \u2014 Connected")), kLinkTimeoutMs);
+    QVERIFY2(!window.windowTitle().contains(QStringLiteral("dialling")), qPrintable(window.windowTitle()));
+    QVERIFY2(window.windowTitle().contains(QStringLiteral("phone 881612345678")), qPrintable(window.windowTitle()));
+
+    ErrorBanner* banner = window.alerts()->errorBanner();
+    const auto redialShown = [&] {
+        return banner->currentText().contains(QStringLiteral("; redialling in "));
+    };
+    const int before = banner->count();
+    model.dropCall();
+    QTRY_VERIFY_WITH_TIMEOUT(redialShown(), kLinkTimeoutMs);
+    QVERIFY2(banner->currentText().startsWith(QStringLiteral("call dropped (")), qPrintable(banner->currentText()));
+    QVERIFY2(banner->currentText().endsWith(QStringLiteral("; redialling in 10 s, attempt 2 of 6")),
+             qPrintable(banner->currentText()));
+    const QString dropped = banner->currentText();
+    // Redialled and frames again: the banner's error is gone, the log keeps it.
+    QTRY_COMPARE_WITH_TIMEOUT(banner->count(), before, 4 * kLinkTimeoutMs);
+    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().state, LinkState::Connected, kLinkTimeoutMs);
+    const EventLogModel* events = window.alerts()->model();
+    QVERIFY(eventRow(events, dropped) >= 0);
+    QVERIFY(eventRow(events, QStringLiteral("Off the banner, frames from the aircraft again: ") + dropped) >= 0);
+    QTRY_VERIFY_WITH_TIMEOUT(window.windowTitle().endsWith(QStringLiteral(" \u2014 Connected")), kLinkTimeoutMs);
+
+    // Dropped again, and hung up while it waits to redial.
+    model.dropCall();
+    QTRY_VERIFY_WITH_TIMEOUT(redialShown(), kLinkTimeoutMs);
+    window.disconnectLink();
+    QCOMPARE(banner->count(), before);
+    QVERIFY(!redialShown());
+    QVERIFY(!window.windowTitle().contains(QStringLiteral("phone")));
+    uasim.terminate();
+    QVERIFY(uasim.waitForFinished());
+}
+
 QTEST_MAIN(TestMainWindow)
 void TestMainWindow::fitsASmallScreen()
 {
@@ -1499,7 +1655,10 @@ void TestMainWindow::resetLayoutRestoresTheDefault()
     window.resetLayout();
     QCoreApplication::processEvents();
     QCOMPARE(layout(), first);
-    QCOMPARE(window.size(), defaultSize);
+    // The default size again, or the least the window takes (offscreen's
+    // 800 px are less than the panels need).
+    QCOMPARE(window.size(), window.defaultSize().expandedTo(window.layout()->minimumSize()));
+    QVERIFY(window.size().height() <= defaultSize.height());
     QSettings settings;
     QVERIFY(!settings.contains(QStringLiteral("window/state")));
     QVERIFY(!settings.contains(QStringLiteral("window/geometry")));

@@ -98,6 +98,12 @@ void ConsoleAlerts::error(EventSource source, const QString& text)
     m_events->error(source, text);
 }
 
+void ConsoleAlerts::withdraw(const QString& message, const QString& reason)
+{
+    if (m_errorBanner && m_errorBanner->withdraw(message))
+        m_events->info(EventSource::Console, tr("Off the banner, %1: %2").arg(reason, message));
+}
+
 void ConsoleAlerts::setStatistics(const LinkStatistics& statistics)
 {
     m_alarm->setStatistics(statistics);

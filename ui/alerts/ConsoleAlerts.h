@@ -56,6 +56,9 @@ public slots:
     // In the event log and on the banner.
     void error(EventSource source, const QString& text);
     void setStatistics(const LinkStatistics& statistics);
+    // An error whose cause cleared leaves the banner, with a line in the
+    // event log saying why: "Off the banner, <reason>: <message>".
+    void withdraw(const QString& message, const QString& reason);
     // A replay: no link alarm; live again: armed again.
     void setReplay(bool replay);
 

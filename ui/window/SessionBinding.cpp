@@ -18,6 +18,8 @@
 #include <QDateTime>
 #include <QDir>
 
+#include <utility>
+
 SessionBinding::SessionBinding(const Parts& parts, const ConsoleNotices& notices, QObject* parent)
     : QObject(parent), m_parts(parts), m_notices(notices)
 {
@@ -122,6 +124,12 @@ void SessionBinding::bindEvents(const LinkEvents* events, bool logRows)
         m_parts.status->setTransportStatus(text);
         if (text != m_lastLinkError)
             m_notices.alerts()->info(EventSource::Link, text);
+        else if (!m_transportErrors.contains(text))
+            m_transportErrors << text;
+    });
+    connect(events, &LinkEvents::stateChanged, this, [this](LinkState state) {
+        if (state == LinkState::Connected)
+            withdrawTransportErrors(tr("frames from the aircraft again"));
     });
     // The phone's registration and signal: bars in the status bar, and each
     // change of registration in the event log.
@@ -137,6 +145,8 @@ void SessionBinding::bindEvents(const LinkEvents* events, bool logRows)
     if (logRows)
         connect(events, &LinkEvents::frameLogged, m_parts.logModel, &FrameLogModel::appendLogged);
     connect(events, &LinkEvents::stateChanged, status, &StatusBarWidget::setState);
+    // The window's title says the state too.
+    connect(events, &LinkEvents::stateChanged, this, &SessionBinding::changed);
     connect(events, &LinkEvents::messageReceived, m_parts.commands, &CommandBinding::messageReceived);
     connect(events, &LinkEvents::frameSent, m_parts.commands, &CommandBinding::frameSent);
     connect(events, &LinkEvents::commandRejected, this, [this](const QString& reasons) {
@@ -149,8 +159,15 @@ void SessionBinding::bindEvents(const LinkEvents* events, bool logRows)
             [this](const QString& reason) { m_notices.flash(tr("A frame was refused: %1").arg(reason)); });
 }
 
+void SessionBinding::withdrawTransportErrors(const QString& why)
+{
+    for (const QString& error : std::exchange(m_transportErrors, {}))
+        m_notices.alerts()->withdraw(error, why);
+}
+
 void SessionBinding::showStopped()
 {
+    withdrawTransportErrors(tr("the link was closed"));
     m_parts.readOnly->end();
     m_parts.status->setLinkDescription(QString());
     m_parts.status->setKeyFingerprint(QString());
