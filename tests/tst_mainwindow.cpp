@@ -35,6 +35,11 @@
 #include "link/plan/PlanFile.h"
 #include "link/plan/QgcPlanFile.h"
 #include "ui/window/StatusBarWidget.h"
+#include "ui/window/ConsoleDocks.h"
+#include "ui/alerts/LinkAlarmBanner.h"
+#include "ui/alerts/LinkStateStrip.h"
+#include "ui/alerts/ToneAlarmSound.h"
+#include "link/eventlog/EventLog.h"
 #include "ui/window/StatusFigure.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/alerts/ErrorBanner.h"
@@ -156,6 +161,8 @@ private slots:
     void fitsASmallScreen();
     void resetLayoutRestoresTheDefault();
     void nightThemeIsKept();
+    void alarmShowsInFloatingDocks();
+    void noSoundCardIsSaidAtStart();
     void statusBarMessagesShow();
     void defaultGeometryFitsTheScreen();
     void controlBannerClearsOnceTaken();
@@ -1387,6 +1394,12 @@ void TestMainWindow::satelliteRoundTripIsNoMismatch()
 
 namespace {
 
+// The strip at the top of `dock`, which shows while it floats.
+LinkStateStrip* stripOf(QDockWidget* dock)
+{
+    return dock ? dock->findChild<LinkStateStrip*>() : nullptr;
+}
+
 // The rows of `events` whose text is `text`.
 int eventRow(const EventLogModel* events, const QString& text)
 {
@@ -1397,6 +1410,90 @@ int eventRow(const EventLogModel* events, const QString& text)
 }
 
 }  // namespace
+
+// Issue 28: the Flight plan dock floated over the main window (maximised, the
+// only way to a usable map) hid the LINK LOST banner. Each floating dock
+// shows the link's state and the alarm itself, and the main window and the
+// floating docks ask for attention (the urgency hint) as the link is lost.
+void TestMainWindow::alarmShowsInFloatingDocks()
+{
+    MainWindow window(options());
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    auto* plan = window.findChild<QDockWidget*>(QStringLiteral("flightPlanDock"));
+    auto* events = window.findChild<QDockWidget*>(QStringLiteral("eventsDock"));
+    QVERIFY(stripOf(plan) && stripOf(events));
+    // Docked, the main window's banner and status bar say it: no strip.
+    QVERIFY(!stripOf(plan)->isVisible());
+    plan->setFloating(true);
+    QTRY_VERIFY(stripOf(plan)->isVisible());
+    QVERIFY(!stripOf(events)->isVisible());
+    QCOMPARE(stripOf(plan)->text(), QStringLiteral("Link: Not connected"));
+
+    QSignalSpy attention(window.docks(), &ConsoleDocks::attentionRequested);
+    ConsoleAlerts* alerts = window.alerts();
+    const qint64 now = alerts->events()->now();
+    LinkStatistics s;
+    s.state = LinkState::Connected;
+    s.framesReceived = 40;
+    s.lastGoodFrameUtcMicros = now - 3'000'000;
+    alerts->setStatistics(s);
+    QCOMPARE(stripOf(plan)->text(), QStringLiteral("Link: Connected"));
+    QVERIFY(!stripOf(plan)->isAlarm());
+    QCOMPARE(attention.count(), 0);
+    s.state = LinkState::Lost;
+    alerts->setStatistics(s);
+    QVERIFY(stripOf(plan)->isAlarm());
+    QCOMPARE(stripOf(plan)->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s"));
+    QCOMPARE(alerts->alarmBanner()->text(), stripOf(plan)->text());
+    QVERIFY(stripOf(plan)->silenceButton()->isVisible());
+    // Once, for the main window and the floating dock.
+    QCOMPARE(attention.count(), 1);
+    const auto windows = attention.at(0).at(0).value<QList<QWidget*>>();
+    QCOMPARE(windows, (QList<QWidget*>{&window, plan}));
+    alerts->setStatistics(s);
+    QCOMPARE(attention.count(), 1);
+    // Silenced from the floating dock: the alarm stays, the tone stops.
+    stripOf(plan)->silenceButton()->click();
+    QVERIFY(alerts->alarm()->isAcknowledged());
+    QCOMPARE(stripOf(plan)->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s (silenced)"));
+    QVERIFY(!stripOf(plan)->silenceButton()->isVisible());
+    // Back: the strip says so, and a dock docked again hides its strip.
+    s.state = LinkState::Connected;
+    s.framesReceived = 41;
+    s.lastGoodFrameUtcMicros = alerts->events()->now();
+    alerts->setStatistics(s);
+    QVERIFY(!stripOf(plan)->isAlarm());
+    QCOMPARE(stripOf(plan)->text(), QStringLiteral("Link: Connected"));
+    plan->setFloating(false);
+    QTRY_VERIFY(!stripOf(plan)->isVisible());
+}
+
+// Without a sound card the operator hears of it at start, in the event log
+// and on the banner, not first when the link is lost.
+void TestMainWindow::noSoundCardIsSaidAtStart()
+{
+    MainWindow window(options());
+    const EventLogModel* events = window.alerts()->model();
+    const QString text = QStringLiteral("No sound card: the link-loss alarm will be shown but not heard");
+    QCOMPARE(ConsoleAlerts::noSoundText(), text);
+    const int row = eventRow(events, text);
+    if (ToneAlarmSound::hasSoundCard()) {
+        QCOMPARE(row, -1);
+    } else {
+        QVERIFY(row >= 0);
+        QCOMPARE(events->event(row).severity, EventSeverity::Error);
+        QCOMPARE(window.alerts()->errorBanner()->currentText(), text);
+    }
+    // Either way, as the check says it.
+    const int before = window.alerts()->errorBanner()->count();
+    QVERIFY(window.alerts()->checkSound(true));
+    QCOMPARE(window.alerts()->errorBanner()->count(), before);
+    QVERIFY(!window.alerts()->checkSound(false));
+    QCOMPARE(window.alerts()->errorBanner()->currentText(), text);
+    QCOMPARE(events->event(events->rowCount() - 1).text, text);
+}
 
 // The status bar's messages (an export, a refused frame) were never seen: the
 // link's figures took the whole bar. They show among the figures now, whole

@@ -4,6 +4,9 @@
 #include "link/airframe/AirframeLoader.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
+#include "ui/alerts/LinkAlarm.h"
+#include "ui/alerts/LinkStateStrip.h"
+#include "ui/alerts/ToneAlarmSound.h"
 #include "ui/eventlog/EventLogView.h"
 #include "ui/framelog/FrameLogCsvExport.h"
 #include "ui/framelog/FrameLogModel.h"
@@ -117,6 +120,8 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     m_linkPane->showNotConnected();
     updateLinkControls();
     updateTitle();
+    // Said now, not first when the link is lost.
+    m_alerts->checkSound(ToneAlarmSound::hasSoundCard());
 }
 
 MainWindow::~MainWindow()
@@ -149,6 +154,17 @@ void MainWindow::buildDocks()
     });
     m_docks = new ConsoleDocks(
         this, {m_linkPane, new PushToTalkWidget(m_voice), m_logView, m_flightPlan, m_preview, m_alerts->eventView()});
+    // A floating dock is a window of its own: it shows the link's state and
+    // alarm too, and asks for attention with the main window when the link is lost.
+    m_docks->addLinkStrips([this] { return m_alerts->newLinkStrip(); });
+    connect(m_alerts->alarm(), &LinkAlarm::changed, this, [this] {
+        const bool active = m_alerts->alarm()->isActive();
+        if (active && !m_alarmShown)
+            m_docks->requestAttention();
+        else if (!m_alerts->alarm()->isSounding())
+            m_docks->clearAttention();  // heard (silenced), or over
+        m_alarmShown = active;
+    });
     // A plan opened (gcs --plan, File > Open flight plan) is shown.
     connect(m_flightPlan, &FlightPlanWidget::planOpened, m_docks, &ConsoleDocks::bringPlanForward);
 }

@@ -88,6 +88,7 @@ public:
     const BrokerObservation* observation() const;
     FleetFeed* fleetFeed() const;
     ConsoleSession* session() const { return m_session; }
+    ConsoleDocks* docks() const { return m_docks; }
     // The event log, its dock, the error banner and the link-loss alarm.
     ConsoleAlerts* alerts() const { return m_alerts; }
     OverviewPage* overview() const;
@@ -208,4 +209,5 @@ private:
     BrokerConnection* m_broker = nullptr;
     bool m_layoutRestored = false;
     bool m_shown = false;
+    bool m_alarmShown = false;  // the link-loss alarm, as last seen: attention is asked as it goes off
 };
