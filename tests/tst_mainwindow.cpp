@@ -39,7 +39,10 @@
 #include "ui/alerts/LinkAlarmBanner.h"
 #include "ui/alerts/LinkStateStrip.h"
 #include "ui/alerts/ToneAlarmSound.h"
+#include "ui/eventlog/EventLogView.h"
+#include "ui/overview/LinkQualityHistory.h"
 #include "link/eventlog/EventLog.h"
+#include "link/session/RehearsalLauncher.h"
 #include "ui/window/StatusFigure.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/alerts/ErrorBanner.h"
@@ -82,6 +85,7 @@
 #include <QTextDocument>
 
 #include <cmath>
+#include <csignal>
 #include <set>
 
 namespace {
@@ -167,6 +171,8 @@ private slots:
     void defaultGeometryFitsTheScreen();
     void controlBannerClearsOnceTaken();
     void redialBannerClearsWithItsCause();
+    void replayShowsTheLogsPlotAndEvents();
+    void deadSimulatedAircraftIsALinkLoss();
 
 private:
     MainWindow::Options options() const;
@@ -1409,6 +1415,37 @@ int eventRow(const EventLogModel* events, const QString& text)
     return -1;
 }
 
+// A UDP frame log of `count` status frames half a second apart from `startMicros`.
+bool writeStatusLog(const QString& path, int count, qint64 startMicros)
+{
+    FrameLog log;
+    if (!log.open(path))
+        return false;
+    rcm::Message status = rcm::restingCommand(rcm::Airframe::wellEquipped());
+    for (int i = 0; i < count; ++i) {
+        status.header.set(rcm::ItemId::ID_msg, i);
+        const QDateTime at = QDateTime::fromMSecsSinceEpoch((startMicros + i * 500'000) / 1000, Qt::UTC);
+        status.header.set(rcm::ItemId::time_UTC,
+                          std::int64_t(at.time().hour() * 10000 + at.time().minute() * 100 + at.time().second()));
+        status.header.set(rcm::ItemId::date_UTC,
+                          std::int64_t(at.date().year() % 100 * 10000 + at.date().month() * 100 + at.date().day()));
+        rcm::Diagnostics errors;
+        const auto datagram = rcm::encodeDatagram(status, errors);
+        if (!datagram)
+            return false;
+        FrameRecord r;
+        r.bytes = QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size()));
+        r.utcMicros = startMicros + i * 500'000;
+        r.direction = FrameDirection::Received;
+        r.transport = FrameTransport::Udp;
+        r.status = FrameStatus::Decoded;
+        r.correctedSymbols = {0, 0};
+        if (!log.append(r))
+            return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 // Issue 28: the Flight plan dock floated over the main window (maximised, the
@@ -1632,6 +1669,89 @@ void TestMainWindow::redialBannerClearsWithItsCause()
     QVERIFY(!window.windowTitle().contains(QStringLiteral("phone")));
     uasim.terminate();
     QVERIFY(uasim.waitForFinished());
+}
+
+// A replay shows the log's link quality on the overview's plot and hides the
+// live session's events, with the panels marked read only.
+void TestMainWindow::replayShowsTheLogsPlotAndEvents()
+{
+    const QString path = m_dir.filePath(QStringLiteral("replay-plot.pcapng"));
+    const qint64 start = 1795332720000000;  // 2026-11-22T07:32:00Z
+    QVERIFY(writeStatusLog(path, 20, start));
+    MainWindow window(options());
+    window.show();
+    auto* plan = window.findChild<QDockWidget*>(QStringLiteral("flightPlanDock"));
+    plan->setFloating(true);
+    const QString live = QStringLiteral("A live event, before the replay");
+    window.alerts()->info(EventSource::Console, live);
+    const EventLogModel* events = window.alerts()->model();
+    const int liveRow = eventRow(events, live);
+    EventLogView* view = window.alerts()->eventView();
+    QVERIFY(!view->table()->isRowHidden(liveRow));
+
+    QSignalSpy finished(&window, &MainWindow::replayFinished);
+    window.setReplaySpeed(10.0);
+    window.openFrameLog(path);
+    QTRY_VERIFY_WITH_TIMEOUT(view->isReplaying(), kLinkTimeoutMs);
+    QCOMPARE(view->replayNoteText(), QStringLiteral("Replay: the live session's events are hidden until the replay "
+                                                    "ends; these are the replay's own"));
+    QVERIFY(view->table()->isRowHidden(liveRow));
+    QVERIFY(view->hiddenRows() > liveRow);
+    // The replay's own events show.
+    QVERIFY(!view->table()->isRowHidden(events->rowCount() - 1));
+    QCOMPARE(stripOf(plan)->text(), QStringLiteral("Link: replay of a frame log, read only"));
+    auto* note = window.findChild<QLabel*>(QStringLiteral("readOnlyNote"));
+    QVERIFY(note && note->isVisible());
+    QCOMPARE(note->text(), QStringLiteral("Replay: the log's commands, read only"));
+    QVERIFY(note->styleSheet().contains(QStringLiteral("#1565c0")));
+
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
+    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().framesReceived, quint64(20), kLinkTimeoutMs);
+    // The plot's minutes are the log's: 07:32, twenty good frames.
+    const auto& minutes = window.overview()->history().minutes();
+    QVERIFY(!minutes.empty());
+    for (const LinkQualityHistory::Minute& m : minutes)
+        QCOMPARE(m.startUtcMicros, start);
+    // Counted from the first sample on, as a live link's are: not the frames before it.
+    QVERIFY(minutes.back().goodFrames >= 1 && minutes.back().goodFrames <= 20);
+
+    // Ended: the live events again, the plot empty for the next link.
+    window.disconnectLink();
+    QVERIFY(!view->isReplaying());
+    QVERIFY(!view->table()->isRowHidden(liveRow));
+    QVERIFY(window.overview()->history().minutes().empty());
+    QVERIFY(!note->isVisible());
+}
+
+// Issue 28: in a rehearsal, killing uasim showed "exit code 0", stopped the
+// link and put the counters back to 0. An aircraft that falls silent is a
+// link loss: the link stays, the alarm goes off, the counts stay.
+void TestMainWindow::deadSimulatedAircraftIsALinkLoss()
+{
+    QVERIFY2(QFileInfo(QStringLiteral(RCM_BIN_DIR "/uasim")).isExecutable(), "build the uasim target first");
+    MainWindow window(options());
+    window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
+    QTRY_VERIFY_WITH_TIMEOUT(window.statistics().framesReceived >= 2, kLinkTimeoutMs);
+    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().state, LinkState::Connected, kLinkTimeoutMs);
+    const qint64 pid = window.session()->rehearsalLauncher()->processId();
+    QVERIFY(pid > 0);
+    QSignalSpy attention(window.docks(), &ConsoleDocks::attentionRequested);
+    QCOMPARE(::kill(pid_t(pid), SIGTERM), 0);  // as `kill <uasim's pid>` from a shell
+    const EventLogModel* events = window.alerts()->model();
+    const QString ended = QStringLiteral("The simulated aircraft ended (uasim ended with exit code 0): the link stays "
+                                         "open, and is lost as a real aircraft's would be");
+    QTRY_VERIFY_WITH_TIMEOUT(eventRow(events, ended) >= 0, kLinkTimeoutMs);
+    QCOMPARE(events->event(eventRow(events, ended)).severity, EventSeverity::Warning);
+    QTRY_VERIFY_WITH_TIMEOUT(window.alerts()->alarm()->isActive(), kLinkTimeoutMs);
+    QVERIFY(window.isLinkRunning());
+    QCOMPARE(window.statistics().state, LinkState::Lost);
+    QVERIFY(window.statistics().framesReceived >= 2);
+    QVERIFY(window.linkStatus()->alarmActive());
+    QVERIFY(window.alerts()->alarmBanner()->text().startsWith(QStringLiteral("LINK LOST \u2014 no frame from the aircraft for ")));
+    QCOMPARE(attention.count(), 1);
+    QVERIFY(window.windowTitle().endsWith(QStringLiteral(" \u2014 Lost")));
+    window.disconnectLink();
+    QVERIFY(!window.alerts()->alarm()->isActive());
 }
 
 QTEST_MAIN(TestMainWindow)

@@ -142,5 +142,12 @@ void ConsoleAlerts::setReplay(bool replay)
 {
     m_alarm->setEnabled(!replay);
     m_replay = replay;
+    // The Events dock hides the live session's events meanwhile: they are not the log's.
+    if (m_view) {
+        if (replay)
+            m_view->beginReplay();
+        else
+            m_view->endReplay();
+    }
     emit replayChanged(replay);
 }

@@ -32,6 +32,8 @@ SessionBinding::SessionBinding(const Parts& parts, const ConsoleNotices& notices
     connect(session, &ConsoleSession::failed, this, &SessionBinding::failed);
     connect(session, &ConsoleSession::warning, this,
             [this](const QString& message) { m_notices.error(message, EventSource::Link); });
+    connect(session, &ConsoleSession::notice, this,
+            [this](const QString& message) { m_notices.alerts()->warning(EventSource::Link, message); });
     connect(session, &ConsoleSession::starting, m_parts.linkPane, &LinkPane::setNote);
     connect(session, &ConsoleSession::starting, this,
             [this](const QString& what) { m_notices.alerts()->info(EventSource::Link, what); });
