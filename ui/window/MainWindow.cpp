@@ -115,6 +115,7 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     resize(defaultSize());
     if (screen())
         move(screen()->availableGeometry().topLeft());
+    m_defaultGiven = size();
     restoreSession(options);
     m_commands->commandChanged();
     m_linkPane->showNotConnected();
@@ -263,7 +264,9 @@ QSize MainWindow::defaultSize() const
 
 void MainWindow::fitToScreen()
 {
-    if (!screen() || isMaximized() || isFullScreen())
+    // Only the size given by default: a restored layout, a size asked for
+    // (gcs --screenshot --size, a test) or one the operator dragged stays.
+    if (!screen() || isMaximized() || isFullScreen() || m_layoutRestored || size() != m_defaultGiven)
         return;
     const QRect available = screen()->availableGeometry();
     if (available.contains(frameGeometry()))

@@ -209,5 +209,6 @@ private:
     BrokerConnection* m_broker = nullptr;
     bool m_layoutRestored = false;
     bool m_shown = false;
+    QSize m_defaultGiven;  // the size the window was given at construction, defaultSize() or its least
     bool m_alarmShown = false;  // the link-loss alarm, as last seen: attention is asked as it goes off
 };
