@@ -1622,8 +1622,9 @@ void TestMainWindow::redialBannerClearsWithItsCause()
     SatelliteModemThread model(satellite);
     QString error;
     QVERIFY2(model.open(&error), qPrintable(error));
-    QProcess uasim;
+    // Before the process: what it says as its destructor ends it must not land in a string gone.
     QByteArray said;
+    QProcess uasim;
     connect(&uasim, &QProcess::readyReadStandardError, this, [&] { said += uasim.readAllStandardError(); });
     uasim.start(QStringLiteral(RCM_BIN_DIR "/uasim"),
                 {QStringLiteral("--serial"), model.device(SatelliteModem::Aircraft), QStringLiteral("--modem"),
