@@ -171,6 +171,16 @@ void ConsoleSession::rehearsalReady(quint16 port)
 
 void ConsoleSession::rehearsalFailed(const QString& reason)
 {
+    if (m_kind == Kind::Rehearsal && m_preparing == Kind::None && isRunning() && m_rehearsal->isConfirmed()) {
+        // The aircraft answered, then went: killed, crashed or ended. That is
+        // the aircraft falling silent, which the link's silence timeout turns
+        // into the link-loss alarm with its counts, as for a real one; the
+        // link is not stopped under the operator.
+        emit notice(tr("The simulated aircraft ended (%1): the link stays open, and is lost as a real "
+                       "aircraft's would be")
+                        .arg(reason));
+        return;
+    }
     m_rehearsalKey.reset();
     if (m_kind == Kind::Rehearsal || m_preparing == Kind::Rehearsal)
         stop();

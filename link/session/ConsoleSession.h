@@ -194,6 +194,9 @@ signals:
     // The link starts, but something is amiss: no frame log for the session,
     // a replayed log damaged part-way.
     void warning(const QString& message);
+    // Something for the event log alone: the simulated aircraft ended, and
+    // its link stays open to be lost as a real aircraft's would be.
+    void notice(const QString& message);
     // A log opened for replay is indexed; takeReplayIndex() has it.
     void replayIndexed(const QString& path);
     // The aircraft's report became the command (the first status frame of a

@@ -73,7 +73,9 @@ QString LinkSettings::summary() const
                                                    : QObject::tr("UDP %1:%2").arg(remoteAddress).arg(remotePort);
     if (dialsModem()) {
         const std::optional<modem::Profile> profile = modem::findProfile(modemProfile);
-        where = QObject::tr("%1, dialling %2 (%3)")
+        // The number, not "dialling": the summary stays the link's name in
+        // the title for the whole call.
+        where = QObject::tr("%1, phone %2 (%3)")
                     .arg(where, dialNumber.trimmed(), profile ? profile->title : modemProfile);
     }
     return keyPath.isEmpty() ? where : QObject::tr("%1, encrypted").arg(where);

@@ -36,6 +36,9 @@ public:
     void stop();
     // Frames came back: a later exit is a failure, not a port clash to retry.
     void confirm() { m_confirmed = true; }
+    bool isConfirmed() const { return m_confirmed; }
+    // uasim's process id while it runs, else 0.
+    qint64 processId() const { return m_process ? m_process->processId() : 0; }
     // uasim --verbose: a line on output() for each command it takes.
     void setVerbose(bool verbose) { m_verbose = verbose; }
     // uasim on this serial device (a pseudo-terminal) instead of a UDP port.

@@ -338,7 +338,7 @@ void TestModemLink::sessionStopHangsUpWithoutWaiting()
     settings.modemInit = QStringLiteral("ATE0V1&C1&D2S12=5");
     settings.callCostPerMinute = 2;
     settings.callCurrency = QStringLiteral("EUR");
-    QCOMPARE(settings.summary(), QStringLiteral("serial %1 at 9600 bit/s, dialling 881612345678 (Generic (3GPP TS 27.007))")
+    QCOMPARE(settings.summary(), QStringLiteral("serial %1 at 9600 bit/s, phone 881612345678 (Generic (3GPP TS 27.007))")
                                      .arg(model.device(SatelliteModem::Ground)));
     session->connectWith(settings);
     QTRY_COMPARE_WITH_TIMEOUT(started.count(), 1, kWaitMs);

@@ -15,6 +15,7 @@
 #include "ui/alerts/ErrorBanner.h"
 #include "ui/alerts/LinkAlarm.h"
 #include "ui/alerts/LinkAlarmBanner.h"
+#include "ui/alerts/LinkStateStrip.h"
 #include "ui/alerts/RefusalDigest.h"
 #include "ui/alerts/ToneAlarmSound.h"
 #include "ui/eventlog/EventLogModel.h"
@@ -515,6 +516,84 @@ private slots:
         QCOMPARE(unavailable.at(0).at(0).toString(),
                  QStringLiteral("no sound card: the link-loss alarm is shown but not heard"));
         QVERIFY(!tone.isPlaying());
+    }
+
+    // An error whose cause cleared leaves the banner, however many times it
+    // came; the others stay in their order. The event log keeps it.
+    void errorBannerWithdrawsAClearedError()
+    {
+        ErrorBanner banner;
+        QSignalSpy counts(&banner, &ErrorBanner::countChanged);
+        banner.showError(QStringLiteral("key file refused"));
+        banner.showError(QStringLiteral("call dropped; redialling in 10 s"));
+        banner.showError(QStringLiteral("call dropped; redialling in 10 s"));
+        QCOMPARE(banner.count(), 2);
+        QVERIFY(banner.withdraw(QStringLiteral("call dropped; redialling in 10 s")));
+        QCOMPARE(banner.count(), 1);
+        QCOMPARE(banner.currentText(), QStringLiteral("key file refused"));
+        QCOMPARE(banner.countText(), QString());
+        QVERIFY(!banner.withdraw(QStringLiteral("call dropped; redialling in 10 s")));
+        QCOMPARE(counts.size(), 3);
+
+        FakeSound sound;
+        ConsoleAlerts alerts(&sound);
+        alerts.banners();
+        alerts.error(EventSource::Link, QStringLiteral("call dropped; redialling in 10 s"));
+        alerts.withdraw(QStringLiteral("call dropped; redialling in 10 s"), QStringLiteral("the link was closed"));
+        QCOMPARE(alerts.errorBanner()->count(), 0);
+        QCOMPARE(texts(*alerts.model()),
+                 (QStringList{QStringLiteral("error link: call dropped; redialling in 10 s"),
+                              QStringLiteral("info console: Off the banner, the link was closed: call dropped; "
+                                             "redialling in 10 s")}));
+    }
+
+    // Without a sound card: an error at start, on the banner and in the log.
+    void noSoundCardIsAnErrorAtStart()
+    {
+        FakeSound sound;
+        ConsoleAlerts alerts(&sound);
+        alerts.banners();
+        QVERIFY(alerts.checkSound(true));
+        QCOMPARE(alerts.model()->rowCount(), 0);
+        QVERIFY(!alerts.checkSound(false));
+        QCOMPARE(texts(*alerts.model()),
+                 QStringList{QStringLiteral("error console: No sound card: the link-loss alarm will be shown but not heard")});
+        QCOMPARE(alerts.errorBanner()->currentText(),
+                 QStringLiteral("No sound card: the link-loss alarm will be shown but not heard"));
+    }
+
+    // The strip of a floating dock: the state in words, the alarm in red
+    // with its own Silence button, counting as the banner does.
+    void linkStateStripFollowsTheAlarm()
+    {
+        FakeSound sound;
+        ConsoleAlerts alerts(&sound);
+        qint64 now = kT0;
+        alerts.events()->setClock([&now] { return now; });
+        std::unique_ptr<LinkStateStrip> strip(alerts.newLinkStrip());
+        QCOMPARE(strip->text(), QStringLiteral("Link: Not connected"));
+        alerts.setStatistics(stats(LinkState::Waiting, 0, 0));
+        QCOMPARE(strip->text(), QStringLiteral("Link: Waiting for the aircraft"));
+        alerts.setStatistics(stats(LinkState::Connected, 10, kT0));
+        QCOMPARE(strip->text(), QStringLiteral("Link: Connected"));
+        now = kT0 + 3 * kSecond;
+        alerts.setStatistics(stats(LinkState::Lost, 10, kT0));
+        QVERIFY(strip->isAlarm());
+        QCOMPARE(strip->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s"));
+        now = kT0 + 75 * kSecond;
+        strip->refresh();  // what its timer does each second
+        QCOMPARE(strip->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 1 min 15 s"));
+        QVERIFY(!strip->silenceButton()->isHidden());
+        strip->silenceButton()->click();
+        QVERIFY(!sound.playing);
+        QCOMPARE(strip->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 1 min 15 s (silenced)"));
+        QVERIFY(strip->silenceButton()->isHidden());
+        alerts.setStatistics(stats(LinkState::Closed, 10, kT0));
+        QVERIFY(!strip->isAlarm());
+        QCOMPARE(strip->text(), QStringLiteral("Link: Not connected"));
+        alerts.setReplay(true);
+        alerts.setStatistics(stats(LinkState::Connected, 10, kT0));
+        QCOMPARE(strip->text(), QStringLiteral("Link: replay of a frame log, read only"));
     }
 };
 

@@ -219,10 +219,16 @@ private slots:
         QCOMPARE(page.figure(QStringLiteral("age")), QStringLiteral("\u2014"));
         page.setReplayTime(kT0 - 3600 * kSecond + 20 * kSecond);
         QCOMPARE(page.figure(QStringLiteral("age")), QStringLiteral("log 16:45:20 UTC"));
+        // The plot is the log's: sampled at the log's time, 16:45; the live
+        // clock's tick adds nothing.
         page.tick();
-        QVERIFY(page.history().minutes().empty());
+        QCOMPARE(page.history().minutes().size(), std::size_t(1));
+        QCOMPARE(page.history().minutes().front().startUtcMicros, kT0 - 3600 * kSecond);
+        QCOMPARE(page.history().minutes().front().goodFrames, quint64(10));
         page.setReplay(false);
         QCOMPARE(page.figure(QStringLiteral("state")), QStringLiteral("Connected"));
+        // Nor are the log's minutes the next link's.
+        QVERIFY(page.history().minutes().empty());
     }
 
     // Every item the console commands, of every unit but the header, has

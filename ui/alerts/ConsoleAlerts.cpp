@@ -5,6 +5,7 @@
 #include "ui/alerts/ErrorBanner.h"
 #include "ui/alerts/LinkAlarm.h"
 #include "ui/alerts/LinkAlarmBanner.h"
+#include "ui/alerts/LinkStateStrip.h"
 #include "ui/alerts/RefusalDigest.h"
 #include "ui/alerts/ToneAlarmSound.h"
 #include "ui/eventlog/EventLogModel.h"
@@ -74,6 +75,30 @@ EventLogView* ConsoleAlerts::eventView()
     return m_view;
 }
 
+LinkStateStrip* ConsoleAlerts::newLinkStrip()
+{
+    auto* strip = new LinkStateStrip(m_alarm);
+    strip->setStatistics(m_statistics);
+    strip->setReplay(m_replay);
+    connect(this, &ConsoleAlerts::statisticsChanged, strip, &LinkStateStrip::setStatistics);
+    connect(this, &ConsoleAlerts::replayChanged, strip, &LinkStateStrip::setReplay);
+    return strip;
+}
+
+QString ConsoleAlerts::noSoundText()
+{
+    return tr("No sound card: the link-loss alarm will be shown but not heard");
+}
+
+bool ConsoleAlerts::checkSound(bool soundCardPresent)
+{
+    if (soundCardPresent)
+        return true;
+    // An error, so that the banner says it before any link is lost.
+    error(EventSource::Console, noSoundText());
+    return false;
+}
+
 void ConsoleAlerts::follow(const LinkEvents* link)
 {
     connect(link, &LinkEvents::errorOccurred, this, [this](const QString& message) { error(EventSource::Link, message); });
@@ -98,12 +123,31 @@ void ConsoleAlerts::error(EventSource source, const QString& text)
     m_events->error(source, text);
 }
 
+void ConsoleAlerts::withdraw(const QString& message, const QString& reason)
+{
+    if (m_errorBanner && m_errorBanner->withdraw(message))
+        m_events->info(EventSource::Console, tr("Off the banner, %1: %2").arg(reason, message));
+}
+
 void ConsoleAlerts::setStatistics(const LinkStatistics& statistics)
 {
     m_alarm->setStatistics(statistics);
+    const bool stateChanged = statistics.state != m_statistics.state;
+    m_statistics = statistics;
+    if (stateChanged)
+        emit statisticsChanged(statistics);
 }
 
 void ConsoleAlerts::setReplay(bool replay)
 {
     m_alarm->setEnabled(!replay);
+    m_replay = replay;
+    // The Events dock hides the live session's events meanwhile: they are not the log's.
+    if (m_view) {
+        if (replay)
+            m_view->beginReplay();
+        else
+            m_view->endReplay();
+    }
+    emit replayChanged(replay);
 }

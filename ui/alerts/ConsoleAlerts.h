@@ -20,6 +20,7 @@ class EventLogView;
 class LinkAlarm;
 class LinkAlarmBanner;
 class LinkEvents;
+class LinkStateStrip;
 class RefusalDigest;
 class QWidget;
 
@@ -41,6 +42,16 @@ public:
     // Created on first call, owned by whoever takes them into a layout.
     QWidget* banners();
     EventLogView* eventView();
+    // The link's state and alarm in a line, for each window besides the
+    // main one (a floating dock); owned by whoever lays it out.
+    LinkStateStrip* newLinkStrip();
+
+    // The start-up check of the sound card: without one, an error for the
+    // log and the banner, at once rather than when the link is first lost.
+    // False when there is none.
+    bool checkSound(bool soundCardPresent);
+    // What checkSound() says when there is no sound card.
+    static QString noSoundText();
     ErrorBanner* errorBanner() const { return m_errorBanner; }
     LinkAlarmBanner* alarmBanner() const { return m_alarmBanner; }
 
@@ -56,8 +67,16 @@ public slots:
     // In the event log and on the banner.
     void error(EventSource source, const QString& text);
     void setStatistics(const LinkStatistics& statistics);
+    // An error whose cause cleared leaves the banner, with a line in the
+    // event log saying why: "Off the banner, <reason>: <message>".
+    void withdraw(const QString& message, const QString& reason);
     // A replay: no link alarm; live again: armed again.
     void setReplay(bool replay);
+
+signals:
+    // The link's state changed (not each count): for the strips.
+    void statisticsChanged(const LinkStatistics& statistics);
+    void replayChanged(bool replay);
 
 private:
     EventLog* m_events;
@@ -70,4 +89,6 @@ private:
     LinkAlarmBanner* m_alarmBanner = nullptr;
     EventLogView* m_view = nullptr;
     RefusalDigest* m_refusals;
+    LinkStatistics m_statistics;
+    bool m_replay = false;
 };

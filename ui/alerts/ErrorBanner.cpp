@@ -120,6 +120,16 @@ void ErrorBanner::dismissAll()
     emit countChanged(count());
 }
 
+bool ErrorBanner::withdraw(const QString& message)
+{
+    const qsizetype removed = m_errors.removeIf([&](const Error& e) { return e.message == message; });
+    if (!removed)
+        return false;
+    refresh();
+    emit countChanged(count());
+    return true;
+}
+
 void ErrorBanner::refresh()
 {
     setVisible(!m_errors.isEmpty());

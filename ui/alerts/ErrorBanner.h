@@ -40,6 +40,9 @@ public slots:
     // The one shown; the next older one comes up.
     void dismiss();
     void dismissAll();
+    // Its cause cleared (a call redialled, control taken): `message` goes,
+    // however many times it came; the event log keeps it. False when not shown.
+    bool withdraw(const QString& message);
 
 signals:
     void countChanged(int count);

@@ -59,6 +59,11 @@ QString LinkAlarmBanner::text() const
     return m_text->text();
 }
 
+QString LinkAlarmBanner::alarmText(qint64 silentMicros)
+{
+    return tr("LINK LOST \u2014 no frame from the aircraft for %1").arg(LinkAlarm::durationText(silentMicros));
+}
+
 void LinkAlarmBanner::refresh()
 {
     const bool active = m_alarm->isActive();
@@ -70,8 +75,7 @@ void LinkAlarmBanner::refresh()
     }
     if (!m_timer.isActive())
         m_timer.start();
-    m_text->setText(tr("LINK LOST \u2014 no frame from the aircraft for %1")
-                        .arg(LinkAlarm::durationText(m_alarm->silentMicros())));
+    m_text->setText(alarmText(m_alarm->silentMicros()));
     m_silence->setVisible(!m_alarm->isAcknowledged());
     m_silenced->setVisible(m_alarm->isAcknowledged());
 }

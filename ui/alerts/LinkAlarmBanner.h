@@ -19,6 +19,8 @@ public:
     explicit LinkAlarmBanner(LinkAlarm* alarm, QWidget* parent = nullptr);
 
     QString text() const;
+    // "LINK LOST \u2014 no frame from the aircraft for 12 s"
+    static QString alarmText(qint64 silentMicros);
     QPushButton* silenceButton() const { return m_silence; }
 
 public slots:

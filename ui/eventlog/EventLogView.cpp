@@ -14,7 +14,8 @@
 #include <algorithm>
 
 EventLogView::EventLogView(EventLogModel* model, QWidget* parent)
-    : QWidget(parent), m_model(model), m_table(new QTableView), m_counts(new QLabel), m_file(new QLabel)
+    : QWidget(parent), m_model(model), m_table(new QTableView), m_counts(new QLabel), m_file(new QLabel),
+      m_replayNote(new QLabel)
 {
     m_table->setObjectName(QStringLiteral("eventTable"));
     m_table->setModel(model);
@@ -59,6 +60,13 @@ EventLogView::EventLogView(EventLogModel* model, QWidget* parent)
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(4, 4, 4, 4);
     layout->addLayout(bar);
+    m_replayNote->setObjectName(QStringLiteral("eventsReplayNote"));
+    m_replayNote->setWordWrap(true);
+    // The replay's blue, as the status bar's "Replay": white on #1565c0, 5.8:1.
+    m_replayNote->setStyleSheet(
+        QStringLiteral("QLabel { background-color: #1565c0; color: white; font-weight: bold; padding: 3px 6px; }"));
+    m_replayNote->hide();
+    layout->addWidget(m_replayNote);
     layout->addWidget(m_table, 1);
 
     // The newest event in view as it arrives, wherever the operator scrolled.
@@ -68,6 +76,37 @@ EventLogView::EventLogView(EventLogModel* model, QWidget* parent)
     });
     connect(model, &QAbstractItemModel::rowsRemoved, this, &EventLogView::updateCounts);
     updateCounts();
+}
+
+void EventLogView::beginReplay()
+{
+    if (!m_replaying) {
+        m_hidden = m_model->rowCount();
+        for (int row = 0; row < m_hidden; ++row)
+            m_table->setRowHidden(row, true);
+    }
+    m_replaying = true;
+    m_replayNote->setText(tr("Replay: the live session's events are hidden until the replay ends; "
+                             "these are the replay's own"));
+    m_replayNote->show();
+}
+
+void EventLogView::endReplay()
+{
+    if (!m_replaying)
+        return;
+    for (int row = 0; row < m_model->rowCount(); ++row)
+        m_table->setRowHidden(row, false);
+    m_replaying = false;
+    m_hidden = 0;
+    m_replayNote->hide();
+    m_replayNote->clear();
+    m_table->scrollToBottom();
+}
+
+QString EventLogView::replayNoteText() const
+{
+    return m_replaying ? m_replayNote->text() : QString();
 }
 
 void EventLogView::setFilePath(const QString& path)

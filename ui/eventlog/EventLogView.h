@@ -23,6 +23,17 @@ public:
     // "12 events, 1 error, 2 warnings"
     QString countsText() const;
 
+    // A replay: the live session's events so far are hidden (they are not
+    // the log's), and a note above the table says so; only what happens
+    // from now on shows. endReplay() shows them all again.
+    void beginReplay();
+    void endReplay();
+    bool isReplaying() const { return m_replaying; }
+    // The note shown during a replay; empty when none.
+    QString replayNoteText() const;
+    // Rows hidden for the replay.
+    int hiddenRows() const { return m_hidden; }
+
 private:
     void updateCounts();
 
@@ -30,4 +41,7 @@ private:
     QTableView* m_table;
     QLabel* m_counts;
     QLabel* m_file;
+    QLabel* m_replayNote;
+    bool m_replaying = false;
+    int m_hidden = 0;
 };

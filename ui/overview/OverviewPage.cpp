@@ -219,6 +219,12 @@ void OverviewPage::setStatistics(const LinkStatistics& statistics)
 
 void OverviewPage::setReplay(bool replay)
 {
+    // The plot shows one session's minutes: the log's during a replay, never
+    // the live link's before it, and the next link's after.
+    if (replay != m_replay) {
+        m_history.clear();
+        m_plot->update();
+    }
     m_replay = replay;
     m_replayTime = 0;
     updateFigures();
@@ -227,15 +233,21 @@ void OverviewPage::setReplay(bool replay)
 void OverviewPage::setReplayTime(qint64 utcMicros)
 {
     m_replayTime = utcMicros;
+    // The log's statistics at the log's time: its minutes, on its own time axis.
+    if (m_replay && utcMicros) {
+        m_history.sample(utcMicros, m_statistics);
+        m_plot->setNow(utcMicros);
+    }
     updateFigures();
 }
 
 void OverviewPage::tick()
 {
     const qint64 now = m_clock();
-    if (!m_replay)
+    if (!m_replay) {
         m_history.sample(now, m_statistics);
-    m_plot->setNow(now);
+        m_plot->setNow(now);
+    }
     updateFigures();
 }
 

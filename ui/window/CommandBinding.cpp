@@ -13,6 +13,8 @@
 #include "ui/plan/FlightPlanWidget.h"
 #include "ui/window/ReadOnlyPanels.h"
 
+#include <utility>
+
 CommandBinding::CommandBinding(const Parts& parts, const ConsoleNotices& notices, QObject* parent)
     : QObject(parent), m_parts(parts), m_notices(notices)
 {
@@ -31,8 +33,24 @@ void CommandBinding::bindStationControl()
 {
     StationControl* control = m_parts.session->stationControl();
     // Control moving unasked is an error for the banner and the log; as asked, an event.
-    connect(control, &StationControl::alarm, this,
-            [this](const QString& reason) { m_notices.error(reason, EventSource::Control); });
+    connect(control, &StationControl::alarm, this, [this](const QString& reason) {
+        m_notices.error(reason, EventSource::Control);
+        // Said as the role changes, before it is set: an offer waits for Take control.
+        m_controlAlarms << reason;
+    });
+    // Once the role moves on, the alarms that asked for it are stale: control
+    // was taken, or went elsewhere (which says so with its own alarm).
+    connect(control, &StationControl::roleChanged, this, [this](StationControl::Role role) {
+        QStringList alarms = std::exchange(m_controlAlarms, {});
+        if (role == StationControl::Role::Offered) {
+            m_offerAlarms << alarms;  // shown until this station takes control or loses the offer
+            return;
+        }
+        for (const QString& alarm : std::exchange(m_offerAlarms, {}))
+            m_notices.alerts()->withdraw(alarm, role == StationControl::Role::InControl
+                                                    ? tr("control was taken")
+                                                    : tr("the offer of control ended"));
+    });
     connect(control, &StationControl::event, this,
             [this](const QString& text) { m_notices.info(EventSource::Control, text); });
     connect(m_parts.stationControl, &StationControlWidget::stationRefused, this,

@@ -9,6 +9,7 @@
 #include "ui/window/ConsoleNotices.h"
 
 #include <QObject>
+#include <QStringList>
 
 class CommandHoldBar;
 class CommandJournal;
@@ -51,4 +52,6 @@ private:
     Parts m_parts;
     ConsoleNotices m_notices;
     CommandJournal* m_journal;
+    QStringList m_controlAlarms;  // said since the last change of role
+    QStringList m_offerAlarms;    // on the banner while control is offered to this station
 };

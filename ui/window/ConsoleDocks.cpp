@@ -1,6 +1,9 @@
 #include "ui/window/ConsoleDocks.h"
 
+#include "ui/window/WindowAttention.h"
+
 #include <QDockWidget>
+#include <QVBoxLayout>
 #include <QMainWindow>
 
 #include <algorithm>
@@ -39,7 +42,52 @@ ConsoleDocks::ConsoleDocks(QMainWindow* window, const Contents& contents)
       m_voice(dock(tr("Voice"), QStringLiteral("voiceDock"), contents.voice, window)),
       m_events(dock(tr("Events"), QStringLiteral("eventsDock"), contents.events, window))
 {
+    qRegisterMetaType<QList<QWidget*>>();  // attentionRequested(), also queued and spied on
+    m_all = {m_link, m_preview, m_log, m_plan, m_voice, m_events};
     place();
+}
+
+void ConsoleDocks::addLinkStrips(std::function<QWidget*()> make)
+{
+    m_makeStrip = std::move(make);
+    for (QDockWidget* d : m_all)
+        addLinkStrip(d);
+}
+
+void ConsoleDocks::addLinkStrip(QDockWidget* d)
+{
+    QWidget* content = d->widget();
+    auto* framed = new QWidget;
+    framed->setObjectName(d->objectName() + QStringLiteral("Content"));
+    framed->setFont(content->font());
+    auto* layout = new QVBoxLayout(framed);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->setSpacing(0);
+    QWidget* strip = m_makeStrip();
+    layout->addWidget(strip);
+    layout->addWidget(content, 1);
+    d->setWidget(framed);
+    // Docked, the main window's banner and status bar say it already.
+    strip->setVisible(d->isFloating());
+    connect(d, &QDockWidget::topLevelChanged, strip, &QWidget::setVisible);
+}
+
+void ConsoleDocks::requestAttention()
+{
+    QList<QWidget*> windows{m_window};
+    for (QDockWidget* d : m_all)
+        if (d->isFloating() && d->isVisible())
+            windows << d;
+    for (QWidget* w : windows)
+        WindowAttention::request(w);
+    emit attentionRequested(windows);
+}
+
+void ConsoleDocks::clearAttention()
+{
+    WindowAttention::clear(m_window);
+    for (QDockWidget* d : m_all)
+        WindowAttention::clear(d);
 }
 
 void ConsoleDocks::place()
@@ -81,6 +129,9 @@ void ConsoleDocks::placeOnFirstShow(bool restored)
 void ConsoleDocks::addFleet(QWidget* fleetView)
 {
     QDockWidget* fleet = dock(tr("Fleet"), QStringLiteral("fleetDock"), fleetView, m_window);
+    m_all << fleet;
+    if (m_makeStrip)
+        addLinkStrip(fleet);
     m_window->tabifyDockWidget(m_events, fleet);
     fleet->raise();
 }

@@ -6,7 +6,10 @@
 // place() puts each back in its first place. (The flight plan is a page of
 // the panels, where its map has room: PanelArea.)
 
+#include <QList>
 #include <QObject>
+
+#include <functional>
 
 #include <vector>
 
@@ -36,8 +39,28 @@ public:
     // The Fleet dock, in front beside the events.
     void addFleet(QWidget* fleetView);
 
+    // Puts `make()`'s strip (the link's state and alarm) at the top of each
+    // dock, this one and those added later, shown while the dock floats: a
+    // window of its own must show the alarm too.
+    void addLinkStrips(std::function<QWidget*()> make);
+    QList<QDockWidget*> docks() const { return m_all; }
+    // The main window and every floating dock ask the window manager for
+    // the operator's attention (WindowAttention: the urgency hint on X11,
+    // a flashing taskbar entry elsewhere) until clearAttention().
+    void requestAttention();
+    // The urgency hint off every window: the alarm silenced, the link back or closed.
+    void clearAttention();
+
+signals:
+    // What requestAttention() alerted.
+    void attentionRequested(const QList<QWidget*>& windows);
+
 private:
+    void addLinkStrip(QDockWidget* dock);
+
     QMainWindow* m_window;
+    QList<QDockWidget*> m_all;
+    std::function<QWidget*()> m_makeStrip;
     // In the order they were first made, which the View menu's Ctrl+1 .. Ctrl+6 follow.
     QDockWidget* m_link;
     QDockWidget* m_preview;

@@ -4,6 +4,9 @@
 #include "link/airframe/AirframeLoader.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
+#include "ui/alerts/LinkAlarm.h"
+#include "ui/alerts/LinkStateStrip.h"
+#include "ui/alerts/ToneAlarmSound.h"
 #include "ui/eventlog/EventLogView.h"
 #include "ui/framelog/FrameLogCsvExport.h"
 #include "ui/framelog/FrameLogModel.h"
@@ -77,7 +80,10 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     buildDocks();
     m_menus = new ConsoleMenus(this, {m_panels->tabs(), m_airframes, m_flightPlan, m_linkPane->settings()});
     bindMenus();
+    // The link's figures fill the bar, so the bar's own message area would
+    // have no room: its messages are shown among them.
     statusBar()->addPermanentWidget(m_status, 1);
+    connect(statusBar(), &QStatusBar::messageChanged, m_status, &StatusBarWidget::showMessage);
     statusBar()->setSizeGripEnabled(true);
 
     connect(m_command, &CommandState::airframeChanged, this, [this] {
@@ -111,11 +117,16 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     connect(m_session, &ConsoleSession::linkStarted, m_broker, &BrokerConnection::updateTrust);
 
     resize(defaultSize());
+    if (screen())
+        move(screen()->availableGeometry().topLeft());
+    m_defaultGiven = size();
     restoreSession(options);
     m_commands->commandChanged();
     m_linkPane->showNotConnected();
     updateLinkControls();
     updateTitle();
+    // Said now, not first when the link is lost.
+    m_alerts->checkSound(ToneAlarmSound::hasSoundCard());
 }
 
 MainWindow::~MainWindow()
@@ -148,6 +159,17 @@ void MainWindow::buildDocks()
     });
     m_docks = new ConsoleDocks(
         this, {m_linkPane, new PushToTalkWidget(m_voice), m_logView, m_preview, m_alerts->eventView()});
+    // A floating dock is a window of its own: it shows the link's state and
+    // alarm too, and asks for attention with the main window when the link is lost.
+    m_docks->addLinkStrips([this] { return m_alerts->newLinkStrip(); });
+    connect(m_alerts->alarm(), &LinkAlarm::changed, this, [this] {
+        const bool active = m_alerts->alarm()->isActive();
+        if (active && !m_alarmShown)
+            m_docks->requestAttention();
+        else if (!m_alerts->alarm()->isSounding())
+            m_docks->clearAttention();  // heard (silenced), or over
+        m_alarmShown = active;
+    });
     // A plan opened (gcs --plan, File > Open flight plan) is shown.
     connect(m_flightPlan, &FlightPlanWidget::planOpened, this,
             [this] { m_panels->showPanel(m_panels->tabs()->indexOf(m_flightPlan)); });
@@ -214,11 +236,48 @@ CommandHoldBar* MainWindow::commandHold() const
     return m_panels->holdBar();
 }
 
+QSize MainWindow::fittingSize(const QSize& available, const QMargins& frame)
+{
+    return QSize(std::min(available.width() - frame.left() - frame.right(), 1600),
+                 std::min(available.height() - frame.top() - frame.bottom(), 1000));
+}
+
+QMargins MainWindow::frameMargins() const
+{
+    // Not known before the window manager framed it: a usual title bar and
+    // border, or the frame measured when larger. The same before and after
+    // the first show, so that Reset layout gives the first size again.
+    QMargins margins(4, 32, 4, 4);
+    const QRect frame = frameGeometry();
+    const QRect inside = geometry();
+    if (isVisible()) {
+        margins.setLeft(std::max(margins.left(), inside.left() - frame.left()));
+        margins.setTop(std::max(margins.top(), inside.top() - frame.top()));
+        margins.setRight(std::max(margins.right(), frame.right() - inside.right()));
+        margins.setBottom(std::max(margins.bottom(), frame.bottom() - inside.bottom()));
+    }
+    return margins;
+}
+
 QSize MainWindow::defaultSize() const
 {
-    // Most of the screen, up to what the console can use.
+    // Most of the screen, up to what the console can use; the status bar
+    // must not fall below the screen's edge.
     const QRect screen = this->screen() ? this->screen()->availableGeometry() : QRect(0, 0, 1366, 768);
-    return QSize(std::min(screen.width(), 1600), std::min(screen.height(), 1000));
+    return fittingSize(screen.size(), frameMargins());
+}
+
+void MainWindow::fitToScreen()
+{
+    // Only the size given by default: a restored layout, a size asked for
+    // (gcs --screenshot --size, a test) or one the operator dragged stays.
+    if (!screen() || isMaximized() || isFullScreen() || m_layoutRestored || size() != m_defaultGiven)
+        return;
+    const QRect available = screen()->availableGeometry();
+    if (available.contains(frameGeometry()))
+        return;
+    resize(size().boundedTo(fittingSize(available.size(), frameMargins())));
+    move(available.topLeft());
 }
 
 void MainWindow::resetLayout()
@@ -228,13 +287,23 @@ void MainWindow::resetLayout()
     settings.remove(QStringLiteral("window/state"));
     showNormal();
     resize(defaultSize());
+    if (screen())
+        move(screen()->availableGeometry().topLeft());
     m_docks->place();
+    // Again: the layout before place() may have held the window taller.
+    resize(defaultSize());
 }
 
 void MainWindow::showEvent(QShowEvent* event)
 {
     QMainWindow::showEvent(event);
+    const bool first = !m_shown;
+    m_shown = true;
     m_docks->placeOnFirstShow(m_layoutRestored);
+    // The frame is known a moment after the first show (the window manager
+    // sets it): then the window is made to fit inside the screen.
+    if (first)
+        QTimer::singleShot(300, this, &MainWindow::fitToScreen);
 }
 
 void MainWindow::restoreSession(const Options& options)
@@ -427,6 +496,10 @@ void MainWindow::updateTitle()
         ConsoleMenus::title() + QStringLiteral(" \u2014 ") + QString::fromStdString(m_command->airframe().name);
     if (!m_session->description().isEmpty())
         title += QStringLiteral(" \u2014 ") + m_session->description();
+    // The link's state in the title too: in the taskbar, and above a window
+    // whose status bar is out of sight. "Connected", "Lost", "Replay"...
+    if (m_session->isRunning() || m_session->observation())
+        title += QStringLiteral(" \u2014 ") + m_status->stateName();
     setWindowTitle(title);
 }
 

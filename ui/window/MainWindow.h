@@ -88,6 +88,7 @@ public:
     const BrokerObservation* observation() const;
     FleetFeed* fleetFeed() const;
     ConsoleSession* session() const { return m_session; }
+    ConsoleDocks* docks() const { return m_docks; }
     // The event log, its dock, the error banner and the link-loss alarm.
     ConsoleAlerts* alerts() const { return m_alerts; }
     OverviewPage* overview() const;
@@ -99,8 +100,11 @@ public:
     QString sessionLogPath() const { return m_session->sessionLogPath(); }
 
     Theme::Kind theme() const;
-    // The first start's size: the screen's available area, up to 1600x1000.
+    // The first start's size: the screen's available area less the window
+    // manager's frame, up to 1600x1000.
     QSize defaultSize() const;
+    // What of `available` a window framed by `frame` can take, up to 1600x1000.
+    static QSize fittingSize(const QSize& available, const QMargins& frame);
     // Applies `kind` to the whole application and ticks View > Night theme to match.
     void setTheme(Theme::Kind kind);
 
@@ -172,6 +176,12 @@ private:
     // first while one is live (or being started), Cancel the default.
     bool confirmEndingLink(const QString& action);
     void updateTitle();
+    // The frame the window manager puts around the window: a usual title
+    // bar and border, or the one measured once shown when larger.
+    QMargins frameMargins() const;
+    // Shrinks and moves the window into the screen's available area when
+    // its frame (known once shown) makes it overhang.
+    void fitToScreen();
     void chooseFrameLog();
     void exportCsv();
 
@@ -198,4 +208,7 @@ private:
     SessionBinding* m_binding = nullptr;
     BrokerConnection* m_broker = nullptr;
     bool m_layoutRestored = false;
+    bool m_shown = false;
+    QSize m_defaultGiven;  // the size the window was given at construction, defaultSize() or its least
+    bool m_alarmShown = false;  // the link-loss alarm, as last seen: attention is asked as it goes off
 };

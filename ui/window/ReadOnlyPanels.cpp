@@ -56,7 +56,12 @@ void ReadOnlyPanels::attach(ReportedState* reported, QTabWidget* panels)
     m_reported = reported;
     m_panels = panels;
     m_note = new QLabel(replayNote());
-    m_note->setContentsMargins(8, 0, 8, 0);
+    m_note->setObjectName(QStringLiteral("readOnlyNote"));
+    // A badge, not a caption: the panels look as editable as ever, so what
+    // says they are not must catch the eye. White on the replay's blue, 5.8:1.
+    m_note->setStyleSheet(QStringLiteral(
+        "QLabel { background-color: #1565c0; color: white; font-weight: bold; padding: 2px 10px; border-radius: 3px; }"));
+    m_note->setToolTip(tr("Clicks and keys in the panels are ignored: they show what was commanded, nothing is sent"));
     m_note->hide();
     m_panels->setCornerWidget(m_note, Qt::TopRightCorner);
 }

@@ -19,6 +19,8 @@
 #include <QDateTime>
 #include <QDir>
 
+#include <utility>
+
 namespace {
 
 // What the console sends is enciphered with this codec of the link's key;
@@ -46,6 +48,8 @@ SessionBinding::SessionBinding(const Parts& parts, const ConsoleNotices& notices
     connect(session, &ConsoleSession::failed, this, &SessionBinding::failed);
     connect(session, &ConsoleSession::warning, this,
             [this](const QString& message) { m_notices.error(message, EventSource::Link); });
+    connect(session, &ConsoleSession::notice, this,
+            [this](const QString& message) { m_notices.alerts()->warning(EventSource::Link, message); });
     connect(session, &ConsoleSession::starting, m_parts.linkPane, &LinkPane::setNote);
     connect(session, &ConsoleSession::starting, this,
             [this](const QString& what) { m_notices.alerts()->info(EventSource::Link, what); });
@@ -142,6 +146,12 @@ void SessionBinding::bindEvents(const LinkEvents* events, bool logRows)
         m_parts.status->setTransportStatus(text);
         if (text != m_lastLinkError)
             m_notices.alerts()->info(EventSource::Link, text);
+        else if (!m_transportErrors.contains(text))
+            m_transportErrors << text;
+    });
+    connect(events, &LinkEvents::stateChanged, this, [this](LinkState state) {
+        if (state == LinkState::Connected)
+            withdrawTransportErrors(tr("frames from the aircraft again"));
     });
     // The phone's registration and signal: bars in the status bar, and each
     // change of registration in the event log.
@@ -157,6 +167,8 @@ void SessionBinding::bindEvents(const LinkEvents* events, bool logRows)
     if (logRows)
         connect(events, &LinkEvents::frameLogged, m_parts.logModel, &FrameLogModel::appendLogged);
     connect(events, &LinkEvents::stateChanged, status, &StatusBarWidget::setState);
+    // The window's title says the state too.
+    connect(events, &LinkEvents::stateChanged, this, &SessionBinding::changed);
     connect(events, &LinkEvents::messageReceived, m_parts.commands, &CommandBinding::messageReceived);
     connect(events, &LinkEvents::frameSent, m_parts.commands, &CommandBinding::frameSent);
     connect(events, &LinkEvents::commandRejected, this, [this](const QString& reasons) {
@@ -169,8 +181,15 @@ void SessionBinding::bindEvents(const LinkEvents* events, bool logRows)
             [this](const QString& reason) { m_notices.flash(tr("A frame was refused: %1").arg(reason)); });
 }
 
+void SessionBinding::withdrawTransportErrors(const QString& why)
+{
+    for (const QString& error : std::exchange(m_transportErrors, {}))
+        m_notices.alerts()->withdraw(error, why);
+}
+
 void SessionBinding::showStopped()
 {
+    withdrawTransportErrors(tr("the link was closed"));
     m_parts.readOnly->end();
     m_parts.status->setLinkDescription(QString());
     m_parts.status->setKeyFingerprint(QString());

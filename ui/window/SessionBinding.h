@@ -10,6 +10,7 @@
 
 #include <QObject>
 #include <QString>
+#include <QStringList>
 
 class CommandBinding;
 class CommandPreview;
@@ -63,9 +64,15 @@ private:
     void showRunning(const QString& note);
     // Nothing runs: the status bar and the alarm say so.
     void showStopped();
+    // The transport's errors off the banner: `why` their cause is gone.
+    void withdrawTransportErrors(const QString& why);
 
     Parts m_parts;
     ConsoleNotices m_notices;
     QString m_lastLinkError;         // the link's last error, not logged again when its status repeats it
+    // The transport's errors that were its state too ("call dropped ...;
+    // redialling in 10 s"): off the banner once frames come again or the
+    // link ends, since their cause is gone.
+    QStringList m_transportErrors;
     bool m_modemRegistered = false;  // the satellite phone's registration, as last said
 };

@@ -50,6 +50,7 @@ QFrame* separator()
 StatusBarWidget::StatusBarWidget(QWidget* parent)
     : QWidget(parent),
       m_state(new SteadyLabel),
+      m_message(new QLabel),
       m_sent(new StatusFigure(tr("Sent"), tr("Frames handed to the link since it started"))),
       m_received(new StatusFigure(tr("Received"), tr("Good frames received from the aircraft"))),
       m_corrected(new StatusFigure(tr("Corrected bytes"),
@@ -80,6 +81,12 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     // The state takes the room the figures leave, whatever its text's length.
     m_state->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     m_state->installEventFilter(this);
+    // The message takes the room the state and the figures leave; a long one
+    // is cut, whole in the tool tip and the event log.
+    m_message->setObjectName(QStringLiteral("statusMessage"));
+    m_message->setTextFormat(Qt::PlainText);
+    m_message->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    m_message->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("Exported /home/operator/x.csv")));
     m_lost->setToolTip(tr("No good frame from the aircraft within the silence timeout"));
     m_lost->setAlignment(Qt::AlignCenter);
     m_lost->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("  LINK LOST  ")) + 16);
@@ -88,7 +95,8 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(6, 0, 6, 0);
     layout->setSpacing(12);
-    layout->addWidget(m_state, 1);
+    layout->addWidget(m_state);
+    layout->addWidget(m_message, 1);
     for (QWidget* figure : std::initializer_list<QWidget*>{m_sent, m_received, m_corrected, m_uncorrectable, m_age,
                                                             m_security}) {
         layout->addWidget(separator());
@@ -115,6 +123,17 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
 QString StatusBarWidget::stateText() const
 {
     return m_state->text();
+}
+
+QString StatusBarWidget::messageText() const
+{
+    return m_message->text();
+}
+
+void StatusBarWidget::showMessage(const QString& text)
+{
+    m_message->setText(text);
+    m_message->setToolTip(text);
 }
 
 QString StatusBarWidget::ageText() const

@@ -29,6 +29,8 @@ public:
     const LinkStatistics& statistics() const { return m_statistics; }
     // The texts shown, for tests and screenshots.
     QString stateText() const;
+    // The state in words: "Connected", "Lost", "Replay"...
+    QString stateName() const { return m_stateName; }
     QString ageText() const;
     // "encrypted and authenticated" or "not encrypted".
     QString securityText() const;
@@ -39,6 +41,10 @@ public:
     QString transportText() const;
     // "registered, signal 3 of 5"; empty when no modem said.
     QString modemServiceText() const;
+    // The window's passing message (QStatusBar::showMessage), shown beside
+    // the state; empty when none.
+    QString messageText() const;
+    const QLabel* messageLabel() const { return m_message; }
 
 public slots:
     void setStatistics(const LinkStatistics& statistics);
@@ -58,6 +64,9 @@ public slots:
     // A satellite phone's service: signal bars beside the call; bars -1 and
     // an empty text hide them (no modem).
     void setModemService(int signalBars, bool registered, const QString& text);
+    // QStatusBar::messageChanged: this widget fills the status bar, so the
+    // bar's own message area has no room; the message is shown here.
+    void showMessage(const QString& text);
 
 signals:
     // True when the link is lost, false when it is back or was closed.
@@ -90,6 +99,7 @@ private:
     QTimer m_ageTimer;
     QTimer m_blinkTimer;
     QLabel* m_state;
+    QLabel* m_message;
     StatusFigure* m_sent;
     StatusFigure* m_received;
     StatusFigure* m_corrected;
