@@ -1529,15 +1529,15 @@ void TestMainWindow::alarmShowsInFloatingDocks()
     window.resize(1366, 768);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    auto* plan = window.findChild<QDockWidget*>(QStringLiteral("flightPlanDock"));
+    auto* logDock = window.findChild<QDockWidget*>(QStringLiteral("frameLogDock"));
     auto* events = window.findChild<QDockWidget*>(QStringLiteral("eventsDock"));
-    QVERIFY(stripOf(plan) && stripOf(events));
+    QVERIFY(stripOf(logDock) && stripOf(events));
     // Docked, the main window's banner and status bar say it: no strip.
-    QVERIFY(!stripOf(plan)->isVisible());
-    plan->setFloating(true);
-    QTRY_VERIFY(stripOf(plan)->isVisible());
+    QVERIFY(!stripOf(logDock)->isVisible());
+    logDock->setFloating(true);
+    QTRY_VERIFY(stripOf(logDock)->isVisible());
     QVERIFY(!stripOf(events)->isVisible());
-    QCOMPARE(stripOf(plan)->text(), QStringLiteral("Link: Not connected"));
+    QCOMPARE(stripOf(logDock)->text(), QStringLiteral("Link: Not connected"));
 
     QSignalSpy attention(window.docks(), &ConsoleDocks::attentionRequested);
     ConsoleAlerts* alerts = window.alerts();
@@ -1547,35 +1547,35 @@ void TestMainWindow::alarmShowsInFloatingDocks()
     s.framesReceived = 40;
     s.lastGoodFrameUtcMicros = now - 3'000'000;
     alerts->setStatistics(s);
-    QCOMPARE(stripOf(plan)->text(), QStringLiteral("Link: Connected"));
-    QVERIFY(!stripOf(plan)->isAlarm());
+    QCOMPARE(stripOf(logDock)->text(), QStringLiteral("Link: Connected"));
+    QVERIFY(!stripOf(logDock)->isAlarm());
     QCOMPARE(attention.count(), 0);
     s.state = LinkState::Lost;
     alerts->setStatistics(s);
-    QVERIFY(stripOf(plan)->isAlarm());
-    QCOMPARE(stripOf(plan)->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s"));
-    QCOMPARE(alerts->alarmBanner()->text(), stripOf(plan)->text());
-    QVERIFY(stripOf(plan)->silenceButton()->isVisible());
+    QVERIFY(stripOf(logDock)->isAlarm());
+    QCOMPARE(stripOf(logDock)->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s"));
+    QCOMPARE(alerts->alarmBanner()->text(), stripOf(logDock)->text());
+    QVERIFY(stripOf(logDock)->silenceButton()->isVisible());
     // Once, for the main window and the floating dock.
     QCOMPARE(attention.count(), 1);
     const auto windows = attention.at(0).at(0).value<QList<QWidget*>>();
-    QCOMPARE(windows, (QList<QWidget*>{&window, plan}));
+    QCOMPARE(windows, (QList<QWidget*>{&window, logDock}));
     alerts->setStatistics(s);
     QCOMPARE(attention.count(), 1);
     // Silenced from the floating dock: the alarm stays, the tone stops.
-    stripOf(plan)->silenceButton()->click();
+    stripOf(logDock)->silenceButton()->click();
     QVERIFY(alerts->alarm()->isAcknowledged());
-    QCOMPARE(stripOf(plan)->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s (silenced)"));
-    QVERIFY(!stripOf(plan)->silenceButton()->isVisible());
+    QCOMPARE(stripOf(logDock)->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s (silenced)"));
+    QVERIFY(!stripOf(logDock)->silenceButton()->isVisible());
     // Back: the strip says so, and a dock docked again hides its strip.
     s.state = LinkState::Connected;
     s.framesReceived = 41;
     s.lastGoodFrameUtcMicros = alerts->events()->now();
     alerts->setStatistics(s);
-    QVERIFY(!stripOf(plan)->isAlarm());
-    QCOMPARE(stripOf(plan)->text(), QStringLiteral("Link: Connected"));
-    plan->setFloating(false);
-    QTRY_VERIFY(!stripOf(plan)->isVisible());
+    QVERIFY(!stripOf(logDock)->isAlarm());
+    QCOMPARE(stripOf(logDock)->text(), QStringLiteral("Link: Connected"));
+    logDock->setFloating(false);
+    QTRY_VERIFY(!stripOf(logDock)->isVisible());
 }
 
 // Without a sound card the operator hears of it at start, in the event log
@@ -1752,8 +1752,8 @@ void TestMainWindow::replayShowsTheLogsPlotAndEvents()
     QVERIFY(writeStatusLog(path, 20, start));
     MainWindow window(options());
     window.show();
-    auto* plan = window.findChild<QDockWidget*>(QStringLiteral("flightPlanDock"));
-    plan->setFloating(true);
+    auto* logDock = window.findChild<QDockWidget*>(QStringLiteral("frameLogDock"));
+    logDock->setFloating(true);
     const QString live = QStringLiteral("A live event, before the replay");
     window.alerts()->info(EventSource::Console, live);
     const EventLogModel* events = window.alerts()->model();
@@ -1771,7 +1771,7 @@ void TestMainWindow::replayShowsTheLogsPlotAndEvents()
     QVERIFY(view->hiddenRows() > liveRow);
     // The replay's own events show.
     QVERIFY(!view->table()->isRowHidden(events->rowCount() - 1));
-    QCOMPARE(stripOf(plan)->text(), QStringLiteral("Link: replay of a frame log, read only"));
+    QCOMPARE(stripOf(logDock)->text(), QStringLiteral("Link: replay of a frame log, read only"));
     auto* note = window.findChild<QLabel*>(QStringLiteral("readOnlyNote"));
     QVERIFY(note && note->isVisible());
     QCOMPARE(note->text(), QStringLiteral("Replay: the log's commands, read only"));

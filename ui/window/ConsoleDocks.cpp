@@ -43,7 +43,7 @@ ConsoleDocks::ConsoleDocks(QMainWindow* window, const Contents& contents)
       m_events(dock(tr("Events"), QStringLiteral("eventsDock"), contents.events, window))
 {
     qRegisterMetaType<QList<QWidget*>>();  // attentionRequested(), also queued and spied on
-    m_all = {m_link, m_preview, m_log, m_plan, m_voice, m_events};
+    m_all = {m_link, m_preview, m_log, m_voice, m_events};
     place();
 }
 

@@ -35,6 +35,7 @@
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDir>
+#include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QScreen>
@@ -133,6 +134,10 @@ MainWindow::~MainWindow()
 {
     // The link first: its thread calls into m_upload until it ends.
     m_session->stop();
+    // Then the docks, whose views use the models made before them: a
+    // floating dock is closed as it goes, and its views still ask their
+    // models for columns and counts.
+    qDeleteAll(findChildren<QDockWidget*>(Qt::FindDirectChildrenOnly));
 }
 
 void MainWindow::buildDocks()
