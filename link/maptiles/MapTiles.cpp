@@ -3,6 +3,7 @@
 #include "link/maptiles/TileLoader.h"
 
 #include <QCache>
+#include <QSettings>
 #include <QSet>
 #include <QThread>
 
@@ -83,6 +84,22 @@ MapTiles::~MapTiles()
     // dropped with it. A tile being read or fetched finishes or is aborted.
     d->thread.quit();
     d->thread.wait();
+}
+
+TileSettings TileSettings::load(const QSettings& settings)
+{
+    TileSettings tiles;
+    tiles.mbtilesPath = settings.value(QStringLiteral("map/mbtiles")).toString();
+    tiles.urlTemplate = settings.value(QStringLiteral("map/url")).toString();
+    tiles.attribution = settings.value(QStringLiteral("map/attribution")).toString();
+    return tiles;
+}
+
+void TileSettings::save(QSettings& settings) const
+{
+    settings.setValue(QStringLiteral("map/mbtiles"), mbtilesPath);
+    settings.setValue(QStringLiteral("map/url"), urlTemplate);
+    settings.setValue(QStringLiteral("map/attribution"), attribution);
 }
 
 void MapTiles::configure(const TileSettings& settings)

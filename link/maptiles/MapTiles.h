@@ -18,6 +18,8 @@
 
 #include <memory>
 
+class QSettings;
+
 struct TileId {
     int z = 0;
     int x = 0;
@@ -34,6 +36,11 @@ struct TileSettings {
     QString cacheDir;      // QNetworkDiskCache directory for online tiles
     qint64 cacheBytes = qint64(512) << 20;
     friend bool operator==(const TileSettings&, const TileSettings&) = default;
+
+    // What the operator chose, kept between runs under "map/" (the cache's
+    // place and size are the program's, not kept).
+    static TileSettings load(const QSettings& settings);
+    void save(QSettings& settings) const;
 };
 Q_DECLARE_METATYPE(TileSettings)
 

@@ -34,6 +34,7 @@
 #include "link/satmodem/SatelliteModemThread.h"
 #include "ui/window/LinkSettingsWidget.h"
 #include "ui/window/MainWindow.h"
+#include "ui/window/WindowFit.h"
 #include "link/plan/MissionPlan.h"
 #include "link/plan/PlanFile.h"
 #include "link/plan/QgcPlanFile.h"
@@ -1630,9 +1631,9 @@ void TestMainWindow::statusBarMessagesShow()
 void TestMainWindow::defaultGeometryFitsTheScreen()
 {
     const QMargins frame(4, 32, 4, 4);
-    QCOMPARE(MainWindow::fittingSize(QSize(1366, 768), frame), QSize(1358, 732));
-    QCOMPARE(MainWindow::fittingSize(QSize(1600, 1000), frame), QSize(1592, 964));
-    QCOMPARE(MainWindow::fittingSize(QSize(2560, 1440), frame), QSize(1600, 1000));
+    QCOMPARE(WindowFit::fittingSize(QSize(1366, 768), frame), QSize(1358, 732));
+    QCOMPARE(WindowFit::fittingSize(QSize(1600, 1000), frame), QSize(1592, 964));
+    QCOMPARE(WindowFit::fittingSize(QSize(2560, 1440), frame), QSize(1600, 1000));
     MainWindow window(options());
     const QSize minimum = window.minimumSizeHint();
     QVERIFY2(minimum.width() <= 1358 && minimum.height() <= 732,

@@ -15,3 +15,14 @@ bool Confirmation::ask(QWidget* parent) const
     box.exec();
     return box.clickedButton() == go;
 }
+
+Confirmation Confirmation::endingLink(const QString& title, const QString& action, const QString& link)
+{
+    Confirmation ending;
+    ending.title = title;
+    ending.text = QObject::tr("%1 ends the live link: %2.")
+                      .arg(action, link.isEmpty() ? QObject::tr("a link being started") : link);
+    ending.informativeText = QObject::tr("The aircraft stops receiving this console's commands.");
+    ending.action = action;
+    return ending;
+}

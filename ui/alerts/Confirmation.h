@@ -18,4 +18,8 @@ struct Confirmation {
 
     // True when the operator clicked the action button.
     bool ask(QWidget* parent) const;
+
+    // `action` ("Quit", "Disconnect") would end the live link `link` (its
+    // description; empty while one is being started).
+    static Confirmation endingLink(const QString& title, const QString& action, const QString& link);
 };

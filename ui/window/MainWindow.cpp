@@ -31,6 +31,7 @@
 #include "ui/window/ReplayBinding.h"
 #include "ui/window/SessionBinding.h"
 #include "ui/window/StatusBarWidget.h"
+#include "ui/window/WindowFit.h"
 
 #include <QApplication>
 #include <QCloseEvent>
@@ -241,48 +242,12 @@ CommandHoldBar* MainWindow::commandHold() const
     return m_panels->holdBar();
 }
 
-QSize MainWindow::fittingSize(const QSize& available, const QMargins& frame)
-{
-    return QSize(std::min(available.width() - frame.left() - frame.right(), 1600),
-                 std::min(available.height() - frame.top() - frame.bottom(), 1000));
-}
-
-QMargins MainWindow::frameMargins() const
-{
-    // Not known before the window manager framed it: a usual title bar and
-    // border, or the frame measured when larger. The same before and after
-    // the first show, so that Reset layout gives the first size again.
-    QMargins margins(4, 32, 4, 4);
-    const QRect frame = frameGeometry();
-    const QRect inside = geometry();
-    if (isVisible()) {
-        margins.setLeft(std::max(margins.left(), inside.left() - frame.left()));
-        margins.setTop(std::max(margins.top(), inside.top() - frame.top()));
-        margins.setRight(std::max(margins.right(), frame.right() - inside.right()));
-        margins.setBottom(std::max(margins.bottom(), frame.bottom() - inside.bottom()));
-    }
-    return margins;
-}
-
-QSize MainWindow::defaultSize() const
-{
-    // Most of the screen, up to what the console can use; the status bar
-    // must not fall below the screen's edge.
-    const QRect screen = this->screen() ? this->screen()->availableGeometry() : QRect(0, 0, 1366, 768);
-    return fittingSize(screen.size(), frameMargins());
-}
-
 void MainWindow::fitToScreen()
 {
     // Only the size given by default: a restored layout, a size asked for
     // (gcs --screenshot --size, a test) or one the operator dragged stays.
-    if (!screen() || isMaximized() || isFullScreen() || m_layoutRestored || size() != m_defaultGiven)
-        return;
-    const QRect available = screen()->availableGeometry();
-    if (available.contains(frameGeometry()))
-        return;
-    resize(size().boundedTo(fittingSize(available.size(), frameMargins())));
-    move(available.topLeft());
+    if (!isMaximized() && !isFullScreen() && !m_layoutRestored && size() == m_defaultGiven)
+        WindowFit::fitIntoScreen(*this);
 }
 
 void MainWindow::resetLayout()
@@ -321,11 +286,7 @@ void MainWindow::restoreSession(const Options& options)
                            restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
         m_linkPane->settings()->setSettings(LinkSettings::load(settings));
         m_linkPane->stationControl()->setStationText(settings.value(QStringLiteral("control/station")).toString());
-        TileSettings tiles;
-        tiles.mbtilesPath = settings.value(QStringLiteral("map/mbtiles")).toString();
-        tiles.urlTemplate = settings.value(QStringLiteral("map/url")).toString();
-        tiles.attribution = settings.value(QStringLiteral("map/attribution")).toString();
-        m_flightPlan->setTileSettings(tiles);
+        m_flightPlan->setTileSettings(TileSettings::load(settings));
         theme = Theme::fromName(settings.value(QStringLiteral("theme")).toString()).value_or(Theme::Kind::Day);
         if (airframe.isEmpty())
             airframe = settings.value(QStringLiteral("airframe")).toString();
@@ -347,10 +308,7 @@ void MainWindow::saveSession() const
     settings.setValue(QStringLiteral("window/state"), saveState());
     m_linkPane->settings()->settings().save(settings);
     settings.setValue(QStringLiteral("control/station"), m_linkPane->stationControl()->stationText());
-    const TileSettings& tiles = m_flightPlan->tiles()->settings();
-    settings.setValue(QStringLiteral("map/mbtiles"), tiles.mbtilesPath);
-    settings.setValue(QStringLiteral("map/url"), tiles.urlTemplate);
-    settings.setValue(QStringLiteral("map/attribution"), tiles.attribution);
+    m_flightPlan->tiles()->settings().save(settings);
     settings.setValue(QStringLiteral("airframe"), m_airframes->path());
     settings.setValue(QStringLiteral("theme"), Theme::name(theme()));
 }
@@ -388,16 +346,8 @@ void MainWindow::requestAirframe(const QString& path)
 
 bool MainWindow::confirmEndingLink(const QString& action)
 {
-    if (!m_session->isLive())
-        return true;
-    Confirmation ending;
-    ending.title = ConsoleMenus::title();
-    ending.text =
-        tr("%1 ends the live link: %2.")
-            .arg(action, m_session->description().isEmpty() ? tr("a link being started") : m_session->description());
-    ending.informativeText = tr("The aircraft stops receiving this console's commands.");
-    ending.action = action;
-    return ending.ask(this);
+    return !m_session->isLive() ||
+           Confirmation::endingLink(ConsoleMenus::title(), action, m_session->description()).ask(this);
 }
 
 void MainWindow::connectLink()

@@ -16,6 +16,7 @@
 #include "ui/framelog/FrameLogModel.h"
 #include "ui/window/ConsoleNotices.h"
 #include "ui/window/Theme.h"
+#include "ui/window/WindowFit.h"
 
 #include <QMainWindow>
 
@@ -102,9 +103,7 @@ public:
     Theme::Kind theme() const;
     // The first start's size: the screen's available area less the window
     // manager's frame, up to 1600x1000.
-    QSize defaultSize() const;
-    // What of `available` a window framed by `frame` can take, up to 1600x1000.
-    static QSize fittingSize(const QSize& available, const QMargins& frame);
+    QSize defaultSize() const { return WindowFit::defaultSize(*this); }
     // Applies `kind` to the whole application and ticks View > Night theme to match.
     void setTheme(Theme::Kind kind);
 
@@ -176,9 +175,6 @@ private:
     // first while one is live (or being started), Cancel the default.
     bool confirmEndingLink(const QString& action);
     void updateTitle();
-    // The frame the window manager puts around the window: a usual title
-    // bar and border, or the one measured once shown when larger.
-    QMargins frameMargins() const;
     // Shrinks and moves the window into the screen's available area when
     // its frame (known once shown) makes it overhang.
     void fitToScreen();
