@@ -1084,7 +1084,7 @@ void TestMainWindow::refusedKeyFileSaysWhy()
     QTRY_COMPARE_WITH_TIMEOUT(failed.count(), 1, kLinkTimeoutMs);
     QVERIFY(!window.isLinkRunning());
     QVERIFY(!window.session()->isActive());
-    const QString message = window.statusBar()->currentMessage();
+    const QString message = window.linkStatus()->messageText();
     QVERIFY2(message.contains(QStringLiteral("chmod 600")), qPrintable(message));
     QVERIFY2(message.contains(QStringLiteral("shared.key")), qPrintable(message));
     // On the banner, and in the event log as the key's.
@@ -1093,12 +1093,12 @@ void TestMainWindow::refusedKeyFileSaysWhy()
     QCOMPARE(events->event(events->rowCount() - 1).text, message);
     QCOMPARE(events->event(events->rowCount() - 1).source, EventSource::Key);
     // The rehearsal checks the key before it starts uasim.
-    window.statusBar()->clearMessage();
+    window.linkStatus()->showMessage(QString());
     window.linkSettings()->setSettings(s);
     window.startRehearsalWith(QStringLiteral(RCM_BIN_DIR "/uasim"));
     QTRY_COMPARE_WITH_TIMEOUT(failed.count(), 2, kLinkTimeoutMs);
     QVERIFY(!window.isLinkRunning());
-    QVERIFY(window.statusBar()->currentMessage().contains(QStringLiteral("chmod 600")));
+    QVERIFY(window.linkStatus()->messageText().contains(QStringLiteral("chmod 600")));
 }
 
 // A serial port that does not exist and a UDP port already in use: the
@@ -1208,7 +1208,7 @@ void TestMainWindow::wrongKeyIsRejectedAsForged()
     QCOMPARE(window.statistics().framesReceived, quint64(0));
     QVERIFY(!window.linkStatus()->stateText().contains(QStringLiteral("Connected")));
     // Each refusal reaches the operator with its reason.
-    const QString refused = window.statusBar()->currentMessage();
+    const QString refused = window.linkStatus()->messageText();
     QVERIFY2(refused.startsWith(QStringLiteral("A frame was refused: forged")), qPrintable(refused));
     // The event log has the first whole; the two after it within the minute
     // are counted, to be told when the minute is up (RefusalDigest).
@@ -1614,14 +1614,16 @@ void TestMainWindow::statusBarMessagesShow()
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     const QString message = QStringLiteral("Exported /tmp/session-2026-11-26.csv");
-    window.statusBar()->showMessage(message, 8000);
+    window.linkStatus()->showMessage(message, 8000);
     QCOMPARE(window.linkStatus()->messageText(), message);
+    // Once, beside the state: QStatusBar's own copy would be painted over it.
+    QCOMPARE(window.statusBar()->currentMessage(), QString());
     const QLabel* shown = window.linkStatus()->messageLabel();
     QVERIFY(shown->isVisible());
     QVERIFY2(shown->width() >= shown->fontMetrics().horizontalAdvance(message),
              qPrintable(QStringLiteral("%1 px for the message").arg(shown->width())));
     QCOMPARE(window.linkStatus()->stateText().contains(QStringLiteral("Not connected")), true);
-    window.statusBar()->clearMessage();
+    window.linkStatus()->showMessage(QString());
     QCOMPARE(window.linkStatus()->messageText(), QString());
 }
 

@@ -2,7 +2,7 @@
 
 #include "ui/alerts/ConsoleAlerts.h"
 
-#include <QStatusBar>
+#include "ui/window/StatusBarWidget.h"
 
 namespace {
 constexpr int kShownMs = 8000;

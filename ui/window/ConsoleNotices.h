@@ -2,17 +2,19 @@
 
 // What the window's parts say to the operator, said the same way by each:
 // briefly in the status bar, and in the event log (errors on the banner
-// too). A small value over the window's status bar and its alerts.
+// too). A small value over the window's status bar and its alerts. The
+// status bar's message is StatusBarWidget's, never QStatusBar's own, which
+// QStatusBar would paint over the link state.
 
 #include "link/eventlog/ConsoleEvent.h"
 
 class ConsoleAlerts;
-class QStatusBar;
+class StatusBarWidget;
 class QString;
 
 class ConsoleNotices {
 public:
-    ConsoleNotices(QStatusBar* bar, ConsoleAlerts* alerts) : m_bar(bar), m_alerts(alerts) {}
+    ConsoleNotices(StatusBarWidget* bar, ConsoleAlerts* alerts) : m_bar(bar), m_alerts(alerts) {}
 
     ConsoleAlerts* alerts() const { return m_alerts; }
     // In the status bar only: what may come many times a second (a refused
@@ -24,6 +26,6 @@ public:
     void error(const QString& message, EventSource source = EventSource::Console) const;
 
 private:
-    QStatusBar* m_bar;
+    StatusBarWidget* m_bar;
     ConsoleAlerts* m_alerts;
 };

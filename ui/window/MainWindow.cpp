@@ -59,15 +59,15 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
       m_session(new ConsoleSession(
           options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory() : options.frameLogDirectory, this)),
       m_alerts(new ConsoleAlerts(nullptr, this)),
-      m_notices(statusBar(), m_alerts),
+      m_status(new StatusBarWidget),
+      m_notices(m_status, m_alerts),
       m_airframes(new AirframeSelection(m_command, m_session, m_notices, this)),
       m_voice(new VoiceChannel(this)),
       m_panels(new PanelArea(m_command, m_reported, m_session, m_alerts->banners())),
       m_linkPane(new LinkPane(m_session->stationControl())),
       m_preview(new CommandPreview),
       m_logView(new FrameLogView(m_logModel)),
-      m_flightPlan(new FlightPlanWidget(m_upload)),
-      m_status(new StatusBarWidget)
+      m_flightPlan(new FlightPlanWidget(m_upload))
 {
     LinkWorker::registerMetaTypes();
     m_alerts->keepIn(m_session->frameLogDirectory());
@@ -85,7 +85,6 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
     // The link's figures fill the bar, so the bar's own message area would
     // have no room: its messages are shown among them.
     statusBar()->addPermanentWidget(m_status, 1);
-    connect(statusBar(), &QStatusBar::messageChanged, m_status, &StatusBarWidget::showMessage);
     statusBar()->setSizeGripEnabled(true);
 
     connect(m_command, &CommandState::airframeChanged, this, [this] {
@@ -488,5 +487,5 @@ void MainWindow::exportCsv()
         else
             m_notices.error(tr("CSV export failed: %1").arg(error));
     });
-    statusBar()->showMessage(tr("Exporting %1\u2026").arg(shown));
+    m_notices.flash(tr("Exporting %1\u2026").arg(shown));
 }

@@ -188,6 +188,7 @@ private:
     FrameLogModel* m_logModel;
     ConsoleSession* m_session;
     ConsoleAlerts* m_alerts;
+    StatusBarWidget* m_status;
     ConsoleNotices m_notices;
     AirframeSelection* m_airframes;
     VoiceChannel* m_voice;  // voice beside the commands, when the operator turns it on
@@ -196,7 +197,6 @@ private:
     CommandPreview* m_preview;
     FrameLogView* m_logView;
     FlightPlanWidget* m_flightPlan;
-    StatusBarWidget* m_status;
     ConsoleDocks* m_docks = nullptr;
     ConsoleMenus* m_menus = nullptr;
     CommandBinding* m_commands = nullptr;

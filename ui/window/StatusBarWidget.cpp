@@ -115,6 +115,8 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     m_ageTimer.setInterval(250);
     connect(&m_ageTimer, &QTimer::timeout, this, &StatusBarWidget::updateAge);
     connect(&m_ageTimer, &QTimer::timeout, this, &StatusBarWidget::updateTransport);
+    m_messageTimer.setSingleShot(true);
+    connect(&m_messageTimer, &QTimer::timeout, this, [this] { showMessage(QString()); });
     m_blinkTimer.setInterval(500);
     connect(&m_blinkTimer, &QTimer::timeout, this, &StatusBarWidget::blink);
     setStatistics(LinkStatistics());
@@ -130,10 +132,14 @@ QString StatusBarWidget::messageText() const
     return m_message->text();
 }
 
-void StatusBarWidget::showMessage(const QString& text)
+void StatusBarWidget::showMessage(const QString& text, int shownMs)
 {
     m_message->setText(text);
     m_message->setToolTip(text);
+    if (shownMs > 0)
+        m_messageTimer.start(shownMs);
+    else
+        m_messageTimer.stop();
 }
 
 QString StatusBarWidget::ageText() const

@@ -64,9 +64,11 @@ public slots:
     // A satellite phone's service: signal bars beside the call; bars -1 and
     // an empty text hide them (no modem).
     void setModemService(int signalBars, bool registered, const QString& text);
-    // QStatusBar::messageChanged: this widget fills the status bar, so the
-    // bar's own message area has no room; the message is shown here.
-    void showMessage(const QString& text);
+    // A passing message (ConsoleNotices): this widget fills the status bar,
+    // whose own message QStatusBar would paint over the link's state, so the
+    // message is shown here, beside it. Gone again after `shownMs` (0: kept
+    // until the next).
+    void showMessage(const QString& text, int shownMs = 0);
 
 signals:
     // True when the link is lost, false when it is back or was closed.
@@ -98,6 +100,7 @@ private:
     bool m_blink = false;
     QTimer m_ageTimer;
     QTimer m_blinkTimer;
+    QTimer m_messageTimer;  // clears a passing message
     QLabel* m_state;
     QLabel* m_message;
     StatusFigure* m_sent;
