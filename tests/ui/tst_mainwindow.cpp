@@ -1620,6 +1620,12 @@ void TestMainWindow::statusBarMessagesShow()
     QCOMPARE(window.statusBar()->currentMessage(), QString());
     const QLabel* shown = window.linkStatus()->messageLabel();
     QVERIFY(shown->isVisible());
+    // Beside the link's state, not over it.
+    const QLabel* state = window.linkStatus()->stateLabel();
+    QVERIFY2(!shown->geometry().intersects(state->geometry()),
+             qPrintable(QStringLiteral("message at x %1, state to x %2")
+                            .arg(shown->geometry().left())
+                            .arg(state->geometry().right())));
     QVERIFY2(shown->width() >= shown->fontMetrics().horizontalAdvance(message),
              qPrintable(QStringLiteral("%1 px for the message").arg(shown->width())));
     QCOMPARE(window.linkStatus()->stateText().contains(QStringLiteral("Not connected")), true);

@@ -78,8 +78,11 @@ StatusBarWidget::StatusBarWidget(QWidget* parent)
     const int stateWidth =
         fontMetrics().horizontalAdvance(QStringLiteral("\u25cf Connected  UDP 255.255.255.255:65535"));
     m_state->setMinimumWidth(stateWidth);
-    // The state takes the room the figures leave, whatever its text's length.
-    m_state->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    // The state keeps that width, whatever its text's length (a long
+    // description is elided); the message beside it takes the room left.
+    // Ignored here gave the state no room in the layout at all, and the
+    // message was drawn over it.
+    m_state->setSizePolicy(QSizePolicy::Fixed, QSizePolicy::Preferred);
     m_state->installEventFilter(this);
     // The message takes the room the state and the figures leave; a long one
     // is cut, whole in the tool tip and the event log.

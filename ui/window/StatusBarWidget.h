@@ -45,6 +45,7 @@ public:
     // the state; empty when none.
     QString messageText() const;
     const QLabel* messageLabel() const { return m_message; }
+    const QLabel* stateLabel() const { return m_state; }
 
 public slots:
     void setStatistics(const LinkStatistics& statistics);
