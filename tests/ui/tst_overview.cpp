@@ -225,6 +225,12 @@ private slots:
         QCOMPARE(page.history().minutes().size(), std::size_t(1));
         QCOMPARE(page.history().minutes().front().startUtcMicros, kT0 - 3600 * kSecond);
         QCOMPARE(page.history().minutes().front().goodFrames, quint64(10));
+        // The frames read after the log's last time step count too: the
+        // statistics that follow it are sampled at the log's time.
+        s.framesReceived = 12;
+        page.setStatistics(s);
+        QCOMPARE(page.history().minutes().size(), std::size_t(1));
+        QCOMPARE(page.history().minutes().front().goodFrames, quint64(12));
         page.setReplay(false);
         QCOMPARE(page.figure(QStringLiteral("state")), QStringLiteral("Connected"));
         // Nor are the log's minutes the next link's.

@@ -212,7 +212,11 @@ void OverviewPage::setStatistics(const LinkStatistics& statistics)
 {
     const bool closedNow = statistics.state == LinkState::Closed && m_statistics.state != LinkState::Closed;
     m_statistics = statistics;
-    if (closedNow)
+    if (m_replay && m_replayTime)
+        // The log's statistics arrive after its time: sampled only at the next
+        // time step, the last frames of a replay would never reach the plot.
+        m_history.sample(m_replayTime, statistics);
+    else if (closedNow)
         m_history.sample(m_clock(), statistics);  // nothing: closed adds nothing, but ends the count
     updateFigures();
 }
