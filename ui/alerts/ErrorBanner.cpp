@@ -8,6 +8,8 @@
 #include <QStyle>
 #include <QVBoxLayout>
 
+#include <algorithm>
+
 namespace {
 
 // Dark red text on a pale red band with a red rule: 9:1 contrast, and clearly
@@ -104,18 +106,20 @@ void ErrorBanner::showError(const QString& message)
 
 void ErrorBanner::dismiss()
 {
-    if (m_errors.isEmpty())
-        return;
-    m_errors.removeLast();
-    refresh();
-    emit countChanged(count());
+    dismissNewest(1);
 }
 
 void ErrorBanner::dismissAll()
 {
-    if (m_errors.isEmpty())
+    dismissNewest(m_errors.size());
+}
+
+void ErrorBanner::dismissNewest(qsizetype n)
+{
+    n = std::min(n, m_errors.size());
+    if (n == 0)
         return;
-    m_errors.clear();
+    m_errors.remove(m_errors.size() - n, n);
     refresh();
     emit countChanged(count());
 }

@@ -52,6 +52,8 @@ private:
         QString message;
         int times = 1;
     };
+    // The newest `n` go (all there are, when fewer); the next older one comes up.
+    void dismissNewest(qsizetype n);
     void refresh();
 
     QList<Error> m_errors;  // oldest first

@@ -18,11 +18,7 @@ const QString kStyle = QStringLiteral(
 }  // namespace
 
 LinkAlarmBanner::LinkAlarmBanner(LinkAlarm* alarm, QWidget* parent)
-    : QFrame(parent),
-      m_alarm(alarm),
-      m_text(new QLabel),
-      m_silenced(new QLabel(tr("Alarm silenced"))),
-      m_silence(new QPushButton(tr("&Silence alarm")))
+    : LinkAlarmDisplay(alarm, tr("&Silence alarm"), parent), m_silenced(new QLabel(tr("Alarm silenced")))
 {
     setObjectName(QStringLiteral("linkAlarmBanner"));
     setStyleSheet(kStyle);
@@ -37,26 +33,13 @@ LinkAlarmBanner::LinkAlarmBanner(LinkAlarm* alarm, QWidget* parent)
     big.setPointSizeF(big.pointSizeF() * 1.8);
     m_text->setFont(big);
     m_silence->setToolTip(tr("Stop the tone; this banner stays until the link is back"));
-    m_silence->setAutoDefault(false);
-    // Never the focus: a Space meant for another control must not silence it.
-    m_silence->setFocusPolicy(Qt::NoFocus);
-    connect(m_silence, &QPushButton::clicked, alarm, &LinkAlarm::acknowledge);
 
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(14, 10, 14, 10);
     layout->addWidget(m_text, 1);
     layout->addWidget(m_silenced);
     layout->addWidget(m_silence);
-
-    m_timer.setInterval(1000);
-    connect(&m_timer, &QTimer::timeout, this, &LinkAlarmBanner::refresh);
-    connect(alarm, &LinkAlarm::changed, this, &LinkAlarmBanner::refresh);
     refresh();
-}
-
-QString LinkAlarmBanner::text() const
-{
-    return m_text->text();
 }
 
 QString LinkAlarmBanner::alarmText(qint64 silentMicros)
@@ -68,13 +51,11 @@ void LinkAlarmBanner::refresh()
 {
     const bool active = m_alarm->isActive();
     setVisible(active);
+    tickWhile(active);
     if (!active) {
-        m_timer.stop();
         m_text->clear();
         return;
     }
-    if (!m_timer.isActive())
-        m_timer.start();
     m_text->setText(alarmText(m_alarm->silentMicros()));
     m_silence->setVisible(!m_alarm->isAcknowledged());
     m_silenced->setVisible(m_alarm->isAcknowledged());

@@ -2,6 +2,7 @@
 
 #include "ui/alerts/LinkAlarm.h"
 #include "ui/alerts/LinkAlarmBanner.h"
+#include "ui/look/LinkStateName.h"
 
 #include <QHBoxLayout>
 #include <QLabel>
@@ -16,25 +17,9 @@ const QString kAlarmStyle = QStringLiteral(
     "LinkStateStrip QPushButton { color: black; background-color: white; border: 1px solid #ffcdd2;"
     " border-radius: 3px; padding: 2px 10px; font-weight: bold; }");
 
-QString stateName(LinkState state)
-{
-    switch (state) {
-        case LinkState::Closed:
-            return LinkStateStrip::tr("Not connected");
-        case LinkState::Waiting:
-            return LinkStateStrip::tr("Waiting for the aircraft");
-        case LinkState::Connected:
-            return LinkStateStrip::tr("Connected");
-        case LinkState::Lost:
-            return LinkStateStrip::tr("Lost");
-    }
-    return {};
-}
-
 }  // namespace
 
-LinkStateStrip::LinkStateStrip(LinkAlarm* alarm, QWidget* parent)
-    : QFrame(parent), m_alarm(alarm), m_text(new QLabel), m_silence(new QPushButton(tr("Silence")))
+LinkStateStrip::LinkStateStrip(LinkAlarm* alarm, QWidget* parent) : LinkAlarmDisplay(alarm, tr("Silence"), parent)
 {
     setObjectName(QStringLiteral("linkStateStrip"));
     setAccessibleName(tr("Link state"));
@@ -43,22 +28,11 @@ LinkStateStrip::LinkStateStrip(LinkAlarm* alarm, QWidget* parent)
     // The dock's width decides, never the text's length.
     m_text->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     m_silence->setToolTip(tr("Stop the tone; the alarm stays until the link is back"));
-    m_silence->setAutoDefault(false);
-    m_silence->setFocusPolicy(Qt::NoFocus);  // a Space meant for the dock must not silence it
-    connect(m_silence, &QPushButton::clicked, alarm, &LinkAlarm::acknowledge);
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(8, 3, 8, 3);
     layout->addWidget(m_text, 1);
     layout->addWidget(m_silence);
-    m_timer.setInterval(1000);
-    connect(&m_timer, &QTimer::timeout, this, &LinkStateStrip::refresh);
-    connect(alarm, &LinkAlarm::changed, this, &LinkStateStrip::refresh);
     refresh();
-}
-
-QString LinkStateStrip::text() const
-{
-    return m_text->text();
 }
 
 void LinkStateStrip::setStatistics(const LinkStatistics& statistics)
@@ -83,16 +57,14 @@ void LinkStateStrip::refresh()
         setStyleSheet(alarm ? kAlarmStyle : QString());
     }
     m_silence->setVisible(alarm && !m_alarm->isAcknowledged());
+    tickWhile(alarm);
     if (alarm) {
-        if (!m_timer.isActive())
-            m_timer.start();
         QString text = LinkAlarmBanner::alarmText(m_alarm->silentMicros());
         if (m_alarm->isAcknowledged())
             text += tr(" (silenced)");
         m_text->setText(text);
         return;
     }
-    m_timer.stop();
     m_text->setText(m_replay && m_state != LinkState::Closed ? tr("Link: replay of a frame log, read only")
-                                                             : tr("Link: %1").arg(stateName(m_state)));
+                                                             : tr("Link: %1").arg(linkStateName(m_state)));
 }

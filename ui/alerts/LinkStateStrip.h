@@ -7,35 +7,23 @@
 // main window (a maximised flight plan) never hides the alarm.
 
 #include "link/session/LinkStatistics.h"
+#include "ui/alerts/LinkAlarmDisplay.h"
 
-#include <QFrame>
-#include <QTimer>
-
-class LinkAlarm;
-class QLabel;
-class QPushButton;
-
-class LinkStateStrip : public QFrame {
+class LinkStateStrip : public LinkAlarmDisplay {
     Q_OBJECT
 
 public:
     explicit LinkStateStrip(LinkAlarm* alarm, QWidget* parent = nullptr);
 
-    QString text() const;
     bool isAlarm() const { return m_alarmShown; }
-    QPushButton* silenceButton() const { return m_silence; }
 
 public slots:
     void setStatistics(const LinkStatistics& statistics);
     void setReplay(bool replay);
-    void refresh();
+    void refresh() override;
 
 private:
-    LinkAlarm* m_alarm;
     LinkState m_state = LinkState::Closed;
     bool m_replay = false;
     bool m_alarmShown = false;
-    QLabel* m_text;
-    QPushButton* m_silence;
-    QTimer m_timer;
 };

@@ -14,8 +14,7 @@
 #include <algorithm>
 
 EventLogView::EventLogView(EventLogModel* model, QWidget* parent)
-    : QWidget(parent), m_model(model), m_table(new QTableView), m_counts(new QLabel), m_file(new QLabel),
-      m_replayNote(new QLabel)
+    : TablePane(parent), m_model(model), m_counts(new QLabel), m_file(new QLabel), m_replayNote(new QLabel)
 {
     m_table->setObjectName(QStringLiteral("eventTable"));
     m_table->setModel(model);

@@ -4,19 +4,17 @@
 // bottom and kept in view, errors and warnings tinted, with the path of the
 // file that keeps them.
 
-#include <QWidget>
+#include "ui/table/TablePane.h"
 
 class EventLogModel;
 class QLabel;
-class QTableView;
 
-class EventLogView : public QWidget {
+class EventLogView : public TablePane {
     Q_OBJECT
 
 public:
     explicit EventLogView(EventLogModel* model, QWidget* parent = nullptr);
 
-    QTableView* table() const { return m_table; }
     // Where the events are kept; "not kept in a file" when empty.
     void setFilePath(const QString& path);
     QString fileText() const;
@@ -38,7 +36,6 @@ private:
     void updateCounts();
 
     EventLogModel* m_model;
-    QTableView* m_table;
     QLabel* m_counts;
     QLabel* m_file;
     QLabel* m_replayNote;

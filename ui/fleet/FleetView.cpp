@@ -10,7 +10,6 @@
 #include <QTimeZone>
 #include <QSortFilterProxyModel>
 #include <QTableView>
-#include <QTimer>
 #include <QVBoxLayout>
 
 namespace {
@@ -18,7 +17,13 @@ namespace {
 // Sorted by the model's SortRole; unverified rows only when asked for.
 class FleetRows : public QSortFilterProxyModel {
 public:
-    using QSortFilterProxyModel::QSortFilterProxyModel;
+    FleetRows(FleetModel* model, QObject* parent) : QSortFilterProxyModel(parent)
+    {
+        setSourceModel(model);
+        setSortRole(FleetModel::SortRole);
+        setDynamicSortFilter(true);
+    }
+
     void setShowUnverified(bool show)
     {
         m_showUnverified = show;
@@ -38,17 +43,12 @@ private:
 }  // namespace
 
 FleetView::FleetView(FleetModel* model, QWidget* parent)
-    : QWidget(parent),
+    : TablePane(parent),
       m_model(model),
-      m_sorted(new FleetRows(this)),
-      m_table(new QTableView),
+      m_sorted(new FleetRows(model, this)),
       m_summary(new QLabel),
-      m_showUnverified(new QCheckBox(tr("Show unverified"))),
-      m_ageTimer(new QTimer(this))
+      m_showUnverified(new QCheckBox(tr("Show unverified")))
 {
-    m_sorted->setSourceModel(model);
-    m_sorted->setSortRole(FleetModel::SortRole);
-    m_sorted->setDynamicSortFilter(true);
     m_showUnverified->setToolTip(
         tr("Also list aircraft that no station whose key is trusted reports: anyone on the "
            "broker may have published them"));
@@ -83,8 +83,9 @@ FleetView::FleetView(FleetModel* model, QWidget* parent)
         if (index.isValid())
             emit observeRequested(index.data(FleetModel::AircraftRole).toString());
     });
-    m_ageTimer->setInterval(1000);
-    connect(m_ageTimer, &QTimer::timeout, this, &FleetView::tick);
+    m_ageTimer.setInterval(1000);
+    // The summary follows: refreshAges() tells the rows' changes (dataChanged).
+    connect(&m_ageTimer, &QTimer::timeout, m_model, &FleetModel::refreshAges);
     connect(m_model, &QAbstractItemModel::rowsInserted, this, &FleetView::updateSummary);
     connect(m_model, &QAbstractItemModel::dataChanged, this, &FleetView::updateSummary);
     connect(m_model, &QAbstractItemModel::modelReset, this, &FleetView::updateSummary);
@@ -114,8 +115,7 @@ void FleetView::setBrokerConnected(bool connected, qint64 sinceUtcMicros)
 
 void FleetView::setRefusedMessages(quint64 count)
 {
-    if (count == m_refused)
-        return;
+    // updateSummary() sets the text only when it changes.
     m_refused = count;
     updateSummary();
 }
@@ -158,22 +158,16 @@ void FleetView::updateSummary()
         m_summary->setText(text);
 }
 
-void FleetView::tick()
-{
-    m_model->refreshAges();
-    updateSummary();
-}
-
 // Ages are refreshed while someone can see them; on showing, at once.
 void FleetView::showEvent(QShowEvent* event)
 {
-    QWidget::showEvent(event);
-    tick();
-    m_ageTimer->start();
+    TablePane::showEvent(event);
+    m_model->refreshAges();
+    m_ageTimer.start();
 }
 
 void FleetView::hideEvent(QHideEvent* event)
 {
-    QWidget::hideEvent(event);
-    m_ageTimer->stop();
+    TablePane::hideEvent(event);
+    m_ageTimer.stop();
 }

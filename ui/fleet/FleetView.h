@@ -9,26 +9,23 @@
 // to be observed (the console opens it read-only); the view itself opens
 // nothing.
 
-#include <QWidget>
+#include "ui/table/TablePane.h"
+
+#include <QTimer>
 
 class FleetModel;
 class QCheckBox;
 class QLabel;
 class QSortFilterProxyModel;
-class QTableView;
-class QTimer;
 
-class FleetView : public QWidget {
+class FleetView : public TablePane {
     Q_OBJECT
 
 public:
     explicit FleetView(FleetModel* model, QWidget* parent = nullptr);
 
-    FleetModel* model() const { return m_model; }
-    QSortFilterProxyModel* sorted() const { return m_sorted; }
-    QTableView* table() const { return m_table; }
     // Ticks once a second while the view is shown: FleetModel::refreshAges().
-    QTimer* ageTimer() const { return m_ageTimer; }
+    const QTimer& ageTimer() const { return m_ageTimer; }
 
     // The broker the rows come from, for the line above them ("mqtt://host:1883").
     void setBroker(const QString& broker);
@@ -51,15 +48,13 @@ protected:
     void hideEvent(QHideEvent* event) override;
 
 private:
-    void tick();
     void updateSummary();
 
     FleetModel* m_model;
     QSortFilterProxyModel* m_sorted;
-    QTableView* m_table;
     QLabel* m_summary;
     QCheckBox* m_showUnverified;
-    QTimer* m_ageTimer;
+    QTimer m_ageTimer;
     QString m_broker;
     bool m_connected = false;
     bool m_everConnected = false;

@@ -29,22 +29,13 @@ void FrameLogFilterModel::setSourceModel(QAbstractItemModel* model)
     endResetModel();
 }
 
-void FrameLogFilterModel::setDirections(unsigned mask)
+void FrameLogFilterModel::setFilter(unsigned directions, unsigned statuses)
 {
-    if (mask == m_directions)
+    if (directions == m_directions && statuses == m_statuses)
         return;
     beginResetModel();
-    m_directions = mask;
-    rebuild();
-    endResetModel();
-}
-
-void FrameLogFilterModel::setStatuses(unsigned mask)
-{
-    if (mask == m_statuses)
-        return;
-    beginResetModel();
-    m_statuses = mask;
+    m_directions = directions;
+    m_statuses = statuses;
     rebuild();
     endResetModel();
 }

@@ -33,8 +33,10 @@ public:
     void setSourceModel(QAbstractItemModel* model) override;
     FrameLogModel* frameLog() const { return m_source; }
 
-    void setDirections(unsigned mask);
-    void setStatuses(unsigned mask);
+    // Both at once: the rows are rebuilt once.
+    void setFilter(unsigned directions, unsigned statuses);
+    void setDirections(unsigned mask) { setFilter(mask, m_statuses); }
+    void setStatuses(unsigned mask) { setFilter(m_directions, mask); }
     unsigned directions() const { return m_directions; }
     unsigned statuses() const { return m_statuses; }
 

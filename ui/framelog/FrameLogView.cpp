@@ -98,14 +98,13 @@ QString describeFrame(int number, const FrameRecord& record, std::optional<quint
 }  // namespace
 
 FrameLogView::FrameLogView(FrameLogModel* model, QWidget* parent)
-    : QWidget(parent),
+    : TablePane(parent),
       m_model(model),
       m_filter(new FrameLogFilterModel(this)),
       m_direction(new QComboBox),
       m_status(new QComboBox),
       m_follow(new QCheckBox(tr("Follow newest"))),
       m_count(new QLabel),
-      m_table(new QTableView),
       m_detail(makeDetailPane(tr("Select a frame to see its items"))),
       m_hex(makeDetailPane(tr("Select a frame to see its bytes")))
 {
@@ -234,8 +233,7 @@ QString FrameLogView::hexText() const
 
 void FrameLogView::applyFilter()
 {
-    m_filter->setDirections(m_direction->currentData().toUInt());
-    m_filter->setStatuses(m_status->currentData().toUInt());
+    m_filter->setFilter(m_direction->currentData().toUInt(), m_status->currentData().toUInt());
 }
 
 void FrameLogView::showSelected()

@@ -4,7 +4,7 @@
 // frames, and under it the selected frame decoded into the text format and
 // as a hex dump. Only the selected frame is decoded in full.
 
-#include <QWidget>
+#include "ui/table/TablePane.h"
 
 class FrameLogFilterModel;
 class FrameLogModel;
@@ -13,17 +13,12 @@ class QComboBox;
 class QLabel;
 class QLayout;
 class QPlainTextEdit;
-class QTableView;
 
-class FrameLogView : public QWidget {
+class FrameLogView : public TablePane {
     Q_OBJECT
 
 public:
     explicit FrameLogView(FrameLogModel* model, QWidget* parent = nullptr);
-
-    FrameLogModel* model() const { return m_model; }
-    FrameLogFilterModel* filter() const { return m_filter; }
-    QTableView* table() const { return m_table; }
 
     // Keeps the newest frame in view as frames arrive (on by default).
     void setFollowing(bool on);
@@ -51,7 +46,6 @@ private:
     QComboBox* m_status;
     QCheckBox* m_follow;
     QLabel* m_count;
-    QTableView* m_table;
     QPlainTextEdit* m_detail;
     QPlainTextEdit* m_hex;
 };

@@ -1,5 +1,6 @@
 #include "ui/overview/OverviewPage.h"
 
+#include "ui/look/LinkStateName.h"
 #include "ui/overview/LinkQualityPlot.h"
 #include "ui/panels/CommandState.h"
 #include "ui/panels/ItemText.h"
@@ -39,19 +40,14 @@ QString unitTitle(const CommandState& command, UnitRef ref)
     return value ? label + QLatin1Char(' ') + ItemText::value(*key, *value) : label;
 }
 
+// Briefer than the status bar's names where the card's word would not fit.
 QString stateName(LinkState state)
 {
-    switch (state) {
-    case LinkState::Closed:
-        return OverviewPage::tr("Not connected");
-    case LinkState::Waiting:
+    if (state == LinkState::Waiting)
         return OverviewPage::tr("Waiting");
-    case LinkState::Connected:
-        return OverviewPage::tr("Connected");
-    case LinkState::Lost:
+    if (state == LinkState::Lost)
         return OverviewPage::tr("LINK LOST");
-    }
-    return {};
+    return linkStateName(state);
 }
 
 // The state word's colour: dark tones on a light window, light tones on a

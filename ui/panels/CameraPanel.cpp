@@ -29,22 +29,19 @@ void CameraPanel::addCards()
             sense->addSpinBox(id);
         place(sense);
     }
-    const auto& cameras = m_command->airframe().cameras;
-    for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
-        const auto& spec = cameras[static_cast<std::size_t>(i)];
-        const QString title = spec.name.empty()
-                                  ? QStringLiteral("%1 %2").arg(QString::fromStdString(spec.maker)).arg(spec.number)
-                                  : QString::fromStdString(spec.name);
-        auto* card = new UnitCard(m_command, m_reported, {rcm::UnitKind::Camera, i}, title, this);
-        card->addKey();
+    const auto title = [](const rcm::CameraSpec& camera) {
+        return camera.name.empty()
+                   ? QStringLiteral("%1 %2").arg(QString::fromStdString(camera.maker)).arg(camera.number)
+                   : QString::fromStdString(camera.name);
+    };
+    addUnitCards(rcm::UnitKind::Camera, m_command->airframe().cameras, title, [this](UnitCard* card) {
         card->addSpinBox(cam_mag_compass);
         card->addSpinBox(cam_elev);
         card->addSpinBox(cam_zoom_set);
         addPhotoButton(card);
         card->addStation(cam_GCS_destination);
         card->addStation(cam_GCS_backup);
-        place(card);
-    }
+    });
 }
 
 QPushButton* CameraPanel::addPhotoButton(UnitCard* card)

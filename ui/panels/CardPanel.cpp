@@ -22,3 +22,10 @@ void CardPanel::place(UnitCard* card)
 {
     CardGrid::add(m_layout, card);
 }
+
+UnitCard* CardPanel::newUnitCard(UnitRef ref, const QString& title)
+{
+    auto* card = new UnitCard(m_command, m_reported, ref, title, this);
+    card->addKey();
+    return card;
+}

@@ -3,7 +3,12 @@
 // airframe changes.
 #pragma once
 
+#include "codec/message/ItemTable.h"
+#include "ui/panels/UnitRef.h"
+
 #include <QWidget>
+
+#include <vector>
 
 class CommandState;
 class QGridLayout;
@@ -23,6 +28,20 @@ protected:
     // Makes each card (with this panel as parent) and places it.
     virtual void addCards() = 0;
     void place(UnitCard* card);
+    // A card for each unit of `kind` the airframe lists in `specs` (its
+    // engines, its radios ...), titled `title(spec)`, its key the first row,
+    // then the rows `fill(card)` adds; placed.
+    template <typename Spec, typename Title, typename Fill>
+    void addUnitCards(rcm::UnitKind kind, const std::vector<Spec>& specs, Title title, Fill fill)
+    {
+        for (std::size_t i = 0; i < specs.size(); ++i) {
+            UnitCard* card = newUnitCard({kind, static_cast<int>(i)}, title(specs[i]));
+            fill(card);
+            place(card);
+        }
+    }
+    // A card with this panel as parent and the unit's key as its first row.
+    UnitCard* newUnitCard(UnitRef ref, const QString& title);
 
     CommandState* m_command;
     ReportedState* m_reported;

@@ -64,13 +64,6 @@ protected:
     void showEvent(QShowEvent* event) override;
 
 private:
-    // Changes are shown once per pass of the event loop, and only while the
-    // preview is visible (the hex dump only while its tab is): at 10x replay
-    // the command and the next ID change ten times a second, and each
-    // showing sets two rich-text views, milliseconds of the GUI thread.
-    void invalidate();
-    void refresh();
-    void refreshHex();
     // One line of the items view, as shown.
     enum class LineKind { Item, ChangedItem, Section };
     struct PreviewLine {
@@ -78,6 +71,14 @@ private:
         LineKind kind;
         bool operator==(const PreviewLine&) const = default;
     };
+
+    // Changes are shown once per pass of the event loop, and only while the
+    // preview is visible (the hex dump only while its tab is): at 10x replay
+    // the command and the next ID change ten times a second, and each
+    // showing sets two rich-text views, milliseconds of the GUI thread.
+    void invalidate();
+    void refresh();
+    void refreshHex();
     // Rewrites only the lines that differ from those shown (a frame changes
     // the ID, the time and what is marked: a few of some hundred lines), so
     // that the view lays out those lines alone; all of them when the lines

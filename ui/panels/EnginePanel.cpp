@@ -11,17 +11,14 @@ EnginePanel::EnginePanel(CommandState* command, ReportedState* reported, QWidget
 
 void EnginePanel::addCards()
 {
-    using enum rcm::ItemId;
-    const auto& engines = m_command->airframe().engines;
-    for (int i = 0; i < static_cast<int>(engines.size()); ++i) {
-        const auto& spec = engines[static_cast<std::size_t>(i)];
-        const QString title = spec.name.empty() ? tr("Engine %1").arg(spec.id) : QString::fromStdString(spec.name);
-        auto* card = new UnitCard(m_command, m_reported, {rcm::UnitKind::Engine, i}, title, this);
-        card->addKey();
+    const auto title = [](const rcm::EngineSpec& engine) {
+        return engine.name.empty() ? tr("Engine %1").arg(engine.id) : QString::fromStdString(engine.name);
+    };
+    addUnitCards(rcm::UnitKind::Engine, m_command->airframe().engines, title, [](UnitCard* card) {
+        using enum rcm::ItemId;
         card->addComboBox(eng_status, 0);
         card->addComboBox(eng_status, 1);
         card->addSpinBox(eng_prop_pitch);
         card->addSpinBox(eng_carb_SET);
-        place(card);
-    }
+    });
 }

@@ -5,7 +5,6 @@
 #include "ui/panels/DeliberateInput.h"
 #include "ui/panels/ItemText.h"
 
-#include <QFocusEvent>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QSignalBlocker>
@@ -122,20 +121,19 @@ bool ItemSlider::repeated(const QKeyEvent* event) const
            (event->key() == m_keyReleased && m_releasedAt != 0 && event->timestamp() == m_releasedAt);
 }
 
-void ItemSlider::keyReleaseEvent(QKeyEvent* event)
+bool ItemSlider::event(QEvent* event)
 {
-    if (event->key() == m_keyDown && !event->isAutoRepeat()) {
-        m_keyDown = 0;
-        m_keyReleased = event->key();
-        m_releasedAt = event->timestamp();
+    if (event->type() == QEvent::KeyRelease) {
+        const auto* key = static_cast<const QKeyEvent*>(event);
+        if (key->key() == m_keyDown && !key->isAutoRepeat()) {
+            m_keyDown = 0;
+            m_keyReleased = key->key();
+            m_releasedAt = key->timestamp();
+        }
+    } else if (event->type() == QEvent::FocusOut) {
+        m_keyDown = 0;  // its release goes elsewhere
     }
-    QSlider::keyReleaseEvent(event);
-}
-
-void ItemSlider::focusOutEvent(QFocusEvent* event)
-{
-    m_keyDown = 0;  // its release goes elsewhere
-    QSlider::focusOutEvent(event);
+    return QSlider::event(event);
 }
 
 void ItemSlider::showDragged(int position)

@@ -38,8 +38,8 @@ protected:
     void mousePressEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
     void keyPressEvent(QKeyEvent* event) override;
-    void keyReleaseEvent(QKeyEvent* event) override;
-    void focusOutEvent(QFocusEvent* event) override;
+    // Keeps the held key's bookkeeping (repeated()): its release, or the focus going.
+    bool event(QEvent* event) override;
 
 private:
     bool onHandle(QPoint pos) const;

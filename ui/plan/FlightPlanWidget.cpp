@@ -27,6 +27,7 @@
 #include <QVBoxLayout>
 
 #include <cmath>
+#include <utility>
 
 namespace {
 
@@ -208,14 +209,16 @@ void FlightPlanWidget::layOut()
 
 void FlightPlanWidget::connectParts()
 {
-    connect(m_open, &QPushButton::clicked, this, &FlightPlanWidget::openPlan);
-    connect(m_save, &QPushButton::clicked, this, &FlightPlanWidget::savePlanAs);
-    connect(m_tileButton, &QPushButton::clicked, this, &FlightPlanWidget::chooseTiles);
-    connect(m_send, &QPushButton::clicked, this, &FlightPlanWidget::uploadPlan);
-    connect(m_cancel, &QPushButton::clicked, this, &FlightPlanWidget::cancelUpload);
-    connect(m_editOnMap, &QPushButton::toggled, m_map, &PlanMapView::setEditable);
-    // The altitude cells follow the same switch: off, no key or click changes the plan.
-    connect(m_editOnMap, &QPushButton::toggled, this, [this] {
+    const std::pair<QPushButton*, void (FlightPlanWidget::*)()> buttonActions[] = {
+        {m_open, &FlightPlanWidget::openPlan},          {m_save, &FlightPlanWidget::savePlanAs},
+        {m_tileButton, &FlightPlanWidget::chooseTiles}, {m_send, &FlightPlanWidget::uploadPlan},
+        {m_cancel, &FlightPlanWidget::cancelUpload},
+    };
+    for (const auto& [button, action] : buttonActions)
+        connect(button, &QPushButton::clicked, this, action);
+    // The map and the altitude cells follow the same switch: off, no drag, key or click changes the plan.
+    connect(m_editOnMap, &QPushButton::toggled, this, [this](bool editable) {
+        m_map->setEditable(editable);
         if (m_plan)
             showPlan();
     });

@@ -38,6 +38,9 @@ class PlanMapView : public QWidget {
     Q_OBJECT
 
 public:
+    explicit PlanMapView(QWidget* parent = nullptr);
+    ~PlanMapView() override;
+
     // The view's zoom range. The grid works at any zoom; the tile source's own
     // range only decides which tiles are scaled to fill the view.
     static constexpr double kMinZoom = 2;
@@ -54,9 +57,6 @@ public:
     static const QColor kRallyColour;
     static const QColor kInclusionColour;
     static const QColor kExclusionColour;
-
-    explicit PlanMapView(QWidget* parent = nullptr);
-    ~PlanMapView() override;
 
     QSize sizeHint() const override;
     QSize minimumSizeHint() const override;

@@ -140,11 +140,17 @@ MainWindow::~MainWindow()
     qDeleteAll(findChildren<QDockWidget*>(Qt::FindDirectChildrenOnly));
 }
 
+template <typename Source>
+void MainWindow::bindLinkRequests(Source* source)
+{
+    connect(source, &Source::connectRequested, this, &MainWindow::connectLink);
+    connect(source, &Source::disconnectRequested, this, &MainWindow::requestDisconnect);
+    connect(source, &Source::rehearsalRequested, this, &MainWindow::startRehearsal);
+}
+
 void MainWindow::buildDocks()
 {
-    connect(m_linkPane, &LinkPane::connectRequested, this, &MainWindow::connectLink);
-    connect(m_linkPane, &LinkPane::disconnectRequested, this, &MainWindow::requestDisconnect);
-    connect(m_linkPane, &LinkPane::rehearsalRequested, this, &MainWindow::startRehearsal);
+    bindLinkRequests(m_linkPane);
     connect(m_linkPane->settings(), &LinkSettingsWidget::changed, this, &MainWindow::updateLinkControls);
     connect(m_flightPlan, &FlightPlanWidget::message, this,
             [this](const QString& text) { m_notices.info(EventSource::Plan, text); });
@@ -182,11 +188,9 @@ void MainWindow::buildDocks()
 
 void MainWindow::bindMenus()
 {
+    bindLinkRequests(m_menus);
     connect(m_menus, &ConsoleMenus::openLogRequested, this, &MainWindow::chooseFrameLog);
     connect(m_menus, &ConsoleMenus::exportCsvRequested, this, &MainWindow::exportCsv);
-    connect(m_menus, &ConsoleMenus::connectRequested, this, &MainWindow::connectLink);
-    connect(m_menus, &ConsoleMenus::disconnectRequested, this, &MainWindow::requestDisconnect);
-    connect(m_menus, &ConsoleMenus::rehearsalRequested, this, &MainWindow::startRehearsal);
     connect(m_menus, &ConsoleMenus::panelRequested, this, &MainWindow::showPanel);
     connect(m_menus, &ConsoleMenus::resetLayoutRequested, this, &MainWindow::resetLayout);
 }
@@ -211,24 +215,9 @@ StationControlWidget* MainWindow::stationControl() const
     return m_linkPane->stationControl();
 }
 
-FleetView* MainWindow::fleetView() const
-{
-    return m_broker->fleetView();
-}
-
-SessionBroadcast* MainWindow::broadcast() const
-{
-    return m_broker->broadcast();
-}
-
 const BrokerObservation* MainWindow::observation() const
 {
     return qobject_cast<const BrokerObservation*>(m_session->observation());
-}
-
-FleetFeed* MainWindow::fleetFeed() const
-{
-    return m_broker->fleetFeed();
 }
 
 OverviewPage* MainWindow::overview() const

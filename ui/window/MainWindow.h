@@ -34,8 +34,6 @@ class CommandState;
 class ConsoleAlerts;
 class ConsoleDocks;
 class ConsoleMenus;
-class FleetFeed;
-class FleetView;
 class FlightPlanUpload;
 class FlightPlanWidget;
 class FrameLogModel;
@@ -50,7 +48,6 @@ class ReplayBinding;
 class ReplayControls;
 class ReportedState;
 class SessionBinding;
-class SessionBroadcast;
 class StationControlWidget;
 class StatusBarWidget;
 class VoiceChannel;
@@ -83,11 +80,8 @@ public:
     StatusBarWidget* linkStatus() const { return m_status; }
     LinkSettingsWidget* linkSettings() const;
     StationControlWidget* stationControl() const;
-    FleetView* fleetView() const;
-    SessionBroadcast* broadcast() const;
     // The observation running (observe()), or null.
     const BrokerObservation* observation() const;
-    FleetFeed* fleetFeed() const;
     ConsoleSession* session() const { return m_session; }
     ConsoleDocks* docks() const { return m_docks; }
     // The event log, its dock, the error banner and the link-loss alarm.
@@ -166,6 +160,9 @@ protected:
 
 private:
     void buildDocks();
+    // The Link pane's and the Link menu's requests (both name them alike) to the same slots.
+    template <typename Source>
+    void bindLinkRequests(Source* source);
     void bindMenus();
     void restoreSession(const Options& options);
     void saveSession() const;

@@ -1,6 +1,7 @@
 #include "ui/window/StatusBarWidget.h"
 
 #include "codec/receive/Refusal.h"
+#include "ui/look/LinkStateName.h"
 #include "ui/look/SeverityColours.h"
 #include "ui/panels/SteadyLabel.h"
 #include "ui/window/SignalBars.h"
@@ -15,6 +16,7 @@
 #include <QStringList>
 
 #include <algorithm>
+#include <array>
 
 namespace {
 
@@ -26,6 +28,14 @@ QLabel* counter(const QString& toolTip)
     return label;
 }
 
+QFrame* separator()
+{
+    auto* line = new QFrame;
+    line->setFrameShape(QFrame::VLine);
+    line->setFrameShadow(QFrame::Sunken);
+    return line;
+}
+
 // The names beside the figures: a grey at 4.5:1 or more on the status bar in either theme.
 QString muted()
 {
@@ -35,14 +45,6 @@ QString muted()
 QString field(const QString& name, const QString& value)
 {
     return QStringLiteral("<span style=\"color:%1\">%2</span> <b>%3</b>").arg(muted(), name, value);
-}
-
-QFrame* separator()
-{
-    auto* line = new QFrame;
-    line->setFrameShape(QFrame::VLine);
-    line->setFrameShadow(QFrame::Sunken);
-    return line;
 }
 
 }  // namespace
@@ -281,25 +283,10 @@ void StatusBarWidget::setReplayTime(qint64 utcMicros)
 void StatusBarWidget::setState(LinkState state)
 {
     m_statistics.state = state;
-    QString name, colour;
-    switch (state) {
-        case LinkState::Closed:
-            name = tr("Not connected");
-            colour = QStringLiteral("#8a8a8a");
-            break;
-        case LinkState::Waiting:
-            name = tr("Waiting for the aircraft");
-            colour = QStringLiteral("#c98a00");
-            break;
-        case LinkState::Connected:
-            name = tr("Connected");
-            colour = QStringLiteral("#1d7a35");
-            break;
-        case LinkState::Lost:
-            name = tr("Lost");
-            colour = QStringLiteral("#b01c1c");
-            break;
-    }
+    // The dot's colour, in LinkState's order: grey, amber, green, red.
+    static constexpr std::array<const char*, 4> kColours{"#8a8a8a", "#c98a00", "#1d7a35", "#b01c1c"};
+    QString name = linkStateName(state);
+    QString colour = QLatin1String(kColours[static_cast<std::size_t>(state)]);
     if (m_replay && state != LinkState::Closed) {
         // A log's silences and ends are not the aircraft's.
         name = tr("Replay");
