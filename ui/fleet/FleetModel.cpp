@@ -48,22 +48,6 @@ QString orDash(const QString& text)
     return text.isEmpty() ? QStringLiteral("\u2014") : text;
 }
 
-// For sorting by link: the best first.
-int linkRank(LinkState state)
-{
-    switch (state) {
-        case LinkState::Connected:
-            return 0;
-        case LinkState::Lost:
-            return 1;
-        case LinkState::Waiting:
-            return 2;
-        case LinkState::Closed:
-            break;
-    }
-    return 3;
-}
-
 }  // namespace
 
 FleetModel::FleetModel(QObject* parent)
@@ -261,7 +245,7 @@ QVariant FleetModel::sortValue(const Row& row, int column) const
         case AircraftColumn:
             return s.aircraft;
         case LinkColumn:
-            return linkRank(s.link);
+            return -linkRank(s.link);  // the best first
         case InControlColumn:
             return s.inControl;
         case BackupColumn:
