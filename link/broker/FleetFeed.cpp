@@ -11,23 +11,6 @@
 
 namespace {
 
-// What "the best link" means across stations: one connected station is
-// enough to reach the aircraft; a lost one says more than one still waiting.
-int linkRank(LinkState state)
-{
-    switch (state) {
-        case LinkState::Connected:
-            return 3;
-        case LinkState::Lost:
-            return 2;
-        case LinkState::Waiting:
-            return 1;
-        case LinkState::Closed:
-            break;
-    }
-    return 0;
-}
-
 // A frame the receive path delivered: the link's "last good frame".
 bool isGood(FrameStatus status)
 {

@@ -1,6 +1,7 @@
 #include "link/broker/MqttClient.h"
 
 #include "link/broker/BrokerTrust.h"
+#include "link/common/NameTable.h"
 
 #include <QFileInfo>
 #include <QMetaObject>
@@ -51,18 +52,18 @@ QString errnoReason(int error)
     return error ? forPeople(std::strerror(error)) : QStringLiteral("system error");
 }
 
+// Ours where libmosquitto's words say less than the operator needs.
+constexpr auto kResultReasons = std::to_array<Named<int>>({
+    {MOSQ_ERR_CONN_LOST, "connection lost"},
+    {MOSQ_ERR_KEEPALIVE, "no answer within the keepalive"},
+    {MOSQ_ERR_EAI, "host not found"},
+});
+
 QString resultReason(int rc)
 {
-    switch (rc) {
-        case MOSQ_ERR_CONN_LOST:
-            return QStringLiteral("connection lost");
-        case MOSQ_ERR_KEEPALIVE:
-            return QStringLiteral("no answer within the keepalive");
-        case MOSQ_ERR_EAI:
-            return QStringLiteral("host not found");
-        default:
-            return forPeople(mosquitto_strerror(rc));
-    }
+    if (const char* reason = nameOf(kResultReasons, rc))
+        return QString::fromUtf8(reason);
+    return forPeople(mosquitto_strerror(rc));
 }
 
 // MQTT 5's reason codes, as the broker refused us:

@@ -1,27 +1,53 @@
 #include "link/eventlog/ConsoleEvent.h"
 
+#include "link/common/NameTable.h"
+
 #include <QDateTime>
 #include <QStringList>
 
+#include <algorithm>
+#include <array>
+
 namespace {
 
+// The file's words for them: written by eventLine(), read by parseEventLine().
+constexpr auto kSeverityNames = std::to_array<Named<EventSeverity>>({
+    {EventSeverity::Info, "info"},
+    {EventSeverity::Warning, "warning"},
+    {EventSeverity::Error, "error"},
+});
+constexpr auto kSourceNames = std::to_array<Named<EventSource>>({
+    {EventSource::Link, "link"},
+    {EventSource::Key, "key"},
+    {EventSource::Plan, "plan"},
+    {EventSource::Alarm, "alarm"},
+    {EventSource::Console, "console"},
+    {EventSource::Control, "control"},
+    {EventSource::Command, "command"},
+});
+
 const QString kTimeFormat = QStringLiteral("yyyy-MM-dd'T'HH:mm:ss.zzz'Z'");
+
+// The characters a line cannot hold as they are, each with the letter that
+// stands for it after a backslash.
+struct Escape {
+    char16_t character;
+    char16_t letter;
+};
+constexpr std::array<Escape, 4> kEscapes{{{u'\\', u'\\'}, {u'\t', u't'}, {u'\n', u'n'}, {u'\r', u'r'}}};
 
 QString escaped(const QString& text)
 {
     QString out;
     out.reserve(text.size());
     for (const QChar c : text) {
-        if (c == u'\\')
-            out += QStringLiteral("\\\\");
-        else if (c == u'\t')
-            out += QStringLiteral("\\t");
-        else if (c == u'\n')
-            out += QStringLiteral("\\n");
-        else if (c == u'\r')
-            out += QStringLiteral("\\r");
-        else
+        const auto escape = std::ranges::find(kEscapes, c.unicode(), &Escape::character);
+        if (escape == kEscapes.end()) {
             out += c;
+            continue;
+        }
+        out += u'\\';
+        out += QChar(escape->letter);
     }
     return out;
 }
@@ -37,22 +63,10 @@ std::optional<QString> unescaped(const QString& text)
         }
         if (++i == text.size())
             return std::nullopt;
-        switch (text[i].unicode()) {
-        case u'\\':
-            out += u'\\';
-            break;
-        case u't':
-            out += u'\t';
-            break;
-        case u'n':
-            out += u'\n';
-            break;
-        case u'r':
-            out += u'\r';
-            break;
-        default:
+        const auto escape = std::ranges::find(kEscapes, text[i].unicode(), &Escape::letter);
+        if (escape == kEscapes.end())
             return std::nullopt;
-        }
+        out += QChar(escape->character);
     }
     return out;
 }
@@ -61,36 +75,12 @@ std::optional<QString> unescaped(const QString& text)
 
 QString eventSeverityName(EventSeverity severity)
 {
-    switch (severity) {
-    case EventSeverity::Info:
-        return QStringLiteral("info");
-    case EventSeverity::Warning:
-        return QStringLiteral("warning");
-    case EventSeverity::Error:
-        return QStringLiteral("error");
-    }
-    return {};
+    return nameText(kSeverityNames, severity);
 }
 
 QString eventSourceName(EventSource source)
 {
-    switch (source) {
-    case EventSource::Link:
-        return QStringLiteral("link");
-    case EventSource::Key:
-        return QStringLiteral("key");
-    case EventSource::Plan:
-        return QStringLiteral("plan");
-    case EventSource::Alarm:
-        return QStringLiteral("alarm");
-    case EventSource::Console:
-        return QStringLiteral("console");
-    case EventSource::Control:
-        return QStringLiteral("control");
-    case EventSource::Command:
-        return QStringLiteral("command");
-    }
-    return {};
+    return nameText(kSourceNames, source);
 }
 
 QString eventLine(const ConsoleEvent& event)
@@ -111,22 +101,12 @@ std::optional<ConsoleEvent> parseEventLine(const QString& line)
     if (!time.isValid())
         return std::nullopt;
     event.utcMicros = QDateTime(time.date(), time.time(), Qt::UTC).toMSecsSinceEpoch() * 1000;
-    bool found = false;
-    for (EventSeverity s : {EventSeverity::Info, EventSeverity::Warning, EventSeverity::Error})
-        if (eventSeverityName(s) == parts[1]) {
-            event.severity = s;
-            found = true;
-        }
-    if (!found)
+    const std::optional<EventSeverity> severity = valueIn(kSeverityNames, parts[1]);
+    const std::optional<EventSource> source = valueIn(kSourceNames, parts[2]);
+    if (!severity || !source)
         return std::nullopt;
-    found = false;
-    for (EventSource s : kEventSources)
-        if (eventSourceName(s) == parts[2]) {
-            event.source = s;
-            found = true;
-        }
-    if (!found)
-        return std::nullopt;
+    event.severity = *severity;
+    event.source = *source;
     std::optional<QString> text = unescaped(parts[3]);
     if (!text)
         return std::nullopt;

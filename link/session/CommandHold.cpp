@@ -1,22 +1,26 @@
 #include "link/session/CommandHold.h"
 
+#include "link/common/NameTable.h"
+
+namespace {
+
+// The reasons in words, for reasonText().
+constexpr auto kReasonTexts = std::to_array<Named<CommandHold::Reason>>({
+    {CommandHold::Reason::NewLink, QT_TRANSLATE_NOOP("CommandHold", "a new link")},
+    {CommandHold::Reason::LinkRegained,
+     QT_TRANSLATE_NOOP("CommandHold", "the link came back and the aircraft reports something else")},
+    {CommandHold::Reason::Airframe, QT_TRANSLATE_NOOP("CommandHold", "another airframe was loaded")},
+    {CommandHold::Reason::ControlGiven, QT_TRANSLATE_NOOP("CommandHold", "the aircraft gave control to this station")},
+    {CommandHold::Reason::NotInControl, QT_TRANSLATE_NOOP("CommandHold", "another station is in control")},
+});
+
+}  // namespace
+
 CommandHold::CommandHold(QObject* parent) : QObject(parent) {}
 
 QString CommandHold::reasonText(Reason reason)
 {
-    switch (reason) {
-        case Reason::NewLink:
-            return tr("a new link");
-        case Reason::LinkRegained:
-            return tr("the link came back and the aircraft reports something else");
-        case Reason::Airframe:
-            return tr("another airframe was loaded");
-        case Reason::ControlGiven:
-            return tr("the aircraft gave control to this station");
-        case Reason::NotInControl:
-            return tr("another station is in control");
-    }
-    return {};
+    return tr(nameOf(kReasonTexts, reason));
 }
 
 void CommandHold::hold(Reason reason, bool adopt)

@@ -20,6 +20,24 @@ enum class LinkState : quint8 {
     Lost,       // open but silent longer than the timeout, or the transport is gone
 };
 
+// What "the best link" means across stations, higher better: one connected
+// station is enough to reach the aircraft; a lost one says more than one
+// still waiting; a closed one, nothing.
+constexpr int linkRank(LinkState state)
+{
+    switch (state) {
+        case LinkState::Connected:
+            return 3;
+        case LinkState::Lost:
+            return 2;
+        case LinkState::Waiting:
+            return 1;
+        case LinkState::Closed:
+            break;
+    }
+    return 0;
+}
+
 struct LinkStatistics {
     LinkState state = LinkState::Closed;
 

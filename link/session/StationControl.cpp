@@ -3,10 +3,20 @@
 #include "codec/message/ItemTable.h"
 #include "codec/message/TextFormat.h"
 #include "codec/message/ValueCodec.h"
+#include "link/common/NameTable.h"
 
 using namespace rcm;
 
 namespace {
+
+constexpr auto kRoleNames = std::to_array<Named<StationControl::Role>>({
+    {StationControl::Role::Unknown, QT_TRANSLATE_NOOP("StationControl", "Control not reported yet")},
+    {StationControl::Role::InControl, QT_TRANSLATE_NOOP("StationControl", "In control")},
+    {StationControl::Role::Offered, QT_TRANSLATE_NOOP("StationControl", "Given control: not taken")},
+    {StationControl::Role::HandingOver, QT_TRANSLATE_NOOP("StationControl", "Handing over")},
+    {StationControl::Role::Backup, QT_TRANSLATE_NOOP("StationControl", "Backup")},
+    {StationControl::Role::Observing, QT_TRANSLATE_NOOP("StationControl", "Observing")},
+});
 
 std::optional<StationId> headerStation(const Message& message, ItemId id)
 {
@@ -188,21 +198,7 @@ void StationControl::takeControl()
 
 QString StationControl::roleName(Role role)
 {
-    switch (role) {
-        case Role::Unknown:
-            return tr("Control not reported yet");
-        case Role::InControl:
-            return tr("In control");
-        case Role::Offered:
-            return tr("Given control: not taken");
-        case Role::HandingOver:
-            return tr("Handing over");
-        case Role::Backup:
-            return tr("Backup");
-        case Role::Observing:
-            return tr("Observing");
-    }
-    return {};
+    return tr(nameOf(kRoleNames, role));
 }
 
 QString StationControl::describe() const

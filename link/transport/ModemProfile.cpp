@@ -1,5 +1,7 @@
 #include "link/transport/ModemProfile.h"
 
+#include "link/common/NameTable.h"
+
 #include <algorithm>
 
 namespace modem {
@@ -29,6 +31,16 @@ Profile gsmFamily(const QString& name, const QString& title, const QString& note
 {
     return Profile{name, title, note, std::move(setup), "AT+CREG=1", "AT+CREG?", "AT+CSQ", SignalScale::Rssi27007};
 }
+
+constexpr auto kRegistrationTexts = std::to_array<Named<Registration>>({
+    {.value = Registration::Unknown, .name = "registration not known"},
+    {.value = Registration::NotSearching, .name = "not registered, not searching"},
+    {.value = Registration::Home, .name = "registered"},
+    {.value = Registration::Searching, .name = "not registered, searching for the network"},
+    {.value = Registration::Denied, .name = "registration denied"},
+    {.value = Registration::StatUnknown, .name = "registration unknown to the phone"},
+    {.value = Registration::Roaming, .name = "registered, roaming"},
+});
 
 QList<Profile> makeProfiles()
 {
@@ -137,23 +149,7 @@ bool isRegistered(Registration r)
 
 QString registrationText(Registration r)
 {
-    switch (r) {
-        case Registration::Unknown:
-            return QStringLiteral("registration not known");
-        case Registration::NotSearching:
-            return QStringLiteral("not registered, not searching");
-        case Registration::Home:
-            return QStringLiteral("registered");
-        case Registration::Searching:
-            return QStringLiteral("not registered, searching for the network");
-        case Registration::Denied:
-            return QStringLiteral("registration denied");
-        case Registration::StatUnknown:
-            return QStringLiteral("registration unknown to the phone");
-        case Registration::Roaming:
-            return QStringLiteral("registered, roaming");
-    }
-    return {};
+    return nameText(kRegistrationTexts, r);
 }
 
 bool Service::canDial() const

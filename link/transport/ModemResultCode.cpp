@@ -1,24 +1,25 @@
 #include "link/transport/ModemResultCode.h"
 
-#include <QList>
+#include "link/common/NameTable.h"
 
-#include <array>
-#include <utility>
+#include <QList>
 
 namespace modem {
 
 namespace {
 
-constexpr std::array<std::pair<ResultCode, const char*>, 8> kTexts{{
-    {ResultCode::Ok, "OK"},
-    {ResultCode::Connect, "CONNECT"},
-    {ResultCode::Ring, "RING"},
-    {ResultCode::NoCarrier, "NO CARRIER"},
-    {ResultCode::Error, "ERROR"},
-    {ResultCode::NoDialtone, "NO DIALTONE"},
-    {ResultCode::Busy, "BUSY"},
-    {ResultCode::NoAnswer, "NO ANSWER"},
-}};
+using enum ResultCode;
+
+constexpr auto kTexts = std::to_array<Named<ResultCode>>({
+    {Ok, "OK"},
+    {Connect, "CONNECT"},
+    {Ring, "RING"},
+    {NoCarrier, "NO CARRIER"},
+    {Error, "ERROR"},
+    {NoDialtone, "NO DIALTONE"},
+    {Busy, "BUSY"},
+    {NoAnswer, "NO ANSWER"},
+});
 
 }  // namespace
 
@@ -26,10 +27,8 @@ std::optional<Result> parseResult(QByteArrayView line)
 {
     // Liberal: either case, spaces anywhere between the words.
     const QByteArray text = line.toByteArray().simplified().toUpper();
-    for (const auto& [code, name] : kTexts) {
-        if (text == name)
-            return Result{code, 0};
-    }
+    if (const std::optional<ResultCode> code = valueIn(kTexts, text))
+        return Result{*code, 0};
     // "CONNECT 9600", "CONNECT 9600/ARQ" (some modems add the protocol)
     if (text.startsWith("CONNECT ")) {
         bool ok = false;
@@ -44,15 +43,10 @@ std::optional<Result> parseResult(QByteArrayView line)
 
 QByteArray resultText(Result result)
 {
-    for (const auto& [code, name] : kTexts) {
-        if (code == result.code) {
-            QByteArray text(name);
-            if (result.code == ResultCode::Connect && result.rate > 0)
-                text += ' ' + QByteArray::number(result.rate);
-            return text;
-        }
-    }
-    return {};
+    QByteArray text(nameOf(kTexts, result.code));
+    if (result.code == ResultCode::Connect && result.rate > 0)
+        text += ' ' + QByteArray::number(result.rate);
+    return text;
 }
 
 QByteArray resultLine(Result result)

@@ -12,6 +12,14 @@
 
 namespace {
 
+constexpr auto kColumns = std::to_array<FlatTableModel::Column>({
+    {QT_TRANSLATE_NOOP("EventLogModel", "Time (UTC)")},
+    {QT_TRANSLATE_NOOP("EventLogModel", "Severity")},
+    {QT_TRANSLATE_NOOP("EventLogModel", "Source")},
+    {QT_TRANSLATE_NOOP("EventLogModel", "Event")},
+});
+static_assert(kColumns.size() == EventLogModel::ColumnCount);
+
 // Errors and warnings as tinted rows: dark text on a light tint by day, light
 // text on a dark tint by night (SeverityColours), 7:1 or more either way.
 std::optional<SeverityColours::Row> coloursOf(EventSeverity severity)
@@ -30,26 +38,14 @@ std::optional<SeverityColours::Row> coloursOf(EventSeverity severity)
 
 }  // namespace
 
-EventLogModel::EventLogModel(EventLog* log, QObject* parent) : QAbstractTableModel(parent)
+EventLogModel::EventLogModel(EventLog* log, QObject* parent) : FlatTableModel(kColumns, parent)
 {
     if (log)
         connect(log, &EventLog::recorded, this, &EventLogModel::append);
 }
 
-int EventLogModel::rowCount(const QModelIndex& parent) const
+QVariant EventLogModel::cellData(const QModelIndex& index, int role) const
 {
-    return parent.isValid() ? 0 : int(m_events.size());
-}
-
-int EventLogModel::columnCount(const QModelIndex& parent) const
-{
-    return parent.isValid() ? 0 : ColumnCount;
-}
-
-QVariant EventLogModel::data(const QModelIndex& index, int role) const
-{
-    if (!index.isValid() || index.row() >= m_events.size())
-        return {};
     const ConsoleEvent& e = m_events.at(index.row());
     switch (role) {
     case Qt::DisplayRole:
@@ -77,23 +73,6 @@ QVariant EventLogModel::data(const QModelIndex& index, int role) const
         if (const auto c = coloursOf(e.severity))
             return QBrush(c->background);
         break;
-    }
-    return {};
-}
-
-QVariant EventLogModel::headerData(int section, Qt::Orientation orientation, int role) const
-{
-    if (orientation != Qt::Horizontal || role != Qt::DisplayRole)
-        return {};
-    switch (section) {
-    case TimeColumn:
-        return tr("Time (UTC)");
-    case SeverityColumn:
-        return tr("Severity");
-    case SourceColumn:
-        return tr("Source");
-    case TextColumn:
-        return tr("Event");
     }
     return {};
 }

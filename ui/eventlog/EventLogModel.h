@@ -6,13 +6,13 @@
 // night theme. Holds the newest kMaxEvents; the file keeps them all.
 
 #include "link/eventlog/ConsoleEvent.h"
+#include "ui/table/FlatTableModel.h"
 
-#include <QAbstractTableModel>
 #include <QList>
 
 class EventLog;
 
-class EventLogModel : public QAbstractTableModel {
+class EventLogModel : public FlatTableModel {
     Q_OBJECT
 
 public:
@@ -22,11 +22,6 @@ public:
     // Listens to `log`'s recorded() when given.
     explicit EventLogModel(EventLog* log = nullptr, QObject* parent = nullptr);
 
-    int rowCount(const QModelIndex& parent = {}) const override;
-    int columnCount(const QModelIndex& parent = {}) const override;
-    QVariant data(const QModelIndex& index, int role = Qt::DisplayRole) const override;
-    QVariant headerData(int section, Qt::Orientation orientation, int role = Qt::DisplayRole) const override;
-
     const ConsoleEvent& event(int row) const { return m_events.at(row); }
     int count(EventSeverity severity) const;
 
@@ -34,5 +29,8 @@ public slots:
     void append(const ConsoleEvent& event);
 
 private:
+    QVariant cellData(const QModelIndex& index, int role) const override;
+    int rows() const override { return int(m_events.size()); }
+
     QList<ConsoleEvent> m_events;
 };

@@ -1,5 +1,7 @@
 #include "ui/fleet/FleetModel.h"
 
+#include "link/common/NameTable.h"
+
 #include <QBrush>
 #include <QColor>
 #include <QDateTime>
@@ -11,6 +13,36 @@
 #include <limits>
 
 namespace {
+
+constexpr auto kLinkTexts = std::to_array<Named<LinkState>>({
+    {LinkState::Closed, QT_TRANSLATE_NOOP("FleetModel", "Not connected")},
+    {LinkState::Waiting, QT_TRANSLATE_NOOP("FleetModel", "Waiting")},
+    {LinkState::Connected, QT_TRANSLATE_NOOP("FleetModel", "Connected")},
+    {LinkState::Lost, QT_TRANSLATE_NOOP("FleetModel", "Lost")},
+});
+
+constexpr auto kColumns = std::to_array<FlatTableModel::Column>({
+    {QT_TRANSLATE_NOOP("FleetModel", "Aircraft")},
+    {QT_TRANSLATE_NOOP("FleetModel", "Link"),
+     QT_TRANSLATE_NOOP("FleetModel", "The best link any online verified station has to the aircraft")},
+    {QT_TRANSLATE_NOOP("FleetModel", "In control"),
+     QT_TRANSLATE_NOOP("FleetModel", "The station in control as the aircraft last reported it (ID_GCS_destination)")},
+    {QT_TRANSLATE_NOOP("FleetModel", "Backup"),
+     QT_TRANSLATE_NOOP("FleetModel", "The backup station as the aircraft last reported it (ID_GCS_backup)")},
+    {QT_TRANSLATE_NOOP("FleetModel", "Stations"),
+     QT_TRANSLATE_NOOP("FleetModel",
+                       "Verified stations publishing for this aircraft that are online, of all that have "
+                       "reported; and stations whose key is not trusted")},
+    {QT_TRANSLATE_NOOP("FleetModel", "Last frame"),
+     QT_TRANSLATE_NOOP("FleetModel", "Time since the last good frame from the aircraft any station reported"),
+     Qt::AlignRight},
+    {QT_TRANSLATE_NOOP("FleetModel", "Frames"),
+     QT_TRANSLATE_NOOP("FleetModel",
+                       "Frames sent up to the aircraft and received down from it by its stations' links, as "
+                       "their statistics say"),
+     Qt::AlignRight},
+});
+static_assert(kColumns.size() == FleetModel::kColumnCount);
 
 // Dark text on a light tint, as the events' warnings: over 7:1 contrast
 // whatever the window's palette (Theme's day or night).
@@ -48,26 +80,10 @@ QString orDash(const QString& text)
     return text.isEmpty() ? QStringLiteral("\u2014") : text;
 }
 
-// For sorting by link: the best first.
-int linkRank(LinkState state)
-{
-    switch (state) {
-        case LinkState::Connected:
-            return 0;
-        case LinkState::Lost:
-            return 1;
-        case LinkState::Waiting:
-            return 2;
-        case LinkState::Closed:
-            break;
-    }
-    return 3;
-}
-
 }  // namespace
 
 FleetModel::FleetModel(QObject* parent)
-    : QAbstractTableModel(parent), m_clock([] {
+    : FlatTableModel(kColumns, parent), m_clock([] {
           return qint64(
               std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
                   .count());
@@ -75,67 +91,8 @@ FleetModel::FleetModel(QObject* parent)
 {
 }
 
-FleetModel::~FleetModel() = default;
-
-int FleetModel::rowCount(const QModelIndex& parent) const
+QVariant FleetModel::cellData(const QModelIndex& index, int role) const
 {
-    return parent.isValid() ? 0 : int(m_rows.size());
-}
-
-int FleetModel::columnCount(const QModelIndex& parent) const
-{
-    return parent.isValid() ? 0 : kColumnCount;
-}
-
-QVariant FleetModel::headerData(int section, Qt::Orientation orientation, int role) const
-{
-    if (orientation != Qt::Horizontal)
-        return {};
-    if (role == Qt::DisplayRole) {
-        switch (section) {
-            case AircraftColumn:
-                return tr("Aircraft");
-            case LinkColumn:
-                return tr("Link");
-            case InControlColumn:
-                return tr("In control");
-            case BackupColumn:
-                return tr("Backup");
-            case StationsColumn:
-                return tr("Stations");
-            case LastFrameColumn:
-                return tr("Last frame");
-            case FramesColumn:
-                return tr("Frames");
-        }
-    }
-    if (role == Qt::ToolTipRole) {
-        switch (section) {
-            case LinkColumn:
-                return tr("The best link any online verified station has to the aircraft");
-            case InControlColumn:
-                return tr("The station in control as the aircraft last reported it (ID_GCS_destination)");
-            case BackupColumn:
-                return tr("The backup station as the aircraft last reported it (ID_GCS_backup)");
-            case StationsColumn:
-                return tr(
-                    "Verified stations publishing for this aircraft that are online, of all that have "
-                    "reported; and stations whose key is not trusted");
-            case LastFrameColumn:
-                return tr("Time since the last good frame from the aircraft any station reported");
-            case FramesColumn:
-                return tr(
-                    "Frames sent up to the aircraft and received down from it by its stations' links, as their "
-                    "statistics say");
-        }
-    }
-    return {};
-}
-
-QVariant FleetModel::data(const QModelIndex& index, int role) const
-{
-    if (!index.isValid() || index.row() >= int(m_rows.size()))
-        return {};
     const Row& row = m_rows[std::size_t(index.row())];
     switch (role) {
         case Qt::DisplayRole:
@@ -172,10 +129,6 @@ QVariant FleetModel::data(const QModelIndex& index, int role) const
                 }
             }
             return {};
-        case Qt::TextAlignmentRole:
-            if (index.column() == LastFrameColumn || index.column() == FramesColumn)
-                return QVariant::fromValue(Qt::AlignRight | Qt::AlignVCenter);
-            return QVariant::fromValue(Qt::AlignLeft | Qt::AlignVCenter);
         case Qt::ForegroundRole:
             if (const std::optional<Colours> c = coloursOf(stateOf(row.summary)))
                 return QBrush(c->text);
@@ -190,17 +143,7 @@ QVariant FleetModel::data(const QModelIndex& index, int role) const
 
 QString FleetModel::linkText(LinkState state)
 {
-    switch (state) {
-        case LinkState::Closed:
-            return tr("Not connected");
-        case LinkState::Waiting:
-            return tr("Waiting");
-        case LinkState::Connected:
-            return tr("Connected");
-        case LinkState::Lost:
-            return tr("Lost");
-    }
-    return {};
+    return tr(nameOf(kLinkTexts, state));
 }
 
 QString FleetModel::linkCellText(const AircraftSummary& s)
@@ -257,15 +200,10 @@ QString FleetModel::cellText(const Row& row, int column) const
 QVariant FleetModel::sortValue(const Row& row, int column) const
 {
     const AircraftSummary& s = row.summary;
+    // Numbers by their value, names as they are (an unknown one empty, first).
     switch (column) {
-        case AircraftColumn:
-            return s.aircraft;
         case LinkColumn:
-            return linkRank(s.link);
-        case InControlColumn:
-            return s.inControl;
-        case BackupColumn:
-            return s.backup;
+            return -linkRank(s.link);  // the best first
         case StationsColumn:
             return s.stationsOnline;
         case LastFrameColumn:
@@ -273,6 +211,12 @@ QVariant FleetModel::sortValue(const Row& row, int column) const
             return s.lastFrameUtcMicros ? m_clock() - s.lastFrameUtcMicros : std::numeric_limits<qint64>::max();
         case FramesColumn:
             return qulonglong(s.framesUp + s.framesDown);
+        case AircraftColumn:
+            return s.aircraft;
+        case InControlColumn:
+            return s.inControl;
+        case BackupColumn:
+            return s.backup;
     }
     return {};
 }
@@ -426,8 +370,7 @@ void FleetModel::refreshAges()
         if (moved && runStart < 0)
             runStart = r;
         if (!moved && runStart >= 0) {
-            emit dataChanged(index(runStart, 0), index(r - 1, kColumnCount - 1),
-                             {Qt::ForegroundRole, Qt::BackgroundRole, Qt::ToolTipRole, StateRole});
+            rowsChanged(runStart, r - 1, {Qt::ForegroundRole, Qt::BackgroundRole, Qt::ToolTipRole, StateRole});
             runStart = -1;
         }
     }

@@ -18,8 +18,8 @@
 // when none of its stations is online (StateRole; the brushes colour it).
 
 #include "link/broker/FleetFeed.h"
+#include "ui/table/FlatTableModel.h"
 
-#include <QAbstractTableModel>
 #include <QElapsedTimer>
 #include <QHash>
 
@@ -28,7 +28,7 @@
 #include <optional>
 #include <vector>
 
-class FleetModel : public QAbstractTableModel {
+class FleetModel : public FlatTableModel {
     Q_OBJECT
 
 public:
@@ -63,12 +63,6 @@ public:
     static constexpr qint64 kMinFlushIntervalMs = 100;
 
     explicit FleetModel(QObject* parent = nullptr);
-    ~FleetModel() override;
-
-    int rowCount(const QModelIndex& parent = {}) const override;
-    int columnCount(const QModelIndex& parent = {}) const override;
-    QVariant data(const QModelIndex& index, int role = Qt::DisplayRole) const override;
-    QVariant headerData(int section, Qt::Orientation orientation, int role = Qt::DisplayRole) const override;
 
     void setClock(Clock clock);
     void setStaleLimitMicros(qint64 micros);
@@ -106,6 +100,9 @@ public slots:
     void refreshAges();
 
 private:
+    QVariant cellData(const QModelIndex& index, int role) const override;
+    int rows() const override { return int(m_rows.size()); }
+
     struct Row {
         AircraftSummary summary;
         std::optional<RowState> told;  // the state the views were last told of; none before its insert

@@ -2,6 +2,7 @@
 
 #include "codec/frame/Frame.h"
 #include "codec/receive/LoggedFrameReading.h"
+#include "link/common/NameTable.h"
 
 #include <QBrush>
 #include <QColor>
@@ -13,6 +14,29 @@
 #include <span>
 
 namespace {
+
+constexpr auto kColumns = std::to_array<FlatTableModel::Column>({
+    {QT_TRANSLATE_NOOP("FrameLogModel", "No."), nullptr, Qt::AlignRight},
+    {QT_TRANSLATE_NOOP("FrameLogModel", "Time (UTC)")},
+    {QT_TRANSLATE_NOOP("FrameLogModel", "Direction")},
+    {QT_TRANSLATE_NOOP("FrameLogModel", "Message ID"),
+     QT_TRANSLATE_NOOP("FrameLogModel", "ID_msg of the frame, decoded when the row is shown"), Qt::AlignRight},
+    {QT_TRANSLATE_NOOP("FrameLogModel", "Corrected bytes"),
+     QT_TRANSLATE_NOOP("FrameLogModel",
+                       "Bytes Reed-Solomon corrected in BLOCK 1 + BLOCK 2; \"beyond\" when a codeword could not "
+                       "be corrected"),
+     Qt::AlignRight},
+    {QT_TRANSLATE_NOOP("FrameLogModel", "Status")},
+});
+static_assert(kColumns.size() == FrameLogModel::kColumnCount);
+
+constexpr auto kStatusTexts = std::to_array<Named<FrameStatus>>({
+    {FrameStatus::Decoded, QT_TRANSLATE_NOOP("FrameLogModel", "decoded")},
+    {FrameStatus::Corrected, QT_TRANSLATE_NOOP("FrameLogModel", "corrected")},
+    {FrameStatus::Uncorrectable, QT_TRANSLATE_NOOP("FrameLogModel", "uncorrectable")},
+    {FrameStatus::Rejected, QT_TRANSLATE_NOOP("FrameLogModel", "refused")},
+    {FrameStatus::NotChecked, QT_TRANSLATE_NOOP("FrameLogModel", "not checked")},
+});
 
 // "07:32:00.123": the time of day is what an operator compares; the date and
 // the microseconds are in the tooltip.
@@ -44,57 +68,12 @@ qint8 clampCorrected(int n)
 
 }  // namespace
 
-FrameLogModel::FrameLogModel(QObject* parent) : QAbstractTableModel(parent) {}
+FrameLogModel::FrameLogModel(QObject* parent) : FlatTableModel(kColumns, parent) {}
 
 FrameLogModel::~FrameLogModel() = default;
 
-int FrameLogModel::rowCount(const QModelIndex& parent) const
+QVariant FrameLogModel::cellData(const QModelIndex& index, int role) const
 {
-    return parent.isValid() ? 0 : int(m_rows.size());
-}
-
-int FrameLogModel::columnCount(const QModelIndex& parent) const
-{
-    return parent.isValid() ? 0 : kColumnCount;
-}
-
-QVariant FrameLogModel::headerData(int section, Qt::Orientation orientation, int role) const
-{
-    if (orientation != Qt::Horizontal)
-        return {};
-    if (role == Qt::DisplayRole) {
-        switch (section) {
-            case NumberColumn:
-                return tr("No.");
-            case TimeColumn:
-                return tr("Time (UTC)");
-            case DirectionColumn:
-                return tr("Direction");
-            case MessageIdColumn:
-                return tr("Message ID");
-            case CorrectedColumn:
-                return tr("Corrected bytes");
-            case StatusColumn:
-                return tr("Status");
-        }
-    }
-    if (role == Qt::ToolTipRole) {
-        switch (section) {
-            case MessageIdColumn:
-                return tr("ID_msg of the frame, decoded when the row is shown");
-            case CorrectedColumn:
-                return tr(
-                    "Bytes Reed-Solomon corrected in BLOCK 1 + BLOCK 2; \"beyond\" when a codeword could not be "
-                    "corrected");
-        }
-    }
-    return {};
-}
-
-QVariant FrameLogModel::data(const QModelIndex& index, int role) const
-{
-    if (!index.isValid() || index.row() >= int(m_rows.size()))
-        return {};
     const Row& r = m_rows[std::size_t(index.row())];
     switch (role) {
         case Qt::DisplayRole:
@@ -107,11 +86,6 @@ QVariant FrameLogModel::data(const QModelIndex& index, int role) const
             if (index.column() == CorrectedColumn && r.corrected1 >= 0 && r.corrected2 >= 0)
                 return tr("%1 in the first codeword, %2 in the second").arg(r.corrected1).arg(r.corrected2);
             return {};
-        case Qt::TextAlignmentRole:
-            if (index.column() == NumberColumn || index.column() == MessageIdColumn ||
-                index.column() == CorrectedColumn)
-                return QVariant::fromValue(Qt::AlignRight | Qt::AlignVCenter);
-            return QVariant::fromValue(Qt::AlignLeft | Qt::AlignVCenter);
         case Qt::ForegroundRole:
             if (m_played >= 0 && index.row() >= m_played)
                 return QBrush(QColor(0x9a, 0x9a, 0x9a));
@@ -135,19 +109,7 @@ QVariant FrameLogModel::data(const QModelIndex& index, int role) const
 
 QString FrameLogModel::statusText(FrameStatus status)
 {
-    switch (status) {
-        case FrameStatus::Decoded:
-            return tr("decoded");
-        case FrameStatus::Corrected:
-            return tr("corrected");
-        case FrameStatus::Uncorrectable:
-            return tr("uncorrectable");
-        case FrameStatus::Rejected:
-            return tr("refused");
-        case FrameStatus::NotChecked:
-            return tr("not checked");
-    }
-    return {};
+    return tr(nameOf(kStatusTexts, status));
 }
 
 QString FrameLogModel::cellText(int row, const Row& r, int column) const
@@ -332,7 +294,7 @@ void FrameLogModel::setLogKey(std::shared_ptr<const rcm::LogKey> key)
         if (row.enciphered && !row.hasMessageId)
             row.decoded = false;
     if (!m_rows.empty())
-        emit dataChanged(index(0, 0), index(rowCount() - 1, columnCount() - 1));
+        rowsChanged(0, rows() - 1);
     emit logKeyChanged();
 }
 
@@ -385,7 +347,7 @@ void FrameLogModel::setPlayedRows(int count)
     const int last = int(m_rows.size()) - 1;
     const int from = std::clamp(before < 0 || count < 0 ? 0 : std::min(before, count) - 1, 0, last);
     const int to = before < 0 || count < 0 ? last : std::clamp(std::max(before, count), 0, last);
-    emit dataChanged(index(from, 0), index(to, kColumnCount - 1), {Qt::ForegroundRole, Qt::FontRole});
+    rowsChanged(from, to, {Qt::ForegroundRole, Qt::FontRole});
 }
 
 void FrameLogModel::appendLogged(const LoggedFrame& frame)

@@ -18,8 +18,8 @@
 #include "link/framelog/FrameLog.h"
 #include "link/framelog/FrameLogReader.h"
 #include "link/session/LoggedFrame.h"
+#include "ui/table/FlatTableModel.h"
 
-#include <QAbstractTableModel>
 #include <QByteArray>
 
 #include <memory>
@@ -30,7 +30,7 @@ namespace rcm {
 class LogKey;
 }
 
-class FrameLogModel : public QAbstractTableModel {
+class FrameLogModel : public FlatTableModel {
     Q_OBJECT
 
 public:
@@ -42,11 +42,6 @@ public:
 
     explicit FrameLogModel(QObject* parent = nullptr);
     ~FrameLogModel() override;
-
-    int rowCount(const QModelIndex& parent = {}) const override;
-    int columnCount(const QModelIndex& parent = {}) const override;
-    QVariant data(const QModelIndex& index, int role = Qt::DisplayRole) const override;
-    QVariant headerData(int section, Qt::Orientation orientation, int role = Qt::DisplayRole) const override;
 
     // Replaces every row by the records of a pcapng frame log. On a log
     // corrupt part-way the records before the fault are shown and the
@@ -142,6 +137,9 @@ private:
     };
     static_assert(sizeof(Row) == 32, "a day of rows is budgeted at 32 bytes each");
     static constexpr qint8 kNotKnown = -2;
+
+    QVariant cellData(const QModelIndex& index, int role) const override;
+    int rows() const override { return int(m_rows.size()); }
 
     void decodeRow(const Row& row) const;
     QByteArray bytesOf(const Row& row) const;
