@@ -155,6 +155,21 @@ std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string*
     const auto shortOf = [&](const std::string& what, std::size_t need) {
         return fail(what + " needs " + std::to_string(need) + " bytes; " + std::to_string(r.left()) + " left");
     };
+    // A list's count, or nothing (the error said) when its two bytes are missing.
+    const auto listCount = [&](const std::string& what) -> std::optional<std::uint16_t> {
+        if (!r.has(2)) {
+            shortOf(what, 2);
+            return std::nullopt;
+        }
+        return r.u16();
+    };
+    // Whether the next need bytes are there; says so when not.
+    const auto entryHas = [&](const std::string& what, std::size_t need) {
+        if (r.has(need))
+            return true;
+        shortOf(what, need);
+        return false;
+    };
     if (!r.has(kHeaderBytes))
         return shortOf("the plan header", kHeaderBytes);
     Contents c;
@@ -184,13 +199,13 @@ std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string*
         c.items.push_back(item);
     }
     if (format == 2) {
-        if (!r.has(2))
-            return shortOf("the fence polygon count", 2);
-        const std::uint16_t polygons = r.u16();
-        for (std::size_t i = 0; i < polygons; ++i) {
+        const auto polygons = listCount("the fence polygon count");
+        if (!polygons)
+            return std::nullopt;
+        for (std::size_t i = 0; i < *polygons; ++i) {
             const std::string name = "fence polygon " + std::to_string(i + 1);
-            if (!r.has(4))
-                return shortOf(name, 4);
+            if (!entryHas(name, 4))
+                return std::nullopt;
             FencePolygon polygon;
             polygon.inclusion = (r.u8() & 1) != 0;
             r.u8();
@@ -203,12 +218,12 @@ std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string*
                 polygon.vertices.push_back(r.position());
             c.polygons.push_back(std::move(polygon));
         }
-        if (!r.has(2))
-            return shortOf("the fence circle count", 2);
-        const std::uint16_t circles = r.u16();
-        for (std::size_t i = 0; i < circles; ++i) {
-            if (!r.has(14))
-                return shortOf("fence circle " + std::to_string(i + 1), 14);
+        const auto circles = listCount("the fence circle count");
+        if (!circles)
+            return std::nullopt;
+        for (std::size_t i = 0; i < *circles; ++i) {
+            if (!entryHas("fence circle " + std::to_string(i + 1), 14))
+                return std::nullopt;
             FenceCircle circle;
             circle.inclusion = (r.u8() & 1) != 0;
             r.u8();
@@ -218,12 +233,12 @@ std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string*
                 return fail("fence circle " + std::to_string(i + 1) + " has no radius");
             c.circles.push_back(circle);
         }
-        if (!r.has(2))
-            return shortOf("the rally point count", 2);
-        const std::uint16_t rally = r.u16();
-        for (std::size_t i = 0; i < rally; ++i) {
-            if (!r.has(12))
-                return shortOf("rally point " + std::to_string(i + 1), 12);
+        const auto rally = listCount("the rally point count");
+        if (!rally)
+            return std::nullopt;
+        for (std::size_t i = 0; i < *rally; ++i) {
+            if (!entryHas("rally point " + std::to_string(i + 1), 12))
+                return std::nullopt;
             RallyPoint point;
             point.position = r.position();
             point.altitude = r.i32();
