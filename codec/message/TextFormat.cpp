@@ -173,12 +173,13 @@ void appendValue(std::string& out, const ItemInfo& info, const Value& v)
         }
         break;
     case ValueKind::Text:
-        appendText(out, v.text);
-        break;
     case ValueKind::CameraId:
+        // A camera ID is a text with a number after it.
         appendText(out, v.text);
-        out += ' ';
-        appendInt(out, v.number);
+        if (info.kind == ValueKind::CameraId) {
+            out += ' ';
+            appendInt(out, v.number);
+        }
         break;
     }
 }

@@ -4,6 +4,7 @@
 #include "codec/message/DigitPairs.h"
 
 #include <cstdio>
+#include <initializer_list>
 
 namespace rcm {
 namespace {
@@ -33,6 +34,25 @@ std::string plainRange(std::int64_t v, std::int64_t min, std::int64_t max, const
     const bool below = v < min;
     return std::string(what) + " " + std::to_string(v) + (below ? " is below the minimum " : " is above the maximum ") +
            std::to_string(below ? min : max) + " by " + std::to_string(distanceOutside(v, min, max));
+}
+
+// A value in parts (a station's code and unit, a time's digit pairs): the
+// reason names the first part out of its range; empty when all are in range.
+struct Part {
+    std::int64_t value;
+    std::int64_t min;
+    std::int64_t max;
+    const char* what;
+};
+
+std::string firstOutOfRange(std::initializer_list<Part> parts)
+{
+    for (const Part& p : parts) {
+        std::string e = plainRange(p.value, p.min, p.max, p.what);
+        if (!e.empty())
+            return e;
+    }
+    return {};
 }
 
 bool printableAscii(const std::string& s)
@@ -96,28 +116,17 @@ std::string checkValue(const ItemInfo& item, const Value& value)
         return rangeError(item, value.number, item.min, item.max);
     case ValueKind::Raw:
         return plainRange(value.number, 0, 255, "value");
-    case ValueKind::Station: {
-        std::string e = plainRange(value.number, item.min, item.max, "country dialling code");
-        if (e.empty())
-            e = plainRange(value.second, 0, 65535, "unit number");
-        return e;
-    }
-    case ValueKind::BytePair: {
-        std::string e = plainRange(value.number, 0, 255, "first format ID");
-        if (e.empty())
-            e = plainRange(value.second, 0, 255, "second format ID");
-        return e;
-    }
+    case ValueKind::Station:
+        return firstOutOfRange({{value.number, item.min, item.max, "country dialling code"},
+                                {value.second, 0, 65535, "unit number"}});
+    case ValueKind::BytePair:
+        return firstOutOfRange({{value.number, 0, 255, "first format ID"}, {value.second, 0, 255, "second format ID"}});
     case ValueKind::Time: {
         // Checked digit pair by digit pair so the reason names the part that is wrong.
         if (value.number < 0)
             return plainRange(value.number, 0, 235959, "time hhmmss");
         const auto [hh, mm, ss] = DigitPairs::unpack(value.number);
-        if (hh > 23)
-            return plainRange(hh, 0, 23, "hours");
-        if (mm > 59)
-            return plainRange(mm, 0, 59, "minutes");
-        return plainRange(ss, 0, 59, "seconds");
+        return firstOutOfRange({{hh, 0, 23, "hours"}, {mm, 0, 59, "minutes"}, {ss, 0, 59, "seconds"}});
     }
     case ValueKind::Date: {
         if (value.number < 0)

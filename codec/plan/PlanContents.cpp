@@ -144,19 +144,108 @@ std::vector<std::uint8_t> encode(const Contents& contents)
     return w.take();
 }
 
+namespace {
+
+// A plan being decoded: the reader, and the first error met, said as
+// "byte <offset>: <what>".
+class Decoding {
+public:
+    Decoding(std::span<const std::uint8_t> bytes, std::string* error) : r(bytes), m_error(error) {}
+
+    // False, the error said.
+    bool refuse(const std::string& what)
+    {
+        if (m_error)
+            *m_error = "byte " + std::to_string(r.offset()) + ": " + what;
+        return false;
+    }
+    // Whether the next need bytes are there; says so when not.
+    bool has(const std::string& what, std::size_t need)
+    {
+        return r.has(need) ||
+               refuse(what + " needs " + std::to_string(need) + " bytes; " + std::to_string(r.left()) + " left");
+    }
+    // A list: its two-byte count (countWhat names it when missing), then each
+    // entry read by readEntry(1), readEntry(2), ...; false at the first fault.
+    template <typename ReadEntry>
+    bool readList(const std::string& countWhat, const ReadEntry& readEntry)
+    {
+        if (!has(countWhat, 2))
+            return false;
+        const std::uint16_t count = r.u16();
+        for (std::size_t i = 0; i < count; ++i) {
+            if (!readEntry(i + 1))
+                return false;
+        }
+        return true;
+    }
+
+    // Format 2's lists after the items: fence polygons, fence circles, rally points.
+    bool readFenceAndRally(Contents& c);
+
+    Reader r;
+
+private:
+    std::string* m_error;
+};
+
+bool Decoding::readFenceAndRally(Contents& c)
+{
+    // Each entry's reader takes the entry and returns true, or says what
+    // is wrong and returns false.
+    const auto readPolygon = [&](std::size_t number) {
+        const std::string name = "fence polygon " + std::to_string(number);
+        if (!has(name, 4))
+            return false;
+        FencePolygon polygon;
+        polygon.inclusion = (r.u8() & 1) != 0;
+        r.u8();
+        const std::uint16_t vertices = r.u16();
+        if (vertices < 3)
+            return refuse(name + " has " + std::to_string(vertices) + " vertices; a polygon needs 3");
+        if (!has(name + "'s " + std::to_string(vertices) + " vertices", 8 * std::size_t(vertices)))
+            return false;
+        for (std::size_t v = 0; v < vertices; ++v)
+            polygon.vertices.push_back(r.position());
+        c.polygons.push_back(std::move(polygon));
+        return true;
+    };
+    const auto readCircle = [&](std::size_t number) {
+        if (!has("fence circle " + std::to_string(number), 14))
+            return false;
+        FenceCircle circle;
+        circle.inclusion = (r.u8() & 1) != 0;
+        r.u8();
+        circle.centre = r.position();
+        circle.radius = r.u32();
+        if (circle.radius == 0)
+            return refuse("fence circle " + std::to_string(number) + " has no radius");
+        c.circles.push_back(circle);
+        return true;
+    };
+    const auto readRallyPoint = [&](std::size_t number) {
+        if (!has("rally point " + std::to_string(number), 12))
+            return false;
+        // A braced list is read left to right: the position, then the altitude.
+        c.rallyPoints.push_back(RallyPoint{r.position(), r.i32()});
+        return true;
+    };
+    return readList("the fence polygon count", readPolygon) && readList("the fence circle count", readCircle) &&
+           readList("the rally point count", readRallyPoint);
+}
+
+}  // namespace
+
 std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string* error)
 {
-    Reader r(bytes);
+    Decoding d(bytes, error);
+    Reader& r = d.r;
     const auto fail = [&](const std::string& what) -> std::optional<Contents> {
-        if (error)
-            *error = "byte " + std::to_string(r.offset()) + ": " + what;
+        d.refuse(what);
         return std::nullopt;
     };
-    const auto shortOf = [&](const std::string& what, std::size_t need) {
-        return fail(what + " needs " + std::to_string(need) + " bytes; " + std::to_string(r.left()) + " left");
-    };
-    if (!r.has(kHeaderBytes))
-        return shortOf("the plan header", kHeaderBytes);
+    if (!d.has("the plan header", kHeaderBytes))
+        return std::nullopt;
     Contents c;
     const std::uint8_t format = r.u8();
     if (format != 1 && format != 2)
@@ -169,8 +258,8 @@ std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string*
     c.homeAltitude = r.i32();
     c.items.reserve(count);
     for (std::size_t i = 0; i < count; ++i) {
-        if (!r.has(kItemBytes))
-            return shortOf("mission item " + std::to_string(i + 1) + " of " + std::to_string(count), kItemBytes);
+        if (!d.has("mission item " + std::to_string(i + 1) + " of " + std::to_string(count), kItemBytes))
+            return std::nullopt;
         Item item;
         item.seq = r.u16();
         item.command = r.u16();
@@ -183,53 +272,8 @@ std::optional<Contents> decode(std::span<const std::uint8_t> bytes, std::string*
         item.z = r.i32();
         c.items.push_back(item);
     }
-    if (format == 2) {
-        if (!r.has(2))
-            return shortOf("the fence polygon count", 2);
-        const std::uint16_t polygons = r.u16();
-        for (std::size_t i = 0; i < polygons; ++i) {
-            const std::string name = "fence polygon " + std::to_string(i + 1);
-            if (!r.has(4))
-                return shortOf(name, 4);
-            FencePolygon polygon;
-            polygon.inclusion = (r.u8() & 1) != 0;
-            r.u8();
-            const std::uint16_t vertices = r.u16();
-            if (vertices < 3)
-                return fail(name + " has " + std::to_string(vertices) + " vertices; a polygon needs 3");
-            if (!r.has(8 * std::size_t(vertices)))
-                return shortOf(name + "'s " + std::to_string(vertices) + " vertices", 8 * std::size_t(vertices));
-            for (std::size_t v = 0; v < vertices; ++v)
-                polygon.vertices.push_back(r.position());
-            c.polygons.push_back(std::move(polygon));
-        }
-        if (!r.has(2))
-            return shortOf("the fence circle count", 2);
-        const std::uint16_t circles = r.u16();
-        for (std::size_t i = 0; i < circles; ++i) {
-            if (!r.has(14))
-                return shortOf("fence circle " + std::to_string(i + 1), 14);
-            FenceCircle circle;
-            circle.inclusion = (r.u8() & 1) != 0;
-            r.u8();
-            circle.centre = r.position();
-            circle.radius = r.u32();
-            if (circle.radius == 0)
-                return fail("fence circle " + std::to_string(i + 1) + " has no radius");
-            c.circles.push_back(circle);
-        }
-        if (!r.has(2))
-            return shortOf("the rally point count", 2);
-        const std::uint16_t rally = r.u16();
-        for (std::size_t i = 0; i < rally; ++i) {
-            if (!r.has(12))
-                return shortOf("rally point " + std::to_string(i + 1), 12);
-            RallyPoint point;
-            point.position = r.position();
-            point.altitude = r.i32();
-            c.rallyPoints.push_back(point);
-        }
-    }
+    if (format == 2 && !d.readFenceAndRally(c))
+        return std::nullopt;
     if (r.left() != 0)
         return fail(std::to_string(r.left()) + (r.left() == 1 ? " byte" : " bytes") + " after the end of a format " +
                     std::to_string(format) + " plan");

@@ -21,6 +21,19 @@ bool fitsInt(std::size_t n)
     return n <= static_cast<std::size_t>(INT_MAX);
 }
 
+// What sealing and opening share: AES-256-GCM keyed with the key and the
+// nonce, the associated data taken in, then in (inSize bytes) run through to
+// out; *length is what was written. Sealing and opening differ only after.
+bool runGcm(const CipherContext& c, bool sealing, const SecretKey& key, const std::uint8_t* nonce,
+            std::span<const std::uint8_t> associated, const std::uint8_t* in, std::size_t inSize, std::uint8_t* out,
+            int* length)
+{
+    return c.ctx &&
+           EVP_CipherInit_ex(c.ctx, EVP_aes_256_gcm(), nullptr, key.bytes().data(), nonce, sealing ? 1 : 0) == 1 &&
+           EVP_CipherUpdate(c.ctx, nullptr, length, associated.data(), int(associated.size())) == 1 &&
+           EVP_CipherUpdate(c.ctx, out, length, in, int(inSize)) == 1;
+}
+
 }  // namespace
 
 std::string_view brokerKeyInfo()
@@ -48,13 +61,11 @@ std::vector<std::uint8_t> sealBrokerPayload(const SecretKey& key, std::span<cons
     CipherContext c;
     int length = 0;
     int tail = 0;
-    const bool ok =
-        c.ctx && EVP_EncryptInit_ex(c.ctx, EVP_aes_256_gcm(), nullptr, key.bytes().data(), out.data()) == 1 &&
-        EVP_EncryptUpdate(c.ctx, nullptr, &length, associated.data(), int(associated.size())) == 1 &&
-        EVP_EncryptUpdate(c.ctx, out.data() + kSealNonceSize, &length, plain.data(), int(plain.size())) == 1 &&
-        EVP_EncryptFinal_ex(c.ctx, out.data() + kSealNonceSize + length, &tail) == 1 &&
-        EVP_CIPHER_CTX_ctrl(c.ctx, EVP_CTRL_GCM_GET_TAG, int(kSealTagSize),
-                            out.data() + kSealNonceSize + plain.size()) == 1;
+    const bool ok = runGcm(c, true, key, out.data(), associated, plain.data(), plain.size(),
+                           out.data() + kSealNonceSize, &length) &&
+                    EVP_EncryptFinal_ex(c.ctx, out.data() + kSealNonceSize + length, &tail) == 1 &&
+                    EVP_CIPHER_CTX_ctrl(c.ctx, EVP_CTRL_GCM_GET_TAG, int(kSealTagSize),
+                                        out.data() + kSealNonceSize + plain.size()) == 1;
     if (!ok)
         throw std::runtime_error("OpenSSL AES-256-GCM sealing failed");
     return out;
@@ -74,12 +85,10 @@ std::optional<std::vector<std::uint8_t>> openBrokerPayload(const SecretKey& key,
     CipherContext c;
     int length = 0;
     int tail = 0;
-    const bool ok =
-        c.ctx && EVP_DecryptInit_ex(c.ctx, EVP_aes_256_gcm(), nullptr, key.bytes().data(), sealed.data()) == 1 &&
-        EVP_DecryptUpdate(c.ctx, nullptr, &length, associated.data(), int(associated.size())) == 1 &&
-        EVP_DecryptUpdate(c.ctx, plain.data(), &length, sealed.data() + kSealNonceSize, int(plainSize)) == 1 &&
-        EVP_CIPHER_CTX_ctrl(c.ctx, EVP_CTRL_GCM_SET_TAG, int(kSealTagSize), tag) == 1 &&
-        EVP_DecryptFinal_ex(c.ctx, plain.data() + length, &tail) == 1;
+    const bool ok = runGcm(c, false, key, sealed.data(), associated, sealed.data() + kSealNonceSize, plainSize,
+                           plain.data(), &length) &&
+                    EVP_CIPHER_CTX_ctrl(c.ctx, EVP_CTRL_GCM_SET_TAG, int(kSealTagSize), tag) == 1 &&
+                    EVP_DecryptFinal_ex(c.ctx, plain.data() + length, &tail) == 1;
     if (!ok)
         return std::nullopt;
     return plain;

@@ -358,6 +358,24 @@ struct CipherFree {
     throw std::runtime_error(std::string("Hctr2: OpenSSL ") + what + " failed");
 }
 
+void checkArgs(std::span<const std::uint8_t> in, std::span<std::uint8_t> out,
+               const char* op)
+{
+    if (in.size() < kBlock)
+        throw std::invalid_argument(std::string("Hctr2::") + op
+            + ": message must be at least 16 bytes, got " + std::to_string(in.size()));
+    if (out.size() != in.size())
+        throw std::invalid_argument(std::string("Hctr2::") + op
+            + ": output size " + std::to_string(out.size())
+            + " differs from input size " + std::to_string(in.size()));
+    const std::less<const std::uint8_t*> lt;
+    const std::uint8_t* i0 = in.data();
+    const std::uint8_t* o0 = out.data();
+    if (i0 != o0 && lt(i0, o0 + out.size()) && lt(o0, i0 + in.size()))
+        throw std::invalid_argument(std::string("Hctr2::") + op
+            + ": input and output overlap without being the same buffer");
+}
+
 } // namespace
 
 // ====================================================================== Hctr2
@@ -472,9 +490,13 @@ struct Hctr2::Impl {
     // In-place works: in's first block is read (first hash) before out's
     // first block is written (last step), and XCTR reads each byte of the
     // rest before writing it.
-    void run(bool forward, std::span<const std::uint8_t> tweak,
+    // op names the public call in the errors thrown; the lock keeps calls
+    // from different threads off the shared contexts.
+    void run(bool forward, const char* op, std::span<const std::uint8_t> tweak,
              std::span<const std::uint8_t> in, std::span<std::uint8_t> out)
     {
+        checkArgs(in, out, op);
+        const std::lock_guard<std::mutex> lock(mutex);
         Scratch sc;
         const std::size_t restLen = in.size() - kBlock;
         hashTweak(tweak, restLen % kBlock != 0, sc.tweakState, sc);
@@ -490,27 +512,6 @@ struct Hctr2::Impl {
     }
 };
 
-namespace {
-
-void checkArgs(std::span<const std::uint8_t> in, std::span<std::uint8_t> out,
-               const char* op)
-{
-    if (in.size() < kBlock)
-        throw std::invalid_argument(std::string("Hctr2::") + op
-            + ": message must be at least 16 bytes, got " + std::to_string(in.size()));
-    if (out.size() != in.size())
-        throw std::invalid_argument(std::string("Hctr2::") + op
-            + ": output size " + std::to_string(out.size())
-            + " differs from input size " + std::to_string(in.size()));
-    const std::less<const std::uint8_t*> lt;
-    const std::uint8_t* i0 = in.data();
-    const std::uint8_t* o0 = out.data();
-    if (i0 != o0 && lt(i0, o0 + out.size()) && lt(o0, i0 + in.size()))
-        throw std::invalid_argument(std::string("Hctr2::") + op
-            + ": input and output overlap without being the same buffer");
-}
-
-} // namespace
 
 Hctr2::Hctr2(std::span<const std::uint8_t> key)
 {
@@ -552,18 +553,14 @@ void Hctr2::encrypt(std::span<const std::uint8_t> tweak,
                     std::span<const std::uint8_t> in,
                     std::span<std::uint8_t> out) const
 {
-    checkArgs(in, out, "encrypt");
-    const std::lock_guard<std::mutex> lock(d_->mutex);
-    d_->run(true, tweak, in, out);
+    d_->run(true, "encrypt", tweak, in, out);
 }
 
 void Hctr2::decrypt(std::span<const std::uint8_t> tweak,
                     std::span<const std::uint8_t> in,
                     std::span<std::uint8_t> out) const
 {
-    checkArgs(in, out, "decrypt");
-    const std::lock_guard<std::mutex> lock(d_->mutex);
-    d_->run(false, tweak, in, out);
+    d_->run(false, "decrypt", tweak, in, out);
 }
 
 // ===================================================================== detail

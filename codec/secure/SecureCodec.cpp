@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -106,17 +107,11 @@ std::string_view directionName(Direction d) { return d == Direction::GcsToUa ? "
 
 std::string_view rejectionName(Rejection r)
 {
-    switch (r) {
-    case Rejection::Forged:
-        return "forged";
-    case Rejection::Replayed:
-        return "replayed";
-    case Rejection::StaleTime:
-        return "stale time";
-    case Rejection::Plaintext:
-        return "plaintext";
-    }
-    return "?";
+    // In the enumeration's order.
+    static constexpr std::array<std::string_view, kRejectionCount> kNames{"forged", "replayed", "stale time",
+                                                                          "plaintext"};
+    const auto index = std::size_t(r);
+    return index < kNames.size() ? kNames[index] : "?";
 }
 
 // ---------------------------------------------------------------- keys

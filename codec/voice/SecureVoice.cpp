@@ -164,7 +164,7 @@ SecureVoiceOpener::~SecureVoiceOpener() = default;
 SecureVoiceOpener::Verdict SecureVoiceOpener::tryFrame(std::uint64_t offset, SecureVoiceFrame& frame)
 {
     std::array<std::uint8_t, kSecureFrameBytes> cw;
-    std::memcpy(cw.data(), at(offset), kSecureFrameBytes);
+    std::memcpy(cw.data(), m_stream.at(offset), kSecureFrameBytes);
     const int corrected = correctOneByte(cw);
     if (corrected < 0 || cw[0] != kSecureSyncByte)
         return Verdict::NotAFrame;
@@ -253,83 +253,58 @@ void SecureVoiceOpener::take(std::uint64_t offset, const SecureVoiceFrame& frame
     }
     m_hasLast = true;
     m_lastCounter = frame.counter;
-    m_lastEnd = offset + kSecureFrameBytes;
-    m_tracking = true;
-    m_expect = m_lastEnd;
-    m_misses = 0;
+    m_stream.took(offset);
 }
 
 void SecureVoiceOpener::open(std::span<const std::uint8_t> bytes, std::vector<std::uint8_t>& plain)
 {
     m_stats.bytesIn += bytes.size();
-    constexpr std::size_t kSlice = 1024;
-    while (!bytes.empty()) {
-        const std::size_t n = std::min(bytes.size(), kSlice);
-        m_buffer.insert(m_buffer.end(), bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(n));
-        bytes = bytes.subspan(n);
-        process(plain);
-        const std::uint64_t keep = std::max(m_base, m_tracking ? std::min(m_lastEnd, m_expect) : m_scan);
-        const std::size_t drop = static_cast<std::size_t>(std::min<std::uint64_t>(keep - m_base, m_buffer.size()));
-        m_buffer.erase(m_buffer.begin(), m_buffer.begin() + static_cast<std::ptrdiff_t>(drop));
-        m_base += drop;
-    }
+    m_stream.feed(bytes, [&] { process(plain); });
 }
 
 void SecureVoiceOpener::process(std::vector<std::uint8_t>& plain)
 {
-    const std::uint64_t end = m_base + m_buffer.size();
     SecureVoiceFrame frame;
-    for (;;) {
-        if (m_tracking) {
-            if (m_expect + kSecureFrameBytes > end)
+    const auto inStep = [&](std::uint64_t offset) {
+        switch (tryFrame(offset, frame)) {
+            case Verdict::Accepted:
+                take(offset, frame, plain);
                 return;
-            switch (tryFrame(m_expect, frame)) {
-                case Verdict::Accepted:
-                    take(m_expect, frame, plain);
-                    continue;
-                case Verdict::Replayed:
-                    // A frame put into the stream: skipped whole, never played.
-                    ++m_stats.replayed;
-                    m_expect += kSecureFrameBytes;
-                    m_lastEnd = m_expect;
-                    continue;
-                case Verdict::Forged:
-                    ++m_stats.forged;
-                    m_expect += kSecureFrameBytes;
-                    m_lastEnd = m_expect;
-                    continue;
-                case Verdict::Garbled:
-                    ++m_stats.garbled;
-                    break;
-                case Verdict::NotAFrame:
-                    break;
-            }
-            m_expect += kSecureFrameBytes;
-            if (++m_misses >= kMaxMisses) {
-                m_tracking = false;
-                m_scan = m_lastEnd;
-                ++m_stats.resyncs;
-            }
-            continue;
-        }
-        bool taken = false;
-        for (; m_scan + kSecureFrameBytes <= end; ++m_scan) {
-            if (*at(m_scan) != kSecureSyncByte)
-                continue;
-            const Verdict verdict = tryFrame(m_scan, frame);
-            if (verdict == Verdict::Accepted) {
-                take(m_scan, frame, plain);
-                taken = true;
+            case Verdict::Replayed:
+                // A frame put into the stream: skipped whole, never played.
+                ++m_stats.replayed;
+                m_stream.passed();
+                return;
+            case Verdict::Forged:
+                ++m_stats.forged;
+                m_stream.passed();
+                return;
+            case Verdict::Garbled:
+                ++m_stats.garbled;
                 break;
+            case Verdict::NotAFrame:
+                break;
+        }
+        if (m_stream.missed())
+            ++m_stats.resyncs;
+    };
+    const auto hunt = [&](std::uint64_t end) {
+        for (; m_stream.scan + kSecureFrameBytes <= end; ++m_stream.scan) {
+            if (*m_stream.at(m_stream.scan) != kSecureSyncByte)
+                continue;
+            const Verdict verdict = tryFrame(m_stream.scan, frame);
+            if (verdict == Verdict::Accepted) {
+                take(m_stream.scan, frame, plain);
+                return true;
             }
             if (verdict == Verdict::Replayed)
                 ++m_stats.replayed;
             else if (verdict == Verdict::Forged)
                 ++m_stats.forged;
         }
-        if (!taken)
-            return;
-    }
+        return false;
+    };
+    m_stream.search(inStep, hunt);
 }
 
 }  // namespace rcm::voice

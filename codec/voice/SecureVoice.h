@@ -95,16 +95,12 @@ private:
 // frames lost between them.
 class SecureVoiceOpener {
 public:
-    struct Stats {
-        std::uint64_t bytesIn = 0;
+    struct Stats : FrameStreamStats {
         std::uint64_t accepted = 0;
         std::uint64_t forged = 0;    // sync and parity right, no tag right: refused
         std::uint64_t replayed = 0;  // authentic, but not after the last accepted: refused
         std::uint64_t garbled = 0;   // parity corrected a byte and no tag was right: errors, most likely
         std::uint64_t unchecked = 0;  // of the forged: refused without the window's search, over its budget
-        std::uint64_t lostFrames = 0;
-        std::uint64_t correctedFrames = 0;
-        std::uint64_t resyncs = 0;
     };
 
     // Two frame slots in a row that fail put the opener out of step.
@@ -122,7 +118,7 @@ public:
     // Plain 12-byte frames appended to `plain`.
     void open(std::span<const std::uint8_t> bytes, std::vector<std::uint8_t>& plain);
     const Stats& stats() const { return m_stats; }
-    bool inStep() const { return m_tracking; }
+    bool inStep() const { return m_stream.tracking; }
     // The last counter accepted; 0 before any.
     std::uint64_t lastCounter() const { return m_hasLast ? m_lastCounter : 0; }
 
@@ -131,20 +127,13 @@ private:
     Verdict tryFrame(std::uint64_t offset, SecureVoiceFrame& frame);
     void take(std::uint64_t offset, const SecureVoiceFrame& frame, std::vector<std::uint8_t>& plain);
     void process(std::vector<std::uint8_t>& plain);
-    const std::uint8_t* at(std::uint64_t offset) const { return m_buffer.data() + (offset - m_base); }
 
     std::unique_ptr<SecureVoiceCipher> m_cipher;
     UtcMicros m_clock;
     std::uint64_t m_window;  // counts either side of the clock's
-    std::vector<std::uint8_t> m_buffer;
-    std::uint64_t m_base = 0;
-    bool m_tracking = false;
+    FrameStream m_stream{kSecureFrameBytes, kMaxMisses};
     bool m_hasLast = false;
-    std::uint64_t m_lastEnd = 0;
     std::uint64_t m_lastCounter = 0;
-    std::uint64_t m_expect = 0;
-    int m_misses = 0;
-    std::uint64_t m_scan = 0;
     std::int64_t m_searchSecond = 0;
     int m_searches = 0;  // window searches in m_searchSecond
     Stats m_stats;

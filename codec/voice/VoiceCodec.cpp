@@ -179,40 +179,21 @@ VoiceDecoder::~VoiceDecoder() = default;
 void VoiceDecoder::reset()
 {
     m_codec2.reset(createCodec2());
-    m_buffer.clear();
-    m_base = 0;
-    m_tracking = false;
+    m_stream = FrameStream(kFrameBytes, kMaxMisses);
     m_hasLast = false;
-    m_lastEnd = 0;
     m_lastSequence = 0;
-    m_expect = 0;
-    m_misses = 0;
-    m_scan = 0;
     m_stats = Stats{};
 }
 
 void VoiceDecoder::decode(std::span<const std::uint8_t> bytes, std::vector<std::int16_t>& pcm)
 {
     m_stats.bytesIn += bytes.size();
-    // In slices, so that a large piece costs no more memory than a small one.
-    constexpr std::size_t kSlice = 1024;
-    while (!bytes.empty()) {
-        const std::size_t n = std::min(bytes.size(), kSlice);
-        m_buffer.insert(m_buffer.end(), bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(n));
-        bytes = bytes.subspan(n);
-        process(pcm);
-        // Kept: in step, from the last frame taken, where hunting would
-        // start again; hunting, from the next offset to try.
-        const std::uint64_t keep = std::max(m_base, m_tracking ? m_lastEnd : m_scan);
-        const std::size_t drop = static_cast<std::size_t>(std::min<std::uint64_t>(keep - m_base, m_buffer.size()));
-        m_buffer.erase(m_buffer.begin(), m_buffer.begin() + static_cast<std::ptrdiff_t>(drop));
-        m_base += drop;
-    }
+    m_stream.feed(bytes, [&] { process(pcm); });
 }
 
 bool VoiceDecoder::frameAt(std::uint64_t offset, VoiceFrame& frame) const
 {
-    return parseFrame(std::span<const std::uint8_t, kFrameBytes>(at(offset), kFrameBytes), frame);
+    return parseFrame(std::span<const std::uint8_t, kFrameBytes>(m_stream.at(offset), kFrameBytes), frame);
 }
 
 // Frames missing between the last frame taken and one at `offset` with
@@ -222,7 +203,7 @@ std::uint64_t VoiceDecoder::framesLostBefore(std::uint64_t offset, std::uint8_t 
 {
     if (!m_hasLast)
         return 0;
-    const std::int64_t byBytes = static_cast<std::int64_t>((offset - m_lastEnd + kFrameBytes / 2) / kFrameBytes);
+    const std::int64_t byBytes = static_cast<std::int64_t>((offset - m_stream.lastEnd + kFrameBytes / 2) / kFrameBytes);
     const std::int64_t bySequence = (sequence - m_lastSequence - 1 + 2 * kSequenceModulus) % kSequenceModulus;
     const std::int64_t turns = (byBytes - bySequence + kSequenceModulus / 2) / kSequenceModulus;
     return static_cast<std::uint64_t>(std::max<std::int64_t>(0, bySequence + turns * kSequenceModulus));
@@ -231,7 +212,7 @@ std::uint64_t VoiceDecoder::framesLostBefore(std::uint64_t offset, std::uint8_t 
 void VoiceDecoder::take(std::uint64_t offset, const VoiceFrame& frame, std::uint64_t lost,
                         std::vector<std::int16_t>& pcm)
 {
-    m_stats.bytesSkipped += offset - (m_hasLast ? m_lastEnd : 0);
+    m_stats.bytesSkipped += offset - (m_hasLast ? m_stream.lastEnd : 0);
     m_stats.lostFrames += lost;
     pcm.resize(pcm.size() + lost * kFrameSamples, 0);
     const std::size_t at = pcm.size();
@@ -247,63 +228,45 @@ void VoiceDecoder::take(std::uint64_t offset, const VoiceFrame& frame, std::uint
     if (frame.corrected > 0)
         ++m_stats.correctedFrames;
     m_hasLast = true;
-    m_lastEnd = offset + kFrameBytes;
     m_lastSequence = frame.sequence;
-    m_tracking = true;
-    m_expect = m_lastEnd;
-    m_misses = 0;
+    m_stream.took(offset);
 }
 
 void VoiceDecoder::process(std::vector<std::int16_t>& pcm)
 {
-    const std::uint64_t end = m_base + m_buffer.size();
     VoiceFrame frame;
-    for (;;) {
-        if (m_tracking) {
-            if (m_expect + kFrameBytes > end)
-                return;
-            if (frameAt(m_expect, frame)) {
-                take(m_expect, frame, framesLostBefore(m_expect, frame.sequence), pcm);
+    const auto inStep = [&](std::uint64_t offset) {
+        if (frameAt(offset, frame))
+            take(offset, frame, framesLostBefore(offset, frame.sequence), pcm);
+        else if (m_stream.missed())
+            ++m_stats.resyncs;
+    };
+    const auto hunt = [&](std::uint64_t end) {
+        for (; m_stream.scan + kFrameBytes <= end; ++m_stream.scan) {
+            if (*m_stream.at(m_stream.scan) != kSyncByte || !frameAt(m_stream.scan, frame))
                 continue;
-            }
-            m_expect += kFrameBytes;
-            if (++m_misses >= kMaxMisses) {
-                // Bytes lost or inserted, most likely: look again from the
-                // last frame taken.
-                m_tracking = false;
-                m_scan = m_lastEnd;
-                ++m_stats.resyncs;
-            }
-            continue;
-        }
-
-        bool taken = false;
-        for (; m_scan + kFrameBytes <= end; ++m_scan) {
-            if (*at(m_scan) != kSyncByte || !frameAt(m_scan, frame))
-                continue;
-            const std::uint64_t lost = framesLostBefore(m_scan, frame.sequence);
-            const std::uint64_t byBytes = m_hasLast ? (m_scan - m_lastEnd + kFrameBytes / 2) / kFrameBytes : 0;
+            const std::uint64_t lost = framesLostBefore(m_stream.scan, frame.sequence);
+            const std::uint64_t byBytes =
+                m_hasLast ? (m_stream.scan - m_stream.lastEnd + kFrameBytes / 2) / kFrameBytes : 0;
             // The sequence agrees with the bytes in between: a 1 in 2^12
             // chance for a false frame (sync, RS, kind), less 3 in 64.
             if (m_hasLast && lost + 1 >= byBytes && lost <= byBytes + 1) {
-                take(m_scan, frame, lost, pcm);
-                taken = true;
-                break;
+                take(m_stream.scan, frame, lost, pcm);
+                return true;
             }
             // Otherwise the next frame must follow, in sequence.
-            if (m_scan + 2 * kFrameBytes > end)
-                return;  // wait for it
+            if (m_stream.scan + 2 * kFrameBytes > end)
+                return false;  // wait for it
             VoiceFrame next;
-            if (*at(m_scan + kFrameBytes) == kSyncByte && frameAt(m_scan + kFrameBytes, next) &&
+            if (*m_stream.at(m_stream.scan + kFrameBytes) == kSyncByte && frameAt(m_stream.scan + kFrameBytes, next) &&
                 next.sequence == ((frame.sequence + 1) & kSequenceMask)) {
-                take(m_scan, frame, lost, pcm);
-                taken = true;
-                break;
+                take(m_stream.scan, frame, lost, pcm);
+                return true;
             }
         }
-        if (!taken)
-            return;
-    }
+        return false;
+    };
+    m_stream.search(inStep, hunt);
 }
 
 }  // namespace rcm::voice

@@ -30,6 +30,8 @@
 // decodes voice in one thread.
 #pragma once
 
+#include "codec/voice/FrameStream.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -110,16 +112,6 @@ private:
 
 class VoiceDecoder {
 public:
-    struct Stats {
-        std::uint64_t bytesIn = 0;
-        std::uint64_t speechFrames = 0;
-        std::uint64_t idleFrames = 0;
-        std::uint64_t lostFrames = 0;       // slots played as silence: beyond correction, or bytes lost
-        std::uint64_t correctedFrames = 0;  // a byte corrected by RS
-        std::uint64_t bytesSkipped = 0;     // between frames taken (garbage, frames lost, lost alignment)
-        std::uint64_t resyncs = 0;          // lost step and hunted
-    };
-
     // Two frame slots in a row that fail put the decoder out of step.
     static constexpr int kMaxMisses = 2;
 
@@ -136,28 +128,27 @@ public:
     void reset();
 
     // In step: the next frame is expected at a known place.
-    bool inStep() const { return m_tracking; }
+    bool inStep() const { return m_stream.tracking; }
+    // What the decoder counts; its corrected frames had a byte corrected by RS.
+    struct Stats : FrameStreamStats {
+        std::uint64_t speechFrames = 0;
+        std::uint64_t idleFrames = 0;
+        std::uint64_t bytesSkipped = 0;  // between frames taken (garbage, frames lost, lost alignment)
+    };
     const Stats& stats() const { return m_stats; }
     // Bytes held for a later decision (at most two frames' worth between calls).
-    std::size_t bufferedBytes() const { return m_buffer.size(); }
+    std::size_t bufferedBytes() const { return m_stream.buffer.size(); }
 
 private:
     void process(std::vector<std::int16_t>& pcm);
     bool frameAt(std::uint64_t offset, VoiceFrame& frame) const;
     std::uint64_t framesLostBefore(std::uint64_t offset, std::uint8_t sequence) const;
     void take(std::uint64_t offset, const VoiceFrame& frame, std::uint64_t lost, std::vector<std::int16_t>& pcm);
-    const std::uint8_t* at(std::uint64_t offset) const { return m_buffer.data() + (offset - m_base); }
 
     std::unique_ptr<CODEC2, void (*)(CODEC2*)> m_codec2;
-    std::vector<std::uint8_t> m_buffer;
-    std::uint64_t m_base = 0;  // stream offset of m_buffer[0]
-    bool m_tracking = false;
-    bool m_hasLast = false;       // a frame has been taken
-    std::uint64_t m_lastEnd = 0;  // stream offset just after the last frame taken
+    FrameStream m_stream{kFrameBytes, kMaxMisses};
+    bool m_hasLast = false;  // a frame has been taken
     std::uint8_t m_lastSequence = 0;
-    std::uint64_t m_expect = 0;  // in step: where the next frame should start
-    int m_misses = 0;
-    std::uint64_t m_scan = 0;  // hunting: the next offset to try
     Stats m_stats;
 };
 

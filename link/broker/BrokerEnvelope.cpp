@@ -13,23 +13,18 @@ constexpr char kSignedPrefix[] = "RCM-GCS v1 broker message";
 constexpr quint8 kFlagSealed = 1;
 constexpr quint8 kFlagWill = 2;
 
-void appendBe32(QByteArray& out, quint32 v)
+// Integers go big-endian, in as many bytes as their type has.
+template <typename Integer>
+void appendBigEndian(QByteArray& out, Integer v)
 {
-    char b[4];
+    char b[sizeof v];
     qToBigEndian(v, b);
-    out.append(b, 4);
-}
-
-void appendBe64(QByteArray& out, qint64 v)
-{
-    char b[8];
-    qToBigEndian(v, b);
-    out.append(b, 8);
+    out.append(b, sizeof b);
 }
 
 void appendSized(QByteArray& out, const QByteArray& bytes)
 {
-    appendBe32(out, quint32(bytes.size()));
+    appendBigEndian(out, quint32(bytes.size()));
     out.append(bytes);
 }
 
@@ -155,9 +150,9 @@ QByteArray BrokerEnvelope::signedBytes(const QString& topic) const
     out.append(kSignedPrefix, sizeof kSignedPrefix);  // with its NUL
     appendSized(out, topic.toUtf8());
     appendSized(out, station.toUtf8());
-    appendBe64(out, seq);
+    appendBigEndian(out, qint64(seq));
     out.append(char((sealed ? kFlagSealed : 0) | (will ? kFlagWill : 0)));
-    appendBe64(out, willSeq);
+    appendBigEndian(out, qint64(willSeq));
     appendSized(out, sealed ? keyFingerprint.toLatin1() : QByteArray());
     out.append(body);
     return out;

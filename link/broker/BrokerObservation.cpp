@@ -99,6 +99,28 @@ void BrokerObservation::refuse(const QString& reasonAndDetail)
     emit messageRefused(reasonAndDetail);
 }
 
+template <typename Report>
+std::optional<Report> BrokerObservation::readReport(const OpenedMessage& message, const char* what)
+{
+    QString error;
+    std::optional<Report> r = Report::fromJson(message.body, &error);
+    if (!r)
+        refuse(QStringLiteral("unreadable: %1's %2: %3").arg(message.station, QLatin1String(what), error));
+    return r;
+}
+
+template <typename Report>
+void BrokerObservation::keepNewest(const OpenedMessage& message, const char* what, QHash<QString, Report>& newest,
+                                   void (BrokerObservation::*apply)(const Report&))
+{
+    const std::optional<Report> r = readReport<Report>(message, what);
+    if (!r)
+        return;
+    newest.insert(message.station, *r);
+    if (message.station == followedStation())
+        (this->*apply)(*r);
+}
+
 void BrokerObservation::messageOpened(const OpenedMessage& message)
 {
     if (message.refused()) {
@@ -140,10 +162,10 @@ void BrokerObservation::messageOpened(const OpenedMessage& message)
             frameReported(message);
             break;
         case BrokerTopics::Kind::State:
-            stateReported(message);
+            keepNewest(message, "state", m_states, &BrokerObservation::applyState);
             break;
         case BrokerTopics::Kind::Stats:
-            statsReported(message);
+            keepNewest(message, "statistics", m_stats, &BrokerObservation::applyStats);
             break;
         case BrokerTopics::Kind::Events:
             eventArrived(message);
@@ -223,12 +245,9 @@ void BrokerObservation::followedChanged()
 
 void BrokerObservation::frameReported(const OpenedMessage& message)
 {
-    QString error;
-    const std::optional<FrameReport> r = FrameReport::fromJson(message.body, &error);
-    if (!r) {
-        refuse(QStringLiteral("unreadable: %1's frame: %2").arg(message.station, error));
+    const std::optional<FrameReport> r = readReport<FrameReport>(message, "frame");
+    if (!r)
         return;
-    }
     if (m_firstFrameFrom.isEmpty()) {
         m_firstFrameFrom = message.station;
         followedChanged();
@@ -283,36 +302,10 @@ void BrokerObservation::frameReported(const OpenedMessage& message)
     emitMessage(r->text, r->utcMicros, corrected, r->transport, QStringLiteral("frame from ") + message.station);
 }
 
-void BrokerObservation::stateReported(const OpenedMessage& message)
-{
-    QString error;
-    const std::optional<StateReport> r = StateReport::fromJson(message.body, &error);
-    if (!r) {
-        refuse(QStringLiteral("unreadable: %1's state: %2").arg(message.station, error));
-        return;
-    }
-    m_states.insert(message.station, *r);
-    if (message.station == followedStation())
-        applyState(*r);
-}
-
 void BrokerObservation::applyState(const StateReport& state)
 {
     // Usually the status its frame told already; news on joining.
     emitMessage(state.text, state.utcMicros, {}, FrameTransport::Replay, QStringLiteral("last status"));
-}
-
-void BrokerObservation::statsReported(const OpenedMessage& message)
-{
-    QString error;
-    const std::optional<StatsReport> r = StatsReport::fromJson(message.body, &error);
-    if (!r) {
-        refuse(QStringLiteral("unreadable: %1's statistics: %2").arg(message.station, error));
-        return;
-    }
-    m_stats.insert(message.station, *r);
-    if (message.station == followedStation())
-        applyStats(*r);
 }
 
 void BrokerObservation::applyStats(const StatsReport& stats)
@@ -324,12 +317,9 @@ void BrokerObservation::applyStats(const StatsReport& stats)
 
 void BrokerObservation::eventArrived(const OpenedMessage& message)
 {
-    QString error;
-    std::optional<EventReport> r = EventReport::fromJson(message.body, &error);
-    if (!r) {
-        refuse(QStringLiteral("unreadable: %1's event: %2").arg(message.station, error));
+    std::optional<EventReport> r = readReport<EventReport>(message, "event");
+    if (!r)
         return;
-    }
     // The event is its signer's, whatever its text says.
     r->station = message.station;
     emit eventReported(*r);

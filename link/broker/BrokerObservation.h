@@ -106,8 +106,15 @@ private:
     void brokerDisconnected();
     void stationReported(const OpenedMessage& message);
     void frameReported(const OpenedMessage& message);
-    void stateReported(const OpenedMessage& message);
-    void statsReported(const OpenedMessage& message);
+    // The report a message holds; or nothing, the message refused as
+    // "unreadable: <station>'s <what>: <why>".
+    template <typename Report>
+    std::optional<Report> readReport(const OpenedMessage& message, const char* what);
+    // A state or statistics report kept as its station's newest, and applied
+    // when that station is the one followed.
+    template <typename Report>
+    void keepNewest(const OpenedMessage& message, const char* what, QHash<QString, Report>& newest,
+                    void (BrokerObservation::*apply)(const Report&));
     void eventArrived(const OpenedMessage& message);
     void followedChanged();
     void applyStats(const StatsReport& stats);

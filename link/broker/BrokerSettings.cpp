@@ -1,10 +1,9 @@
 #include "link/broker/BrokerSettings.h"
 
 #include "link/broker/BrokerTopics.h"
+#include "link/broker/OwnedFile.h"
 
 #include <QFile>
-
-#include <sys/stat.h>
 
 namespace {
 
@@ -123,16 +122,8 @@ std::optional<QString> BrokerSettings::readPasswordFile(const QString& path, QSt
         return std::nullopt;
     };
     QFile file(path);
-    if (!file.open(QIODevice::ReadOnly))
-        return fail(QStringLiteral("cannot open the password file %1: %2").arg(path, file.errorString()));
-    // Judged on the open file, so the file judged is the file read.
-    struct stat st {};
-    if (::fstat(file.handle(), &st) != 0 || !S_ISREG(st.st_mode))
-        return fail(QStringLiteral("the password file %1 is not a regular file").arg(path));
-    if (st.st_mode & 077)
-        return fail(QStringLiteral("the password file %1 has mode %2: others than its owner may read or write it, "
-                                   "so it is refused; run: chmod 600 %1")
-                        .arg(path)
-                        .arg(uint(st.st_mode & 07777), 4, 8, QLatin1Char('0')));
+    if (const std::optional<QString> refusal = OwnedFile::open(
+            file, QStringLiteral("password"), 077, QStringLiteral("may read or write it"), QStringLiteral("600")))
+        return fail(*refusal);
     return QString::fromUtf8(file.readLine(4096)).trimmed();
 }

@@ -125,41 +125,28 @@ public:
     }
     bool has(const char* field) const { return ok() && m_object.contains(QLatin1String(field)); }
 
+    // Absent (and not required) or wrong, the field reads as its type's
+    // default: "", false, 0, [].
     QString string(const char* field, bool required = true)
     {
-        const QJsonValue v = value(field, required);
-        if (v.isUndefined())
-            return {};
-        if (!v.isString()) {
-            fail(field, QStringLiteral("must be a string"));
-            return {};
-        }
-        return v.toString();
+        return typed(field, required, &QJsonValue::isString, "must be a string").toString();
     }
-
     bool boolean(const char* field, bool required = true)
     {
-        const QJsonValue v = value(field, required);
-        if (v.isUndefined())
-            return false;
-        if (!v.isBool()) {
-            fail(field, QStringLiteral("must be true or false"));
-            return false;
-        }
-        return v.toBool();
+        return typed(field, required, &QJsonValue::isBool, "must be true or false").toBool();
+    }
+    QJsonArray array(const char* field, bool required = true)
+    {
+        return typed(field, required, &QJsonValue::isArray, "must be an array").toArray();
     }
 
     // An integer in [min, max]. JSON numbers are doubles to most readers;
     // times in microseconds and counters stay well inside 2^53.
     qint64 integer(const char* field, qint64 min, qint64 max, bool required = true)
     {
-        const QJsonValue v = value(field, required);
+        const QJsonValue v = typed(field, required, &QJsonValue::isDouble, "must be a number");
         if (v.isUndefined())
             return 0;
-        if (!v.isDouble()) {
-            fail(field, QStringLiteral("must be a number"));
-            return 0;
-        }
         const double d = v.toDouble();
         const qint64 n = v.toInteger(std::numeric_limits<qint64>::min());
         if (n == std::numeric_limits<qint64>::min() || double(n) != d) {
@@ -216,18 +203,6 @@ public:
         return *decoded;
     }
 
-    QJsonArray array(const char* field, bool required = true)
-    {
-        const QJsonValue v = value(field, required);
-        if (v.isUndefined())
-            return {};
-        if (!v.isArray()) {
-            fail(field, QStringLiteral("must be an array"));
-            return {};
-        }
-        return v.toArray();
-    }
-
     void fail(const char* field, const QString& what)
     {
         if (ok())
@@ -235,6 +210,17 @@ public:
     }
 
 private:
+    // The field's value if isKind() holds for it; else Undefined, the error
+    // "<field> <mustBe>" kept.
+    QJsonValue typed(const char* field, bool required, bool (QJsonValue::*isKind)() const, const char* mustBe)
+    {
+        const QJsonValue v = value(field, required);
+        if (v.isUndefined() || (v.*isKind)())
+            return v;
+        fail(field, QString::fromLatin1(mustBe));
+        return QJsonValue(QJsonValue::Undefined);
+    }
+
     // Undefined when absent (an error if required) or after an error.
     QJsonValue value(const char* field, bool required)
     {
@@ -256,41 +242,108 @@ QByteArray compact(const QJsonObject& object)
     return QJsonDocument(object).toJson(QJsonDocument::Compact);
 }
 
+// The reports whose fields are plain (all but FrameReport) list them once,
+// in a fields() below, to a visitor: a JsonWriter for toJson(), a JsonReader
+// for fromJson(). A field is written under its name whatever it holds; the
+// reader reads in the list's order, so the error told is the first field's.
+class JsonWriter {
+public:
+    void string(const char* field, const QString& value, bool /*required*/ = true) { put(field, value); }
+    void boolean(const char* field, bool value) { put(field, value); }
+    void time(const char* field, qint64 value, bool /*required*/ = true) { put(field, value); }
+    void count(const char* field, quint64 value) { put(field, qint64(value)); }
+    template <std::size_t N>
+    void oneOf(const char* field, const QString& value, const std::array<const char*, N>& /*names*/)
+    {
+        put(field, value);
+    }
+    template <typename E, std::size_t N>
+    void named(const char* field, E value, const std::array<std::pair<E, const char*>, N>& table, E /*fallback*/)
+    {
+        put(field, nameIn(table, value));
+    }
+
+    QByteArray json() const { return compact(m_object); }
+
+private:
+    void put(const char* field, const QJsonValue& value) { m_object.insert(QLatin1String(field), value); }
+
+    QJsonObject m_object;
+};
+
+class JsonReader {
+public:
+    explicit JsonReader(JsonFields& fields) : m_fields(fields) {}
+
+    void string(const char* field, QString& to, bool required = true) { to = m_fields.string(field, required); }
+    void boolean(const char* field, bool& to) { to = m_fields.boolean(field); }
+    void time(const char* field, qint64& to, bool required = true) { to = m_fields.time(field, required); }
+    void count(const char* field, quint64& to) { to = m_fields.count(field); }
+    template <std::size_t N>
+    void oneOf(const char* field, QString& to, const std::array<const char*, N>& names)
+    {
+        to = m_fields.oneOf(field, names);
+    }
+    template <typename E, std::size_t N>
+    void named(const char* field, E& to, const std::array<std::pair<E, const char*>, N>& table, E fallback)
+    {
+        to = m_fields.named(field, table, fallback);
+    }
+
+private:
+    JsonFields& m_fields;
+};
+
+template <typename Report, typename Fields>
+QByteArray writeJson(const Report& report, const Fields& fields)
+{
+    JsonWriter writer;
+    fields(writer, report);
+    return writer.json();
+}
+
+template <typename Report, typename Fields>
+std::optional<Report> readJson(const QByteArray& json, const char* payload, QString* error, const Fields& fields)
+{
+    JsonFields f(json, payload);
+    JsonReader reader(f);
+    Report report;
+    fields(reader, report);
+    if (!f.report(error))
+        return std::nullopt;
+    return report;
+}
+
+// The stations the aircraft last named, in control and as backup: in both
+// the station and the state reports.
+constexpr auto kControlStationFields = [](auto& v, auto& r) {
+    v.string("destination", r.destination, false);
+    v.string("backup", r.backup, false);
+};
+
 }  // namespace
 
 // StationReport ---------------------------------------------------------------
 
+constexpr auto kStationFields = [](auto& v, auto& r) {
+    v.string("station", r.station);
+    v.oneOf("role", r.role, kRoles);
+    v.named("link", r.link, kLinkStates, LinkState::Closed);
+    v.string("description", r.description, false);
+    v.boolean("online", r.online);
+    v.time("utcMicros", r.utcMicros);
+    v.time("lastFrameUtcMicros", r.lastFrameUtcMicros, false);
+    kControlStationFields(v, r);
+};
+
 QByteArray StationReport::toJson() const
 {
-    return compact(QJsonObject{
-        {QStringLiteral("station"), station},
-        {QStringLiteral("role"), role},
-        {QStringLiteral("link"), BrokerTopics::linkStateName(link)},
-        {QStringLiteral("description"), description},
-        {QStringLiteral("online"), online},
-        {QStringLiteral("utcMicros"), utcMicros},
-        {QStringLiteral("lastFrameUtcMicros"), lastFrameUtcMicros},
-        {QStringLiteral("destination"), destination},
-        {QStringLiteral("backup"), backup},
-    });
+    return writeJson(*this, kStationFields);
 }
 
 std::optional<StationReport> StationReport::fromJson(const QByteArray& json, QString* error)
 {
-    JsonFields f(json, "station");
-    StationReport r;
-    r.station = f.string("station");
-    r.role = f.oneOf("role", kRoles);
-    r.link = f.named("link", kLinkStates, LinkState::Closed);
-    r.description = f.string("description", false);
-    r.online = f.boolean("online");
-    r.utcMicros = f.time("utcMicros");
-    r.lastFrameUtcMicros = f.time("lastFrameUtcMicros", false);
-    r.destination = f.string("destination", false);
-    r.backup = f.string("backup", false);
-    if (!f.report(error))
-        return std::nullopt;
-    return r;
+    return readJson<StationReport>(json, "station", error, kStationFields);
 }
 
 // FrameReport -----------------------------------------------------------------
@@ -357,27 +410,20 @@ std::optional<FrameReport> FrameReport::fromJson(const QByteArray& json, QString
 
 // StateReport -----------------------------------------------------------------
 
+constexpr auto kStateFields = [](auto& v, auto& r) {
+    v.time("utcMicros", r.utcMicros);
+    v.string("text", r.text);
+    kControlStationFields(v, r);
+};
+
 QByteArray StateReport::toJson() const
 {
-    return compact(QJsonObject{
-        {QStringLiteral("utcMicros"), utcMicros},
-        {QStringLiteral("text"), text},
-        {QStringLiteral("destination"), destination},
-        {QStringLiteral("backup"), backup},
-    });
+    return writeJson(*this, kStateFields);
 }
 
 std::optional<StateReport> StateReport::fromJson(const QByteArray& json, QString* error)
 {
-    JsonFields f(json, "state");
-    StateReport r;
-    r.utcMicros = f.time("utcMicros");
-    r.text = f.string("text");
-    r.destination = f.string("destination", false);
-    r.backup = f.string("backup", false);
-    if (!f.report(error))
-        return std::nullopt;
-    return r;
+    return readJson<StateReport>(json, "state", error, kStateFields);
 }
 
 // StatsReport -----------------------------------------------------------------
@@ -410,58 +456,43 @@ LinkStatistics StatsReport::toStatistics() const
     return s;
 }
 
+constexpr auto kStatsFields = [](auto& v, auto& r) {
+    v.count("framesSent", r.framesSent);
+    v.count("framesReceived", r.framesReceived);
+    v.count("refused", r.refused);
+    v.count("correctedBytesBlock1", r.correctedBytesBlock1);
+    v.count("correctedBytesBlock2", r.correctedBytesBlock2);
+    v.time("lastGoodFrameUtcMicros", r.lastGoodFrameUtcMicros);
+    v.named("state", r.state, kLinkStates, LinkState::Closed);
+};
+
 QByteArray StatsReport::toJson() const
 {
-    return compact(QJsonObject{
-        {QStringLiteral("framesSent"), qint64(framesSent)},
-        {QStringLiteral("framesReceived"), qint64(framesReceived)},
-        {QStringLiteral("refused"), qint64(refused)},
-        {QStringLiteral("correctedBytesBlock1"), qint64(correctedBytesBlock1)},
-        {QStringLiteral("correctedBytesBlock2"), qint64(correctedBytesBlock2)},
-        {QStringLiteral("lastGoodFrameUtcMicros"), lastGoodFrameUtcMicros},
-        {QStringLiteral("state"), BrokerTopics::linkStateName(state)},
-    });
+    return writeJson(*this, kStatsFields);
 }
 
 std::optional<StatsReport> StatsReport::fromJson(const QByteArray& json, QString* error)
 {
-    JsonFields f(json, "stats");
-    StatsReport r;
-    r.framesSent = f.count("framesSent");
-    r.framesReceived = f.count("framesReceived");
-    r.refused = f.count("refused");
-    r.correctedBytesBlock1 = f.count("correctedBytesBlock1");
-    r.correctedBytesBlock2 = f.count("correctedBytesBlock2");
-    r.lastGoodFrameUtcMicros = f.time("lastGoodFrameUtcMicros");
-    r.state = f.named("state", kLinkStates, LinkState::Closed);
-    if (!f.report(error))
-        return std::nullopt;
-    return r;
+    return readJson<StatsReport>(json, "stats", error, kStatsFields);
 }
 
 // EventReport -----------------------------------------------------------------
 
+constexpr auto kEventFields = [](auto& v, auto& r) {
+    v.time("utcMicros", r.utcMicros);
+    v.oneOf("severity", r.severity, kSeverities);
+    v.string("text", r.text);
+    v.string("station", r.station, false);
+};
+
 QByteArray EventReport::toJson() const
 {
-    return compact(QJsonObject{
-        {QStringLiteral("utcMicros"), utcMicros},
-        {QStringLiteral("severity"), severity},
-        {QStringLiteral("text"), text},
-        {QStringLiteral("station"), station},
-    });
+    return writeJson(*this, kEventFields);
 }
 
 std::optional<EventReport> EventReport::fromJson(const QByteArray& json, QString* error)
 {
-    JsonFields f(json, "events");
-    EventReport r;
-    r.utcMicros = f.time("utcMicros");
-    r.severity = f.oneOf("severity", kSeverities);
-    r.text = f.string("text");
-    r.station = f.string("station", false);
-    if (!f.report(error))
-        return std::nullopt;
-    return r;
+    return readJson<EventReport>(json, "events", error, kEventFields);
 }
 
 // Topics ----------------------------------------------------------------------
@@ -574,33 +605,34 @@ QString stationText(const rcm::Message& message, rcm::ItemId item)
     return countryText + u'_' + QString::number(v->second);
 }
 
+// Each enumeration's words in JSON, then back from them.
 QString linkStateName(LinkState state)
 {
     return nameIn(kLinkStates, state);
-}
-std::optional<LinkState> linkStateFromName(const QString& name)
-{
-    return valueIn(kLinkStates, name);
 }
 QString frameStatusName(FrameStatus status)
 {
     return ::frameStatusName(status);
 }
-std::optional<FrameStatus> frameStatusFromName(const QString& name)
-{
-    return valueIn(kFrameStatuses, name);
-}
 QString frameDirectionName(FrameDirection direction)
 {
     return nameIn(kFrameDirections, direction);
 }
-std::optional<FrameDirection> frameDirectionFromName(const QString& name)
-{
-    return valueIn(kFrameDirections, name);
-}
 QString frameTransportName(FrameTransport transport)
 {
     return ::frameTransportName(transport);
+}
+std::optional<LinkState> linkStateFromName(const QString& name)
+{
+    return valueIn(kLinkStates, name);
+}
+std::optional<FrameStatus> frameStatusFromName(const QString& name)
+{
+    return valueIn(kFrameStatuses, name);
+}
+std::optional<FrameDirection> frameDirectionFromName(const QString& name)
+{
+    return valueIn(kFrameDirections, name);
 }
 std::optional<FrameTransport> frameTransportFromName(const QString& name)
 {

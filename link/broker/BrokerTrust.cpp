@@ -2,10 +2,9 @@
 
 #include "codec/receive/LoggedFrameReading.h"
 #include "codec/secure/BrokerSeal.h"
+#include "link/broker/OwnedFile.h"
 
 #include <QFile>
-
-#include <sys/stat.h>
 
 namespace {
 
@@ -27,16 +26,10 @@ std::optional<BrokerTrust> BrokerTrust::fromFile(const QString& path, QString* e
         return std::nullopt;
     };
     QFile file(path);
-    if (!file.open(QIODevice::ReadOnly))
-        return fail(QStringLiteral("cannot open the trust file %1: %2").arg(path, file.errorString()));
-    struct stat st {};
-    if (::fstat(file.handle(), &st) != 0 || !S_ISREG(st.st_mode))
-        return fail(QStringLiteral("the trust file %1 is not a regular file").arg(path));
-    if (st.st_mode & 022)
-        return fail(QStringLiteral("the trust file %1 has mode %2: others than its owner may change whom this "
-                                   "console trusts, so it is refused; run: chmod 644 %1")
-                        .arg(path)
-                        .arg(uint(st.st_mode & 07777), 4, 8, QLatin1Char('0')));
+    if (const std::optional<QString> refusal =
+            OwnedFile::open(file, QStringLiteral("trust"), 022, QStringLiteral("may change whom this console trusts"),
+                            QStringLiteral("644")))
+        return fail(*refusal);
     if (file.size() > kMaxTrustFileBytes)
         return fail(QStringLiteral("the trust file %1 is over 1 MiB: not a trust file").arg(path));
     BrokerTrust trust;

@@ -475,13 +475,19 @@ void MqttClient::start()
     connectInThread(false, std::nullopt, std::chrono::seconds(0));
 }
 
-void MqttClient::reportSetupFailure(const QString& reason)
+std::optional<QString> MqttClient::firstFailure(const QString& reason)
 {
     markOutage();
     if (m_errorReported)
-        return;
+        return std::nullopt;
     m_errorReported = true;
-    emit setupFailed(QStringLiteral("broker %1: %2").arg(m_settings.hostAndPort(), reason));
+    return QStringLiteral("broker %1: %2").arg(m_settings.hostAndPort(), reason);
+}
+
+void MqttClient::reportSetupFailure(const QString& reason)
+{
+    if (const std::optional<QString> text = firstFailure(reason))
+        emit setupFailed(*text);
 }
 
 void MqttClient::connectInThread(bool restart, std::optional<Will> will, std::chrono::seconds delay)
@@ -691,11 +697,8 @@ void MqttClient::onDisconnect(const QString& reason, bool expected, bool restart
 
 void MqttClient::reportError(const QString& reason)
 {
-    markOutage();
-    if (m_errorReported)
-        return;
-    m_errorReported = true;
-    emit errorOccurred(QStringLiteral("broker %1: %2").arg(m_settings.hostAndPort(), reason));
+    if (const std::optional<QString> text = firstFailure(reason))
+        emit errorOccurred(*text);
 }
 
 void MqttClient::sendSubscriptions()

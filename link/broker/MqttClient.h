@@ -127,6 +127,9 @@ private:
     void onConnect(int resultCode, const QString& reason);
     void onPublished(int messageId, int reasonCode);
     void onSubscribed(int messageId, QList<int> granted);
+    // A failure marks an outage; only the first since the last connection is
+    // told, as "broker <host:port>: <reason>" (nothing for the others).
+    std::optional<QString> firstFailure(const QString& reason);
     void reportSetupFailure(const QString& reason);
     // `restart`: libmosquitto's loop has ended (TLS and protocol failures)
     // and is started again after a pause.

@@ -28,25 +28,26 @@ constexpr QByteArrayView kEncipheredWord = "enciphered";
 
 // Always little-endian, whatever the host, so files are byte-identical
 // everywhere and the tests can compare exact bytes.
+template <typename Integer>
+void putLittleEndian(QByteArray& b, Integer v)
+{
+    char c[sizeof v];
+    qToLittleEndian(v, c);
+    b.append(c, sizeof c);
+}
+
+// The widths named where the fields are written.
 void put16(QByteArray& b, quint16 v)
 {
-    char c[2];
-    qToLittleEndian(v, c);
-    b.append(c, 2);
+    putLittleEndian(b, v);
 }
-
 void put32(QByteArray& b, quint32 v)
 {
-    char c[4];
-    qToLittleEndian(v, c);
-    b.append(c, 4);
+    putLittleEndian(b, v);
 }
-
 void put64(QByteArray& b, quint64 v)
 {
-    char c[8];
-    qToLittleEndian(v, c);
-    b.append(c, 8);
+    putLittleEndian(b, v);
 }
 
 void pad4(QByteArray& b)

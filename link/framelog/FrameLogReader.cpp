@@ -90,7 +90,7 @@ qint64 toMicros(quint64 ts, int resolution, qint64 offsetSeconds)
 
 }  // namespace
 
-bool FrameLogReader::open(const QString& path)
+bool FrameLogReader::reopen(const QString& path)
 {
     close();
     m_file.setFileName(path);
@@ -98,6 +98,13 @@ bool FrameLogReader::open(const QString& path)
         m_error = QStringLiteral("cannot open frame log %1: %2").arg(path, m_file.errorString());
         return false;
     }
+    return true;
+}
+
+bool FrameLogReader::open(const QString& path)
+{
+    if (!reopen(path))
+        return false;
     m_size = m_file.size();
     if (m_size > 0) {
         m_data = m_file.map(0, m_size);
@@ -123,12 +130,8 @@ bool FrameLogReader::open(const QString& path)
 
 bool FrameLogReader::openLive(const QString& path)
 {
-    close();
-    m_file.setFileName(path);
-    if (!m_file.open(QIODevice::ReadOnly)) {
-        m_error = QStringLiteral("cannot open frame log %1: %2").arg(path, m_file.errorString());
+    if (!reopen(path))
         return false;
-    }
     // FrameLog writes its section header before anything else, in one write.
     uchar header[12];
     if (m_file.read(reinterpret_cast<char*>(header), sizeof header) != qint64(sizeof header) ||

@@ -63,6 +63,10 @@ public:
     int indexAtOrAfter(qint64 utcMicros) const;
 
 private:
+    // What open() and openLive() both begin with: whatever was open closed,
+    // the file at path opened for reading, or false with errorString() set.
+    bool reopen(const QString& path);
+
     struct Interface {
         bool ours = false;
         FrameTransport transport = FrameTransport::Serial;

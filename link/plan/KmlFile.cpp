@@ -1,5 +1,7 @@
 #include "link/plan/KmlFile.h"
 
+#include "link/plan/PlanReading.h"
+
 #include <QLocale>
 #include <QStringList>
 #include <QXmlStreamReader>
@@ -268,10 +270,7 @@ namespace KmlFile {
 std::optional<MissionPlan> read(const QByteArray& kml, const QString& source, QString* error)
 {
     KmlReader reader(source);
-    auto plan = reader.read(kml);
-    if (!plan && error)
-        *error = reader.error();
-    return plan;
+    return PlanReading::outcome(reader, reader.read(kml), error);
 }
 
 }  // namespace KmlFile

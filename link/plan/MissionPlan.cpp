@@ -94,21 +94,22 @@ QString MissionItem::commandName() const
 
 QString MissionItem::frameName() const
 {
-    switch (frame) {
-        case 0:
-            return QStringLiteral("AMSL");
-        case 2:
-            return QStringLiteral("mission");
-        case 3:
-            return QStringLiteral("above home");
-        case 5:
-            return QStringLiteral("AMSL (int)");
-        case 6:
-            return QStringLiteral("above home (int)");
-        case 10:
-            return QStringLiteral("above terrain");
-        case 11:
-            return QStringLiteral("above terrain (int)");
+    // The MAV_FRAME values plans use.
+    static constexpr struct {
+        int frame;
+        const char* name;
+    } kFrameNames[] = {
+        {0, "AMSL"},
+        {2, "mission"},
+        {3, "above home"},
+        {5, "AMSL (int)"},
+        {6, "above home (int)"},
+        {10, "above terrain"},
+        {11, "above terrain (int)"},
+    };
+    for (const auto& known : kFrameNames) {
+        if (known.frame == frame)
+            return QString::fromLatin1(known.name);
     }
     return QStringLiteral("MAV_FRAME %1").arg(frame);
 }

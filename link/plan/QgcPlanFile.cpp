@@ -1,5 +1,6 @@
 #include "link/plan/QgcPlanFile.h"
 
+#include "link/plan/PlanReading.h"
 #include "link/plan/QgcComplexItemReader.h"
 
 #include "link/json/JsonPosition.h"
@@ -9,6 +10,7 @@
 #include <QJsonObject>
 #include <QLocale>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -414,49 +416,89 @@ private:
         return true;
     }
 
+    // A versioned section of the plan ("geoFence", "rallyPoints") before its
+    // contents are read: the object to read them from; or none, with `done`
+    // what reading the section comes to (true: absent, or an old layout with
+    // nothing in it; false: refused).
+    struct Section {
+        std::optional<QJsonObject> object;
+        bool done = true;
+    };
+
+    // currentKeys: the keys that tell the current layout where "version" is
+    // left out, as programs other than QGroundControl may; oldName and
+    // versionName: what the refusals call the section.
+    Section openSection(const QJsonValue& value, const QString& key, const QStringList& currentKeys,
+                        const QString& oldName, const QString& versionName, int currentVersion)
+    {
+        const QStringList path{key};
+        if (value.isUndefined())
+            return {};
+        if (!value.isObject())
+            return {std::nullopt, fail(path, QStringLiteral("\"%1\" must be an object").arg(key))};
+        const QJsonObject o = value.toObject();
+        const QJsonValue version = o.value(QStringLiteral("version"));
+        const bool current =
+            std::any_of(currentKeys.begin(), currentKeys.end(), [&](const QString& k) { return o.contains(k); });
+        if (version == 1 || (version.isUndefined() && !current))
+            return {std::nullopt, refuseOldVersion(o, oldName, path)};
+        if (!version.isUndefined() && version != currentVersion)
+            return {std::nullopt, fail(path + QStringList{QStringLiteral("version")},
+                                       QStringLiteral("%1 version %2; this console reads version %3")
+                                           .arg(versionName, shown(version), QString::number(currentVersion)))};
+        return {o};
+    }
+
     bool readGeoFence(const QJsonValue& value, MissionPlan& plan)
     {
         const QStringList path{QStringLiteral("geoFence")};
-        if (value.isUndefined())
-            return true;
-        if (!value.isObject())
-            return fail(path, QStringLiteral("\"geoFence\" must be an object"));
-        const QJsonObject fence = value.toObject();
-        const QJsonValue version = fence.value(QStringLiteral("version"));
-        // Programs other than QGroundControl may leave "version" out of a
-        // fence in the current layout.
-        const bool currentKeys =
-            fence.contains(QStringLiteral("polygons")) || fence.contains(QStringLiteral("circles"));
-        if (version == 1 || (version.isUndefined() && !currentKeys))
-            return refuseOldVersion(fence, QStringLiteral("geofence"), path);
-        if (!version.isUndefined() && version != kGeoFenceVersion)
-            return fail(path + QStringList{QStringLiteral("version")},
-                        QStringLiteral("geofence version %1; this console reads version %2")
-                            .arg(shown(version))
-                            .arg(kGeoFenceVersion));
+        const Section section = openSection(value, path[0], {QStringLiteral("polygons"), QStringLiteral("circles")},
+                                            QStringLiteral("geofence"), QStringLiteral("geofence"), kGeoFenceVersion);
+        if (!section.object)
+            return section.done;
+        const QJsonObject& fence = *section.object;
         const QJsonValue polygons = fence.value(QStringLiteral("polygons"));
         const QJsonValue circles = fence.value(QStringLiteral("circles"));
         if (!polygons.isUndefined() && !polygons.isArray())
             return fail(path, QStringLiteral("geofence \"polygons\" must be an array"));
         if (!circles.isUndefined() && !circles.isArray())
             return fail(path, QStringLiteral("geofence \"circles\" must be an array"));
-        const QJsonArray polygonArray = polygons.toArray();
-        for (qsizetype i = 0; i < polygonArray.size(); ++i) {
-            FencePolygon polygon;
-            if (!readPolygon(polygonArray[i], i, path + QStringList{QStringLiteral("polygons"), QString::number(i)},
-                             polygon))
+        return readFenceList(polygons.toArray(), QStringLiteral("polygon"), path, plan.fencePolygons,
+                             &PlanReader::readPolygon) &&
+               readFenceList(circles.toArray(), QStringLiteral("circle"), path, plan.fenceCircles,
+                             &PlanReader::readCircle);
+    }
+
+    // Each entry of a fence's "polygons" or "circles" read by readOne and
+    // appended to `into`; false at the first refused.
+    template <typename Shape>
+    bool readFenceList(const QJsonArray& entries, const QString& noun, const QStringList& path, QList<Shape>& into,
+                       bool (PlanReader::*readOne)(const QJsonValue&, const QString&, const QStringList&, Shape&))
+    {
+        const QString key = noun + QLatin1Char('s');
+        for (qsizetype i = 0; i < entries.size(); ++i) {
+            Shape shape;
+            if (!(this->*readOne)(entries[i], QStringLiteral("geofence %1 %2").arg(noun, QString::number(i + 1)),
+                                  path + QStringList{key, QString::number(i)}, shape))
                 return false;
-            plan.fencePolygons.append(polygon);
-        }
-        const QJsonArray circleArray = circles.toArray();
-        for (qsizetype i = 0; i < circleArray.size(); ++i) {
-            FenceCircle circle;
-            if (!readCircle(circleArray[i], i, path + QStringList{QStringLiteral("circles"), QString::number(i)},
-                            circle))
-                return false;
-            plan.fenceCircles.append(circle);
+            into.append(shape);
         }
         return true;
+    }
+
+    // A fence polygon's or circle's object: its "inclusion" read, and what
+    // its shape's key ("polygon", "circle") holds; nothing when refused.
+    std::optional<QJsonValue> readFenceShape(const QJsonValue& value, const QString& key, const QString& where,
+                                             const QStringList& path, bool& inclusion)
+    {
+        if (!value.isObject()) {
+            fail(path, QStringLiteral("%1 is not a JSON object").arg(where));
+            return std::nullopt;
+        }
+        const QJsonObject o = value.toObject();
+        if (!readInclusion(o, where, path, inclusion))
+            return std::nullopt;
+        return o.value(key);
     }
 
     bool readInclusion(const QJsonObject& o, const QString& where, const QStringList& path, bool& inclusion)
@@ -478,19 +520,16 @@ private:
         return problem.isEmpty() || fail(path, QStringLiteral("%1: %2").arg(where, problem));
     }
 
-    bool readPolygon(const QJsonValue& value, qsizetype index, const QStringList& path, FencePolygon& polygon)
+    bool readPolygon(const QJsonValue& value, const QString& where, const QStringList& path, FencePolygon& polygon)
     {
-        const QString where = QStringLiteral("geofence polygon %1").arg(index + 1);
-        if (!value.isObject())
-            return fail(path, QStringLiteral("%1 is not a JSON object").arg(where));
-        const QJsonObject o = value.toObject();
-        if (!readInclusion(o, where, path, polygon.inclusion))
+        const std::optional<QJsonValue> verticesValue =
+            readFenceShape(value, QStringLiteral("polygon"), where, path, polygon.inclusion);
+        if (!verticesValue)
             return false;
-        const QJsonValue verticesValue = o.value(QStringLiteral("polygon"));
-        const QStringList verticesPath = path + QStringList{QStringLiteral("polygon")};
-        if (!verticesValue.isArray())
+        if (!verticesValue->isArray())
             return fail(path, QStringLiteral("%1: \"polygon\" must be an array of [latitude, longitude]").arg(where));
-        const QJsonArray vertices = verticesValue.toArray();
+        const QStringList verticesPath = path + QStringList{QStringLiteral("polygon")};
+        const QJsonArray vertices = verticesValue->toArray();
         if (vertices.size() < 3)
             return fail(
                 verticesPath,
@@ -505,15 +544,13 @@ private:
         return true;
     }
 
-    bool readCircle(const QJsonValue& value, qsizetype index, const QStringList& path, FenceCircle& circle)
+    bool readCircle(const QJsonValue& value, const QString& where, const QStringList& path, FenceCircle& circle)
     {
-        const QString where = QStringLiteral("geofence circle %1").arg(index + 1);
-        if (!value.isObject())
-            return fail(path, QStringLiteral("%1 is not a JSON object").arg(where));
-        const QJsonObject o = value.toObject();
-        if (!readInclusion(o, where, path, circle.inclusion))
+        const std::optional<QJsonValue> shapeValue =
+            readFenceShape(value, QStringLiteral("circle"), where, path, circle.inclusion);
+        if (!shapeValue)
             return false;
-        const QJsonObject shape = o.value(QStringLiteral("circle")).toObject();
+        const QJsonObject shape = shapeValue->toObject();
         const QStringList shapePath = path + QStringList{QStringLiteral("circle")};
         if (!readLatLon(shape.value(QStringLiteral("center")), where + QStringLiteral(" centre"),
                         shapePath + QStringList{QStringLiteral("center")}, circle.centre))
@@ -535,19 +572,12 @@ private:
     bool readRallyPoints(const QJsonValue& value, MissionPlan& plan)
     {
         const QStringList path{QStringLiteral("rallyPoints")};
-        if (value.isUndefined())
-            return true;
-        if (!value.isObject())
-            return fail(path, QStringLiteral("\"rallyPoints\" must be an object"));
-        const QJsonObject rally = value.toObject();
-        const QJsonValue version = rally.value(QStringLiteral("version"));
-        if (version == 1 || (version.isUndefined() && !rally.contains(QStringLiteral("points"))))
-            return refuseOldVersion(rally, QStringLiteral("rally point list"), path);
-        if (!version.isUndefined() && version != kRallyPointsVersion)
-            return fail(path + QStringList{QStringLiteral("version")},
-                        QStringLiteral("rally points version %1; this console reads version %2")
-                            .arg(shown(version))
-                            .arg(kRallyPointsVersion));
+        const Section section =
+            openSection(value, path[0], {QStringLiteral("points")}, QStringLiteral("rally point list"),
+                        QStringLiteral("rally points"), kRallyPointsVersion);
+        if (!section.object)
+            return section.done;
+        const QJsonObject& rally = *section.object;
         const QJsonValue pointsValue = rally.value(QStringLiteral("points"));
         if (!pointsValue.isUndefined() && !pointsValue.isArray())
             return fail(path, QStringLiteral("rally \"points\" must be an array"));
@@ -671,10 +701,7 @@ namespace QgcPlanFile {
 std::optional<MissionPlan> read(const QByteArray& json, const QString& source, QString* error)
 {
     PlanReader reader(json, source);
-    auto plan = reader.read();
-    if (!plan && error)
-        *error = reader.error();
-    return plan;
+    return PlanReading::outcome(reader, reader.read(), error);
 }
 
 QByteArray write(const MissionPlan& plan)

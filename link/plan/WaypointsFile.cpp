@@ -1,5 +1,7 @@
 #include "link/plan/WaypointsFile.h"
 
+#include "link/plan/PlanReading.h"
+
 #include <QLocale>
 #include <QRegularExpression>
 #include <QStringList>
@@ -318,10 +320,7 @@ namespace WaypointsFile {
 std::optional<MissionPlan> read(const QByteArray& text, const QString& source, QString* error)
 {
     WaypointsReader reader(source);
-    auto plan = reader.read(text);
-    if (!plan && error)
-        *error = reader.error();
-    return plan;
+    return PlanReading::outcome(reader, reader.read(text), error);
 }
 
 QByteArray write(const MissionPlan& plan)

@@ -60,11 +60,13 @@ QString qualityPlot(const RehearsalReport& report)
     const double duration = std::max(report.duration, 1.0);
     const auto x = [&](double t) { return left + (width - left - right) * std::clamp(t, 0.0, duration) / duration; };
     const auto y = [&](double q) { return top + plotHeight * (1.0 - q); };
+    // SVG lengths to a tenth of a pixel.
+    const auto px = [](double v) { return QString::number(v, 'f', 1); };
+    const auto n = [](int v) { return QString::number(v); };
     QString svg = QStringLiteral(
                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%1\" height=\"%2\" "
                       "role=\"img\" aria-label=\"link quality against scenario time\">\n")
-                      .arg(width)
-                      .arg(height);
+                      .arg(n(width), n(height));
     for (std::size_t i = 0; i < report.faults.size(); ++i) {
         const RehearsalReport::FaultPeriod& f = report.faults[i];
         const QString title =
@@ -73,54 +75,33 @@ QString qualityPlot(const RehearsalReport& report)
         svg += QStringLiteral(
                    "<rect class=\"fault\" x=\"%1\" y=\"%2\" width=\"%3\" height=\"%4\" fill=\"#f0a030\" "
                    "fill-opacity=\"0.25\"><title>%5</title></rect>\n")
-                   .arg(x(f.start), 0, 'f', 1)
-                   .arg(top)
-                   .arg(span, 0, 'f', 1)
-                   .arg(plotHeight)
-                   .arg(title);
+                   .arg(px(x(f.start)), n(top), px(span), n(plotHeight), title);
         const double rowTop = faultsTop + faultRow * double(i);
         svg += QStringLiteral(
                    "<rect x=\"%1\" y=\"%2\" width=\"%3\" height=\"%4\" fill=\"#f0a030\" fill-opacity=\"0.6\"/>"
                    "<text x=\"%5\" y=\"%6\" font-size=\"11\">%7</text>\n")
-                   .arg(x(f.start), 0, 'f', 1)
-                   .arg(rowTop + 2, 0, 'f', 1)
-                   .arg(span, 0, 'f', 1)
-                   .arg(faultRow - 4)
-                   .arg(x(f.start) + 3, 0, 'f', 1)
-                   .arg(rowTop + 11, 0, 'f', 1)
-                   .arg(title);
+                   .arg(px(x(f.start)), px(rowTop + 2), px(span), n(faultRow - 4), px(x(f.start) + 3), px(rowTop + 11),
+                        title);
     }
     for (int percent : {0, 50, 100})
         svg += QStringLiteral(
                    "<line x1=\"%1\" x2=\"%2\" y1=\"%3\" y2=\"%3\" stroke=\"#ccc\"/>"
                    "<text x=\"2\" y=\"%4\" font-size=\"11\">%5%</text>\n")
-                   .arg(left)
-                   .arg(width - right)
-                   .arg(y(percent / 100.0), 0, 'f', 1)
-                   .arg(y(percent / 100.0) + 4, 0, 'f', 1)
-                   .arg(percent);
+                   .arg(n(left), n(width - right), px(y(percent / 100.0)), px(y(percent / 100.0) + 4), n(percent));
     const double step = tickStep(duration);
     for (double t = 0; t <= duration + 1e-9; t += step)
         svg += QStringLiteral(
                    "<line class=\"tick\" x1=\"%1\" x2=\"%1\" y1=\"%2\" y2=\"%3\" stroke=\"#888\"/>"
                    "<text x=\"%1\" y=\"%4\" font-size=\"11\" text-anchor=\"middle\">%5</text>\n")
-                   .arg(x(t), 0, 'f', 1)
-                   .arg(plotBottom, 0, 'f', 1)
-                   .arg(plotBottom + 5, 0, 'f', 1)
-                   .arg(plotBottom + 18, 0, 'f', 1)
-                   .arg(tickLabel(t, step));
+                   .arg(px(x(t)), px(plotBottom), px(plotBottom + 5), px(plotBottom + 18), tickLabel(t, step));
     svg += QStringLiteral(
                "<line x1=\"%1\" x2=\"%2\" y1=\"%3\" y2=\"%3\" stroke=\"#888\"/>"
                "<text x=\"%4\" y=\"%5\" font-size=\"11\" text-anchor=\"middle\">scenario time</text>\n")
-               .arg(left)
-               .arg(width - right)
-               .arg(plotBottom, 0, 'f', 1)
-               .arg((left + width - right) / 2)
-               .arg(plotBottom + 34, 0, 'f', 1);
+               .arg(n(left), n(width - right), px(plotBottom), n((left + width - right) / 2), px(plotBottom + 34));
     const auto line = [&](auto member, const char* colour, const char* name) {
         QString points;
         for (const auto& s : report.quality)
-            points += QStringLiteral("%1,%2 ").arg(x(s.time), 0, 'f', 1).arg(y(s.*member), 0, 'f', 1);
+            points += QStringLiteral("%1,%2 ").arg(px(x(s.time)), px(y(s.*member)));
         return QStringLiteral(
                    "<polyline fill=\"none\" stroke=\"%1\" stroke-width=\"1.5\" points=\"%2\">"
                    "<title>%3</title></polyline>\n")
@@ -134,12 +115,9 @@ QString qualityPlot(const RehearsalReport& report)
         svg += QStringLiteral(
                    "<line class=\"alarm\" x1=\"%1\" x2=\"%1\" y1=\"%2\" y2=\"%3\" stroke=\"%4\" "
                    "stroke-width=\"2\" stroke-dasharray=\"4 3\"><title>%5 at %6 s%7</title></line>\n")
-                   .arg(x(a.time), 0, 'f', 1)
-                   .arg(top)
-                   .arg(plotBottom, 0, 'f', 1)
-                   .arg(a.unexpected() ? QStringLiteral("#b00") : QStringLiteral("#555"))
-                   .arg(a.name, seconds(a.time))
-                   .arg(a.unexpected() ? QStringLiteral(", which no step expected")
+                   .arg(px(x(a.time)), n(top), px(plotBottom),
+                        a.unexpected() ? QStringLiteral("#b00") : QStringLiteral("#555"), a.name, seconds(a.time),
+                        a.unexpected() ? QStringLiteral(", which no step expected")
                                        : QStringLiteral(", expected by step %1").arg(a.expectedBy));
     }
     return svg + QStringLiteral("</svg>\n");

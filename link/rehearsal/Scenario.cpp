@@ -192,6 +192,12 @@ std::optional<rcm::Message> parseUnitLine(const QString& line, const rcm::Messag
 
 namespace {
 
+// "frame" for one, "frames" for any other count.
+QString countedNoun(qint64 count, const QString& noun)
+{
+    return count == 1 ? noun : noun + QLatin1Char('s');
+}
+
 // The unit of `target` that `unit` names: the single one, or the repeated one with its key.
 template <typename M>
 auto* matchingUnit(M& target, const rcm::Unit& unit)
@@ -267,18 +273,15 @@ QString ScenarioStep::describe() const
             break;
         case Kind::ExpectWrongFrames:
             what = QStringLiteral("expect %1 wrong %2")
-                       .arg(count)
-                       .arg(count == 1 ? QStringLiteral("frame") : QStringLiteral("frames"));
+                       .arg(QString::number(count), countedNoun(count, QStringLiteral("frame")));
             break;
         case Kind::ExpectFramesLost:
             what = QStringLiteral("expect at most %1 %2 lost")
-                       .arg(count)
-                       .arg(count == 1 ? QStringLiteral("frame") : QStringLiteral("frames"));
+                       .arg(QString::number(count), countedNoun(count, QStringLiteral("frame")));
             break;
         case Kind::ExpectLinkLostAtMost:
             what = QStringLiteral("expect the link-loss alarm at most %1 %2")
-                       .arg(count)
-                       .arg(count == 1 ? QStringLiteral("time") : QStringLiteral("times"));
+                       .arg(QString::number(count), countedNoun(count, QStringLiteral("time")));
             break;
     }
     const QString when = at ? QStringLiteral(" at %1 s").arg(*at) : QStringLiteral(" over the whole run");

@@ -8,6 +8,61 @@
 #include <QLocale>
 #include <QSettings>
 
+#include <variant>
+
+namespace {
+
+// The settings kept under "link/", each under its member's name: save() and
+// load() both go through this one list. The transport, kept as a word, is
+// apart; the key file's path is kept, the key stays in its file.
+using Member = std::variant<QString LinkSettings::*, qint32 LinkSettings::*, quint16 LinkSettings::*,
+                            bool LinkSettings::*, double LinkSettings::*>;
+struct Stored {
+    const char* key;
+    Member member;
+};
+using L = LinkSettings;
+const Stored kStored[] = {
+    {"serialPort", &L::serialPort},
+    {"baudRate", &L::baudRate},
+    {"localAddress", &L::localAddress},
+    {"localPort", &L::localPort},
+    {"remoteAddress", &L::remoteAddress},
+    {"remotePort", &L::remotePort},
+    {"keyPath", &L::keyPath},
+    {"dialNumber", &L::dialNumber},
+    {"modemInit", &L::modemInit},
+    {"modemProfile", &L::modemProfile},
+    {"callCurrency", &L::callCurrency},
+    {"rtsCts", &L::rtsCts},
+    {"callCostPerMinute", &L::callCostPerMinute},
+    {"satelliteDelayMs", &L::satelliteDelayMs},
+};
+
+// A stored value read back as its member's type.
+void assign(QString& to, const QVariant& v)
+{
+    to = v.toString();
+}
+void assign(qint32& to, const QVariant& v)
+{
+    to = v.toInt();
+}
+void assign(quint16& to, const QVariant& v)
+{
+    to = quint16(v.toUInt());
+}
+void assign(bool& to, const QVariant& v)
+{
+    to = v.toBool();
+}
+void assign(double& to, const QVariant& v)
+{
+    to = v.toDouble();
+}
+
+}  // namespace
+
 QString LinkSettings::defaultCurrency()
 {
     // The C locale knows none: a satellite call is billed in US dollars most often.
@@ -118,20 +173,8 @@ void LinkSettings::save(QSettings& settings) const
     settings.beginGroup(QStringLiteral("link"));
     settings.setValue(QStringLiteral("transport"),
                       transport == Transport::Serial ? QStringLiteral("serial") : QStringLiteral("udp"));
-    settings.setValue(QStringLiteral("serialPort"), serialPort);
-    settings.setValue(QStringLiteral("baudRate"), baudRate);
-    settings.setValue(QStringLiteral("localAddress"), localAddress);
-    settings.setValue(QStringLiteral("localPort"), localPort);
-    settings.setValue(QStringLiteral("remoteAddress"), remoteAddress);
-    settings.setValue(QStringLiteral("remotePort"), remotePort);
-    settings.setValue(QStringLiteral("keyPath"), keyPath);  // where the key is; the key stays in its file
-    settings.setValue(QStringLiteral("dialNumber"), dialNumber);
-    settings.setValue(QStringLiteral("modemInit"), modemInit);
-    settings.setValue(QStringLiteral("modemProfile"), modemProfile);
-    settings.setValue(QStringLiteral("callCurrency"), callCurrency);
-    settings.setValue(QStringLiteral("rtsCts"), rtsCts);
-    settings.setValue(QStringLiteral("callCostPerMinute"), callCostPerMinute);
-    settings.setValue(QStringLiteral("satelliteDelayMs"), satelliteDelayMs);
+    for (const Stored& stored : kStored)
+        std::visit([&](auto member) { settings.setValue(QLatin1String(stored.key), this->*member); }, stored.member);
     settings.endGroup();
 }
 
@@ -144,19 +187,7 @@ LinkSettings LinkSettings::load(const QSettings& settings)
     LinkSettings s;
     s.transport =
         value("transport", QString()).toString() == QLatin1String("serial") ? Transport::Serial : Transport::Udp;
-    s.serialPort = value("serialPort", defaults.serialPort).toString();
-    s.baudRate = value("baudRate", defaults.baudRate).toInt();
-    s.localAddress = value("localAddress", defaults.localAddress).toString();
-    s.localPort = quint16(value("localPort", defaults.localPort).toUInt());
-    s.remoteAddress = value("remoteAddress", defaults.remoteAddress).toString();
-    s.remotePort = quint16(value("remotePort", defaults.remotePort).toUInt());
-    s.keyPath = value("keyPath", defaults.keyPath).toString();
-    s.dialNumber = value("dialNumber", defaults.dialNumber).toString();
-    s.modemInit = value("modemInit", defaults.modemInit).toString();
-    s.modemProfile = value("modemProfile", defaults.modemProfile).toString();
-    s.callCurrency = value("callCurrency", defaults.callCurrency).toString();
-    s.rtsCts = value("rtsCts", defaults.rtsCts).toBool();
-    s.callCostPerMinute = value("callCostPerMinute", defaults.callCostPerMinute).toDouble();
-    s.satelliteDelayMs = value("satelliteDelayMs", defaults.satelliteDelayMs).toInt();
+    for (const Stored& stored : kStored)
+        std::visit([&](auto member) { assign(s.*member, value(stored.key, defaults.*member)); }, stored.member);
     return s;
 }

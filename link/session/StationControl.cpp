@@ -5,6 +5,8 @@
 #include "codec/message/ValueCodec.h"
 #include "link/common/NameTable.h"
 
+#include <utility>
+
 using namespace rcm;
 
 namespace {
@@ -81,36 +83,33 @@ void StationControl::applyTo(Message& command) const
             command.header.erase(ID_GCS_backup);
         return;
     }
-    switch (m_role) {
-        case Role::Unknown:
-            // Nobody named until the aircraft says who is in control: a frame
-            // naming no station is no command and changes no backup.
-            setStationItem(command, ID_GCS_destination, std::nullopt);
-            setStationItem(command, ID_GCS_backup, std::nullopt);
-            break;
-        case Role::InControl:
-            // The claim: only the operator's Take control on this link sends it.
-            setStationItem(command, ID_GCS_destination, m_station);
-            setStationItem(command, ID_GCS_backup, m_station);
-            break;
-        case Role::Offered:
-            // Naming itself, not claiming: taken up or not, the aircraft keeps
-            // what it does (the frames hold the command back meanwhile), and
-            // naming the backup instead would hand over a control taken up.
-            setStationItem(command, ID_GCS_destination, m_station);
-            setStationItem(command, ID_GCS_backup, std::nullopt);
-            break;
-        case Role::HandingOver:
-            // The aircraft passes control to the backup.
-            setStationItem(command, ID_GCS_destination, m_reportedBackup);
-            setStationItem(command, ID_GCS_backup, m_station);
-            break;
-        case Role::Backup:
-        case Role::Observing:
-            setStationItem(command, ID_GCS_destination, m_reportedControl);
-            setStationItem(command, ID_GCS_backup, m_reportedBackup);
-            break;
-    }
+    using Stations = std::pair<std::optional<StationId>, std::optional<StationId>>;  // destination, backup
+    const auto [destination, backup] = [&]() -> Stations {
+        switch (m_role) {
+            case Role::Unknown:
+                // Nobody named until the aircraft says who is in control: a
+                // frame naming no station is no command and changes no backup.
+                return {std::nullopt, std::nullopt};
+            case Role::InControl:
+                // The claim: only the operator's Take control on this link sends it.
+                return {m_station, m_station};
+            case Role::Offered:
+                // Naming itself, not claiming: taken up or not, the aircraft
+                // keeps what it does (the frames hold the command back
+                // meanwhile), and naming the backup instead would hand over a
+                // control taken up.
+                return {m_station, std::nullopt};
+            case Role::HandingOver:
+                // The aircraft passes control to the backup.
+                return {m_reportedBackup, m_station};
+            case Role::Backup:
+            case Role::Observing:
+                break;
+        }
+        return {m_reportedControl, m_reportedBackup};
+    }();
+    setStationItem(command, ID_GCS_destination, destination);
+    setStationItem(command, ID_GCS_backup, backup);
 }
 
 void StationControl::statusReceived(const Message& status)
