@@ -21,6 +21,7 @@ constexpr std::uint32_t kIdMask = rcm::kMessageIdModulus - 1;
 // the reference machine (docs/performance.md).
 constexpr std::uint64_t kTrialUnits = 3;      // rs::decodeWithPrediction
 constexpr std::uint64_t kDecodeUnits = 8;     // rs::decode of a word beyond correction
+constexpr std::uint64_t kErasureDecodeUnits = 10;  // rs::decodeWithErasures, 30 places erased
 constexpr std::uint64_t kEncodeUnits = 5;     // encodeBlocks
 constexpr std::uint64_t kCodewordUnits = 1;   // rs::encode
 constexpr std::uint64_t kEncipherUnits = 2;   // one block through HCTR2
@@ -612,36 +613,42 @@ std::vector<const TrialDecoder::Section*> TrialDecoder::heldSectionsAhead(const 
     return held;
 }
 
-// Plain link: the copies of this section from earlier passes, combined byte
-// by byte with this one (codeword 2 of a frame lost in each pass).
+// Plain link: the copies of this section from earlier passes (or repeats),
+// combined with this one (rs::decodeFromCopies): codewords 2 of frames whose
+// BLOCK 2 nothing read, kept from the last kMaxBlock2Copies frames, similar
+// to this one. The result must then also fit this frame's parity bytes
+// (a trial with it as the prediction). Every decode is paid from the budget.
 bool TrialDecoder::block2FromCopies(const std::uint8_t* r2, DecodedBlocks& d, Work& work)
 {
     if (m_block2Copies.empty() || !work.take(kCompareUnits * 8))
         return false;
-    std::vector<const std::uint8_t*> votes;
+    std::vector<const std::uint8_t*> copies;
     for (const Codeword& c : m_block2Copies) {
         std::size_t same = 0;
         for (std::size_t i = 0; i < kBlockSize; ++i)
             same += c[i] == r2[i];
         if (same >= kSimilarBytes)
-            votes.push_back(c.data());
-        if (votes.size() == kMaxCombined)
+            copies.push_back(c.data());
+        if (copies.size() + 1 == kMaxCombined)
             break;
     }
-    if (votes.size() < 2 || !work.take(kDecodeUnits + kTrialUnits))
+    if (copies.empty())
         return false;
-    std::reverse(votes.begin(), votes.end());
-    votes.push_back(r2);  // ties go to this frame's byte
-    Codeword vote;
-    rs::majorityBytes(votes.data(), static_cast<int>(votes.size()), vote.data());
-    if (rs::decodeWithin(vote.data(), m_options.margin) < 0)
+    std::reverse(copies.begin(), copies.end());
+    copies.push_back(r2);  // the frame being read last
+    const int affordable = static_cast<int>(std::min<std::uint64_t>(work.units / kErasureDecodeUnits, 1u << 12));
+    Codeword combined;
+    const rs::CopiesDecode c =
+        rs::decodeFromCopies(copies.data(), static_cast<int>(copies.size()), combined.data(), affordable);
+    work.take(static_cast<std::uint64_t>(c.decodes) * kErasureDecodeUnits);
+    if (!c.found || !work.take(kTrialUnits))
         return false;
     Codeword out;
-    const int c = rs::decodeWithPrediction(r2, vote.data(), out.data(), m_options.margin);
-    if (c < 0)
+    const int corrected = rs::decodeWithPrediction(r2, combined.data(), out.data(), m_options.margin);
+    if (corrected < 0)
         return false;
     std::memcpy(d.block2.data(), out.data(), kBlockSize);
-    d.corrected.block2 = c;
+    d.corrected.block2 = corrected;
     ++m_stats.block2FromCopies;
     return true;
 }
