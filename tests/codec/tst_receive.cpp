@@ -139,6 +139,7 @@ private slots:
     void sendersForgottenBeyondTheTable();
     void ownCommandPredictsTheStatus_data();
     void ownCommandPredictsTheStatus();
+    void planSectionFromTwoPassesCopies();
 };
 
 void TestReceive::noWrongFrameDelivered_data()
@@ -833,6 +834,59 @@ void TestReceive::ownCommandPredictsTheStatus()
     QVERIFY(f.fromPrediction);
     QVERIFY(f.decoded.message == at(3));
     QCOMPARE(f.decoded.message.radios[0].number(ItemId::Rx_freq), 124250);
+}
+
+// A plan section whose codeword 2 is beyond RS in pass 1 (18 byte errors)
+// and again in pass 2 (18 others): pass 1 is refused, pass 2 read from the
+// two copies combined, exactly as sent; pass 1's frame replayed afterwards
+// is never delivered (older than the last delivered), though its section is
+// now known.
+void TestReceive::planSectionFromTwoPassesCopies()
+{
+    Collected c;
+    std::uint32_t id = 1;
+    const auto send = [&](std::uint16_t section, int damageFrom) {
+        ++id;
+        c.nowMicros = (kNoon + id) * 1'000'000;
+        Message m = command(id, id);
+        m.flightPlan = sixSectionPlan(0xA, section);
+        Bytes d = datagramOf(m);
+        if (damageFrom >= 0)
+            for (int e = 0; e < 18; ++e)
+                d[kCodewordSize + static_cast<std::size_t>(damageFrom + 13 * e)] ^= static_cast<std::uint8_t>(0x11 + 7 * e);
+        c.receiver.receive(d);
+        return std::make_pair(c.frames.back(), std::make_pair(m, d));
+    };
+    c.nowMicros = (kNoon + id) * 1'000'000;
+    c.receiver.receive(datagramOf(command(id, id)));
+    QVERIFY(c.frames.back().delivered());
+    Bytes passOne;
+    Message passOneSent;
+    for (std::uint16_t section = 0; section < 6; ++section) {
+        const auto [frame, sent] = send(section, section == 3 ? 1 : -1);
+        if (section == 3) {
+            QCOMPARE(frame.refusal, std::optional<Refusal>(Refusal::Uncorrectable));
+            passOne = sent.second;
+            passOneSent = sent.first;
+        } else {
+            QVERIFY2(frame.delivered(), frame.detail.c_str());
+        }
+    }
+    for (std::uint16_t section = 0; section < 6; ++section) {
+        const auto [frame, sent] = send(section, section == 3 ? 6 : -1);
+        QVERIFY2(frame.delivered(), frame.detail.c_str());
+        QVERIFY(frame.decoded.message == sent.first);
+        if (section == 3) {
+            QVERIFY(frame.fromPrediction);
+            QCOMPARE(frame.blocks.corrected.block2 >= 0, true);
+        }
+    }
+    QCOMPARE(c.receiver.predictions()->stats().block2FromCopies, std::uint64_t{1});
+    // Replayed: as damaged (its section not predicted backwards), and intact.
+    c.receiver.receive(passOne);
+    QCOMPARE(c.frames.back().refusal, std::optional<Refusal>(Refusal::Uncorrectable));
+    c.receiver.receive(datagramOf(passOneSent));
+    QCOMPARE(c.frames.back().refusal, std::optional<Refusal>(Refusal::Replayed));
 }
 
 QTEST_GUILESS_MAIN(TestReceive)
