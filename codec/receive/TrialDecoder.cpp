@@ -21,7 +21,7 @@ constexpr std::uint32_t kIdMask = rcm::kMessageIdModulus - 1;
 // the reference machine (docs/performance.md).
 constexpr std::uint64_t kTrialUnits = 3;      // rs::decodeWithPrediction
 constexpr std::uint64_t kDecodeUnits = 8;     // rs::decode of a word beyond correction
-constexpr std::uint64_t kErasureDecodeUnits = 10;  // rs::decodeWithErasures, 30 places erased
+constexpr std::uint64_t kErasureDecodeUnits = 20;  // rs::decodeWithErasures: 2-3 decodes beyond correction
 constexpr std::uint64_t kEncodeUnits = 5;     // encodeBlocks
 constexpr std::uint64_t kCodewordUnits = 1;   // rs::encode
 constexpr std::uint64_t kEncipherUnits = 2;   // one block through HCTR2
@@ -33,6 +33,12 @@ constexpr std::size_t kMaxBlock2Copies = 64;   // codewords 2 kept to combine
 constexpr std::size_t kMaxCombined = 8;        // copies of one section combined at most
 constexpr std::size_t kSimilarBytes = 96;      // of 223: two copies of one section agree in far more
 constexpr int kMaxExpectedVariants = 6;
+// Plain link, a change of several commands on its first frame: at most this
+// many command bytes erased, and 2e + f within kErasureTrialReach (a wrong
+// codeword no likelier than within a trial's 12 corrections: docs/protocol.md
+// section 9).
+constexpr std::size_t kMaxErasedCommandBytes = 16;
+constexpr int kErasureTrialReach = 20;
 constexpr std::size_t kMaxAcknowledgements = 4; // plans this end sent, whose acknowledgement may come        // keyed: changes of one command left out or taken alone
 
 using Codeword = std::array<std::uint8_t, kCodewordSize>;
@@ -366,6 +372,11 @@ std::optional<TrialDecoder::Found> TrialDecoder::findBlock1(const SenderHistory&
             ++m_stats.block1FromCopies;
             return f;
         }
+    if (!keyed)
+        if (std::optional<Found> f = fromChangedCommands(p, order, r1, work)) {
+            ++m_stats.block1FromChangedCommands;
+            return f;
+        }
     if (codec && &h == m_lastHistory)
         if (std::optional<Found> f = searchCommandChange(h, codec, r1, gapEstimate, work)) {
             ++m_stats.block1FromCommandChange;
@@ -475,6 +486,55 @@ std::optional<TrialDecoder::Found> TrialDecoder::fromAgreedBytes(const SenderPre
                     f.corrected = c;
                     return f;
                 }
+            }
+        }
+    }
+    return std::nullopt;
+}
+
+// Plain link: the two likeliest predictions (with this end's command
+// first) with the command value bytes in which this frame differs from them
+// erased: a change of several commands costs one syndrome a byte instead of
+// two, so its first frame is read through as many channel errors as the
+// frames after it.
+std::optional<TrialDecoder::Found> TrialDecoder::fromChangedCommands(const SenderPredictions& p,
+                                                                     const std::vector<std::uint32_t>& order,
+                                                                     const std::uint8_t* r1, Work& work) const
+{
+    for (const std::vector<Predicted>* list : {&p.expected, &p.advanced}) {
+        for (std::size_t k = 0; k < order.size() && k < 2; ++k) {
+            for (const Predicted& pred : *list) {
+                if (pred.n != order[k])
+                    continue;
+                if (!work.take(kCompareUnits))
+                    return std::nullopt;
+                Block data;
+                std::memcpy(data.data(), pred.codeword.data(), kBlockSize);
+                std::vector<int> erased;
+                for (std::size_t at : commandValueBytes(data))
+                    if (r1[at] != data[at])
+                        erased.push_back(static_cast<int>(at));
+                if (erased.empty() || erased.size() > kMaxErasedCommandBytes)
+                    continue;
+                if (!work.take(kErasureDecodeUnits))
+                    return std::nullopt;
+                Codeword word = pred.codeword;
+                std::memcpy(word.data() + kBlockSize, r1 + kBlockSize, rs::kParitySize);
+                const Codeword trial = word;
+                const int f = static_cast<int>(erased.size());
+                if (rs::decodeWithErasures(word.data(), erased.data(), f) < 0)
+                    continue;
+                int errors = 0;  // corrected outside the erased places
+                for (std::size_t i = 0; i < kCodewordSize; ++i)
+                    errors += word[i] != trial[i] &&
+                              std::find(erased.begin(), erased.end(), static_cast<int>(i)) == erased.end();
+                if (2 * errors + f > kErasureTrialReach)
+                    continue;
+                Found found;
+                std::memcpy(found.block.data(), word.data(), kBlockSize);
+                found.corrected = errors + f;
+                found.stamp = pred.stamp;
+                return found;
             }
         }
     }

@@ -106,6 +106,22 @@ int main(int argc, char** argv)
          }},
         {"the same from 16 senders",
          [&](std::uint64_t i, Bytes& out, std::mt19937_64& rng) { fakeBlock2(plain, i, out, rng); }, false, true},
+        {"predicted BLOCK 1, BLOCK 2 one random word with 20 fresh errors (copies to combine)",
+         [&](std::uint64_t i, Bytes& out, std::mt19937_64& rng) {
+             static const Bytes word = [] {
+                 std::mt19937_64 w(77);
+                 Bytes b(kCodewordSize);
+                 for (std::uint8_t& x : b)
+                     x = static_cast<std::uint8_t>(w());
+                 return b;
+             }();
+             const FrameBytes f = plain.frameAt(i);
+             out.insert(out.end(), f.begin(), f.begin() + kPreambleSize + kCodewordSize);
+             const std::size_t at = out.size();
+             out.insert(out.end(), word.begin(), word.end());
+             for (int e = 0; e < 20; ++e)
+                 out[at + rng() % kCodewordSize] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+         }},
         {"keyed: preamble + random codewords",
          [](std::uint64_t, Bytes& out, std::mt19937_64& rng) {
              out.insert(out.end(), preamble().begin(), preamble().end());

@@ -140,6 +140,7 @@ private slots:
     void ownCommandPredictsTheStatus_data();
     void ownCommandPredictsTheStatus();
     void planSectionFromTwoPassesCopies();
+    void severalCommandsChangedOnTheFirstFrame();
 };
 
 void TestReceive::noWrongFrameDelivered_data()
@@ -887,6 +888,50 @@ void TestReceive::planSectionFromTwoPassesCopies()
     QCOMPARE(c.frames.back().refusal, std::optional<Refusal>(Refusal::Uncorrectable));
     c.receiver.receive(datagramOf(passOneSent));
     QCOMPARE(c.frames.back().refusal, std::optional<Refusal>(Refusal::Replayed));
+}
+
+// Plain link: the first frame of a change of four commands (a radio retuned,
+// the camera turned and raised: 9 bytes) with 20 byte errors in its data
+// and 5 in its parity: beyond RS, and beyond a trial (9 bytes off the
+// prediction + 5 > 12), read with those 9 command bytes erased
+// (2 x 5 + 9 <= 20).
+void TestReceive::severalCommandsChangedOnTheFirstFrame()
+{
+    Collected c;
+    Message status = test::sessionStartMessage();
+    const auto at = [&](const Message& base, std::uint32_t second) {
+        Message m = advanceMessage(base, 0);
+        m.header.set(ItemId::ID_msg, second);
+        const std::int64_t t = (kNoon + second) % 86400;
+        m.header.set(ItemId::time_UTC, t / 3600 * 10000 + t / 60 % 60 * 100 + t % 60);
+        m.header.set(ItemId::date_UTC, 261231);
+        return m;
+    };
+    const auto send = [&](const Message& m, bool damaged) {
+        const EncodedBlocks b = encoded(m);
+        Bytes d = datagramOf(b.block1, b.block2);
+        if (damaged) {
+            // 20 data bytes in the padding before the items, 5 parity bytes.
+            for (std::size_t e = 0; e < 20; ++e)
+                d[e * 3 + 1] ^= static_cast<std::uint8_t>(0x21 + e);
+            for (std::size_t e = 0; e < 5; ++e)
+                d[kBlockSize + e * 6] ^= 0x5C;
+        }
+        c.nowMicros = (kNoon + m.header.number(ItemId::ID_msg)) * 1'000'000;
+        c.receiver.receive(d);
+        return c.frames.back();
+    };
+    QVERIFY(send(at(status, 1), false).delivered());
+    Message changed = status;
+    changed.radios[0].set(ItemId::Rx_freq, 136975);  // 0x01DA9C -> 0x02170F
+    changed.radios[0].set(ItemId::Tx_freq, 136975);
+    changed.cameras[0].set(ItemId::cam_mag_compass, 27123);  // 0x2328 -> 0x69F3
+    changed.cameras[0].set(ItemId::cam_elev, -1501);          // one byte
+    const ReceivedFrame f = send(at(changed, 2), true);
+    QVERIFY2(f.delivered(), f.detail.c_str());
+    QVERIFY(f.fromPrediction);
+    QVERIFY(f.decoded.message == at(changed, 2));
+    QCOMPARE(c.receiver.predictions()->stats().block1FromChangedCommands, std::uint64_t{1});
 }
 
 QTEST_GUILESS_MAIN(TestReceive)
