@@ -207,6 +207,18 @@ void errorLocator(const Field& gf, const int* s, std::uint8_t* lambda, int erasu
     }
 }
 
+// The locator in log form; returns its degree.
+int toLogForm(const Field& gf, const std::uint8_t* lambda, int* lambdaLog)
+{
+    int degree = 0;
+    for (int i = 0; i <= kRoots; ++i) {
+        lambdaLog[i] = gf.indexOf[lambda[i]];
+        if (lambdaLog[i] != kA0)
+            degree = i;
+    }
+    return degree;
+}
+
 // Chien search: the roots of the error locator (`root`) and the error
 // positions they stand for (`loc`); returns how many were found.
 int chienSearch(const Field& gf, const int* lambdaLog, int degLambda, int* root, int* loc)
@@ -286,12 +298,7 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
     std::uint8_t lambda[kRoots + 1] = {1};
     errorLocator(gf, s, lambda);
     int lambdaLog[kRoots + 1];
-    int degLambda = 0;
-    for (int i = 0; i <= kRoots; ++i) {
-        lambdaLog[i] = gf.indexOf[lambda[i]];
-        if (lambdaLog[i] != kA0)
-            degLambda = i;
-    }
+    const int degLambda = toLogForm(gf, lambda, lambdaLog);
     if (degLambda > maxErrors)
         return -1;
 
@@ -332,12 +339,7 @@ int correctWithErasures(std::uint8_t* word, const std::uint8_t* remainder, const
         erasureLocator(gf, erasures, count, lambda);
     errorLocator(gf, s, lambda, count);
     int lambdaLog[kRoots + 1];
-    int degLambda = 0;
-    for (int i = 0; i <= kRoots; ++i) {
-        lambdaLog[i] = gf.indexOf[lambda[i]];
-        if (lambdaLog[i] != kA0)
-            degLambda = i;
-    }
+    const int degLambda = toLogForm(gf, lambda, lambdaLog);
     // Beyond 2 e + f <= 32 the locator cannot be right.
     if (2 * (degLambda - count) + count > kRoots)
         return -1;

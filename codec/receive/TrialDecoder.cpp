@@ -701,6 +701,8 @@ bool TrialDecoder::block2FromCopies(const std::uint8_t* r2, DecodedBlocks& d, Wo
     const rs::CopiesDecode c =
         rs::decodeFromCopies(copies.data(), static_cast<int>(copies.size()), combined.data(), affordable);
     work.take(static_cast<std::uint64_t>(c.decodes) * kErasureDecodeUnits);
+    if (!c.found && c.decodes == affordable)
+        work.cut = true;  // the budget ended the choices
     if (!c.found || !work.take(kTrialUnits))
         return false;
     Codeword out;

@@ -57,6 +57,17 @@ Message command(std::uint32_t id, std::int64_t second = 0)
     return m;
 }
 
+// `base` sent at kNoon + `second`, its counter `second`.
+Message stampedAt(const Message& base, std::uint32_t second)
+{
+    Message m = base;
+    m.header.set(ItemId::ID_msg, second);
+    const std::int64_t t = (kNoon + second) % 86400;
+    m.header.set(ItemId::time_UTC, t / 3600 * 10000 + t / 60 % 60 * 100 + t % 60);
+    m.header.set(ItemId::date_UTC, 261231);
+    return m;
+}
+
 EncodedBlocks encoded(const Message& m)
 {
     Diagnostics errors;
@@ -812,14 +823,7 @@ void TestReceive::ownCommandPredictsTheStatus()
     };
     Message status = test::sessionStartMessage();
     status.header.set(ItemId::ID_UA_source, Value::station({44, 133}));
-    const auto at = [&](std::uint32_t second) {
-        Message m = advanceMessage(status, 0);
-        m.header.set(ItemId::ID_msg, second);
-        const std::int64_t t = (kNoon + second) % 86400;
-        m.header.set(ItemId::time_UTC, t / 3600 * 10000 + t / 60 % 60 * 100 + t % 60);
-        m.header.set(ItemId::date_UTC, 261231);
-        return m;
-    };
+    const auto at = [&](std::uint32_t second) { return stampedAt(status, second); };
     QVERIFY(send(at(1), false).delivered());
     Message command = status;
     command.radios[0].set(ItemId::Rx_freq, 124250);
@@ -899,14 +903,7 @@ void TestReceive::severalCommandsChangedOnTheFirstFrame()
 {
     Collected c;
     Message status = test::sessionStartMessage();
-    const auto at = [&](const Message& base, std::uint32_t second) {
-        Message m = advanceMessage(base, 0);
-        m.header.set(ItemId::ID_msg, second);
-        const std::int64_t t = (kNoon + second) % 86400;
-        m.header.set(ItemId::time_UTC, t / 3600 * 10000 + t / 60 % 60 * 100 + t % 60);
-        m.header.set(ItemId::date_UTC, 261231);
-        return m;
-    };
+    const auto at = [](const Message& base, std::uint32_t second) { return stampedAt(base, second); };
     const auto send = [&](const Message& m, bool damaged) {
         const EncodedBlocks b = encoded(m);
         Bytes d = datagramOf(b.block1, b.block2);
