@@ -1,7 +1,9 @@
 #include "codec/frame/ReedSolomon.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
+#include <vector>
 
 // fec.h has no extern "C" guard and puts names like UNKNOWN and parity in the
 // global namespace: include it here and nowhere else.
@@ -165,7 +167,10 @@ bool syndromes(const Field& gf, const std::uint8_t* remainder, int* s)
 }
 
 // Berlekamp-Massey: the error locator polynomial from the syndromes.
-void errorLocator(const Field& gf, const int* s, std::uint8_t* lambda)
+// `lambda` holds the locator of the `erasures` erased places already (1
+// without erasures); as libfec's decode_rs with erasures, the iteration then
+// starts after them.
+void errorLocator(const Field& gf, const int* s, std::uint8_t* lambda, int erasures = 0)
 {
     const auto& alphaTo = gf.alphaTo;
     const auto& indexOf = gf.indexOf;
@@ -173,8 +178,8 @@ void errorLocator(const Field& gf, const int* s, std::uint8_t* lambda)
     int t[kRoots + 1];
     for (int i = 0; i <= kRoots; ++i)
         b[i] = indexOf[lambda[i]];
-    int el = 0;
-    for (int r = 1; r <= kRoots; ++r) {
+    int el = erasures;
+    for (int r = erasures + 1; r <= kRoots; ++r) {
         unsigned discr = 0;
         for (int i = 0; i < r; ++i)
             if (lambda[i] != 0 && s[r - i - 1] != kA0)
@@ -189,8 +194,8 @@ void errorLocator(const Field& gf, const int* s, std::uint8_t* lambda)
         for (int i = 0; i < kRoots; ++i)
             t[i + 1] = b[i] != kA0 ? lambda[i + 1] ^ alphaTo[static_cast<std::size_t>(modnn(discrLog + b[i]))]
                                    : lambda[i + 1];
-        if (2 * el <= r - 1) {
-            el = r - el;
+        if (2 * el <= r + erasures - 1) {
+            el = r + erasures - el;
             for (int i = 0; i <= kRoots; ++i)
                 b[i] = lambda[i] == 0 ? kA0 : modnn(indexOf[lambda[i]] - discrLog + 255);
         } else {
@@ -200,6 +205,18 @@ void errorLocator(const Field& gf, const int* s, std::uint8_t* lambda)
         for (int i = 0; i <= kRoots; ++i)
             lambda[i] = static_cast<std::uint8_t>(t[i]);
     }
+}
+
+// The locator in log form; returns its degree.
+int toLogForm(const Field& gf, const std::uint8_t* lambda, int* lambdaLog)
+{
+    int degree = 0;
+    for (int i = 0; i <= kRoots; ++i) {
+        lambdaLog[i] = gf.indexOf[lambda[i]];
+        if (lambdaLog[i] != kA0)
+            degree = i;
+    }
+    return degree;
 }
 
 // Chien search: the roots of the error locator (`root`) and the error
@@ -281,12 +298,7 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
     std::uint8_t lambda[kRoots + 1] = {1};
     errorLocator(gf, s, lambda);
     int lambdaLog[kRoots + 1];
-    int degLambda = 0;
-    for (int i = 0; i <= kRoots; ++i) {
-        lambdaLog[i] = gf.indexOf[lambda[i]];
-        if (lambdaLog[i] != kA0)
-            degLambda = i;
-    }
+    const int degLambda = toLogForm(gf, lambda, lambdaLog);
     if (degLambda > maxErrors)
         return -1;
 
@@ -297,6 +309,52 @@ int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int 
         return -1;
     correctErrors(gf, s, lambdaLog, degLambda, root, loc, count, word);
     return count;
+}
+
+// The erasure locator of the places `at` (codeword indices): the product of
+// (1 + X alpha^(11 (254 - place))), libfec's initial lambda.
+void erasureLocator(const Field& gf, const int* at, int count, std::uint8_t* lambda)
+{
+    lambda[1] = gf.alphaTo[static_cast<std::size_t>(modnn(kPrimitive * (254 - at[0])))];
+    for (int i = 1; i < count; ++i) {
+        const int u = modnn(kPrimitive * (254 - at[i]));
+        for (int j = i + 1; j > 0; --j) {
+            const int t = gf.indexOf[lambda[j - 1]];
+            if (t != kA0)
+                lambda[j] ^= gf.alphaTo[static_cast<std::size_t>(modnn(u + t))];
+        }
+    }
+}
+
+// correctFromRemainder with erasures: errors at unknown places and the
+// values at `erasures` known places (libfec's decode_rs with eras_pos).
+int correctWithErasures(std::uint8_t* word, const std::uint8_t* remainder, const int* erasures, int count)
+{
+    const Field& gf = field();
+    int s[kRoots];
+    if (!syndromes(gf, remainder, s))
+        return 0;
+    std::uint8_t lambda[kRoots + 1] = {1};
+    if (count > 0)
+        erasureLocator(gf, erasures, count, lambda);
+    errorLocator(gf, s, lambda, count);
+    int lambdaLog[kRoots + 1];
+    const int degLambda = toLogForm(gf, lambda, lambdaLog);
+    // Beyond 2 e + f <= 32 the locator cannot be right.
+    if (2 * (degLambda - count) + count > kRoots)
+        return -1;
+    int root[kRoots];
+    int loc[kRoots];
+    const int found = chienSearch(gf, lambdaLog, degLambda, root, loc);
+    if (degLambda != found)
+        return -1;
+    // Beyond reach, the locator can lose an erased place among its roots:
+    // then the word found is not within the erasures and e errors.
+    for (int i = 0; i < count; ++i)
+        if (std::find(loc, loc + found, erasures[i]) == loc + found)
+            return -1;
+    correctErrors(gf, s, lambdaLog, degLambda, root, loc, found, word);
+    return found;
 }
 
 // correctFromRemainder on a copy: `word` is left as received when it fails.
@@ -398,9 +456,37 @@ int decodeWithParity(std::uint8_t* word, const std::uint8_t* codewordParity, int
     return correctUnlessFailed(word, remainder, maxErrors);
 }
 
+int decodeWithErasures(std::uint8_t* codeword, const int* erasures, int count)
+{
+    if (count < 0 || count > kRoots)
+        return -1;
+    std::uint8_t remainder[kParitySize];
+    if (!remainderOf(codeword, remainder))
+        return 0;
+    std::uint8_t copy[kCodewordSize];
+    std::memcpy(copy, codeword, kCodewordSize);
+    // Beyond reach the locator may still split into roots whose values do not
+    // make a codeword: the result is checked.
+    if (correctWithErasures(copy, remainder, erasures, count) < 0 || !isCodeword(copy))
+        return -1;
+    // Bytes changed: an erased place may have been right (libfec counts so too).
+    int changed = 0;
+    for (std::size_t i = 0; i < kCodewordSize; ++i)
+        changed += copy[i] != codeword[i];
+    std::memcpy(codeword, copy, kCodewordSize);
+    return changed;
+}
+
 int decodeLibfec(std::uint8_t* codeword)
 {
     return decode_rs_ccsds(codeword, nullptr, 0, 0);
+}
+
+int decodeLibfecWithErasures(std::uint8_t* codeword, const int* erasures, int count)
+{
+    std::vector<int> places(erasures, erasures + count);  // libfec writes its roots' places into it
+    places.resize(kParitySize);
+    return decode_rs_ccsds(codeword, places.data(), count, 0);
 }
 
 }  // namespace rcm::rs

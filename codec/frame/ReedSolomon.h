@@ -46,6 +46,13 @@ int decodeWithin(std::uint8_t* codeword, int maxErrors);
 // is needed. Corrects `word` in place as decodeWithin does.
 int decodeWithParity(std::uint8_t* word, const std::uint8_t* codewordParity, int maxErrors);
 
+// Corrects `codeword` in place given `count` (<= 32) places known to be
+// unreliable (`erasures`, indices 0..254, distinct): errors e elsewhere and
+// erasures f are corrected while 2e + f <= 32. Returns the bytes changed (an
+// erased place may have been right), or -1 beyond correction (the codeword
+// then left as it was). libfec's decode_rs with eras_pos, from the remainder.
+int decodeWithErasures(std::uint8_t* codeword, const int* erasures, int count);
+
 // libfec's correction alone, for a codeword already known not to be clean;
 // same result as decode, for tests and benchmarks that compare with libfec.
 int correct(std::uint8_t* codeword);
@@ -53,5 +60,7 @@ int correct(std::uint8_t* codeword);
 // libfec's decode_rs_ccsds alone, without the clean check; for benchmarks and
 // for tests that compare against it. Any negative return means failure.
 int decodeLibfec(std::uint8_t* codeword);
+// ... with `count` erasures (libfec's eras_pos).
+int decodeLibfecWithErasures(std::uint8_t* codeword, const int* erasures, int count);
 
 }  // namespace rcm::rs

@@ -39,4 +39,34 @@ int parityDistance(const std::uint8_t* received, const std::uint8_t* predicted);
 // later), a few noisy copies together say more than one.
 void majorityBytes(const std::uint8_t* const* codewords, int count, std::uint8_t* out);
 
+// Decoding from several received copies of one codeword (the same flight
+// plan section in two passes), when no copy is within RS's reach alone.
+// Where the copies agree the byte is very likely right; where they do not
+// (no value with a strict majority), the sent byte is very likely one of
+// theirs. Those places are erased (at most 32) and the rest decoded; with
+// more than 32 such places, the values of kCopiesGuessed + (places - 32) of
+// them are tried from the copies, each choice decoded with the other 30
+// erased (one error left to correct). A result is taken only when it is a
+// codeword that
+//   - takes every byte from some copy but at most kMaxNoCopyBytes;
+//   - is the codeword of the last copy (the frame being read): no further
+//     from it than kCopiesLastSlack bytes more than from the nearest other
+//     copy (another section's codeword lies near that section's copy, and
+//     at least 33 bytes from this one's sent word).
+inline constexpr int kMaxNoCopyBytes = 4;
+inline constexpr int kCopiesErased = 30;      // erased while guessing: one error left to correct
+inline constexpr int kMaxCopiesGuessed = 10;  // places tried from the copies: at most 2^10 decodes
+inline constexpr int kCopiesLastSlack = 16;
+
+struct CopiesDecode {
+    int decodes = 0;   // RS decodes spent (each about one decode beyond correction)
+    bool found = false;
+    int noCopy = 0;    // bytes of the result in no copy
+};
+
+// `copies`: `count` (>= 2) received words of 255 bytes, the one being read
+// last. Writes the codeword into `out` when found; spends at most
+// `maxDecodes` decodes.
+CopiesDecode decodeFromCopies(const std::uint8_t* const* copies, int count, std::uint8_t* out, int maxDecodes);
+
 }  // namespace rcm::rs

@@ -21,6 +21,7 @@ constexpr std::uint32_t kIdMask = rcm::kMessageIdModulus - 1;
 // the reference machine (docs/performance.md).
 constexpr std::uint64_t kTrialUnits = 3;      // rs::decodeWithPrediction
 constexpr std::uint64_t kDecodeUnits = 8;     // rs::decode of a word beyond correction
+constexpr std::uint64_t kErasureDecodeUnits = 20;  // rs::decodeWithErasures: 2-3 decodes beyond correction
 constexpr std::uint64_t kEncodeUnits = 5;     // encodeBlocks
 constexpr std::uint64_t kCodewordUnits = 1;   // rs::encode
 constexpr std::uint64_t kEncipherUnits = 2;   // one block through HCTR2
@@ -32,6 +33,12 @@ constexpr std::size_t kMaxBlock2Copies = 64;   // codewords 2 kept to combine
 constexpr std::size_t kMaxCombined = 8;        // copies of one section combined at most
 constexpr std::size_t kSimilarBytes = 96;      // of 223: two copies of one section agree in far more
 constexpr int kMaxExpectedVariants = 6;
+// Plain link, a change of several commands on its first frame: at most this
+// many command bytes erased, and 2e + f within kErasureTrialReach (a wrong
+// codeword no likelier than within a trial's 12 corrections: docs/protocol.md
+// section 9).
+constexpr std::size_t kMaxErasedCommandBytes = 16;
+constexpr int kErasureTrialReach = 20;
 constexpr std::size_t kMaxAcknowledgements = 4; // plans this end sent, whose acknowledgement may come        // keyed: changes of one command left out or taken alone
 
 using Codeword = std::array<std::uint8_t, kCodewordSize>;
@@ -365,6 +372,11 @@ std::optional<TrialDecoder::Found> TrialDecoder::findBlock1(const SenderHistory&
             ++m_stats.block1FromCopies;
             return f;
         }
+    if (!keyed)
+        if (std::optional<Found> f = fromChangedCommands(p, order, r1, work)) {
+            ++m_stats.block1FromChangedCommands;
+            return f;
+        }
     if (codec && &h == m_lastHistory)
         if (std::optional<Found> f = searchCommandChange(h, codec, r1, gapEstimate, work)) {
             ++m_stats.block1FromCommandChange;
@@ -474,6 +486,55 @@ std::optional<TrialDecoder::Found> TrialDecoder::fromAgreedBytes(const SenderPre
                     f.corrected = c;
                     return f;
                 }
+            }
+        }
+    }
+    return std::nullopt;
+}
+
+// Plain link: the two likeliest predictions (with this end's command
+// first) with the command value bytes in which this frame differs from them
+// erased: a change of several commands costs one syndrome a byte instead of
+// two, so its first frame is read through as many channel errors as the
+// frames after it.
+std::optional<TrialDecoder::Found> TrialDecoder::fromChangedCommands(const SenderPredictions& p,
+                                                                     const std::vector<std::uint32_t>& order,
+                                                                     const std::uint8_t* r1, Work& work) const
+{
+    for (const std::vector<Predicted>* list : {&p.expected, &p.advanced}) {
+        for (std::size_t k = 0; k < order.size() && k < 2; ++k) {
+            for (const Predicted& pred : *list) {
+                if (pred.n != order[k])
+                    continue;
+                if (!work.take(kCompareUnits))
+                    return std::nullopt;
+                Block data;
+                std::memcpy(data.data(), pred.codeword.data(), kBlockSize);
+                std::vector<int> erased;
+                for (std::size_t at : commandValueBytes(data))
+                    if (r1[at] != data[at])
+                        erased.push_back(static_cast<int>(at));
+                if (erased.empty() || erased.size() > kMaxErasedCommandBytes)
+                    continue;
+                if (!work.take(kErasureDecodeUnits))
+                    return std::nullopt;
+                Codeword word = pred.codeword;
+                std::memcpy(word.data() + kBlockSize, r1 + kBlockSize, rs::kParitySize);
+                const Codeword trial = word;
+                const int f = static_cast<int>(erased.size());
+                if (rs::decodeWithErasures(word.data(), erased.data(), f) < 0)
+                    continue;
+                int errors = 0;  // corrected outside the erased places
+                for (std::size_t i = 0; i < kCodewordSize; ++i)
+                    errors += word[i] != trial[i] &&
+                              std::find(erased.begin(), erased.end(), static_cast<int>(i)) == erased.end();
+                if (2 * errors + f > kErasureTrialReach)
+                    continue;
+                Found found;
+                std::memcpy(found.block.data(), word.data(), kBlockSize);
+                found.corrected = errors + f;
+                found.stamp = pred.stamp;
+                return found;
             }
         }
     }
@@ -612,36 +673,44 @@ std::vector<const TrialDecoder::Section*> TrialDecoder::heldSectionsAhead(const 
     return held;
 }
 
-// Plain link: the copies of this section from earlier passes, combined byte
-// by byte with this one (codeword 2 of a frame lost in each pass).
+// Plain link: the copies of this section from earlier passes (or repeats),
+// combined with this one (rs::decodeFromCopies): codewords 2 of frames whose
+// BLOCK 2 nothing read, kept from the last kMaxBlock2Copies frames, similar
+// to this one. The result must then also fit this frame's parity bytes
+// (a trial with it as the prediction). Every decode is paid from the budget.
 bool TrialDecoder::block2FromCopies(const std::uint8_t* r2, DecodedBlocks& d, Work& work)
 {
     if (m_block2Copies.empty() || !work.take(kCompareUnits * 8))
         return false;
-    std::vector<const std::uint8_t*> votes;
+    std::vector<const std::uint8_t*> copies;
     for (const Codeword& c : m_block2Copies) {
         std::size_t same = 0;
         for (std::size_t i = 0; i < kBlockSize; ++i)
             same += c[i] == r2[i];
         if (same >= kSimilarBytes)
-            votes.push_back(c.data());
-        if (votes.size() == kMaxCombined)
+            copies.push_back(c.data());
+        if (copies.size() + 1 == kMaxCombined)
             break;
     }
-    if (votes.size() < 2 || !work.take(kDecodeUnits + kTrialUnits))
+    if (copies.empty())
         return false;
-    std::reverse(votes.begin(), votes.end());
-    votes.push_back(r2);  // ties go to this frame's byte
-    Codeword vote;
-    rs::majorityBytes(votes.data(), static_cast<int>(votes.size()), vote.data());
-    if (rs::decodeWithin(vote.data(), m_options.margin) < 0)
+    std::reverse(copies.begin(), copies.end());
+    copies.push_back(r2);  // the frame being read last
+    const int affordable = static_cast<int>(std::min<std::uint64_t>(work.units / kErasureDecodeUnits, 1u << 12));
+    Codeword combined;
+    const rs::CopiesDecode c =
+        rs::decodeFromCopies(copies.data(), static_cast<int>(copies.size()), combined.data(), affordable);
+    work.take(static_cast<std::uint64_t>(c.decodes) * kErasureDecodeUnits);
+    if (!c.found && c.decodes == affordable)
+        work.cut = true;  // the budget ended the choices
+    if (!c.found || !work.take(kTrialUnits))
         return false;
     Codeword out;
-    const int c = rs::decodeWithPrediction(r2, vote.data(), out.data(), m_options.margin);
-    if (c < 0)
+    const int corrected = rs::decodeWithPrediction(r2, combined.data(), out.data(), m_options.margin);
+    if (corrected < 0)
         return false;
     std::memcpy(d.block2.data(), out.data(), kBlockSize);
-    d.corrected.block2 = c;
+    d.corrected.block2 = corrected;
     ++m_stats.block2FromCopies;
     return true;
 }

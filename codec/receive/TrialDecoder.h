@@ -59,6 +59,7 @@ public:
         std::uint64_t block1FromPrediction = 0;     // the last accepted frame advanced
         std::uint64_t block1FromExpected = 0;       // ... with this end's own command applied
         std::uint64_t block1FromCopies = 0;         // ... with the bytes recent frames agree on
+        std::uint64_t block1FromChangedCommands = 0;  // plain: ... with the command bytes that differ erased
         std::uint64_t block1FromCommandChange = 0;  // keyed: a single-byte change found
         std::uint64_t block1FromMajority = 0;
         std::uint64_t block2FromPrediction = 0;     // empty, or the last section again
@@ -133,6 +134,8 @@ private:
                     const secure::HeaderStamp& stamp, const std::uint8_t* r2, DecodedBlocks& d, Work& work);
     std::vector<const Section*> heldSectionsAhead(const PlanProgress& plan) const;
     bool block2FromCopies(const std::uint8_t* r2, DecodedBlocks& d, Work& work);
+    std::optional<Found> fromChangedCommands(const SenderPredictions& p, const std::vector<std::uint32_t>& order,
+                                             const std::uint8_t* r1, Work& work) const;
     std::optional<Found> searchCommandChange(const SenderHistory& h, const secure::SecureCodec* codec,
                                              const std::uint8_t* r1, std::uint32_t gapEstimate, Work& work);
     bool majority(const std::uint8_t* r1, const DecodedBlocks& plain, DecodedBlocks& d, Work& work);

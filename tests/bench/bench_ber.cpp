@@ -3,13 +3,14 @@
 // with decoding with predictions and without. Prints a table and writes CSV
 // for scripts/plot-ber. Never run by CTest; figures in docs/performance.md.
 //
-//   bench_ber [--items MIN-MAX] [--status] [--link plain|secure] [--ber R,R,...] [frames per row] [csv path]
+//   bench_ber [--items MIN-MAX] [--status] [--link plain|secure] [--ber R,R,...] [--seed N] [frames per row] [csv path]
 //
 // defaults: one single-byte command per change, the console's commands as
 // the aircraft reads them, both links, BER 1e-3 .. 3e-2, 10000 frames,
 // ber.csv. --items 1-4: each change sets 1 to 4 commands at once, of every
 // size. --status: the aircraft's status frames as the console reads them,
-// the console's own commands its prediction.
+// the console's own commands its prediction. --seed N: another session and
+// other bit errors (default 1), to see how much a figure owes to one draw.
 #include "tests/support/BerSession.h"
 
 #include <chrono>
@@ -24,6 +25,7 @@ int main(int argc, char** argv)
     using namespace rcm::test;
     int minItems = 1, maxItems = 1;
     bool status = false;
+    std::uint64_t seed = 1;
     std::vector<bool> links = {false, true};
     std::vector<double> bers = {1e-3, 3e-3, 5e-3, 7e-3, 1e-2, 1.5e-2, 2e-2, 2.5e-2, 3e-2};
     std::vector<std::string> rest;
@@ -34,6 +36,12 @@ int main(int argc, char** argv)
                 std::fprintf(stderr, "bench_ber: --items MIN-MAX, e.g. 1-4\n");
                 return 2;
             }
+        } else if (a == "--seed" && i + 1 < argc) {
+            seed = std::strtoull(argv[++i], nullptr, 10);
+        } else if (a == "--help" || a == "-h") {
+            std::printf("bench_ber [--items MIN-MAX] [--status] [--link plain|secure] [--ber R,R,...] [--seed N] "
+                        "[frames per row] [csv path]\n");
+            return 0;
         } else if (a == "--status") {
             status = true;
         } else if (a == "--link" && i + 1 < argc) {
@@ -56,8 +64,9 @@ int main(int argc, char** argv)
     }
     std::fprintf(csv, "link,ber,frames,delivered_correct,delivered_wrong,refused,from_prediction,plan_frames,"
                       "plan_delivered,plain_rs_only_correct,plain_rs_bound\n");
-    std::printf("%s, %d-%d commands per change\n", status ? "status frames read by the console" : "commands read by the aircraft",
-                minItems, maxItems);
+    std::printf("%s, %d-%d commands per change, seed %llu\n",
+                status ? "status frames read by the console" : "commands read by the aircraft", minItems, maxItems,
+                static_cast<unsigned long long>(seed));
     std::printf("%-6s %-7s %7s %9s %7s %7s %9s %9s %8s %8s %8s\n", "link", "BER", "frames", "correct", "WRONG",
                 "refused", "predicted", "plan", "%correct", "%RSonly", "%bound");
     for (bool secure : links) {
@@ -70,6 +79,7 @@ int main(int argc, char** argv)
             o.minItemsPerChange = minItems;
             o.maxItemsPerChange = maxItems;
             o.status = status;
+            o.seed = seed;
             const BerSessionResult r = runBerSession(o);
             o.predictions = false;
             const BerSessionResult plainOnly = runBerSession(o);

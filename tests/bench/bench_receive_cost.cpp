@@ -106,6 +106,17 @@ int main(int argc, char** argv)
          }},
         {"the same from 16 senders",
          [&](std::uint64_t i, Bytes& out, std::mt19937_64& rng) { fakeBlock2(plain, i, out, rng); }, false, true},
+        {"predicted BLOCK 1, BLOCK 2 twice each random word, 20 fresh errors each time (2 copies, 40 places apart: every choice tried)",
+         [&](std::uint64_t i, Bytes& out, std::mt19937_64& rng) {
+             const FrameBytes f = plain.frameAt(i);
+             out.insert(out.end(), f.begin(), f.begin() + kPreambleSize + kCodewordSize);
+             const std::size_t at = out.size();
+             std::mt19937_64 word(i / 2);
+             for (std::size_t k = 0; k < kCodewordSize; ++k)
+                 out.push_back(static_cast<std::uint8_t>(word()));
+             for (int e = 0; e < 20; ++e)
+                 out[at + (i % 2) * 127 + static_cast<std::size_t>(e) * 6] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+         }},
         {"keyed: preamble + random codewords",
          [](std::uint64_t, Bytes& out, std::mt19937_64& rng) {
              out.insert(out.end(), preamble().begin(), preamble().end());

@@ -57,6 +57,17 @@ Message command(std::uint32_t id, std::int64_t second = 0)
     return m;
 }
 
+// `base` sent at kNoon + `second`, its counter `second`.
+Message stampedAt(const Message& base, std::uint32_t second)
+{
+    Message m = base;
+    m.header.set(ItemId::ID_msg, second);
+    const std::int64_t t = (kNoon + second) % 86400;
+    m.header.set(ItemId::time_UTC, t / 3600 * 10000 + t / 60 % 60 * 100 + t % 60);
+    m.header.set(ItemId::date_UTC, 261231);
+    return m;
+}
+
 EncodedBlocks encoded(const Message& m)
 {
     Diagnostics errors;
@@ -139,6 +150,8 @@ private slots:
     void sendersForgottenBeyondTheTable();
     void ownCommandPredictsTheStatus_data();
     void ownCommandPredictsTheStatus();
+    void planSectionFromTwoPassesCopies();
+    void severalCommandsChangedOnTheFirstFrame();
 };
 
 void TestReceive::noWrongFrameDelivered_data()
@@ -810,14 +823,7 @@ void TestReceive::ownCommandPredictsTheStatus()
     };
     Message status = test::sessionStartMessage();
     status.header.set(ItemId::ID_UA_source, Value::station({44, 133}));
-    const auto at = [&](std::uint32_t second) {
-        Message m = advanceMessage(status, 0);
-        m.header.set(ItemId::ID_msg, second);
-        const std::int64_t t = (kNoon + second) % 86400;
-        m.header.set(ItemId::time_UTC, t / 3600 * 10000 + t / 60 % 60 * 100 + t % 60);
-        m.header.set(ItemId::date_UTC, 261231);
-        return m;
-    };
+    const auto at = [&](std::uint32_t second) { return stampedAt(status, second); };
     QVERIFY(send(at(1), false).delivered());
     Message command = status;
     command.radios[0].set(ItemId::Rx_freq, 124250);
@@ -833,6 +839,96 @@ void TestReceive::ownCommandPredictsTheStatus()
     QVERIFY(f.fromPrediction);
     QVERIFY(f.decoded.message == at(3));
     QCOMPARE(f.decoded.message.radios[0].number(ItemId::Rx_freq), 124250);
+}
+
+// A plan section whose codeword 2 is beyond RS in pass 1 (18 byte errors)
+// and again in pass 2 (18 others): pass 1 is refused, pass 2 read from the
+// two copies combined, exactly as sent; pass 1's frame replayed afterwards
+// is never delivered (older than the last delivered), though its section is
+// now known.
+void TestReceive::planSectionFromTwoPassesCopies()
+{
+    Collected c;
+    std::uint32_t id = 1;
+    const auto send = [&](std::uint16_t section, int damageFrom) {
+        ++id;
+        c.nowMicros = (kNoon + id) * 1'000'000;
+        Message m = command(id, id);
+        m.flightPlan = sixSectionPlan(0xA, section);
+        Bytes d = datagramOf(m);
+        if (damageFrom >= 0)
+            for (int e = 0; e < 18; ++e)
+                d[kCodewordSize + static_cast<std::size_t>(damageFrom + 13 * e)] ^= static_cast<std::uint8_t>(0x11 + 7 * e);
+        c.receiver.receive(d);
+        return std::make_pair(c.frames.back(), std::make_pair(m, d));
+    };
+    c.nowMicros = (kNoon + id) * 1'000'000;
+    c.receiver.receive(datagramOf(command(id, id)));
+    QVERIFY(c.frames.back().delivered());
+    Bytes passOne;
+    Message passOneSent;
+    for (std::uint16_t section = 0; section < 6; ++section) {
+        const auto [frame, sent] = send(section, section == 3 ? 1 : -1);
+        if (section == 3) {
+            QCOMPARE(frame.refusal, std::optional<Refusal>(Refusal::Uncorrectable));
+            passOne = sent.second;
+            passOneSent = sent.first;
+        } else {
+            QVERIFY2(frame.delivered(), frame.detail.c_str());
+        }
+    }
+    for (std::uint16_t section = 0; section < 6; ++section) {
+        const auto [frame, sent] = send(section, section == 3 ? 6 : -1);
+        QVERIFY2(frame.delivered(), frame.detail.c_str());
+        QVERIFY(frame.decoded.message == sent.first);
+        if (section == 3) {
+            QVERIFY(frame.fromPrediction);
+            QCOMPARE(frame.blocks.corrected.block2 >= 0, true);
+        }
+    }
+    QCOMPARE(c.receiver.predictions()->stats().block2FromCopies, std::uint64_t{1});
+    // Replayed: as damaged (its section not predicted backwards), and intact.
+    c.receiver.receive(passOne);
+    QCOMPARE(c.frames.back().refusal, std::optional<Refusal>(Refusal::Uncorrectable));
+    c.receiver.receive(datagramOf(passOneSent));
+    QCOMPARE(c.frames.back().refusal, std::optional<Refusal>(Refusal::Replayed));
+}
+
+// Plain link: the first frame of a change of four commands (a radio retuned,
+// the camera turned and raised: 9 bytes) with 20 byte errors in its data
+// and 5 in its parity: beyond RS, and beyond a trial (9 bytes off the
+// prediction + 5 > 12), read with those 9 command bytes erased
+// (2 x 5 + 9 <= 20).
+void TestReceive::severalCommandsChangedOnTheFirstFrame()
+{
+    Collected c;
+    Message status = test::sessionStartMessage();
+    const auto at = [](const Message& base, std::uint32_t second) { return stampedAt(base, second); };
+    const auto send = [&](const Message& m, bool damaged) {
+        const EncodedBlocks b = encoded(m);
+        Bytes d = datagramOf(b.block1, b.block2);
+        if (damaged) {
+            // 20 data bytes in the padding before the items, 5 parity bytes.
+            for (std::size_t e = 0; e < 20; ++e)
+                d[e * 3 + 1] ^= static_cast<std::uint8_t>(0x21 + e);
+            for (std::size_t e = 0; e < 5; ++e)
+                d[kBlockSize + e * 6] ^= 0x5C;
+        }
+        c.nowMicros = (kNoon + m.header.number(ItemId::ID_msg)) * 1'000'000;
+        c.receiver.receive(d);
+        return c.frames.back();
+    };
+    QVERIFY(send(at(status, 1), false).delivered());
+    Message changed = status;
+    changed.radios[0].set(ItemId::Rx_freq, 136975);  // 0x01DA9C -> 0x02170F
+    changed.radios[0].set(ItemId::Tx_freq, 136975);
+    changed.cameras[0].set(ItemId::cam_mag_compass, 27123);  // 0x2328 -> 0x69F3
+    changed.cameras[0].set(ItemId::cam_elev, -1501);          // one byte
+    const ReceivedFrame f = send(at(changed, 2), true);
+    QVERIFY2(f.delivered(), f.detail.c_str());
+    QVERIFY(f.fromPrediction);
+    QVERIFY(f.decoded.message == at(changed, 2));
+    QCOMPARE(c.receiver.predictions()->stats().block1FromChangedCommands, std::uint64_t{1});
 }
 
 QTEST_GUILESS_MAIN(TestReceive)

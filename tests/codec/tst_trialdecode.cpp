@@ -10,6 +10,8 @@
 #include <QtTest>
 
 #include <array>
+#include <numeric>
+#include <vector>
 #include <cstdint>
 #include <random>
 
@@ -178,6 +180,155 @@ private slots:
         QCOMPARE(rs::decodeWithPrediction(withErrors(sent, {240, 241}).data(), off12.data(), out.data()), -1);
         QCOMPARE(rs::decodeWithPrediction(sent.data(), off12.data(), out.data()), 12);
         QCOMPARE(out, sent);
+    }
+
+    // Errors and erasures: within 2e + f <= 32, the sent codeword, and
+    // libfec's decode_rs with eras_pos byte for byte and count for count;
+    // beyond, either refused (the word left as it was) or a codeword within
+    // the erased places and (32 - f) / 2 other bytes of the word, never more.
+    void erasuresMatchLibfec()
+    {
+        std::mt19937_64 rng(21);
+        int within = 0, beyondRefused = 0;
+        for (int i = 0; i < 5000; ++i) {
+            const Codeword sent = randomCodeword(rng);
+            Codeword c = sent;
+            std::vector<int> places(rs::kCodewordSize);
+            std::iota(places.begin(), places.end(), 0);
+            std::shuffle(places.begin(), places.end(), rng);
+            const int erased = static_cast<int>(rng() % 33);
+            const int errors = static_cast<int>(rng() % 21);
+            for (int e = 0; e < erased + errors; ++e)
+                if (e >= erased || rng() % 2)
+                    c[static_cast<std::size_t>(places[static_cast<std::size_t>(e)])] ^=
+                        static_cast<std::uint8_t>(1 + rng() % 255);
+            Codeword ours = c;
+            const int n = rs::decodeWithErasures(ours.data(), places.data(), erased);
+            if (2 * errors + erased <= 32) {
+                Codeword theirs = c;
+                const int m = rs::decodeLibfecWithErasures(theirs.data(), places.data(), erased);
+                QCOMPARE(n, m);
+                QCOMPARE(ours, sent);
+                QCOMPARE(theirs, sent);
+                ++within;
+                continue;
+            }
+            if (n < 0) {
+                QCOMPARE(ours, c);
+                ++beyondRefused;
+                continue;
+            }
+            QVERIFY(rs::isCodeword(ours.data()));
+            int outside = 0;
+            for (std::size_t k = static_cast<std::size_t>(erased); k < rs::kCodewordSize; ++k)
+                outside += ours[static_cast<std::size_t>(places[k])] != c[static_cast<std::size_t>(places[k])];
+            QVERIFY(2 * outside + erased <= 32);
+        }
+        QVERIFY(within > 1000 && beyondRefused > 1000);
+    }
+
+    // Two copies of one codeword, each with 17 to 20 byte errors (beyond RS
+    // alone) at different places: combined, the sent codeword, every time.
+    void twoCopiesBeyondReachCombined()
+    {
+        std::mt19937_64 rng(22);
+        for (int round = 0; round < 200; ++round) {
+            const Codeword sent = randomCodeword(rng);
+            std::vector<int> places(rs::kCodewordSize);
+            std::iota(places.begin(), places.end(), 0);
+            std::shuffle(places.begin(), places.end(), rng);
+            const int inA = 17 + static_cast<int>(rng() % 4), inB = 17 + static_cast<int>(rng() % 4);
+            Codeword a = sent, b = sent;
+            for (int e = 0; e < inA + inB; ++e)
+                (e < inA ? a : b)[static_cast<std::size_t>(places[static_cast<std::size_t>(e)])] ^=
+                    static_cast<std::uint8_t>(1 + rng() % 255);
+            Codeword alone = a;
+            QCOMPARE(rs::decode(alone.data()), -1);
+            alone = b;
+            QCOMPARE(rs::decode(alone.data()), -1);
+            const std::uint8_t* copies[] = {a.data(), b.data()};
+            Codeword out{};
+            const rs::CopiesDecode r = rs::decodeFromCopies(copies, 2, out.data(), 1 << 12);
+            QVERIFY(r.found);
+            QCOMPARE(out, sent);
+            QCOMPARE(r.noCopy, 0);
+            QVERIFY(r.decodes >= 1 && r.decodes <= 1 << rs::kMaxCopiesGuessed);
+        }
+    }
+
+    // The same with the channel's errors anywhere (two copies may both be
+    // wrong at one place, then neither holds the sent byte): mostly found,
+    // never wrong; and the decodes spent stay within the limit given.
+    void twoNoisyCopiesNeverWrong()
+    {
+        std::mt19937_64 rng(23);
+        int found = 0;
+        for (int round = 0; round < 200; ++round) {
+            const Codeword sent = randomCodeword(rng);
+            Codeword a = sent, b = sent;
+            for (Codeword* copy : {&a, &b})
+                for (int e = 0; e < 17 + static_cast<int>(rng() % 4); ++e)
+                    (*copy)[rng() % rs::kCodewordSize] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+            const std::uint8_t* copies[] = {a.data(), b.data()};
+            Codeword out{};
+            const rs::CopiesDecode r = rs::decodeFromCopies(copies, 2, out.data(), 100);
+            QVERIFY(r.decodes <= 100);
+            if (r.found) {
+                QCOMPARE(out, sent);
+                ++found;
+            }
+        }
+        QVERIFY2(found >= 120, qPrintable(QString::number(found)));
+    }
+
+    // Copies of two different sections never combine into a wrong codeword:
+    // unrelated ones are too far apart to try (no decode spent); two that
+    // differ in one data byte (33 bytes of their codewords) give the last
+    // copy's codeword, never the other's.
+    void copiesOfDifferentSectionsDoNotCombine()
+    {
+        std::mt19937_64 rng(24);
+        const Codeword s1 = randomCodeword(rng);
+        const Codeword s2 = randomCodeword(rng);
+        const Codeword a = withSpreadErrors(s1, 0, 18, 7), b = withSpreadErrors(s2, 3, 18, 7);
+        const std::uint8_t* unrelated[] = {a.data(), b.data()};
+        Codeword out{};
+        rs::CopiesDecode r = rs::decodeFromCopies(unrelated, 2, out.data(), 1 << 12);
+        QVERIFY(!r.found);
+        QCOMPARE(r.decodes, 0);
+
+        Codeword near = s1;
+        near[100] ^= 0x21;
+        rs::encode(near.data(), near.data() + rs::kDataSize);
+        QVERIFY(std::inner_product(near.begin(), near.end(), s1.begin(), 0, std::plus<>(), std::not_equal_to<>()) >= 33);
+        const Codeword older = withErrors(s1, {5}), newer = withErrors(near, {7, 60, 200});
+        const std::uint8_t* olderFirst[] = {older.data(), newer.data()};
+        r = rs::decodeFromCopies(olderFirst, 2, out.data(), 1 << 12);
+        QVERIFY(r.found);
+        QCOMPARE(out, near);
+        const std::uint8_t* newerFirst[] = {newer.data(), older.data()};
+        r = rs::decodeFromCopies(newerFirst, 2, out.data(), 1 << 12);
+        QVERIFY(r.found);
+        QCOMPARE(out, s1);
+    }
+
+    // Three copies: the bytes two of them agree on are kept, the places where
+    // all three differ erased.
+    void threeCopiesByMajorityAndErasures()
+    {
+        std::mt19937_64 rng(25);
+        const Codeword sent = randomCodeword(rng);
+        const Codeword a = withSpreadErrors(sent, 0, 30, 8), b = withSpreadErrors(sent, 1, 30, 8);
+        Codeword c = withSpreadErrors(sent, 2, 30, 8);
+        for (int p : {0, 8, 16})  // all three wrong here, each its own way
+            c[static_cast<std::size_t>(p)] ^= 0x0F;
+        const std::uint8_t* copies[] = {a.data(), b.data(), c.data()};
+        Codeword out{};
+        const rs::CopiesDecode r = rs::decodeFromCopies(copies, 3, out.data(), 1);
+        QVERIFY(r.found);
+        QCOMPARE(out, sent);
+        QCOMPARE(r.decodes, 1);
+        QCOMPARE(r.noCopy, 0);
     }
 
     void majorityOfNoisyCopies()
