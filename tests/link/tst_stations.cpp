@@ -117,6 +117,13 @@ struct Station {
         session.setCommand(command);
         connectTo(port, keyPath);
     }
+    // The same over `link`, to the aircraft in process.
+    bool start(StationId station, const Message& command, std::unique_ptr<Link> link, const QString& keyPath)
+    {
+        control()->setStation(station);
+        session.setCommand(command);
+        return connectTo(std::move(link), keyPath);
+    }
     StationControl* control() { return session.stationControl(); }
     Role role() { return control()->role(); }
     // Statuses received from `from` on.
@@ -371,13 +378,9 @@ private slots:
         test::InProcessUasim aircraft(inProcessAircraft(primaryKey, backupKey, 30));
         QVERIFY2(aircraft.start(), aircraft.stderrText().constData());
         Station primary(dir.filePath(QStringLiteral("primary-logs")), aircraft.clock);
-        primary.control()->setStation(kPrimary);
-        primary.session.setCommand(gearCommand(code::kOut));
-        QVERIFY(primary.connectTo(aircraft.consoleEnd(0), primaryKey));
+        QVERIFY(primary.start(kPrimary, gearCommand(code::kOut), aircraft.consoleEnd(0), primaryKey));
         Station backup(dir.filePath(QStringLiteral("backup-logs")), aircraft.clock);
-        backup.control()->setStation(kBackup);
-        backup.session.setCommand(gearCommand(code::kRetracted));
-        QVERIFY(backup.connectTo(aircraft.consoleEnd(1), backupKey));
+        QVERIFY(backup.start(kBackup, gearCommand(code::kRetracted), aircraft.consoleEnd(1), backupKey));
         QVERIFY(aircraft.runUntil([&] { return primary.role() == Role::Offered; }, kPatienceSimulated));
         QVERIFY(primary.session.resumeCommanding());  // Take control
         QCOMPARE(primary.role(), Role::InControl);
@@ -415,13 +418,9 @@ private slots:
         test::InProcessUasim aircraft(inProcessAircraft(primaryKey, backupKey));
         QVERIFY2(aircraft.start(), aircraft.stderrText().constData());
         Station primary(dir.filePath(QStringLiteral("primary-logs")), aircraft.clock);
-        primary.control()->setStation(kPrimary);
-        primary.session.setCommand(gearCommand(code::kOut));
-        QVERIFY(primary.connectTo(aircraft.consoleEnd(0), primaryKey));
+        QVERIFY(primary.start(kPrimary, gearCommand(code::kOut), aircraft.consoleEnd(0), primaryKey));
         Station backup(dir.filePath(QStringLiteral("backup-logs")), aircraft.clock);
-        backup.control()->setStation(kBackup);
-        backup.session.setCommand(gearCommand(code::kOut));
-        QVERIFY(backup.connectTo(aircraft.consoleEnd(1), backupKey));
+        QVERIFY(backup.start(kBackup, gearCommand(code::kOut), aircraft.consoleEnd(1), backupKey));
         QVERIFY(aircraft.runUntil([&] { return primary.role() == Role::Offered; }, kPatienceSimulated));
         QVERIFY(primary.session.resumeCommanding());  // Take control
         QVERIFY(aircraft.runUntil([&] { return backup.role() == Role::Backup; }, kPatienceSimulated));
