@@ -157,7 +157,9 @@ std::unique_ptr<Link> SimulatorSession::openLink(const Station* station, Channel
                                                 const secure::SecureEndpoint* key)
 {
     std::unique_ptr<Link> link;
-    if (station || m_settings.udpPort) {
+    if (m_settings.transport) {
+        link = m_settings.transport(station);
+    } else if (station || m_settings.udpPort) {
         auto udpLink = std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost),
                                                  station ? station->udpPort : *m_settings.udpPort);
         udpLink->setReplyToSender(true);
@@ -223,7 +225,10 @@ bool SimulatorSession::openChannel(const Station* station)
     const QString keyFile = station ? station->keyFile : m_settings.keyFile;
     if (!keyFile.isEmpty()) {
         std::string error;
-        workerOptions.secure = secure::SecureEndpoint::open(keyFile.toStdString(), secure::Direction::UaToGcs, error);
+        secure::SecureEndpoint::Options keyOptions;
+        keyOptions.clock = [clock = m_clock] { return clock->utcMicros() / 1'000'000; };
+        workerOptions.secure =
+            secure::SecureEndpoint::open(keyFile.toStdString(), secure::Direction::UaToGcs, error, keyOptions);
         if (!workerOptions.secure) {
             m_say(channel->prefix + QString::fromStdString(error));
             return false;

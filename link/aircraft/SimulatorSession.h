@@ -84,6 +84,11 @@ public:
         // aircraft's motion, its status's time stamp, control's timeouts.
         // Null: the SystemClock.
         std::shared_ptr<Clock> clock;
+        // Makes each channel's transport instead of its UDP port or the
+        // serial device (called with the station, null for the one link):
+        // tests run the session in process on a VirtualClock, joined to the
+        // console by in-process links. Unset: the ports and devices above.
+        std::function<std::unique_ptr<Link>(const Station* station)> transport;
     };
     // Where the session's lines for the operator go.
     using Say = std::function<void(const QString& line)>;

@@ -92,6 +92,17 @@ int VirtualClock::activeTimers() const
     return int(m_schedule->armed.size());
 }
 
+std::optional<std::int64_t> VirtualClock::nextDueUtcMicros() const
+{
+    const QMutexLocker lock(&m_schedule->mutex);
+    if (m_schedule->armed.empty())
+        return std::nullopt;
+    std::int64_t due = std::numeric_limits<std::int64_t>::max();
+    for (const Schedule::Armed& a : m_schedule->armed)
+        due = std::min(due, a.due);
+    return due;
+}
+
 bool VirtualClock::fireNext(std::int64_t limit)
 {
     VirtualTimer* timer = nullptr;

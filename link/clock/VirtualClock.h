@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 class VirtualClock : public Clock {
 public:
@@ -33,6 +34,10 @@ public:
     // and time stands, when no timer is armed.
     bool advanceToNextTimer();
     int activeTimers() const;
+    // When the earliest armed timer falls due (UTC microseconds); none when
+    // no timer is armed. For a test that settles what one timer set going
+    // (queued to other threads) before the next one fires.
+    std::optional<std::int64_t> nextDueUtcMicros() const;
 
     struct Schedule;  // shared with the timers, which may outlive the clock
 

@@ -49,6 +49,13 @@ SatelliteModem::Counters SatelliteModemThread::counters() const
     return counters;
 }
 
+QByteArray SatelliteModemThread::dialledNumber(int side) const
+{
+    QByteArray number;
+    QMetaObject::invokeMethod(m_model, [&] { number = m_model->dialledNumber(side); }, Qt::BlockingQueuedConnection);
+    return number;
+}
+
 void SatelliteModemThread::dropCall()
 {
     QMetaObject::invokeMethod(m_model, &SatelliteModem::dropCall, Qt::QueuedConnection);

@@ -21,6 +21,7 @@ public:
     bool open(QString* error);
     SatelliteModem::CallState callState() const;
     SatelliteModem::Counters counters() const;
+    QByteArray dialledNumber(int side) const;
     // Set once by open().
     QString device(int side) const { return m_devices[std::size_t(side)]; }
 

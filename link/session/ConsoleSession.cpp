@@ -25,14 +25,17 @@ struct ConsoleSession::Opened {
 
 namespace {
 
-// The console's end of the secure link; null with `error` set when refused.
-// `persistState` false for a replay: its frames were checked for replays
-// when they were live, and replaying them must not touch that state.
-std::shared_ptr<rcm::secure::SecureEndpoint> openKey(const QString& keyPath, QString* error, bool persistState = true)
+// The console's end of the secure link, its time window on `clock`; null
+// with `error` set when refused. `persistState` false for a replay: its
+// frames were checked for replays when they were live, and replaying them
+// must not touch that state.
+std::shared_ptr<rcm::secure::SecureEndpoint> openKey(const QString& keyPath, const std::shared_ptr<Clock>& clock,
+                                                     QString* error, bool persistState = true)
 {
     std::string reason;
     rcm::secure::SecureEndpoint::Options options;
     options.persistState = persistState;
+    options.clock = [clock] { return clock->utcMicros() / 1'000'000; };
     std::shared_ptr<rcm::secure::SecureEndpoint> endpoint = rcm::secure::SecureEndpoint::open(
         QDir::fromNativeSeparators(keyPath).toStdString(), rcm::secure::Direction::GcsToUa, reason, options);
     // The reason names the file and the fix ("run: chmod 600 ..."); it never holds key bytes.
@@ -68,9 +71,10 @@ const std::vector<const rcm::secure::SecureCodec*>& codecsOf(const rcm::LogKey* 
 
 }  // namespace
 
-ConsoleSession::ConsoleSession(const QString& frameLogDirectory, QObject* parent)
+ConsoleSession::ConsoleSession(const QString& frameLogDirectory, QObject* parent, std::shared_ptr<Clock> clock)
     : QObject(parent),
       m_frameLogDirectory(frameLogDirectory),
+      m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>()),
       m_rehearsal(new RehearsalLauncher(this)),
       m_control(new StationControl(this)),
       m_hold(new CommandHold(this))
@@ -130,6 +134,12 @@ void ConsoleSession::connectWith(const LinkSettings& settings)
     prepare(std::move(link), Kind::Live, settings.summary(), settings.keyPath);
 }
 
+void ConsoleSession::connectLink(std::unique_ptr<Link> link, const QString& description, const QString& keyPath)
+{
+    m_preparedDelay = std::chrono::milliseconds(0);
+    prepare(std::move(link), Kind::Live, description, keyPath);
+}
+
 void ConsoleSession::startRehearsal(const rcm::Airframe& airframe, const QString& keyPath,
                                     const QString& uasimProgram)
 {
@@ -140,9 +150,9 @@ void ConsoleSession::startRehearsal(const rcm::Airframe& airframe, const QString
     auto key = std::make_shared<std::shared_ptr<rcm::secure::SecureEndpoint>>();
     auto error = std::make_shared<QString>();
     offThread(
-        [keyPath, key, error] {
+        [keyPath, key, error, clock = m_clock] {
             if (!keyPath.isEmpty())
-                *key = openKey(keyPath, error.get());
+                *key = openKey(keyPath, clock, error.get());
         },
         [this, airframe, keyPath, uasimProgram, key, error] {
             if (!error->isEmpty()) {
@@ -198,9 +208,9 @@ void ConsoleSession::openReplay(const QString& path, const QString& keyPath,
     auto complete = std::make_shared<bool>(false);
     auto opened = std::make_shared<Opened>();
     offThread(
-        [path, keyPath, reader, complete, opened, alsoOffThread = std::move(alsoOffThread)] {
+        [path, keyPath, reader, complete, opened, clock = m_clock, alsoOffThread = std::move(alsoOffThread)] {
             if (!keyPath.isEmpty()) {
-                opened->key = openKey(keyPath, &opened->keyError, false);
+                opened->key = openKey(keyPath, clock, &opened->keyError, false);
                 if (!opened->key)
                     return;
                 std::string error;
@@ -243,7 +253,7 @@ void ConsoleSession::startReplay(const QString& path, quint64 request, std::shar
     if (request != m_request)
         return;
     m_preparing = Kind::None;
-    auto replay = std::make_unique<ReplayLink>(path);
+    auto replay = std::make_unique<ReplayLink>(path, m_clock);
     replay->setSpeed(m_replaySpeed);
     m_replayPaused = false;
     m_replay = replay.get();
@@ -322,11 +332,11 @@ void ConsoleSession::prepare(std::unique_ptr<Link> link, Kind kind, const QStrin
     auto opened = std::make_shared<Opened>();
     opened->key = std::move(key);
     opened->log = std::make_unique<FrameLog>();
-    const QDateTime started = QDateTime::currentDateTimeUtc();
+    const QDateTime started = QDateTime::fromMSecsSinceEpoch(m_clock->utcMicros() / 1000, Qt::UTC);
     offThread(
-        [opened, keyPath, started, directory = QDir(m_frameLogDirectory)] {
+        [opened, keyPath, started, clock = m_clock, directory = QDir(m_frameLogDirectory)] {
             if (!opened->key && !keyPath.isEmpty()) {
-                opened->key = openKey(keyPath, &opened->keyError);
+                opened->key = openKey(keyPath, clock, &opened->keyError);
                 if (!opened->key)
                     return;
                 std::string error;
@@ -371,6 +381,7 @@ void ConsoleSession::startController(std::unique_ptr<Link> link, Kind kind, cons
     m_logKey = opened.logKey;
 
     LinkWorker::Options options;
+    options.clock = m_clock;
     options.secure = std::move(opened.key);
     // Over a satellite the first frame comes a one-way delay later than over a cable.
     options.silenceTimeout += kind == Kind::Live ? m_preparedDelay : std::chrono::milliseconds(0);

@@ -61,8 +61,11 @@ public:
     // already (the flight plan upload's BLOCK 2 hooks, sized for that link).
     using OptionsFilter = std::function<LinkWorker::Options(LinkWorker::Options)>;
 
-    // Live sessions keep their frame log in `frameLogDirectory`.
-    explicit ConsoleSession(const QString& frameLogDirectory, QObject* parent = nullptr);
+    // Live sessions keep their frame log in `frameLogDirectory`. Every link
+    // runs on `clock` (its cadence, timeouts, time stamps, replay pace and
+    // the frame log's name): null is the SystemClock; tests pass a VirtualClock.
+    explicit ConsoleSession(const QString& frameLogDirectory, QObject* parent = nullptr,
+                            std::shared_ptr<Clock> clock = nullptr);
     // Stops the link (the link thread's join is bounded) and uasim.
     ~ConsoleSession() override;
 
@@ -138,6 +141,11 @@ public:
     const std::optional<rcm::Message>& command() const { return m_command; }
     // What starts uasim for a rehearsal, to set it up (its voice) before startRehearsal().
     RehearsalLauncher* rehearsalLauncher() const { return m_rehearsal; }
+
+    // As connectWith(), with a transport made by the caller (in tests, one
+    // end of an in-process link to a simulated aircraft), described for
+    // people as `description`. Not a slot: moc cannot pass a unique_ptr.
+    void connectLink(std::unique_ptr<Link> link, const QString& description, const QString& keyPath = QString());
 
 public slots:
     // Opens the key file (if the settings name one) off the GUI thread, then
@@ -232,6 +240,7 @@ private:
     void hold(CommandHold::Reason reason, bool adopt);
 
     QString m_frameLogDirectory;
+    std::shared_ptr<Clock> m_clock;
     LinkWrapper m_wrapLink;
     OptionsFilter m_filterOptions;
     RehearsalLauncher* m_rehearsal;

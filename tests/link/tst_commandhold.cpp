@@ -2,13 +2,18 @@
 // that starts, comes back after a loss or is given control sends nothing
 // that contradicts what the aircraft reports until its operator resumes;
 // the aircraft takes a station up only by the claim that Take control sends.
-// Against the real uasim, put in a state other than its resting one by
-// another sender first, and against a bare socket standing in for the
-// aircraft where the test must choose what it reports. Every frame the
-// console sent is decoded and checked. Waits are QSignalSpy and QTRY_*;
-// the timeouts only bound a broken build.
+// Against uasim's simulator in process (InProcessUasim), put in a state
+// other than its resting one by another sender first, and against a bare
+// link end standing in for the aircraft where the test must choose what it
+// reports. The console's link runs in its thread as in the console, on
+// simulated time: its 1 Hz cadence, silence timeout and the aircraft's
+// failover take no wall-clock time (the real uasim over UDP is
+// tst_rehearsal's). Every frame the console sent is decoded and checked.
+// Waits are simulated time run until what is awaited happened; the limits
+// only bound a broken build.
 
-#include "UasimProcess.h"
+#include "InProcessUasim.h"
+#include "SimulatedTime.h"
 
 #include "codec/control/ControlArbiter.h"
 #include "codec/message/Airframe.h"
@@ -18,12 +23,10 @@
 #include "codec/message/MessageEncoder.h"
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkController.h"
-#include "link/transport/UdpLink.h"
 
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QTest>
-#include <QUdpSocket>
 
 #include <chrono>
 
@@ -31,7 +34,7 @@ using namespace rcm;
 
 namespace {
 
-constexpr int kPatienceMs = 30000;
+constexpr std::chrono::seconds kPatience{30};  // simulated
 constexpr StationId kPrimary{44, 30226};
 constexpr StationId kBackup{44, 41251};
 
@@ -96,53 +99,51 @@ public:
     std::vector<Message> frames;
 };
 
-LinkSettings udpTo(quint16 port)
+// Another station's link to the aircraft's channel, commanding `command`
+// until the aircraft reports what `done` looks for; its end is then cut
+// off as the console plugs in.
+bool commandUntil(test::InProcessUasim& uasim, const Message& command, bool (*done)(const Message&))
 {
-    LinkSettings s;
-    s.localAddress = QStringLiteral("127.0.0.1");
-    s.remoteAddress = QStringLiteral("127.0.0.1");
-    s.remotePort = port;
-    return s;
-}
-
-// Another station's link to uasim's port, commanding `command` until
-// uasim reports what `done` looks for.
-bool commandUntil(quint16 port, const Message& command, bool (*done)(const Message&))
-{
-    auto link = std::make_unique<UdpLink>(QHostAddress(QHostAddress::LocalHost), 0,
-                                          QHostAddress(QHostAddress::LocalHost), port);
-    LinkController other(std::move(link));
+    LinkWorker::Options options;
+    options.clock = uasim.clock;
+    LinkWorker other(uasim.consoleEnd(), nullptr, options);
     bool reached = false;
     QObject::connect(&other, &LinkEvents::messageReceived, &other,
                      [&](const ReceivedMessage& r) { reached = reached || done(r.message); });
     other.setCommand(command);
     other.start();
-    return QTest::qWaitFor([&] { return reached; }, kPatienceMs);
+    return uasim.runUntil([&] { return reached; }, kPatience);
 }
 
-// A bare UDP socket standing in for the aircraft: answers each frame from
+// The console connected to `link`, its link started in its thread.
+bool connected(ConsoleSession& session, std::unique_ptr<Link> link)
+{
+    session.connectLink(std::move(link), QStringLiteral("in-process"));
+    // Its frame log is made in the thread pool, in real time.
+    return QTest::qWaitFor([&] { return session.isRunning(); });
+}
+
+// A bare link end standing in for the aircraft: answers each frame from
 // the console with `status`, while `answering`.
 class FakeAircraft : public QObject {
 public:
     FakeAircraft()
     {
-        socket.bind(QHostAddress::LocalHost, 0);
-        connect(&socket, &QUdpSocket::readyRead, this, [this] {
-            while (socket.hasPendingDatagrams()) {
-                QHostAddress from;
-                quint16 port = 0;
-                QByteArray bytes(socket.pendingDatagramSize(), Qt::Uninitialized);
-                socket.readDatagram(bytes.data(), bytes.size(), &from, &port);
-                if (answering)
-                    answer(from, port);
-            }
+        auto [consoleEnd, aircraftEnd] = test::InProcessLink::pair(test::InProcessLink::Kind::Datagrams);
+        m_consoleEnd = std::move(consoleEnd);
+        m_end = std::move(aircraftEnd);
+        time.watch(m_end.get());
+        connect(m_end.get(), &Link::datagramReceived, this, [this] {
+            if (answering)
+                answer();
         });
+        m_end->open();
     }
-    quint16 port() const { return socket.localPort(); }
-    void answer(const QHostAddress& to, quint16 port)
+    std::unique_ptr<Link> consoleEnd() { return std::move(m_consoleEnd); }
+    void answer()
     {
         Message m = status;
-        const auto now = std::chrono::system_clock::now();
+        const auto now = std::chrono::system_clock::time_point(std::chrono::microseconds(time.clock->utcMicros()));
         m.header.set(ItemId::ID_msg, counter++);
         m.header.set(ItemId::ID_UA_source, Value::station(StationId{44, 133}));
         m.header.set(ItemId::time_UTC, DigitPairs::timeOf(now).packed());
@@ -150,13 +151,17 @@ public:
         Diagnostics errors;
         const auto datagram = encodeDatagram(m, errors);
         QVERIFY(datagram);
-        socket.writeDatagram(reinterpret_cast<const char*>(datagram->data()), qint64(datagram->size()), to, port);
+        m_end->write(QByteArray(reinterpret_cast<const char*>(datagram->data()), qsizetype(datagram->size())));
     }
 
-    QUdpSocket socket;
+    test::SimulatedTime time;
     Message status = resting();
     bool answering = true;
     std::int64_t counter = 0;
+
+private:
+    std::unique_ptr<test::InProcessLink> m_end;
+    std::unique_ptr<Link> m_consoleEnd;
 };
 
 }  // namespace
@@ -178,20 +183,19 @@ private slots:
     // differed; resuming then sends what the aircraft does already.
     void startingConsoleSendsNothingTheAircraftDidNotReport()
     {
-        test::UasimProcess aircraft;
+        test::InProcessUasim aircraft;
         QVERIFY(aircraft.start());
-        QTRY_VERIFY_WITH_TIMEOUT(aircraft.listening(), kPatienceMs);
-        QVERIFY(commandUntil(aircraft.port(), flying(), isFlying));
+        QVERIFY(commandUntil(aircraft, flying(), isFlying));
 
-        ConsoleSession session(m_dir.filePath(QStringLiteral("start")));
+        ConsoleSession session(m_dir.filePath(QStringLiteral("start")), nullptr, aircraft.clock);
         SentFrames sent(session);
         QSignalSpy adopted(&session, &ConsoleSession::commandAdopted);
         // Saved panels: lights on, the rest at rest.
         Message saved = resting();
         saved.settings.setFieldCode(ItemId::lights, 0, code::kOn);
         session.setCommand(saved);
-        session.connectWith(udpTo(aircraft.port()));
-        QTRY_COMPARE_WITH_TIMEOUT(adopted.count(), 1, kPatienceMs);
+        QVERIFY(connected(session, aircraft.consoleEnd()));
+        QVERIFY(aircraft.runUntil([&] { return adopted.count() == 1; }, kPatience));
         QVERIFY(!session.commanding());
         QCOMPARE(session.commandHold()->reason(), CommandHold::Reason::NewLink);
         // The report is in the panels, what they held before is said.
@@ -206,7 +210,7 @@ private slots:
 
         // Held for as long as the operator does nothing.
         const std::size_t before = sent.frames.size();
-        QTRY_VERIFY_WITH_TIMEOUT(sent.frames.size() >= before + 3, kPatienceMs);
+        QVERIFY(aircraft.runUntil([&] { return sent.frames.size() >= before + 3; }, kPatience));
         QVERIFY(!sent.frames.empty());
         for (const Message& frame : sent.frames) {
             QVERIFY(commandsNothing(frame));
@@ -217,11 +221,11 @@ private slots:
         QString whyNot;
         QVERIFY2(session.resumeCommanding(&whyNot), qPrintable(whyNot));
         QVERIFY(session.commanding());
-        QTRY_VERIFY_WITH_TIMEOUT(!commandsNothing(sent.frames.back()), kPatienceMs);
+        QVERIFY(aircraft.runUntil([&] { return !commandsNothing(sent.frames.back()); }, kPatience));
         QVERIFY(isFlying(sent.frames.back()));
         // The aircraft goes on doing what it did.
         QSignalSpy statusFrames(session.controller(), &LinkEvents::messageReceived);
-        QTRY_VERIFY_WITH_TIMEOUT(statusFrames.count() >= 2, kPatienceMs);
+        QVERIFY(aircraft.runUntil([&] { return statusFrames.count() >= 2; }, kPatience));
         QVERIFY(isFlying(statusFrames.last().at(0).value<ReceivedMessage>().message));
     }
 
@@ -239,26 +243,27 @@ private slots:
         QFETCH(int, elevatorAfter);
         QFETCH(bool, holds);
         FakeAircraft aircraft;
+        test::SimulatedTime& time = aircraft.time;
         aircraft.status.flaps.set(ItemId::F_elev_set, 3);
-        ConsoleSession session(m_dir.filePath(QStringLiteral("regain")));
+        ConsoleSession session(m_dir.filePath(QStringLiteral("regain")), nullptr, time.clock);
         SentFrames sent(session);
         QSignalSpy adopted(&session, &ConsoleSession::commandAdopted);
         session.setCommand(resting());
-        session.connectWith(udpTo(aircraft.port()));
-        QTRY_COMPARE_WITH_TIMEOUT(adopted.count(), 1, kPatienceMs);
+        QVERIFY(connected(session, aircraft.consoleEnd()));
+        QVERIFY(time.runUntil([&] { return adopted.count() == 1; }, kPatience));
         QVERIFY(session.resumeCommanding());
-        QTRY_VERIFY_WITH_TIMEOUT(!commandsNothing(sent.frames.back()), kPatienceMs);
+        QVERIFY(time.runUntil([&] { return !commandsNothing(sent.frames.back()); }, kPatience));
         QCOMPARE(sent.frames.back().flaps.number(ItemId::F_elev_set), 3);
 
         QSignalSpy lost(session.controller(), &LinkEvents::linkLost);
         QSignalSpy regained(session.controller(), &LinkEvents::linkRegained);
         aircraft.answering = false;
-        QTRY_COMPARE_WITH_TIMEOUT(lost.count(), 1, kPatienceMs);
+        QVERIFY(time.runUntil([&] { return lost.count() == 1; }, kPatience));
         aircraft.status.flaps.set(ItemId::F_elev_set, elevatorAfter);
         aircraft.answering = true;
-        QTRY_COMPARE_WITH_TIMEOUT(regained.count(), 1, kPatienceMs);
+        QVERIFY(time.runUntil([&] { return regained.count() == 1; }, kPatience));
         const std::size_t back = sent.frames.size();
-        QTRY_VERIFY_WITH_TIMEOUT(sent.frames.size() >= back + 2, kPatienceMs);
+        QVERIFY(time.runUntil([&] { return sent.frames.size() >= back + 2; }, kPatience));
         QCOMPARE(!session.commanding(), holds);
         // Not adopted: the panels keep what the operator commanded.
         QCOMPARE(session.command()->flaps.number(ItemId::F_elev_set), 3);
@@ -270,7 +275,7 @@ private slots:
             QCOMPARE(session.commandHold()->differences()[0].to->number, 9);
             // Resuming sends what the operator commanded.
             QVERIFY(session.resumeCommanding());
-            QTRY_VERIFY_WITH_TIMEOUT(!commandsNothing(sent.frames.back()), kPatienceMs);
+            QVERIFY(time.runUntil([&] { return !commandsNothing(sent.frames.back()); }, kPatience));
             QCOMPARE(sent.frames.back().flaps.number(ItemId::F_elev_set), 3);
         }
     }
@@ -282,38 +287,48 @@ private slots:
     // console in its place would, and the aircraft does not take it up.
     void restartedBackupIsNotTakenUp()
     {
-        test::UasimProcess aircraft(test::kTwoStations, {QStringLiteral("--failover"), QStringLiteral("2")});
+        SimulatorSession::Settings settings;
+        settings.stations = test::InProcessUasim::twoStations();
+        settings.failover = std::chrono::seconds(2);
+        test::InProcessUasim aircraft(std::move(settings));
         QVERIFY(aircraft.start());
-        QTRY_VERIFY_WITH_TIMEOUT(aircraft.listening(), kPatienceMs);
+        const auto sessionOn = [&](const char* name) {
+            return std::make_unique<ConsoleSession>(m_dir.filePath(QLatin1String(name)), nullptr, aircraft.clock);
+        };
 
-        auto primary = std::make_unique<ConsoleSession>(m_dir.filePath(QStringLiteral("primary")));
+        auto primary = sessionOn("primary");
         primary->stationControl()->setStation(kPrimary);
         SentFrames primarySent(*primary);
         primary->setCommand(resting());
-        primary->connectWith(udpTo(aircraft.ports[0]));
-        QTRY_COMPARE_WITH_TIMEOUT(primary->stationControl()->role(), StationControl::Role::Offered, kPatienceMs);
+        QVERIFY(connected(*primary, aircraft.consoleEnd(0)));
+        QVERIFY(aircraft.runUntil(
+            [&] { return primary->stationControl()->role() == StationControl::Role::Offered; }, kPatience));
         // Configured first, yet not taken up by naming itself.
-        QTRY_VERIFY_WITH_TIMEOUT(primarySent.frames.size() >= 3, kPatienceMs);
+        QVERIFY(aircraft.runUntil([&] { return primarySent.frames.size() >= 3; }, kPatience));
         QVERIFY2(!aircraft.said("taken up: "), aircraft.stderrText().constData());
         for (const Message& frame : primarySent.frames)
             QVERIFY(commandsNothing(frame));
         QVERIFY(primary->resumeCommanding());
-        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_30226 in control, GB_41251 backup"), kPatienceMs);
+        QVERIFY(aircraft.runUntil([&] { return aircraft.said("taken up: GB_30226 in control, GB_41251 backup"); },
+                                  kPatience));
         const Message& claim = primarySent.frames.back();
         QCOMPARE(named(claim, ItemId::ID_GCS_destination), std::optional(kPrimary));
         QCOMPARE(named(claim, ItemId::ID_GCS_backup), std::optional(kPrimary));
         primary->setCommand(flying());
-        QTRY_VERIFY_WITH_TIMEOUT(primary->commandHold()->lastReport() && isFlying(*primary->commandHold()->lastReport()),
-                                 kPatienceMs);
+        QVERIFY(aircraft.runUntil(
+            [&] { return primary->commandHold()->lastReport() && isFlying(*primary->commandHold()->lastReport()); },
+            kPatience));
 
-        auto backup = std::make_unique<ConsoleSession>(m_dir.filePath(QStringLiteral("backup")));
+        auto backup = sessionOn("backup");
         backup->stationControl()->setStation(kBackup);
         backup->setCommand(resting());
-        backup->connectWith(udpTo(aircraft.ports[1]));
-        QTRY_COMPARE_WITH_TIMEOUT(backup->stationControl()->role(), StationControl::Role::Backup, kPatienceMs);
+        QVERIFY(connected(*backup, aircraft.consoleEnd(1)));
+        QVERIFY(aircraft.runUntil(
+            [&] { return backup->stationControl()->role() == StationControl::Role::Backup; }, kPatience));
 
         primary.reset();  // the primary console killed
-        QTRY_COMPARE_WITH_TIMEOUT(backup->stationControl()->role(), StationControl::Role::Offered, kPatienceMs);
+        QVERIFY(aircraft.runUntil(
+            [&] { return backup->stationControl()->role() == StationControl::Role::Offered; }, kPatience));
         QVERIFY(aircraft.said("failover: nothing from GB_30226"));
         QVERIFY(!backup->commanding());
         QCOMPARE(backup->commandHold()->reason(), CommandHold::Reason::ControlGiven);
@@ -321,14 +336,15 @@ private slots:
 
         // Restarted: a new console for the same station.
         backup.reset();
-        backup = std::make_unique<ConsoleSession>(m_dir.filePath(QStringLiteral("backup-again")));
+        backup = sessionOn("backup-again");
         backup->stationControl()->setStation(kBackup);
         SentFrames backupSent(*backup);
         backup->setCommand(resting());
-        backup->connectWith(udpTo(aircraft.ports[1]));
-        QTRY_COMPARE_WITH_TIMEOUT(backup->stationControl()->role(), StationControl::Role::Offered, kPatienceMs);
+        QVERIFY(connected(*backup, aircraft.consoleEnd(1)));
+        QVERIFY(aircraft.runUntil(
+            [&] { return backup->stationControl()->role() == StationControl::Role::Offered; }, kPatience));
         const std::size_t offered = backupSent.frames.size();
-        QTRY_VERIFY_WITH_TIMEOUT(backupSent.frames.size() >= offered + 4, kPatienceMs);
+        QVERIFY(aircraft.runUntil([&] { return backupSent.frames.size() >= offered + 4; }, kPatience));
         QVERIFY2(!aircraft.said("taken up: GB_41251"), aircraft.stderrText().constData());
         for (const Message& frame : backupSent.frames) {
             QVERIFY(commandsNothing(frame));
@@ -339,10 +355,10 @@ private slots:
 
         // Its operator takes control: the claim, with the aircraft's own state.
         QVERIFY(backup->resumeCommanding());
-        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_41251 in control"), kPatienceMs);
+        QVERIFY(aircraft.runUntil([&] { return aircraft.said("taken up: GB_41251 in control"); }, kPatience));
         QVERIFY(isFlying(backupSent.frames.back()));
         QSignalSpy statusFrames(backup->controller(), &LinkEvents::messageReceived);
-        QTRY_VERIFY_WITH_TIMEOUT(statusFrames.count() >= 2, kPatienceMs);
+        QVERIFY(aircraft.runUntil([&] { return statusFrames.count() >= 2; }, kPatience));
         QVERIFY(isFlying(statusFrames.last().at(0).value<ReceivedMessage>().message));
     }
 

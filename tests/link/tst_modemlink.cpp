@@ -90,7 +90,10 @@ QStringList texts(const QSignalSpy& spy)
     return all;
 }
 
-// The model in its own thread (a hang-up blocks this one), with the hang-ups it saw.
+// The model in its own thread, with the hang-ups it saw: a hang-up blocks
+// this one, the links' (on close, on destruction at the end of a case),
+// and with the model in this thread it would wait out every timeout for
+// the OK that the model could not send meanwhile.
 class ModemThread : public SatelliteModemThread {
 public:
     explicit ModemThread(SatelliteModem::Options options) : SatelliteModemThread(options)
@@ -147,7 +150,7 @@ void TestModemLink::resultCodes()
 
 void TestModemLink::dialsAndCarriesFramesBothWays()
 {
-    SatelliteModem model(quickModem());
+    ModemThread model(quickModem());
     QString error;
     QVERIFY2(model.open(&error), qPrintable(error));
     auto ground = modemLink(model.device(SatelliteModem::Ground), quickLink(kNumber));
@@ -185,7 +188,7 @@ void TestModemLink::dialsAndCarriesFramesBothWays()
 
 void TestModemLink::droppedCallIsNoticedAndRedialled()
 {
-    SatelliteModem model(quickModem());
+    ModemThread model(quickModem());
     QString error;
     QVERIFY2(model.open(&error), qPrintable(error));
     auto ground = modemLink(model.device(SatelliteModem::Ground), quickLink(kNumber));
@@ -255,7 +258,7 @@ void TestModemLink::busyBacksOffThenGivesUp()
 
 void TestModemLink::noAnswerIsRedialled()
 {
-    SatelliteModem model(quickModem());  // the aircraft's side has no one on it: it rings out
+    ModemThread model(quickModem());  // the aircraft's side has no one on it: it rings out
     QString error;
     QVERIFY2(model.open(&error), qPrintable(error));
     auto ground = modemLink(model.device(SatelliteModem::Ground), quickLink(kNumber));

@@ -1,13 +1,16 @@
-// Two stations, one aircraft and a broker, with the real parts: a real
-// mosquitto on a free loopback port, the real uasim with a channel and a key
-// for each station, the primary as a real gcs process (offscreen) publishing
-// its session, the backup as a console session without a window, and an
-// observer reading the broker (docs/protocol.md section 10,
-// docs/architecture.md "Stations and the broker").
+// Two stations, one aircraft and a broker. The whole story with the real
+// parts, in real time: a real mosquitto on a free loopback port, the real
+// uasim with a channel and a key for each station, the primary as a real gcs
+// process (offscreen) publishing its session, the backup as a console
+// session without a window, and an observer reading the broker
+// (docs/protocol.md section 10, docs/architecture.md "Stations and the
+// broker"). Handing over and failover between two console sessions run
+// against uasim's simulator in process on simulated time
+// (tests/support/InProcessUasim.h), under the same keys.
 //
-// Every wait is a QTRY_* on state the parts expose; each timeout is the bound
-// the protocol states (failover time plus a status frame's second) or bounds
-// a broken build, never a measured time.
+// Every wait is a QTRY_* on state the parts expose, or simulated time run
+// until it holds; each bound is the protocol's (failover time plus a status
+// frame's second) or bounds a broken build, never a measured time.
 
 #include "codec/message/Airframe.h"
 #include "codec/message/ItemTable.h"
@@ -24,6 +27,7 @@
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkController.h"
 #include "link/session/StationControl.h"
+#include "InProcessUasim.h"
 #include "MosquittoProcess.h"
 #include "UasimProcess.h"
 
@@ -45,6 +49,7 @@ using Role = StationControl::Role;
 namespace {
 
 constexpr int kPatience = 30000;     // ms: bounds a broken build only
+constexpr std::chrono::seconds kPatienceSimulated{30};  // the same in simulated time
 constexpr int kFailoverSeconds = 3;  // uasim --failover
 // The protocol's bound: the failover time, then the status frame that says
 // so (one a second), plus a second for the backup's frame that the aircraft
@@ -80,7 +85,9 @@ Message gearCommand(unsigned code)
 
 // A console session without a window, with the statuses it received.
 struct Station {
-    explicit Station(const QString& logDirectory) : session(logDirectory)
+    // On `clock` when given (simulated time), else on the system's.
+    explicit Station(const QString& logDirectory, std::shared_ptr<Clock> clock = nullptr)
+        : session(logDirectory, nullptr, std::move(clock))
     {
         QObject::connect(&session, &ConsoleSession::linkStarted, &session, [this](const LinkController* c) {
             QObject::connect(c, &LinkController::messageReceived, &session,
@@ -96,12 +103,26 @@ struct Station {
         settings.keyPath = keyPath;
         session.connectWith(settings);
     }
+    // Over `link` (to the aircraft in process), its link started in its thread.
+    bool connectTo(std::unique_ptr<Link> link, const QString& keyPath)
+    {
+        session.connectLink(std::move(link), QStringLiteral("in-process"), keyPath);
+        // Its key and frame log are opened in the thread pool, in real time.
+        return QTest::qWaitFor([&] { return session.isRunning(); });
+    }
     // As the operator sets it up: this station, its command, its link.
     void start(StationId station, const Message& command, quint16 port, const QString& keyPath)
     {
         control()->setStation(station);
         session.setCommand(command);
         connectTo(port, keyPath);
+    }
+    // The same over `link`, to the aircraft in process.
+    bool start(StationId station, const Message& command, std::unique_ptr<Link> link, const QString& keyPath)
+    {
+        control()->setStation(station);
+        session.setCommand(command);
+        return connectTo(std::move(link), keyPath);
     }
     StationControl* control() { return session.stationControl(); }
     Role role() { return control()->role(); }
@@ -117,6 +138,20 @@ struct Station {
     ConsoleSession session;
     QList<Message> statuses;
 };
+
+// uasim's simulator in process, as aircraftOptions() has it: GB_133, a
+// channel for each station under its key, on simulated time.
+SimulatorSession::Settings inProcessAircraft(const QString& primaryKey, const QString& backupKey,
+                                             int failoverSeconds = kFailoverSeconds)
+{
+    SimulatorSession::Settings settings;
+    settings.stations = test::InProcessUasim::twoStations();
+    settings.stations[0].keyFile = primaryKey;
+    settings.stations[1].keyFile = backupKey;
+    settings.failover = std::chrono::seconds(failoverSeconds);
+    settings.identity = StationId{44, 133};
+    return settings;
+}
 
 // The options of the test's uasim (test::kTwoStations, a key each): the
 // failover time, and the aircraft GB_133.
@@ -340,24 +375,24 @@ private slots:
         const QString primaryKey = makeKey(dir, QStringLiteral("primary.key"));
         const QString backupKey = makeKey(dir, QStringLiteral("backup.key"));
         // Long enough that the offer does not lapse while the test looks at it.
-        test::UasimProcess aircraft(test::kTwoStations, aircraftOptions(30), {primaryKey, backupKey});
-        QVERIFY(aircraft.start());
-        Station primary(dir.filePath(QStringLiteral("primary-logs")));
-        primary.start(kPrimary, gearCommand(code::kOut), aircraft.ports[0], primaryKey);
-        Station backup(dir.filePath(QStringLiteral("backup-logs")));
-        backup.start(kBackup, gearCommand(code::kRetracted), aircraft.ports[1], backupKey);
-        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Offered, kPatience);
+        test::InProcessUasim aircraft(inProcessAircraft(primaryKey, backupKey, 30));
+        QVERIFY2(aircraft.start(), aircraft.stderrText().constData());
+        Station primary(dir.filePath(QStringLiteral("primary-logs")), aircraft.clock);
+        QVERIFY(primary.start(kPrimary, gearCommand(code::kOut), aircraft.consoleEnd(0), primaryKey));
+        Station backup(dir.filePath(QStringLiteral("backup-logs")), aircraft.clock);
+        QVERIFY(backup.start(kBackup, gearCommand(code::kRetracted), aircraft.consoleEnd(1), backupKey));
+        QVERIFY(aircraft.runUntil([&] { return primary.role() == Role::Offered; }, kPatienceSimulated));
         QVERIFY(primary.session.resumeCommanding());  // Take control
         QCOMPARE(primary.role(), Role::InControl);
-        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_30226"), kPatience);
-        QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
+        QVERIFY(aircraft.runUntil([&] { return aircraft.said("taken up: GB_30226"); }, kPatienceSimulated));
+        QVERIFY(aircraft.runUntil([&] { return backup.role() == Role::Backup; }, kPatienceSimulated));
         QVERIFY(primary.control()->canHandOver());
 
         QSignalSpy primaryAlarms(primary.control(), &StationControl::alarm);
         QSignalSpy primaryEvents(primary.control(), &StationControl::event);
         primary.control()->handOver();
-        QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Offered, kPatience);
-        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Backup, kPatience);
+        QVERIFY(aircraft.runUntil([&] { return backup.role() == Role::Offered; }, kPatienceSimulated));
+        QVERIFY(aircraft.runUntil([&] { return primary.role() == Role::Backup; }, kPatienceSimulated));
         QCOMPARE(primaryAlarms.count(), 0);
         QCOMPARE(primaryEvents.last().at(0).toString(),
                  QStringLiteral("Handed over: GB_41251 is in control, this station is its backup"));
@@ -365,7 +400,8 @@ private slots:
 
         QVERIFY(backup.session.resumeCommanding());  // Take control
         backup.session.setCommand(gearCommand(code::kRetracted));
-        QTRY_VERIFY_WITH_TIMEOUT(reportedGear(primary.statuses.last()) == code::kRetracted, kPatience);
+        QVERIFY(aircraft.runUntil([&] { return reportedGear(primary.statuses.last()) == code::kRetracted; },
+                                  kPatienceSimulated));
         QCOMPARE(backup.role(), Role::InControl);
         QCOMPARE(primary.role(), Role::Backup);
         QCOMPARE(primaryAlarms.count(), 0);
@@ -379,26 +415,27 @@ private slots:
         QTemporaryDir dir;
         const QString primaryKey = makeKey(dir, QStringLiteral("primary.key"));
         const QString backupKey = makeKey(dir, QStringLiteral("backup.key"));
-        test::UasimProcess aircraft(test::kTwoStations, aircraftOptions(), {primaryKey, backupKey});
-        QVERIFY(aircraft.start());
-        Station primary(dir.filePath(QStringLiteral("primary-logs")));
-        primary.start(kPrimary, gearCommand(code::kOut), aircraft.ports[0], primaryKey);
-        Station backup(dir.filePath(QStringLiteral("backup-logs")));
-        backup.start(kBackup, gearCommand(code::kOut), aircraft.ports[1], backupKey);
-        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Offered, kPatience);
+        test::InProcessUasim aircraft(inProcessAircraft(primaryKey, backupKey));
+        QVERIFY2(aircraft.start(), aircraft.stderrText().constData());
+        Station primary(dir.filePath(QStringLiteral("primary-logs")), aircraft.clock);
+        QVERIFY(primary.start(kPrimary, gearCommand(code::kOut), aircraft.consoleEnd(0), primaryKey));
+        Station backup(dir.filePath(QStringLiteral("backup-logs")), aircraft.clock);
+        QVERIFY(backup.start(kBackup, gearCommand(code::kOut), aircraft.consoleEnd(1), backupKey));
+        QVERIFY(aircraft.runUntil([&] { return primary.role() == Role::Offered; }, kPatienceSimulated));
         QVERIFY(primary.session.resumeCommanding());  // Take control
-        QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Backup, kPatience);
+        QVERIFY(aircraft.runUntil([&] { return backup.role() == Role::Backup; }, kPatienceSimulated));
 
         QSignalSpy primaryAlarms(primary.control(), &StationControl::alarm);
         QSignalSpy backupAlarms(backup.control(), &StationControl::alarm);
         primary.session.stop();
-        QTRY_COMPARE_WITH_TIMEOUT(backup.role(), Role::Offered, kFailoverBoundMs);
+        QVERIFY(aircraft.runUntil([&] { return backup.role() == Role::Offered; },
+                                  std::chrono::milliseconds(kFailoverBoundMs)));
         QCOMPARE(backupAlarms.count(), 1);
         QVERIFY(backup.session.resumeCommanding());  // Take control
-        QTRY_VERIFY_WITH_TIMEOUT(aircraft.said("taken up: GB_41251"), kPatience);
+        QVERIFY(aircraft.runUntil([&] { return aircraft.said("taken up: GB_41251"); }, kPatienceSimulated));
 
-        primary.connectTo(aircraft.ports[0], primaryKey);
-        QTRY_COMPARE_WITH_TIMEOUT(primary.role(), Role::Backup, kPatience);
+        QVERIFY(primary.connectTo(aircraft.consoleEnd(0), primaryKey));
+        QVERIFY(aircraft.runUntil([&] { return primary.role() == Role::Backup; }, kPatienceSimulated));
         QCOMPARE(primaryAlarms.count(), 1);
         QCOMPARE(primaryAlarms.at(0).at(0).toString(),
                  QStringLiteral("Control lost: the aircraft names GB_41251 in control, and this station did not "

@@ -99,6 +99,26 @@ const QString kAirframes = QStringLiteral(RCM_SOURCE_DIR "/resources/airframes/"
 constexpr int kProcessTimeoutMs = 60000;
 constexpr int kLinkTimeoutMs = 30000;
 
+// A replay on simulated time: the window's session on `clock`, stepped a
+// second at a time (the replay's pace and the link's silence timeout),
+// the link thread's reports taken in after each step, until `done` holds;
+// false after `limitSeconds` of simulated time. The replay's link is made
+// off the GUI thread (its log indexed first): waited for in real time.
+bool runReplayUntil(VirtualClock& clock, const std::function<bool()>& done, int limitSeconds = 60)
+{
+    QCoreApplication::processEvents();
+    if (!QTest::qWaitFor([&] { return done() || clock.activeTimers() > 0; }, kLinkTimeoutMs))
+        return false;
+    for (int second = 0; second < limitSeconds; ++second) {
+        QCoreApplication::processEvents();
+        if (done())
+            return true;
+        clock.advance(std::chrono::seconds(1));
+    }
+    QCoreApplication::processEvents();
+    return done();
+}
+
 void compareAirframes(const rcm::Airframe& a, const rcm::Airframe& b)
 {
     QCOMPARE(a.name, b.name);
@@ -735,7 +755,10 @@ void TestMainWindow::replaysAFrameLog()
             QVERIFY(log.append(r));
         }
     }
-    MainWindow window(options());
+    const auto clock = std::make_shared<VirtualClock>(1'795'334'400'000'000);
+    MainWindow::Options onSimulatedTime = options();
+    onSimulatedTime.clock = clock;
+    MainWindow window(onSimulatedTime);
     QSignalSpy finished(&window, &MainWindow::replayFinished);
     window.setReplaySpeed(10.0);
     window.openFrameLog(path);
@@ -746,7 +769,7 @@ void TestMainWindow::replaysAFrameLog()
     QTRY_COMPARE_WITH_TIMEOUT(window.frameLog()->rowCount(), 20, kLinkTimeoutMs);
     QCOMPARE(window.replayControls()->timeText().right(11), QStringLiteral(" / 00:00:09"));  // ten seconds of frames
     QCOMPARE(window.frameLog()->logPath(), path);
-    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
+    QVERIFY(runReplayUntil(*clock, [&] { return finished.count() == 1; }));
     QTRY_COMPARE_WITH_TIMEOUT(window.statistics().framesReceived, quint64(20), kLinkTimeoutMs);
     QCOMPARE(window.frameLog()->playedRows(), 20);
     QCOMPARE(window.statistics().framesSent, quint64(0));  // a replay sends nothing
@@ -757,7 +780,7 @@ void TestMainWindow::replaysAFrameLog()
     QCOMPARE(plain(window.linkStatus()->ageText()), QStringLiteral("Log time 2026-11-22 07:32:09 UTC"));
     QCOMPARE(window.overview()->figure(QStringLiteral("state")), QStringLiteral("Replay"));
     QCOMPARE(window.overview()->figure(QStringLiteral("age")), QStringLiteral("log 07:32:09 UTC"));
-    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().state, LinkState::Lost, kLinkTimeoutMs);
+    QVERIFY(runReplayUntil(*clock, [&] { return window.statistics().state == LinkState::Lost; }));
     QVERIFY(!window.alerts()->alarm()->isActive());
     QVERIFY(!window.linkStatus()->alarmActive());
     window.disconnectLink();
@@ -810,14 +833,17 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
             }
         }
     }
-    MainWindow window(options());
+    const auto clock = std::make_shared<VirtualClock>(1'795'334'400'000'000);
+    MainWindow::Options onSimulatedTime = options();
+    onSimulatedTime.clock = clock;
+    MainWindow window(onSimulatedTime);
     CommandState* command = window.command();
     const rcm::Message own = command->message();
     QCOMPARE(command->value(flaps, ItemId::F_rudder_set)->number, 0);
     QSignalSpy finished(&window, &MainWindow::replayFinished);
     window.setReplaySpeed(10.0);
     window.openFrameLog(path);
-    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, kLinkTimeoutMs);
+    QVERIFY(runReplayUntil(*clock, [&] { return finished.count() == 1; }));
     QTRY_COMPARE_WITH_TIMEOUT(window.reported()->statusFrames(), 10, kLinkTimeoutMs);
 
     // The panels show what the log commanded, and the reports agree with it.
@@ -854,7 +880,7 @@ void TestMainWindow::replayShowsTheLogsCommandReadOnly()
 
     // The log's silence after its end is the link's Lost, but no alarm, and
     // the reports age in the log's time: not stale.
-    QTRY_COMPARE_WITH_TIMEOUT(window.statistics().state, LinkState::Lost, kLinkTimeoutMs);
+    QVERIFY(runReplayUntil(*clock, [&] { return window.statistics().state == LinkState::Lost; }));
     QVERIFY(!window.linkStatus()->alarmActive());
     QVERIFY(window.linkStatus()->stateText().contains(QStringLiteral("<b>Replay</b>")));
     window.reported()->checkAge();
@@ -1780,7 +1806,9 @@ void TestMainWindow::replayShowsTheLogsPlotAndEvents()
     QVERIFY(view->hiddenRows() > liveRow);
     // The replay's own events show.
     QVERIFY(!view->table()->isRowHidden(events->rowCount() - 1));
-    QCOMPARE(stripOf(logDock)->text(), QStringLiteral("Link: replay of a frame log, read only"));
+    // Once the link starts, a timer's pass after the log was indexed (isReplaying()).
+    QTRY_COMPARE_WITH_TIMEOUT(stripOf(logDock)->text(), QStringLiteral("Link: replay of a frame log, read only"),
+                              kLinkTimeoutMs);
     auto* note = window.findChild<QLabel*>(QStringLiteral("readOnlyNote"));
     QVERIFY(note && note->isVisible());
     QCOMPARE(note->text(), QStringLiteral("Replay: the log's commands, read only"));

@@ -56,9 +56,7 @@ private slots:
     void wrongScenariosSayWhere();
     void outageRunsToExactTimes();
     void pacedRunGivesTheSameReport();
-    void speedOneRunsTheRealPrograms_data();
     void speedOneRunsTheRealPrograms();
-    void modemCallDroppedAndRedialled();
     void frameLogHoldsBothDirections();
     void keyEnciphersTheRun();
     void samplesHold_data();
@@ -255,49 +253,33 @@ void TestRehearsal::pacedRunGivesTheSameReport()
     QVERIFY(fast.report().frames.lost > 0);  // the bursts cost frames: the run did inject them
 }
 
-// At speed 1 over UDP: uasim as a process, real sockets, the faults in a
-// proxy between them, the system clock. Every expectation is judged as the
-// in-process run judges it, and holds in both.
-void TestRehearsal::speedOneRunsTheRealPrograms_data()
+// The verdicts of a run's expectations, "3 held" or the step and why not.
+static QStringList verdictsOf(const RehearsalReport& report)
 {
-    QTest::addColumn<bool>("serial");
-    QTest::addColumn<QString>("transport");
-    QTest::newRow("udp") << false << QStringLiteral("udp (uasim as a process, real sockets)");
-    QTest::newRow("serial") << true << QStringLiteral("serial (uasim as a process, pseudo-terminal pairs)");
+    QStringList v;
+    for (const auto& e : report.expectations)
+        v << QStringLiteral("%1 %2").arg(e.step).arg(e.held ? QStringLiteral("held") : e.detail);
+    return v;
 }
 
-void TestRehearsal::speedOneRunsTheRealPrograms()
+// real-time.json, over UDP or serial.
+static Scenario realTimeScenario(bool serial)
 {
-    QFETCH(bool, serial);
-    QFETCH(QString, transport);
-    const auto scenario = [serial] {
-        Scenario s = load(QStringLiteral("real-time.json"));
-        if (serial)
-            s.transport = Scenario::Transport::Serial;
-        return s;
-    };
-    ScenarioRunner inProcess(scenario(), QString());
-    inProcess.runToEnd();
-    QVERIFY(!inProcess.realPrograms());
+    Scenario s = load(QStringLiteral("real-time.json"));
+    if (serial)
+        s.transport = Scenario::Transport::Serial;
+    return s;
+}
 
-    QTemporaryDir dir;
-    const QString logPath = dir.filePath(QStringLiteral("session.pcapng"));
-    ScenarioRunner real(scenario(), logPath);
-    QSignalSpy finished(&real, &ScenarioRunner::finished);
-    real.start(0, QStringLiteral(RCM_BIN_DIR "/uasim"));
-    QVERIFY(real.realPrograms());
-    QVERIFY(finished.wait(90'000));
+// A run of real-time.json with the real programs, against the same run in process.
+static void checkRealTimeRun(const ScenarioRunner& real, const QString& transport, const QString& logPath,
+                             const RehearsalReport& inProcess)
+{
     const RehearsalReport& r = real.report();
     QCOMPARE(r.transport, transport);
-    const auto verdicts = [](const RehearsalReport& report) {
-        QStringList v;
-        for (const auto& e : report.expectations)
-            v << QStringLiteral("%1 %2").arg(e.step).arg(e.held ? QStringLiteral("held") : e.detail);
-        return v;
-    };
-    QCOMPARE(verdicts(r), verdicts(inProcess.report()));
-    QCOMPARE(verdicts(r), (QStringList{QStringLiteral("3 held"), QStringLiteral("6 held"), QStringLiteral("7 held"),
-                                       QStringLiteral("9 held")}));
+    QCOMPARE(verdictsOf(r), verdictsOf(inProcess));
+    QCOMPARE(verdictsOf(r), (QStringList{QStringLiteral("3 held"), QStringLiteral("6 held"),
+                                         QStringLiteral("7 held"), QStringLiteral("9 held")}));
     QVERIFY(r.passed());
     QCOMPARE(r.frames.wrong, 0);
     // uasim said which commands it took: they are counted, and were sent.
@@ -310,29 +292,14 @@ void TestRehearsal::speedOneRunsTheRealPrograms()
     QVERIFY(reader.count() >= int(r.frames.sentUp));
 }
 
-// The modem transport at speed 1: the console's modem dials uasim --modem
-// through the satellite modem model; the call drops and is redialled, and
-// the verdicts are those of the run in process (an outage for the drop).
-void TestRehearsal::modemCallDroppedAndRedialled()
+// The modem run of call-drop.json, against the same run in process.
+static void checkModemRun(const ScenarioRunner& real, const RehearsalReport& inProcess)
 {
-    ScenarioRunner inProcess(load(QStringLiteral("call-drop.json")), QString());
-    inProcess.runToEnd();
-    ScenarioRunner real(load(QStringLiteral("call-drop.json")), QString());
-    QSignalSpy finished(&real, &ScenarioRunner::finished);
-    real.start(0, QStringLiteral(RCM_BIN_DIR "/uasim"));
-    QVERIFY(real.realPrograms());
-    QVERIFY(finished.wait(120'000));
     const RehearsalReport& r = real.report();
     QCOMPARE(r.transport, QStringLiteral("modem (uasim --modem as a process, the satellite modem model)"));
-    QStringList verdicts;
-    for (const auto& e : r.expectations)
-        verdicts << QStringLiteral("%1 %2").arg(e.step).arg(e.held ? QStringLiteral("held") : e.detail);
-    QStringList inProcessVerdicts;
-    for (const auto& e : inProcess.report().expectations)
-        inProcessVerdicts << QStringLiteral("%1 %2").arg(e.step).arg(e.held ? QStringLiteral("held") : e.detail);
-    QCOMPARE(verdicts, inProcessVerdicts);
-    QCOMPARE(verdicts, (QStringList{QStringLiteral("2 held"), QStringLiteral("4 held"), QStringLiteral("5 held"),
-                                    QStringLiteral("7 held"), QStringLiteral("8 held")}));
+    QCOMPARE(verdictsOf(r), verdictsOf(inProcess));
+    QCOMPARE(verdictsOf(r), (QStringList{QStringLiteral("2 held"), QStringLiteral("4 held"), QStringLiteral("5 held"),
+                                         QStringLiteral("7 held"), QStringLiteral("8 held")}));
     QCOMPARE(r.frames.wrong, 0);
     QVERIFY(r.frames.receivedUp > 10);
     QStringList events;
@@ -342,6 +309,48 @@ void TestRehearsal::modemCallDroppedAndRedialled()
              qPrintable(events.join('\n')));
     QVERIFY(events.filter(QStringLiteral("console's modem: connected at 9600 bit/s")).size() == 2);
     QVERIFY(events.contains(QStringLiteral("modem model: the network hung up (dropped)")));
+}
+
+// At speed 1, the real programs on the system clock: the real-time suite
+// of every transport (tests/CMakeLists.txt). Over UDP, uasim as a process,
+// real sockets and the faults in a proxy between them; over serial, the
+// same on pseudo-terminal pairs; through the modem, the console's modem
+// dials uasim --modem through the satellite modem model, the call drops
+// and is redialled. Each takes its scenario's duration on the wall clock,
+// so the three run side by side. Every expectation is judged as the run
+// in process judges it, and holds in both.
+void TestRehearsal::speedOneRunsTheRealPrograms()
+{
+    ScenarioRunner udpInProcess(realTimeScenario(false), QString());
+    udpInProcess.runToEnd();
+    QVERIFY(!udpInProcess.realPrograms());
+    ScenarioRunner serialInProcess(realTimeScenario(true), QString());
+    serialInProcess.runToEnd();
+    ScenarioRunner modemInProcess(load(QStringLiteral("call-drop.json")), QString());
+    modemInProcess.runToEnd();
+
+    QTemporaryDir dir;
+    const QString udpLog = dir.filePath(QStringLiteral("udp.pcapng"));
+    const QString serialLog = dir.filePath(QStringLiteral("serial.pcapng"));
+    ScenarioRunner udp(realTimeScenario(false), udpLog);
+    ScenarioRunner serial(realTimeScenario(true), serialLog);
+    ScenarioRunner modem(load(QStringLiteral("call-drop.json")), QString());
+    int finished = 0;
+    for (ScenarioRunner* run : {&udp, &serial, &modem}) {
+        connect(run, &ScenarioRunner::finished, this, [&finished] { ++finished; });
+        run->start(0, QStringLiteral(RCM_BIN_DIR "/uasim"));
+        QVERIFY(run->realPrograms());
+    }
+    QTRY_COMPARE_WITH_TIMEOUT(finished, 3, 120'000);
+
+    checkRealTimeRun(udp, QStringLiteral("udp (uasim as a process, real sockets)"), udpLog, udpInProcess.report());
+    if (QTest::currentTestFailed())
+        return;
+    checkRealTimeRun(serial, QStringLiteral("serial (uasim as a process, pseudo-terminal pairs)"), serialLog,
+                     serialInProcess.report());
+    if (QTest::currentTestFailed())
+        return;
+    checkModemRun(modem, modemInProcess.report());
 }
 
 void TestRehearsal::frameLogHoldsBothDirections()

@@ -57,7 +57,8 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
       m_upload(new FlightPlanUpload(this)),
       m_logModel(new FrameLogModel(this)),
       m_session(new ConsoleSession(
-          options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory() : options.frameLogDirectory, this)),
+          options.frameLogDirectory.isEmpty() ? FrameLog::defaultDirectory() : options.frameLogDirectory, this,
+          options.clock)),
       m_alerts(new ConsoleAlerts(nullptr, this)),
       m_status(new StatusBarWidget),
       m_notices(m_status, m_alerts),

@@ -65,6 +65,9 @@ public:
         QString airframePath;
         // Where live sessions keep their frame log; FrameLog::defaultDirectory() when empty.
         QString frameLogDirectory;
+        // The time the session's links run on (ConsoleSession): null is the
+        // system's; tests pass a VirtualClock.
+        std::shared_ptr<Clock> clock;
     };
 
     explicit MainWindow(const Options& options, QWidget* parent = nullptr);
