@@ -54,7 +54,9 @@ public:
         return m_process.waitForStarted();
     }
     // uasim says so once its sockets are bound: the first command can go.
-    bool listening() const { return m_stderr.contains("on udp") || m_stderr.contains("stations: "); }
+    // The whole line, not its start: a read can end inside it, and the
+    // suites check what the rest of it says.
+    bool listening() const { return saidLine("on udp") || saidLine("stations: "); }
     // SIGTERM: uasim stops, printing its counts, and exits; true when it
     // did, of its own accord, with status 0.
     bool stop(int timeoutMs)
@@ -69,6 +71,12 @@ public:
     QProcess& process() { return m_process; }
     const QByteArray& stderrText() const { return m_stderr; }
     bool said(const char* text) const { return m_stderr.contains(text); }
+    // A line holding text has been said to its end.
+    bool saidLine(const char* text) const
+    {
+        const qsizetype at = m_stderr.indexOf(text);
+        return at >= 0 && m_stderr.indexOf('\n', at) >= 0;
+    }
 
     // With kTwoStations: GB_30226's channel, then GB_41251's.
     std::array<quint16, 2> ports{};
