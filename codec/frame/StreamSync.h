@@ -31,7 +31,8 @@
 // start inside its codewords are dropped silently, and one there that
 // confirms is still emitted, which is how the frame after lost bytes is
 // found. The report waits until scanning is 90 bytes past it: if a good
-// frame's preamble covers it, it was a false start and is dropped.
+// frame's preamble covers it, or the frame due fails there too, it was a
+// false start and is dropped (the frame due is reported instead).
 //
 // On a clean continuous stream the frame due is checked first: a perfect
 // window with two clean codewords cannot be beaten, so no search is made.

@@ -177,6 +177,7 @@ private slots:
     void earlyByOneTrap();
     void lateByOneTrap();
     void falseStartInsidePreamble();
+    void failedFrameDueAfterFalseStartInItsPreamble();
     void bitErrorRate_data();
     void bitErrorRate();
     void slipsInsidePadding();
@@ -595,6 +596,56 @@ void TestStreamSync::falseStartInsidePreamble()
         QCOMPARE(col.sync.stats().framesUncorrectable, std::uint64_t{0});
         QCOMPARE(col.sync.stats().bytesSkipped, s.garbage);
     }
+}
+
+void TestStreamSync::failedFrameDueAfterFalseStartInItsPreamble()
+{
+    // Seen at BER 1e-2 (bench_ber --items 1-4 --seed 4): frame A's codeword 1
+    // is beyond correction, so A is read from codeword 2 alone, refused by
+    // the acceptor, and scanning goes on inside A. A window in A's codeword 2
+    // 121 bytes before B's start qualifies (6 bits: block 2's padding), and
+    // its neighbourhood (89 bytes) ends before B's start but holds a window
+    // in B's preamble 40 bytes early that three bit errors brought to 5 bits.
+    // B is beyond correction too (a command change, for the predictions to
+    // read). Its failure must be reported where B is, 600 bytes after A, not
+    // 40 bytes early: there the predictions cannot read it, and every later
+    // failure was measured from that false start (5 frames lost in a row).
+    std::mt19937 rng(1203);
+    Stream s;
+    for (int i = 0; i < 4; ++i)
+        appendFrame(s, randomBlock(rng), randomBlock(rng));
+    const std::size_t a = std::size_t(s.frames[1].offset) + kCw;  // codeword 1 of A
+    const std::size_t b = std::size_t(s.frames[2].offset) + kCw;  // of B
+    for (std::size_t i = 0; i < 20; ++i)
+        s.bytes[a + 11 * i] ^= 0xFF;  // A's codeword 1 beyond correction
+    // A window of 6 bits in A's codeword 2, 121 bytes before B's codeword 1.
+    const std::size_t w = b - 121 - StreamSync::kWindowSize;
+    std::fill_n(s.bytes.begin() + std::ptrdiff_t(w), 14, std::uint8_t{0x55});
+    s.bytes[w + 14] = 0x0F ^ 0x07;  // 3 bits
+    s.bytes[w + 15] = 0x0F ^ 0x70;  // 3 bits
+    // 40 bytes early in B's preamble: 55 55 read within 5 bits of 0F 0F.
+    s.bytes[b - 40 - 2] ^= 0x02 | 0x08;
+    s.bytes[b - 40 - 1] ^= 0x08;
+    for (std::size_t i = 0; i < 20; ++i) {
+        s.bytes[b + 11 * i] ^= 0xFF;  // both of B's codewords beyond correction
+        s.bytes[b + kCodewordSize + 11 * i] ^= 0xFF;
+    }
+
+    std::vector<Got> got;
+    StreamSync sync([&](const SyncedFrame& f) {
+        got.push_back({f.offset, Bytes(f.raw.begin(), f.raw.end()), f.blocks, f.preambleBitErrors});
+    }, [](const DecodedBlocks& blocks) { return blocks.ok(); });
+    sync.feed(s.bytes);
+    sync.flush();
+    QCOMPARE(got.size(), std::size_t{4});
+    for (std::size_t i = 0; i < got.size(); ++i)
+        QCOMPARE(got[i].offset, s.frames[i].offset);
+    QCOMPARE(got[1].blocks.corrected.block1, -1);
+    QCOMPARE(got[1].blocks.block2, s.frames[1].b2);
+    QCOMPARE(got[2].blocks.corrected.block1, -1);
+    QCOMPARE(got[2].blocks.corrected.block2, -1);
+    QCOMPARE(got[2].preambleBitErrors, 0);
+    QVERIFY(sameBlocks(got[3], s.frames[3]));
 }
 
 void TestStreamSync::bitErrorRate_data()
