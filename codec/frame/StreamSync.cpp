@@ -601,6 +601,11 @@ void StreamSync::holdFailure(Neighbourhood& hood)
         due_ = p + kFrameSize;  // lock kept through a frame beyond correction
         expect_ = due_;
         expectTried_ = false;
+    } else if (due_ < p) {
+        // Past the start due with no frame found there (its window lost to
+        // errors): the next frame is due after this failure, so a lock lost
+        // is regained where frames are read only with predictions.
+        due_ = p + kFrameSize;
     }
 }
 
