@@ -158,6 +158,19 @@ void verifySlipped(const Got& g, const Sent& sent, int outcome)
         QVERIFY(g.blocks.corrected.block1 >= 0 && g.blocks.block1 == sent.b1);
 }
 
+// What a synchroniser reports of `bytes` whose acceptor finds exact any frame
+// with both codewords decoded (a frame read from one codeword is refused).
+std::vector<Got> framesFoundExact(const Bytes& bytes)
+{
+    std::vector<Got> got;
+    StreamSync sync([&](const SyncedFrame& f) {
+        got.push_back({f.offset, Bytes(f.raw.begin(), f.raw.end()), f.blocks, f.preambleBitErrors});
+    }, [](const DecodedBlocks& blocks) { return blocks.ok(); });
+    sync.feed(bytes);
+    sync.flush();
+    return got;
+}
+
 }  // namespace
 
 class TestStreamSync : public QObject {
@@ -632,12 +645,7 @@ void TestStreamSync::failedFrameDueAfterFalseStartInItsPreamble()
         s.bytes[b + kCodewordSize + 11 * i] ^= 0xFF;
     }
 
-    std::vector<Got> got;
-    StreamSync sync([&](const SyncedFrame& f) {
-        got.push_back({f.offset, Bytes(f.raw.begin(), f.raw.end()), f.blocks, f.preambleBitErrors});
-    }, [](const DecodedBlocks& blocks) { return blocks.ok(); });
-    sync.feed(s.bytes);
-    sync.flush();
+    const std::vector<Got> got = framesFoundExact(s.bytes);
     QCOMPARE(got.size(), std::size_t{4});
     for (std::size_t i = 0; i < got.size(); ++i)
         QCOMPARE(got[i].offset, s.frames[i].offset);
@@ -678,12 +686,7 @@ void TestStreamSync::lockRegainedAfterFrameWithoutWindow()
     for (const std::size_t at : {b, c, d})
         breakCodewords(at);
 
-    std::vector<Got> got;
-    StreamSync sync([&](const SyncedFrame& f) {
-        got.push_back({f.offset, Bytes(f.raw.begin(), f.raw.end()), f.blocks, f.preambleBitErrors});
-    }, [](const DecodedBlocks& blocks) { return blocks.ok(); });
-    sync.feed(s.bytes);
-    sync.flush();
+    const std::vector<Got> got = framesFoundExact(s.bytes);
     QCOMPARE(got.size(), std::size_t{4});  // B is not found at all
     QCOMPARE(got[0].offset, s.frames[0].offset);
     QCOMPARE(got[1].offset, s.frames[2].offset);
