@@ -578,8 +578,18 @@ void StreamSync::holdFailure(Neighbourhood& hood)
         std::memcpy(hood.firstBlocks.block1.data(), cw, kBlockSize);
         std::memcpy(hood.firstBlocks.block2.data(), cw + kCodewordSize, kBlockSize);
     }
-    if (p < failEnd_)
-        return;
+    if (p < failEnd_) {
+        // Inside a failure still held. When that one started in this frame's
+        // preamble (a window there that two or three bit errors brought
+        // within 6 bits, tried in a neighbourhood the start due lay beyond)
+        // and this is the start due, that was the false start: the lock
+        // keeps the frame due, and the frames after it are looked for from
+        // there, not from a start 40 bytes early that every later failure
+        // would be measured from.
+        if (p != due_ || !hasPending_ || pendingC_ >= p || pendingC_ + kPreambleSize <= p)
+            return;
+        hasPending_ = false;
+    }
     if (hasPending_)
         reportPending();
     hasPending_ = true;
@@ -591,6 +601,11 @@ void StreamSync::holdFailure(Neighbourhood& hood)
         due_ = p + kFrameSize;  // lock kept through a frame beyond correction
         expect_ = due_;
         expectTried_ = false;
+    } else if (due_ < p) {
+        // Past the start due with no frame found there (its window lost to
+        // errors): the next frame is due after this failure, so a lock lost
+        // is regained where frames are read only with predictions.
+        due_ = p + kFrameSize;
     }
 }
 

@@ -27,11 +27,13 @@
 //
 // Failures. When nothing in a neighbourhood confirms, one "uncorrectable"
 // frame is reported where the next frame was due if that was a candidate,
-// else at the lowest-distance candidate; later failing candidates that
+// else at the lowest-distance candidate (and, once past the start due, the
+// next frame is due 600 bytes after it); later failing candidates that
 // start inside its codewords are dropped silently, and one there that
 // confirms is still emitted, which is how the frame after lost bytes is
 // found. The report waits until scanning is 90 bytes past it: if a good
-// frame's preamble covers it, it was a false start and is dropped.
+// frame's preamble covers it, or the frame due fails there too, it was a
+// false start and is dropped (the frame due is reported instead).
 //
 // On a clean continuous stream the frame due is checked first: a perfect
 // window with two clean codewords cannot be beaten, so no search is made.

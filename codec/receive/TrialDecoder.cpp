@@ -9,6 +9,7 @@
 #include "codec/receive/EncodedItems.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <optional>
 
@@ -496,7 +497,11 @@ std::optional<TrialDecoder::Found> TrialDecoder::fromAgreedBytes(const SenderPre
 // first) with the command value bytes in which this frame differs from them
 // erased: a change of several commands costs one syndrome a byte instead of
 // two, so its first frame is read through as many channel errors as the
-// frames after it.
+// frames after it. When that fails, once more with only the bytes that
+// differ in two bits or more erased: a changed value rarely differs from
+// the last in one bit alone, a byte the channel hit mostly does, and each
+// such byte left to the prediction costs nothing when the prediction was
+// right (and two syndromes, as any error, when it was not).
 std::optional<TrialDecoder::Found> TrialDecoder::fromChangedCommands(const SenderPredictions& p,
                                                                      const std::vector<std::uint32_t>& order,
                                                                      const std::uint8_t* r1, Work& work) const
@@ -510,35 +515,50 @@ std::optional<TrialDecoder::Found> TrialDecoder::fromChangedCommands(const Sende
                     return std::nullopt;
                 Block data;
                 std::memcpy(data.data(), pred.codeword.data(), kBlockSize);
-                std::vector<int> erased;
+                std::vector<int> erased, changed;
                 for (std::size_t at : commandValueBytes(data))
-                    if (r1[at] != data[at])
+                    if (r1[at] != data[at]) {
                         erased.push_back(static_cast<int>(at));
-                if (erased.empty() || erased.size() > kMaxErasedCommandBytes)
-                    continue;
-                if (!work.take(kErasureDecodeUnits))
-                    return std::nullopt;
-                Codeword word = pred.codeword;
-                std::memcpy(word.data() + kBlockSize, r1 + kBlockSize, rs::kParitySize);
-                const Codeword trial = word;
-                const int f = static_cast<int>(erased.size());
-                if (rs::decodeWithErasures(word.data(), erased.data(), f) < 0)
-                    continue;
-                int errors = 0;  // corrected outside the erased places
-                for (std::size_t i = 0; i < kCodewordSize; ++i)
-                    errors += word[i] != trial[i] &&
-                              std::find(erased.begin(), erased.end(), static_cast<int>(i)) == erased.end();
-                if (2 * errors + f > kErasureTrialReach)
-                    continue;
-                Found found;
-                std::memcpy(found.block.data(), word.data(), kBlockSize);
-                found.corrected = errors + f;
-                found.stamp = pred.stamp;
-                return found;
+                        if (std::popcount(static_cast<unsigned>(r1[at] ^ data[at])) > 1)
+                            changed.push_back(static_cast<int>(at));
+                    }
+                for (const std::vector<int>* places : {&erased, &changed}) {
+                    if (places == &changed && changed.size() == erased.size())
+                        break;
+                    if (places->empty() || places->size() > kMaxErasedCommandBytes)
+                        continue;
+                    if (!work.take(kErasureDecodeUnits))
+                        return std::nullopt;
+                    if (std::optional<Found> found = decodeErased(pred, r1, *places))
+                        return found;
+                }
             }
         }
     }
     return std::nullopt;
+}
+
+// pred's data with r1's parity, the `erased` places erased, libfec's
+// errors-and-erasures decoder: kept within 2e + f <= kErasureTrialReach.
+std::optional<TrialDecoder::Found> TrialDecoder::decodeErased(const Predicted& pred, const std::uint8_t* r1,
+                                                              const std::vector<int>& erased)
+{
+    Codeword word = pred.codeword;
+    std::memcpy(word.data() + kBlockSize, r1 + kBlockSize, rs::kParitySize);
+    const Codeword trial = word;
+    const int f = static_cast<int>(erased.size());
+    if (rs::decodeWithErasures(word.data(), erased.data(), f) < 0)
+        return std::nullopt;
+    int errors = 0;  // corrected outside the erased places
+    for (std::size_t i = 0; i < kCodewordSize; ++i)
+        errors += word[i] != trial[i] && std::find(erased.begin(), erased.end(), static_cast<int>(i)) == erased.end();
+    if (2 * errors + f > kErasureTrialReach)
+        return std::nullopt;
+    Found found;
+    std::memcpy(found.block.data(), word.data(), kBlockSize);
+    found.corrected = errors + f;
+    found.stamp = pred.stamp;
+    return found;
 }
 
 std::optional<TrialDecoder::Found> TrialDecoder::searchCommandChange(const SenderHistory& h,

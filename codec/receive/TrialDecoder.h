@@ -136,6 +136,8 @@ private:
     bool block2FromCopies(const std::uint8_t* r2, DecodedBlocks& d, Work& work);
     std::optional<Found> fromChangedCommands(const SenderPredictions& p, const std::vector<std::uint32_t>& order,
                                              const std::uint8_t* r1, Work& work) const;
+    static std::optional<Found> decodeErased(const Predicted& pred, const std::uint8_t* r1,
+                                             const std::vector<int>& erased);
     std::optional<Found> searchCommandChange(const SenderHistory& h, const secure::SecureCodec* codec,
                                              const std::uint8_t* r1, std::uint32_t gapEstimate, Work& work);
     bool majority(const std::uint8_t* r1, const DecodedBlocks& plain, DecodedBlocks& d, Work& work);

@@ -8,6 +8,7 @@
 
 #include <QtTest>
 
+#include <functional>
 #include <initializer_list>
 #include "tests/support/BerSession.h"
 
@@ -152,6 +153,7 @@ private slots:
     void ownCommandPredictsTheStatus();
     void planSectionFromTwoPassesCopies();
     void severalCommandsChangedOnTheFirstFrame();
+    void changedCommandsThroughSingleBitErrors();
 };
 
 void TestReceive::noWrongFrameDelivered_data()
@@ -894,40 +896,92 @@ void TestReceive::planSectionFromTwoPassesCopies()
     QCOMPARE(c.frames.back().refusal, std::optional<Refusal>(Refusal::Replayed));
 }
 
-// Plain link: the first frame of a change of four commands (a radio retuned,
-// the camera turned and raised: 9 bytes) with 20 byte errors in its data
-// and 5 in its parity: beyond RS, and beyond a trial (9 bytes off the
-// prediction + 5 > 12), read with those 9 command bytes erased
-// (2 x 5 + 9 <= 20).
-void TestReceive::severalCommandsChangedOnTheFirstFrame()
+namespace {
+
+// The session's start with four commands changed at once (a radio retuned,
+// the camera turned and raised): 9 bytes of BLOCK 1, each in 2 bits or more.
+Message fourCommandsChanged(const Message& status)
 {
-    Collected c;
-    Message status = test::sessionStartMessage();
-    const auto at = [](const Message& base, std::uint32_t second) { return stampedAt(base, second); };
+    Message changed = status;
+    changed.radios[0].set(ItemId::Rx_freq, 136975);  // 0x01DA9C -> 0x02170F
+    changed.radios[0].set(ItemId::Tx_freq, 136975);
+    changed.cameras[0].set(ItemId::cam_mag_compass, 27123);  // 0x2328 -> 0x69F3
+    changed.cameras[0].set(ItemId::cam_elev, -1501);          // one byte: 24 -> 23
+    return changed;
+}
+
+// status sent at second 1 intact, then `changed` at second 2 with 20 byte
+// errors in its data (the padding before the items), 5 in its parity and one
+// bit flipped at each of `oneBitErrors`: what the receiver made of the second.
+ReceivedFrame firstFrameOfChange(Collected& c, const Message& status, const Message& changed,
+                                 const std::vector<std::size_t>& oneBitErrors)
+{
     const auto send = [&](const Message& m, bool damaged) {
         const EncodedBlocks b = encoded(m);
         Bytes d = datagramOf(b.block1, b.block2);
         if (damaged) {
-            // 20 data bytes in the padding before the items, 5 parity bytes.
             for (std::size_t e = 0; e < 20; ++e)
                 d[e * 3 + 1] ^= static_cast<std::uint8_t>(0x21 + e);
             for (std::size_t e = 0; e < 5; ++e)
                 d[kBlockSize + e * 6] ^= 0x5C;
+            for (std::size_t place : oneBitErrors)
+                d[place] ^= 0x10;
         }
         c.nowMicros = (kNoon + m.header.number(ItemId::ID_msg)) * 1'000'000;
         c.receiver.receive(d);
         return c.frames.back();
     };
-    QVERIFY(send(at(status, 1), false).delivered());
-    Message changed = status;
-    changed.radios[0].set(ItemId::Rx_freq, 136975);  // 0x01DA9C -> 0x02170F
-    changed.radios[0].set(ItemId::Tx_freq, 136975);
-    changed.cameras[0].set(ItemId::cam_mag_compass, 27123);  // 0x2328 -> 0x69F3
-    changed.cameras[0].set(ItemId::cam_elev, -1501);          // one byte
-    const ReceivedFrame f = send(at(changed, 2), true);
+    if (!send(stampedAt(status, 1), false).delivered())
+        return {};
+    return send(stampedAt(changed, 2), true);
+}
+
+}  // namespace
+
+// Plain link: the first frame of a change of four commands (9 bytes) with 20
+// byte errors in its data and 5 in its parity: beyond RS, and beyond a trial
+// (9 bytes off the prediction + 5 > 12), read with those 9 command bytes
+// erased (2 x 5 + 9 <= 20).
+void TestReceive::severalCommandsChangedOnTheFirstFrame()
+{
+    Collected c;
+    const Message status = test::sessionStartMessage();
+    const Message changed = fourCommandsChanged(status);
+    const ReceivedFrame f = firstFrameOfChange(c, status, changed, {});
     QVERIFY2(f.delivered(), f.detail.c_str());
     QVERIFY(f.fromPrediction);
-    QVERIFY(f.decoded.message == at(changed, 2));
+    QVERIFY(f.decoded.message == stampedAt(changed, 2));
+    QCOMPARE(c.receiver.predictions()->stats().block1FromChangedCommands, std::uint64_t{1});
+}
+
+// As above, and three unchanged command bytes took one bit error each: with
+// every differing command byte erased, 2 x 5 + 12 > 20. A changed value
+// differs from the last in several bits where one channel error flips one,
+// so the second try leaves the one-bit differences to the prediction and
+// erases the 9 changed bytes alone (2 x 5 + 9 <= 20).
+void TestReceive::changedCommandsThroughSingleBitErrors()
+{
+    Collected c;
+    const Message status = test::sessionStartMessage();
+    const Message changed = fourCommandsChanged(status);
+    // Where three unchanged one-byte commands are in BLOCK 1.
+    const EncodedBlocks sent = encoded(stampedAt(changed, 2));
+    std::vector<std::size_t> oneBit;
+    for (const auto& set : std::vector<std::function<void(Message&)>>{
+             [](Message& m) { m.engines[0].set(ItemId::eng_carb_SET, 138); },
+             [](Message& m) { m.engines[1].set(ItemId::eng_prop_pitch, 121); },
+             [](Message& m) { m.sense.set(ItemId::SA_zoom_FWD_cam, 11); }}) {
+        Message other = stampedAt(changed, 2);
+        set(other);
+        const EncodedBlocks b = encoded(other);
+        const auto diff = std::mismatch(sent.block1.begin(), sent.block1.end(), b.block1.begin());
+        oneBit.push_back(static_cast<std::size_t>(diff.first - sent.block1.begin()));
+        QVERIFY(oneBit.back() > 60 && oneBit.back() < kBlockSize);  // after the damaged padding
+    }
+    const ReceivedFrame f = firstFrameOfChange(c, status, changed, oneBit);
+    QVERIFY2(f.delivered(), f.detail.c_str());
+    QVERIFY(f.fromPrediction);
+    QVERIFY(f.decoded.message == stampedAt(changed, 2));
     QCOMPARE(c.receiver.predictions()->stats().block1FromChangedCommands, std::uint64_t{1});
 }
 
