@@ -134,7 +134,7 @@ void BrokerConnection::observeRequested(const QString& aircraft)
 
 void BrokerConnection::observe(const BrokerSettings& settings)
 {
-    auto observation = std::make_unique<BrokerObservation>(settings);
+    auto observation = std::make_unique<BrokerObservation>(settings, nullptr, m_session->clock());
     // Refused messages are counted as refused frames are; what is worth
     // knowing (frames missed, stations unverified or sealed) is a warning.
     ConsoleAlerts* alerts = m_notices.alerts();
