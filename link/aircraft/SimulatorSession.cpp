@@ -169,10 +169,10 @@ std::unique_ptr<Link> SimulatorSession::openLink(const Station* station, Channel
         modem.initString = m_settings.modemInit;
         modem.clock = m_clock;
         link = std::make_unique<ModemLink>(std::make_unique<SerialLink>(m_settings.serialDevice, m_settings.baudRate,
-                                                                        SerialLink::FlowControl::RtsCts),
+                                                                        SerialLink::FlowControl::RtsCts, nullptr, m_clock),
                                            modem);
     } else {
-        link = std::make_unique<SerialLink>(m_settings.serialDevice, m_settings.baudRate);
+        link = std::make_unique<SerialLink>(m_settings.serialDevice, m_settings.baudRate, nullptr, m_clock);
     }
     // Voice goes inside the faults, which spoil whole status frames.
     if (m_settings.voiceSource) {

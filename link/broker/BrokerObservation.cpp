@@ -22,10 +22,10 @@ BrokerSettings observerSettings(BrokerSettings settings, const QString& aircraft
 
 }  // namespace
 
-BrokerObservation::BrokerObservation(const BrokerSettings& settings, QObject* parent)
+BrokerObservation::BrokerObservation(const BrokerSettings& settings, QObject* parent, std::shared_ptr<Clock> clock)
     : Observation(parent), m_aircraft(settings.aircraft.isEmpty() ? BrokerTopics::kUnknownAircraft : settings.aircraft)
 {
-    m_client = new MqttClient(observerSettings(settings, m_aircraft), this);
+    m_client = new MqttClient(observerSettings(settings, m_aircraft), this, std::move(clock));
     m_client->setTrust(settings.trust ? settings.trust : std::make_shared<const BrokerTrust>());
     connect(m_client, &MqttClient::messageOpened, this, &BrokerObservation::messageOpened);
     connect(m_client, &MqttClient::connected, this, &BrokerObservation::brokerConnected);

@@ -41,6 +41,7 @@
 #include "link/broker/BrokerSettings.h"
 #include "link/broker/BrokerTopics.h"
 #include "link/broker/SequenceCheck.h"
+#include "link/clock/Clock.h"
 #include "link/session/Observation.h"
 
 #include <QHash>
@@ -49,6 +50,7 @@
 #include <QString>
 #include <QStringList>
 
+#include <memory>
 #include <optional>
 
 class MqttClient;
@@ -60,8 +62,10 @@ public:
     // Observes settings.aircraft ("unknown" when empty), believing
     // settings.trust (none: every station is unverified). Without a client
     // ID one is made up ("rcm-observer-GB_133-1a2b3c4d"): the broker keeps
-    // the session under it while the observer is away.
-    explicit BrokerObservation(const BrokerSettings& settings, QObject* parent = nullptr);
+    // the session under it while the observer is away. The client's outages
+    // are timed on `clock`, the session's (null: the SystemClock).
+    explicit BrokerObservation(const BrokerSettings& settings, QObject* parent = nullptr,
+                               std::shared_ptr<Clock> clock = nullptr);
     ~BrokerObservation() override;
 
     void start() override;

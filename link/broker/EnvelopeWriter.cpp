@@ -2,8 +2,6 @@
 
 #include "codec/secure/BrokerSeal.h"
 
-#include <QDateTime>
-
 #include <algorithm>
 #include <utility>
 
@@ -19,7 +17,7 @@ std::span<const std::uint8_t> bytesOf(const QByteArray& b)
 EnvelopeWriter::EnvelopeWriter(QString station, std::shared_ptr<const rcm::secure::StationSigningKey> signingKey)
     : m_station(std::move(station)),
       m_signingKey(std::move(signingKey)),
-      m_clock([] { return QDateTime::currentMSecsSinceEpoch() * 1000; })
+      m_clock(std::make_shared<SystemClock>())
 {
 }
 
@@ -29,14 +27,15 @@ void EnvelopeWriter::setSealKey(const rcm::secure::SecretKey& brokerKey, const Q
     m_sealFingerprint = fingerprint;
 }
 
-void EnvelopeWriter::setClock(Clock clock)
+void EnvelopeWriter::setClock(std::shared_ptr<const Clock> clock)
 {
-    m_clock = std::move(clock);
+    m_clock = clock ? std::move(clock) : std::make_shared<SystemClock>();
 }
 
 qint64 EnvelopeWriter::nextSeq()
 {
-    m_lastSeq = std::max(m_lastSeq + 1, m_clock());
+    // In whole milliseconds, as the numbers always went.
+    m_lastSeq = std::max<qint64>(m_lastSeq + 1, m_clock->utcMicros() / 1000 * 1000);
     return m_lastSeq;
 }
 

@@ -8,18 +8,15 @@
 #include "codec/secure/SecureCodec.h"
 #include "codec/secure/StationSigningKey.h"
 #include "link/broker/BrokerEnvelope.h"
+#include "link/clock/Clock.h"
 
 #include <QString>
 
-#include <functional>
 #include <memory>
 #include <optional>
 
 class EnvelopeWriter {
 public:
-    // UTC microseconds; tests pass their own.
-    using Clock = std::function<qint64()>;
-
     explicit EnvelopeWriter(QString station, std::shared_ptr<const rcm::secure::StationSigningKey> signingKey = {});
 
     QString station() const { return m_station; }
@@ -30,7 +27,8 @@ public:
     // A keyed session: every body is sealed under the link key's broker key
     // (LogKey::brokerKey()), named by the link key's fingerprint.
     void setSealKey(const rcm::secure::SecretKey& brokerKey, const QString& fingerprint);
-    void setClock(Clock clock);
+    // What the numbers follow: the session's clock (null: the SystemClock).
+    void setClock(std::shared_ptr<const Clock> clock);
 
     // The next number: more than the last, and no less than the clock's now,
     // so that a console started again goes on above what it said before.
@@ -46,6 +44,6 @@ private:
     std::shared_ptr<const rcm::secure::StationSigningKey> m_signingKey;
     std::optional<rcm::secure::SecretKey> m_sealKey;
     QString m_sealFingerprint;
-    Clock m_clock;
+    std::shared_ptr<const Clock> m_clock;
     qint64 m_lastSeq = 0;
 };

@@ -3,9 +3,6 @@
 #include "link/broker/BrokerTrust.h"
 #include "link/broker/MqttClient.h"
 
-#include <QDateTime>
-#include <QTimer>
-
 #include <algorithm>
 #include <tuple>
 
@@ -19,16 +16,18 @@ bool isGood(FrameStatus status)
 
 }  // namespace
 
-FleetFeed::FleetFeed(MqttClient* client, QObject* parent)
+FleetFeed::FleetFeed(MqttClient* client, QObject* parent, std::shared_ptr<Clock> clock)
     : QObject(parent),
       m_client(client),
       m_trust(std::make_shared<const BrokerTrust>()),
-      m_clock([] { return QDateTime::currentMSecsSinceEpoch() * 1000; }),
-      m_expiryTimer(new QTimer(this))
+      m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>()),
+      m_expiryTimer(m_clock->createTimer(this))
 {
-    m_expiryTimer->setInterval(kExpiryIntervalMs);
-    connect(m_expiryTimer, &QTimer::timeout, this, &FleetFeed::expireStale);
-    m_expiryTimer->start();
+    connect(m_expiryTimer, &ClockTimer::timeout, this, [this] {
+        m_expiryTimer->start(std::chrono::milliseconds(kExpiryIntervalMs));
+        expireStale();
+    });
+    m_expiryTimer->start(std::chrono::milliseconds(kExpiryIntervalMs));
     if (!m_client)
         return;
     m_client->setTrust(m_trust);
@@ -48,11 +47,6 @@ void FleetFeed::setTrust(std::shared_ptr<const BrokerTrust> trust)
     m_trust = trust ? std::move(trust) : std::make_shared<const BrokerTrust>();
     if (m_client)
         m_client->setTrust(m_trust);
-}
-
-void FleetFeed::setClock(Clock clock)
-{
-    m_clock = std::move(clock);
 }
 
 QStringList FleetFeed::patterns()
@@ -166,7 +160,7 @@ void FleetFeed::handleOpened(const OpenedMessage& m)
             // Keyed by the topic: it is what the broker replaces a retained report by.
             Aircraft& aircraft = m_aircraft[name];
             aircraft.stations[m.station] = std::move(station);
-            aircraft.heardMicros = m_clock();
+            aircraft.heardMicros = m_clock->utcMicros();
             break;
         }
         case BrokerTopics::Kind::Stats: {
@@ -179,7 +173,7 @@ void FleetFeed::handleOpened(const OpenedMessage& m)
             }
             Aircraft& aircraft = m_aircraft[name];
             aircraft.stats[m.station] = *stats;
-            aircraft.heardMicros = m_clock();
+            aircraft.heardMicros = m_clock->utcMicros();
             emit statsReported(name, *stats, m.seq);
             break;
         }
@@ -201,7 +195,7 @@ void FleetFeed::setLocalStation(const QString& aircraft, const StationReport& re
         updated(before);
     if (m_localAircraft.isEmpty())
         return;
-    m_aircraft[m_localAircraft].heardMicros = m_clock();
+    m_aircraft[m_localAircraft].heardMicros = m_clock->utcMicros();
     updated(m_localAircraft);
 }
 
@@ -221,7 +215,7 @@ void FleetFeed::expireStale()
     // While the broker is away nothing is heard of anyone: not their fault.
     if (!m_brokerReachable)
         return;
-    const qint64 now = m_clock();
+    const qint64 now = m_clock->utcMicros();
     QStringList gone;
     for (auto it = m_aircraft.cbegin(); it != m_aircraft.cend(); ++it)
         if (it.key() != m_localAircraft && now - it->heardMicros > kTimeToLiveMicros)

@@ -33,6 +33,7 @@
 #include "link/broker/BrokerEnvelope.h"
 #include "link/broker/BrokerTopics.h"
 #include "link/broker/SequenceCheck.h"
+#include "link/clock/Clock.h"
 
 #include <QHash>
 #include <QList>
@@ -41,14 +42,12 @@
 #include <QString>
 #include <QStringList>
 
-#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 
 class BrokerTrust;
 class MqttClient;
-class QTimer;
 
 struct AircraftSummary {
     QString aircraft;  // ID_UA_source in the text format's form, "GB_133"
@@ -92,20 +91,18 @@ public:
     static constexpr qint64 kTimeToLiveMicros = 300'000'000;
     // How often a timer removes aircraft not heard of for the time to live.
     static constexpr int kExpiryIntervalMs = 10'000;
-    // Microseconds since the epoch, UTC; tests pass a fake clock.
-    using Clock = std::function<qint64()>;
-
     // `client` is not owned and must outlive the feed; it may be connected
     // already or connect later: the feed asks it once for the patterns, and
     // the client sends them again after every reconnection. Null: messages
     // come by handleMessage() only. Until setTrust(), nobody is trusted.
-    explicit FleetFeed(MqttClient* client, QObject* parent = nullptr);
+    // When an aircraft was heard of, and the expiry's cadence, are on
+    // `clock` (null: the SystemClock; tests pass a VirtualClock).
+    explicit FleetFeed(MqttClient* client, QObject* parent = nullptr, std::shared_ptr<Clock> clock = nullptr);
     ~FleetFeed() override;
 
     // Whom the feed believes, and which sealed sessions it reads; given to
     // the client too, which judges each message in its network thread.
     void setTrust(std::shared_ptr<const BrokerTrust> trust);
-    void setClock(Clock clock);
 
     // The patterns subscribed to, in order.
     static QStringList patterns();
@@ -173,6 +170,6 @@ private:
     std::optional<StationReport> m_local;
     bool m_brokerReachable = true;
     quint64 m_refused = 0;
-    Clock m_clock;
-    QTimer* m_expiryTimer;
+    std::shared_ptr<Clock> m_clock;
+    ClockTimer* m_expiryTimer;
 };

@@ -336,8 +336,11 @@ struct MqttClient::Core {
     }
 };
 
-MqttClient::MqttClient(BrokerSettings settings, QObject* parent)
-    : QObject(parent), m_settings(std::move(settings)), m_core(std::make_shared<Core>())
+MqttClient::MqttClient(BrokerSettings settings, QObject* parent, std::shared_ptr<Clock> clock)
+    : QObject(parent),
+      m_settings(std::move(settings)),
+      m_core(std::make_shared<Core>()),
+      m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>())
 {
     initLibraryOnce();
     const QByteArray id = m_settings.clientId.toUtf8();
@@ -628,9 +631,9 @@ void MqttClient::onConnect(int resultCode, const QString& reason)
     m_unanswered.clear();
     const bool everConnected = m_everConnected;
     m_everConnected = true;
-    if (m_outage.isValid()) {
-        const qint64 ms = m_outage.elapsed();
-        m_outage.invalidate();
+    if (m_outageSinceSteadyMicros) {
+        const qint64 ms = (m_clock->steadyMicros() - *m_outageSinceSteadyMicros) / 1000;
+        m_outageSinceSteadyMicros.reset();
         const qint64 seconds = (ms + 500) / 1000;
         const QString length =
             seconds < 60 ? QStringLiteral("%1 s").arg(seconds)
@@ -647,8 +650,8 @@ void MqttClient::onConnect(int resultCode, const QString& reason)
 
 void MqttClient::markOutage()
 {
-    if (!m_outage.isValid())
-        m_outage.start();
+    if (!m_outageSinceSteadyMicros)
+        m_outageSinceSteadyMicros = m_clock->steadyMicros();
 }
 
 void MqttClient::onPublished(int messageId, int reasonCode)

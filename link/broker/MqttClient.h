@@ -27,9 +27,9 @@
 
 #include "link/broker/BrokerEnvelope.h"
 #include "link/broker/BrokerSettings.h"
+#include "link/clock/Clock.h"
 
 #include <QByteArray>
-#include <QElapsedTimer>
 #include <QHash>
 #include <QList>
 #include <QObject>
@@ -43,7 +43,9 @@ class MqttClient : public QObject {
     Q_OBJECT
 
 public:
-    explicit MqttClient(BrokerSettings settings, QObject* parent = nullptr);
+    // An outage is timed on `clock`, the session's (null: the SystemClock);
+    // libmosquitto's own reconnection delays stay on the system's.
+    explicit MqttClient(BrokerSettings settings, QObject* parent = nullptr, std::shared_ptr<Clock> clock = nullptr);
     // Disconnects gracefully (the broker drops the will) without waiting:
     // libmosquitto's thread is stopped and joined in a thread of its own.
     ~MqttClient() override;
@@ -148,9 +150,11 @@ private:
     // Set when an outage has been reported; cleared by the next connection.
     bool m_errorReported = false;
     int m_restarts = 0;  // in a row, since the last connection
-    // Since the outage began (the first error or the connection lost); not
-    // valid while connected or before the first connection was tried.
-    QElapsedTimer m_outage;
+    std::shared_ptr<Clock> m_clock;
+    // When the outage began (the first error or the connection lost), in the
+    // clock's steady microseconds; none while connected or before the first
+    // connection was tried.
+    std::optional<qint64> m_outageSinceSteadyMicros;
     bool m_everConnected = false;
     // Topics and patterns of messages and subscriptions not yet answered,
     // to name them when the broker refuses one; each refusal said once.

@@ -39,7 +39,7 @@ QString brokerRole(StationControl::Role role)
 }  // namespace
 
 SessionBroadcast::SessionBroadcast(ConsoleSession* session, const BrokerSettings& settings, QObject* parent)
-    : QObject(parent), m_session(session), m_settings(settings), m_client(new MqttClient(settings, this))
+    : QObject(parent), m_session(session), m_settings(settings), m_client(new MqttClient(settings, this, session->clock()))
 {
     connect(m_client, &MqttClient::errorOccurred, this, &SessionBroadcast::errorOccurred);
     connect(m_client, &MqttClient::setupFailed, this, &SessionBroadcast::setupFailed);
@@ -85,7 +85,8 @@ void SessionBroadcast::linkStarted(const LinkController* controller)
     // A keyed link: what goes on the broker is sealed for its key's holders.
     if (const std::shared_ptr<const rcm::LogKey> key = m_session->logKey())
         envelopes.setSealKey(key->brokerKey(), QString::fromStdString(key->fingerprint()));
-    m_publisher = new SessionPublisher(m_client, std::move(envelopes), controller, this);
+    envelopes.setClock(controller->clock());
+    m_publisher = new SessionPublisher(m_client, std::move(envelopes), controller, this, controller->clock());
     connect(m_publisher.data(), &SessionPublisher::stationReportChanged, this, &SessionBroadcast::stationReportChanged);
     m_publisher->setDescription(m_session->description());
     // Gone with the link: a publisher must not outlive the events it follows.

@@ -4,15 +4,12 @@
 #include "link/broker/MqttClient.h"
 #include "link/session/LinkEvents.h"
 
-#include <QDateTime>
-
 #include <algorithm>
-#include <QTimer>
 
 namespace {
 
 // Statistics change with every frame; the broker hears of them at most this often.
-constexpr int kStatsIntervalMs = 1000;
+constexpr qint64 kStatsIntervalMs = 1000;
 // How long a good frame received waits for its decoded message, which the
 // link sends just after it, before it goes without its text.
 constexpr int kPendingFrameMs = 500;
@@ -28,32 +25,32 @@ bool waitsForMessage(const FrameReport& r)
 }  // namespace
 
 SessionPublisher::SessionPublisher(MqttClient* client, const QString& station, const LinkEvents* events,
-                                   QObject* parent)
-    : SessionPublisher(client, EnvelopeWriter(station), events, parent)
+                                   QObject* parent, std::shared_ptr<Clock> clock)
+    : SessionPublisher(client, EnvelopeWriter(station), events, parent, std::move(clock))
 {
 }
 
 SessionPublisher::SessionPublisher(MqttClient* client, EnvelopeWriter envelopes, const LinkEvents* events,
-                                   QObject* parent)
+                                   QObject* parent, std::shared_ptr<Clock> clock)
     : QObject(parent),
+      m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>()),
       m_client(client),
       m_envelopes(std::move(envelopes)),
       m_frameBytes([](const LoggedFrame& frame) { return frame.bytes; }),
-      m_frameSession(QDateTime::currentMSecsSinceEpoch() * 1000),
-      m_pendingTimer(new QTimer(this)),
-      m_statsTimer(new QTimer(this)),
-      m_restateTimer(new QTimer(this))
+      m_frameSession(m_clock->utcMicros() / 1000 * 1000),
+      m_pendingTimer(m_clock->createTimer(this)),
+      m_statsTimer(m_clock->createTimer(this)),
+      m_restateTimer(m_clock->createTimer(this))
 {
     // While the session lives its report is restated, well before the
     // broker lets the retained one expire.
-    m_restateTimer->setInterval(kRestateIntervalMs);
-    connect(m_restateTimer, &QTimer::timeout, this, &SessionPublisher::publishStation);
-    m_restateTimer->start();
-    m_pendingTimer->setSingleShot(true);
-    m_pendingTimer->setInterval(kPendingFrameMs);
-    connect(m_pendingTimer, &QTimer::timeout, this, &SessionPublisher::flushPendingFrame);
-    m_statsTimer->setSingleShot(true);
-    connect(m_statsTimer, &QTimer::timeout, this, &SessionPublisher::publishStats);
+    connect(m_restateTimer, &ClockTimer::timeout, this, [this] {
+        m_restateTimer->start(std::chrono::milliseconds(kRestateIntervalMs));
+        publishStation();
+    });
+    m_restateTimer->start(std::chrono::milliseconds(kRestateIntervalMs));
+    connect(m_pendingTimer, &ClockTimer::timeout, this, &SessionPublisher::flushPendingFrame);
+    connect(m_statsTimer, &ClockTimer::timeout, this, &SessionPublisher::publishStats);
 
     if (client) {
         connect(client, &MqttClient::connected, this, &SessionPublisher::clientConnected);
@@ -233,7 +230,7 @@ void SessionPublisher::frameLogged(const LoggedFrame& frame)
     }
     if (waitsForMessage(r)) {
         m_pendingFrame = std::move(r);
-        m_pendingTimer->start();
+        m_pendingTimer->start(std::chrono::milliseconds(kPendingFrameMs));
         return;
     }
     publishFrame(r);
@@ -285,11 +282,13 @@ void SessionPublisher::messageReceived(const ReceivedMessage& received)
 void SessionPublisher::statisticsChanged(const LinkStatistics& statistics)
 {
     m_statistics = statistics;
-    if (!m_sinceStats.isValid() || m_sinceStats.elapsed() >= kStatsIntervalMs) {
+    const qint64 sinceStatsMs =
+        m_statsPublishedSteadyMicros ? (m_clock->steadyMicros() - *m_statsPublishedSteadyMicros) / 1000 : 0;
+    if (!m_statsPublishedSteadyMicros || sinceStatsMs >= kStatsIntervalMs) {
         m_statsTimer->stop();
         publishStats();
     } else if (!m_statsTimer->isActive()) {
-        m_statsTimer->start(int(kStatsIntervalMs - m_sinceStats.elapsed()));
+        m_statsTimer->start(std::chrono::milliseconds(kStatsIntervalMs - sinceStatsMs));
     }
 }
 
@@ -352,7 +351,7 @@ void SessionPublisher::publishStats()
 {
     if (!m_statistics || m_finished)
         return;
-    m_sinceStats.start();
+    m_statsPublishedSteadyMicros = m_clock->steadyMicros();
     if (!m_client)
         return;
     publishReport(BrokerTopics::Kind::Stats, StatsReport::of(*m_statistics).toJson(), BrokerTopics::kStatsQos, true);
@@ -414,5 +413,6 @@ void SessionPublisher::setWill()
 
 qint64 SessionPublisher::nowMicros() const
 {
-    return QDateTime::currentMSecsSinceEpoch() * 1000;
+    // Milliseconds, as the reports always said.
+    return m_clock->utcMicros() / 1000 * 1000;
 }

@@ -26,21 +26,21 @@
 
 #include "link/broker/BrokerTopics.h"
 #include "link/broker/EnvelopeWriter.h"
+#include "link/clock/Clock.h"
 #include "link/session/LoggedFrame.h"
 #include "link/session/ReceivedMessage.h"
 
-#include <QElapsedTimer>
 #include <QObject>
 #include <QPointer>
 #include <QString>
 
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 
 class LinkEvents;
 class MqttClient;
-class QTimer;
 
 class SessionPublisher : public QObject {
     Q_OBJECT
@@ -58,10 +58,14 @@ public:
 
     // `client` and `events` must outlive the publisher (or be destroyed with
     // it); `station` is this console's station ID in text form ("GB_30226"):
-    // its messages go unsigned and unsealed.
-    SessionPublisher(MqttClient* client, const QString& station, const LinkEvents* events, QObject* parent = nullptr);
+    // its messages go unsigned and unsealed. Its timers and the times of its
+    // reports run on `clock`, the session's (null: the SystemClock); the
+    // envelopes' numbers on the writer's own (EnvelopeWriter::setClock).
+    SessionPublisher(MqttClient* client, const QString& station, const LinkEvents* events, QObject* parent = nullptr,
+                     std::shared_ptr<Clock> clock = nullptr);
     // The same, with what signs and seals them.
-    SessionPublisher(MqttClient* client, EnvelopeWriter envelopes, const LinkEvents* events, QObject* parent = nullptr);
+    SessionPublisher(MqttClient* client, EnvelopeWriter envelopes, const LinkEvents* events, QObject* parent = nullptr,
+                     std::shared_ptr<Clock> clock = nullptr);
     ~SessionPublisher() override;
 
     // Default: LoggedFrame::bytes.
@@ -118,6 +122,7 @@ private:
     void willChanged();
     qint64 nowMicros() const;
 
+    std::shared_ptr<Clock> m_clock;
     QPointer<MqttClient> m_client;
     EnvelopeWriter m_envelopes;
     qint64 m_willSeq = 0;  // the will's number, announced in every station report
@@ -150,14 +155,15 @@ private:
     // This session's frames: its start and the number of the last one logged.
     qint64 m_frameSession = 0;
     quint64 m_frameSeq = 0;
-    QTimer* m_pendingTimer = nullptr;
+    ClockTimer* m_pendingTimer = nullptr;
 
     std::optional<LinkStatistics> m_statistics;
     std::optional<StateReport> m_state;
     // Statistics go out at most once a second: the latest, when the second is up.
-    QElapsedTimer m_sinceStats;
-    QTimer* m_statsTimer = nullptr;
-    QTimer* m_restateTimer = nullptr;
+    // When they last went (the clock's steady microseconds); none yet.
+    std::optional<qint64> m_statsPublishedSteadyMicros;
+    ClockTimer* m_statsTimer = nullptr;
+    ClockTimer* m_restateTimer = nullptr;
     // lastFrameUtcMicros of the station report last published.
     qint64 m_stationLastFrame = -1;
 };

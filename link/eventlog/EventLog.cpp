@@ -5,17 +5,16 @@
 #include <QDir>
 #include <QFileInfo>
 
-EventLog::EventLog(QObject* parent)
-    : QObject(parent), m_clock([] { return QDateTime::currentMSecsSinceEpoch() * 1000; })
+EventLog::EventLog(QObject* parent) : QObject(parent), m_clock(std::make_shared<SystemClock>())
 {
     qRegisterMetaType<ConsoleEvent>();
 }
 
 EventLog::~EventLog() = default;
 
-void EventLog::setClock(Clock clock)
+void EventLog::setClock(std::shared_ptr<const Clock> clock)
 {
-    m_clock = std::move(clock);
+    m_clock = clock ? std::move(clock) : std::make_shared<SystemClock>();
 }
 
 QString EventLog::sessionFileName(const QDateTime& utc)
@@ -46,7 +45,7 @@ bool EventLog::openFile(const QString& path, QString* error)
 
 void EventLog::record(EventSeverity severity, EventSource source, const QString& text)
 {
-    const ConsoleEvent event{m_clock(), severity, source, text};
+    const ConsoleEvent event{now(), severity, source, text};
     if (m_file.isOpen()) {
         // One write per line, so the file never holds half an event.
         const QByteArray line = eventLine(event).toUtf8() + '\n';

@@ -9,26 +9,27 @@
 // line reaches the kernel in one write, so a killed console loses nothing it
 // recorded.
 
+#include "link/clock/Clock.h"
 #include "link/eventlog/ConsoleEvent.h"
 
 #include <QDateTime>
 #include <QFile>
 #include <QObject>
 
-#include <functional>
+#include <memory>
 
 class EventLog : public QObject {
     Q_OBJECT
 
 public:
-    // Microseconds since the epoch, UTC; tests pass a virtual clock.
-    using Clock = std::function<qint64()>;
-
     explicit EventLog(QObject* parent = nullptr);
     ~EventLog() override;
 
-    void setClock(Clock clock);
-    qint64 now() const { return m_clock(); }
+    // What events are stamped by: the session's clock (null: the
+    // SystemClock); tests pass a VirtualClock.
+    void setClock(std::shared_ptr<const Clock> clock);
+    // Microseconds since the epoch, UTC, in whole milliseconds (what the file keeps).
+    qint64 now() const { return m_clock->utcMicros() / 1000 * 1000; }
 
     // The event log of a session that starts at `utc`, named after the frame
     // log it sits beside: "rcm-2026-11-22T07-32-00Z.events.txt".
@@ -51,6 +52,6 @@ signals:
     void recorded(const ConsoleEvent& event);
 
 private:
-    Clock m_clock;
+    std::shared_ptr<const Clock> m_clock;
     QFile m_file;
 };

@@ -42,6 +42,8 @@ constexpr double kStepSeconds = 0.1;
 constexpr int kQualityWindow = 10;
 // Passes over the plan before the upload gives up, as the console's.
 constexpr int kUploadPasses = 5;
+// A paced run catches up with the wall clock this often.
+constexpr std::chrono::milliseconds kPaceInterval{20};
 
 // The message in a frame as its sender sent it, read through the receive
 // path for logged frames (with the sender's direction of the key on the
@@ -70,13 +72,15 @@ struct ScenarioRunner::Pending {
     double deadline() const { return *step->at + step->within; }
 };
 
-ScenarioRunner::ScenarioRunner(Scenario scenario, const QString& frameLogPath, QObject* parent)
+ScenarioRunner::ScenarioRunner(Scenario scenario, const QString& frameLogPath, QObject* parent,
+                               std::shared_ptr<Clock> wallClock)
     : QObject(parent),
       m_scenario(std::move(scenario)),
       m_clock(std::make_shared<VirtualClock>(kStartUtcMicros)),
       m_time(m_clock),
       m_startUtcMicros(kStartUtcMicros),
-      m_channel(m_scenario.transport != Scenario::Transport::Udp, kSeed)
+      m_channel(m_scenario.transport != Scenario::Transport::Udp, kSeed),
+      m_wall(wallClock ? std::move(wallClock) : std::make_shared<SystemClock>())
 {
     m_report.scenarioName = m_scenario.name;
     m_report.scenarioPath = m_scenario.path;
@@ -494,11 +498,13 @@ void ScenarioRunner::start(double speed, const QString& uasimProgram)
 
 void ScenarioRunner::beginPacing()
 {
-    m_paceTimer = new QTimer(this);
-    m_paceTimer->setInterval(20);
-    connect(m_paceTimer, &QTimer::timeout, this, &ScenarioRunner::paceTick);
-    m_wall.start();
-    m_paceTimer->start();
+    m_paceTimer = m_wall->createTimer(this);
+    connect(m_paceTimer, &ClockTimer::timeout, this, [this] {
+        m_paceTimer->start(kPaceInterval);
+        paceTick();
+    });
+    m_paceStartSteadyMicros = m_wall->steadyMicros();
+    m_paceTimer->start(kPaceInterval);
     advanceTo(0);
 }
 
@@ -507,7 +513,7 @@ void ScenarioRunner::beginPacing()
 void ScenarioRunner::startReal(const QString& uasimProgram)
 {
     m_real = m_built = true;
-    m_time = std::make_shared<SystemClock>();
+    m_time = m_wall;
     const bool serial = m_scenario.transport == Scenario::Transport::Serial;
     const bool modem = m_scenario.transport == Scenario::Transport::Modem;
     static const char* const how[] = {"udp (uasim as a process, real sockets)",
@@ -524,6 +530,7 @@ void ScenarioRunner::startReal(const QString& uasimProgram)
     if (modem) {
         SatelliteModem::Options satellite;
         satellite.callSetupTime = std::chrono::milliseconds(qint64(Scenario::kModemCallSetupSeconds * 1000));
+        satellite.clock = m_time;
         m_modem = std::make_unique<SatelliteModemThread>(satellite);
         if (!m_modem->open(&error))
             return cannot(error);
@@ -616,5 +623,5 @@ void ScenarioRunner::uasimSaid(const QString& line)
 
 void ScenarioRunner::paceTick()
 {
-    advanceTo(m_real ? now() : double(m_wall.nsecsElapsed()) / 1e9 * m_speed);
+    advanceTo(m_real ? now() : double(m_wall->steadyMicros() - m_paceStartSteadyMicros) / 1e6 * m_speed);
 }

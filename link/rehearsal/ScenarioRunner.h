@@ -9,8 +9,8 @@
 // VirtualClock, so that nothing in a run depends on the wall clock. At speed
 // 1 it runs the real programs: uasim as a process on a loopback port or a
 // pseudo-terminal, the console's link on a real socket or serial device, and
-// a RehearsalProxy between them with the channel's faults, on the system
-// clock.
+// a RehearsalProxy between them with the channel's faults, on the wall
+// clock (the SystemClock unless the runner is given another).
 //
 // Every expectation is judged as the run goes, and what it found is the
 // RehearsalReport; the console's frames both ways go to a frame log.
@@ -20,7 +20,6 @@
 #include "link/rehearsal/RehearsalReport.h"
 #include "link/rehearsal/Scenario.h"
 
-#include <QElapsedTimer>
 #include <QObject>
 
 #include <deque>
@@ -29,6 +28,7 @@
 
 class AircraftResponder;
 class Clock;
+class ClockTimer;
 class FrameLog;
 class Link;
 class LinkWorker;
@@ -36,7 +36,6 @@ class QTemporaryDir;
 class RehearsalLauncher;
 class RehearsalProxy;
 class SatelliteModemThread;
-class QTimer;
 class SimulatedAircraft;
 class VirtualClock;
 namespace rcm {
@@ -51,7 +50,9 @@ class ScenarioRunner : public QObject {
 
 public:
     // `frameLogPath`: the run's frame log (pcapng); empty for none.
-    ScenarioRunner(Scenario scenario, const QString& frameLogPath, QObject* parent = nullptr);
+    // `wallClock` paces a run and is the time of one at speed 1; null: the SystemClock.
+    ScenarioRunner(Scenario scenario, const QString& frameLogPath, QObject* parent = nullptr,
+                   std::shared_ptr<Clock> wallClock = nullptr);
     ~ScenarioRunner() override;
 
     // Paced: `speed` scenario seconds per wall-clock second (the scenario's
@@ -104,7 +105,7 @@ private:
     bool m_real = false;
     bool m_built = false;
     std::shared_ptr<VirtualClock> m_clock;  // in process
-    std::shared_ptr<Clock> m_time;          // what the run's time is read from: m_clock, or the system's
+    std::shared_ptr<Clock> m_time;          // what the run's time is read from: m_clock, or m_wall
     std::unique_ptr<QTemporaryDir> m_keyDir;  // real programs, keyed: uasim's key file
     RehearsalLauncher* m_launcher = nullptr;
     std::unique_ptr<RehearsalProxy> m_proxy;
@@ -134,8 +135,9 @@ private:
     std::array<qint64, 2> m_goodReceived{};          // by sender
     std::vector<std::array<qint64, 4>> m_perSecond;  // cumulative sent up/down, received up/down
     RehearsalReport m_report;
-    QTimer* m_paceTimer = nullptr;
-    QElapsedTimer m_wall;
+    std::shared_ptr<Clock> m_wall;
+    ClockTimer* m_paceTimer = nullptr;
+    qint64 m_paceStartSteadyMicros = 0;  // on m_wall
     double m_speed = 1;
     double m_done = 0;
     bool m_started = false;

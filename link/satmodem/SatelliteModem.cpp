@@ -130,7 +130,7 @@ struct SatelliteModem::Port : PseudoTerminal {
     // The "+++" escape: pluses held back until the guard time says what they are.
     int heldPluses = 0;
     qint64 lastByteAt = 0;
-    QTimer guard;
+    ClockTimer* guard = nullptr;  // a child of the model, so that it follows the model to another thread
 
     // The air, from this side.
     QByteArray waiting;  // read, not yet on the air
@@ -140,31 +140,38 @@ struct SatelliteModem::Port : PseudoTerminal {
 };
 
 SatelliteModem::SatelliteModem(Options options, QObject* parent)
-    : QObject(parent), m_options(options), m_random(options.seed)
+    : QObject(parent),
+      m_options(options),
+      m_clock(options.clock ? options.clock : std::make_shared<SystemClock>()),
+      m_openedSteadyMicros(m_clock->steadyMicros()),
+      m_setupTimer(m_clock->createTimer(this)),
+      m_ringTimer(m_clock->createTimer(this)),
+      m_dropTimer(m_clock->createTimer(this)),
+      m_paceTimer(m_clock->createTimer(this, Qt::PreciseTimer)),
+      m_serviceTimer(m_clock->createTimer(this)),
+      m_random(options.seed)
 {
-    m_clock.start();
-    for (QTimer* timer : {&m_setupTimer, &m_ringTimer, &m_dropTimer, &m_paceTimer, &m_serviceTimer})
-        timer->setParent(this);
     m_bars = m_options.noService ? 0 : 4;
-    m_serviceTimer.setSingleShot(true);
-    connect(&m_serviceTimer, &QTimer::timeout, this, &SatelliteModem::applyService);
+    connect(m_serviceTimer, &ClockTimer::timeout, this, &SatelliteModem::applyService);
     for (int side = 0; side < 2; ++side) {
         m_ports[std::size_t(side)] = std::make_unique<Port>();
         Port& p = port(side);
         p.side = side;
-        p.guard.setParent(this);  // children, so that they follow the model to another thread
-        p.guard.setSingleShot(true);
-        p.guard.setTimerType(Qt::PreciseTimer);  // a coarse timer may fire early, inside the guard time
-        connect(&p.guard, &QTimer::timeout, this, [this, &p] { onGuardTimeAfterEscape(p); });
+        // Precise: a coarse timer may fire early, inside the guard time.
+        p.guard = m_clock->createTimer(this, Qt::PreciseTimer);
+        connect(p.guard, &ClockTimer::timeout, this, [this, &p] { onGuardTimeAfterEscape(p); });
     }
-    m_setupTimer.setSingleShot(true);
-    connect(&m_setupTimer, &QTimer::timeout, this, &SatelliteModem::onSetupTimeOver);
-    connect(&m_ringTimer, &QTimer::timeout, this, &SatelliteModem::ring);
-    m_dropTimer.setSingleShot(true);
-    connect(&m_dropTimer, &QTimer::timeout, this, &SatelliteModem::dropCall);
-    m_paceTimer.setInterval(kPaceIntervalMs);
-    m_paceTimer.setTimerType(Qt::PreciseTimer);
-    connect(&m_paceTimer, &QTimer::timeout, this, &SatelliteModem::pace);
+    connect(m_setupTimer, &ClockTimer::timeout, this, &SatelliteModem::onSetupTimeOver);
+    // Rings and the pace go on until stopped.
+    connect(m_ringTimer, &ClockTimer::timeout, this, [this] {
+        m_ringTimer->start(m_options.ringInterval);
+        ring();
+    });
+    connect(m_dropTimer, &ClockTimer::timeout, this, &SatelliteModem::dropCall);
+    connect(m_paceTimer, &ClockTimer::timeout, this, [this] {
+        m_paceTimer->start(std::chrono::milliseconds(kPaceIntervalMs));
+        pace();
+    });
 }
 
 SatelliteModem::~SatelliteModem()
@@ -196,7 +203,7 @@ bool SatelliteModem::open(QString* error)
     }
     m_inotifyNotifier = std::make_unique<QSocketNotifier>(m_inotify, QSocketNotifier::Read, this);
     connect(m_inotifyNotifier.get(), &QSocketNotifier::activated, this, &SatelliteModem::readUserOpensAndCloses);
-    m_clock.restart();  // the service script's time starts now
+    m_openedSteadyMicros = m_clock->steadyMicros();  // the service script's time starts now
     applyService();
     return true;
 }
@@ -231,7 +238,7 @@ void SatelliteModem::applyService()
     while (m_serviceStep < script.size() && script[m_serviceStep].at.count() <= now())
         bars = m_options.noService ? 0 : script[m_serviceStep++].bars;
     if (m_serviceStep < script.size())
-        m_serviceTimer.start(int(std::max<qint64>(0, script[m_serviceStep].at.count() - now())));
+        m_serviceTimer->start(std::chrono::milliseconds(std::max<qint64>(0, script[m_serviceStep].at.count() - now())));
     setSignalBars(bars);
 }
 
@@ -709,7 +716,7 @@ SatelliteModem::Outcome SatelliteModem::dial(Port& p, QByteArrayView dialString)
     m_call.caller = p.side;
     p.mode = Port::Mode::Dialling;
     setCallState(CallState::Dialling);
-    m_setupTimer.start(m_options.callSetupTime);
+    m_setupTimer->start(m_options.callSetupTime);
     return Outcome::Answered;
 }
 
@@ -771,10 +778,10 @@ void SatelliteModem::takeData(Port& p, QByteArrayView bytes)
         if (c == modem::kEscapeSequence[0] && afterSilence) {
             releaseHeldPluses(p);
             p.heldPluses = 1;
-            p.guard.start(guard);
+            p.guard->start(std::chrono::milliseconds(guard));
         } else if (c == modem::kEscapeSequence[0] && p.heldPluses > 0 && p.heldPluses < 3) {
             ++p.heldPluses;
-            p.guard.start(guard);
+            p.guard->start(std::chrono::milliseconds(guard));
         } else {
             releaseHeldPluses(p);
             p.waiting += c;
@@ -789,7 +796,7 @@ void SatelliteModem::releaseHeldPluses(Port& p)
         return;
     p.waiting += QByteArray(p.heldPluses, modem::kEscapeSequence[0]);
     p.heldPluses = 0;
-    p.guard.stop();
+    p.guard->stop();
 }
 
 // The guard time has passed since the last plus: three of them, with silence
@@ -799,7 +806,7 @@ void SatelliteModem::onGuardTimeAfterEscape(Port& p)
     if (p.mode != Port::Mode::Data)
         return;
     readPty(p);  // bytes that came after the pluses but are not read yet break the silence
-    if (p.guard.isActive())
+    if (p.guard->isActive())
         return;  // they began another escape
     if (p.heldPluses < 3) {
         releaseHeldPluses(p);
@@ -844,7 +851,7 @@ void SatelliteModem::onSetupTimeOver()
     setCallState(CallState::Ringing);
     ring();
     if (m_call.state == CallState::Ringing)
-        m_ringTimer.start(m_options.ringInterval);
+        m_ringTimer->start(m_options.ringInterval);
 }
 
 void SatelliteModem::ring()
@@ -865,13 +872,13 @@ void SatelliteModem::ring()
 
 void SatelliteModem::connectCall()
 {
-    m_ringTimer.stop();
+    m_ringTimer->stop();
     for (auto& p : m_ports) {
         p->mode = Port::Mode::Data;
         p->lastByteAt = now();
     }
     m_lastPace = now();
-    m_paceTimer.start();
+    m_paceTimer->start(std::chrono::milliseconds(kPaceIntervalMs));
     ++m_counters.calls;
     sendResult(port(m_call.caller), ResultCode::Connect);
     sendResult(port(1 - m_call.caller), ResultCode::Connect);
@@ -884,7 +891,7 @@ void SatelliteModem::scheduleRandomDrop()
     if (m_options.meanTimeBetweenDrops.count() <= 0)
         return;
     std::exponential_distribution<double> untilDrop(1.0 / double(m_options.meanTimeBetweenDrops.count()));
-    m_dropTimer.start(int(std::min(untilDrop(m_random), double(INT_MAX))));
+    m_dropTimer->start(std::chrono::milliseconds(qint64(std::min(untilDrop(m_random), double(INT_MAX)))));
 }
 
 void SatelliteModem::dropCall()
@@ -904,10 +911,10 @@ void SatelliteModem::dropCall()
 // Both sides back in command mode, the air emptied: what was on its way is lost.
 void SatelliteModem::endCall()
 {
-    m_setupTimer.stop();
-    m_ringTimer.stop();
-    m_dropTimer.stop();
-    m_paceTimer.stop();
+    m_setupTimer->stop();
+    m_ringTimer->stop();
+    m_dropTimer->stop();
+    m_paceTimer->stop();
     for (auto& p : m_ports) {
         const bool wasOnline = p->mode != Port::Mode::Command;
         p->mode = Port::Mode::Command;
@@ -915,7 +922,7 @@ void SatelliteModem::endCall()
             QMetaObject::invokeMethod(this, [this, side = p->side] { flushReports(port(side)); },
                                       Qt::QueuedConnection);
         p->heldPluses = 0;
-        p->guard.stop();
+        p->guard->stop();
         p->waiting.clear();
         p->inFlight.clear();
         p->credit = 0;

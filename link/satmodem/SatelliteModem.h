@@ -8,17 +8,17 @@
 // may dial the other. The dialect, the timing and the choices made where real
 // modems differ are in docs/modem.md.
 //
-// It runs in real time on the thread that owns it: programs on the ptys see
-// a modem that answers as fast, and carries bytes as slowly, as the options say.
+// It runs on its clock (Options::clock; the SystemClock, real time, unless
+// told) in the thread that owns it: programs on the ptys see a modem that
+// answers as fast, and carries bytes as slowly, as the options say.
 
+#include "link/clock/Clock.h"
 #include "link/transport/ModemProfile.h"
 #include "link/transport/ModemResultCode.h"
 
 #include <QByteArray>
-#include <QElapsedTimer>
 #include <QObject>
 #include <QString>
-#include <QTimer>
 
 #include <array>
 #include <chrono>
@@ -65,6 +65,8 @@ public:
         std::vector<ServiceStep> service;
         int ringLimit = 6;       // rings unanswered before the caller gets NO ANSWER
         std::chrono::milliseconds ringInterval{3000};
+        // What its times and timers run on; null: the SystemClock.
+        std::shared_ptr<Clock> clock = nullptr;
     };
 
     struct Counters {
@@ -132,7 +134,8 @@ private:
     Port& port(int side) { return *m_ports[std::size_t(side)]; }
     Port& farPort(const Port& p) { return port(1 - sideOf(p)); }
     int sideOf(const Port& p) const;
-    qint64 now() const { return m_clock.elapsed(); }
+    // Milliseconds since open() (or since it was made).
+    qint64 now() const { return (m_clock->steadyMicros() - m_openedSteadyMicros) / 1000; }
 
     // The ptys and who has them open.
     bool openPort(int side, QString* error);
@@ -194,13 +197,14 @@ private:
     std::array<std::unique_ptr<Port>, 2> m_ports;
     int m_inotify = -1;  // opens and closes of the slaves by their users
     std::unique_ptr<QSocketNotifier> m_inotifyNotifier;
-    QElapsedTimer m_clock;
+    std::shared_ptr<Clock> m_clock;
+    qint64 m_openedSteadyMicros = 0;
     qint64 m_lastPace = 0;
-    QTimer m_setupTimer;
-    QTimer m_ringTimer;
-    QTimer m_dropTimer;
-    QTimer m_paceTimer;
-    QTimer m_serviceTimer;
+    ClockTimer* m_setupTimer;
+    ClockTimer* m_ringTimer;
+    ClockTimer* m_dropTimer;
+    ClockTimer* m_paceTimer;
+    ClockTimer* m_serviceTimer;
     std::size_t m_serviceStep = 0;  // the next step of the service script
     int m_bars = 4;
     std::mt19937 m_random;

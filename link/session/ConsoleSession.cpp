@@ -124,7 +124,7 @@ void ConsoleSession::offThread(std::function<void()> work, std::function<void()>
 void ConsoleSession::connectWith(const LinkSettings& settings)
 {
     QString error;
-    std::unique_ptr<Link> link = settings.createLink(&error);
+    std::unique_ptr<Link> link = settings.createLink(&error, m_clock);
     if (!link) {
         emit failed(error);
         return;
@@ -175,7 +175,7 @@ void ConsoleSession::rehearsalReady(quint16 port)
     s.localPort = 0;
     s.remoteAddress = QStringLiteral("127.0.0.1");
     s.remotePort = port;
-    prepare(s.createLink(), Kind::Rehearsal, tr("rehearsal with uasim on %1:%2").arg(s.remoteAddress).arg(port),
+    prepare(s.createLink(nullptr, m_clock), Kind::Rehearsal, tr("rehearsal with uasim on %1:%2").arg(s.remoteAddress).arg(port),
             QString(), m_rehearsalKey);
 }
 

@@ -69,6 +69,10 @@ public:
     // Stops the link (the link thread's join is bounded) and uasim.
     ~ConsoleSession() override;
 
+    // What the session's links run on, for what follows them (the broker's
+    // clients and feeds, the event log).
+    const std::shared_ptr<Clock>& clock() const { return m_clock; }
+
     void setLinkWrapper(LinkWrapper wrapper) { m_wrapLink = std::move(wrapper); }
     void setOptionsFilter(OptionsFilter filter) { m_filterOptions = std::move(filter); }
 

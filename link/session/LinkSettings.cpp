@@ -81,7 +81,7 @@ bool LinkSettings::setModemProfile(const QString& name, QString* error)
     return profile.has_value();
 }
 
-std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
+std::unique_ptr<Link> LinkSettings::createLink(QString* error, std::shared_ptr<Clock> clock) const
 {
     const auto fail = [&](const QString& why) -> std::unique_ptr<Link> {
         if (error)
@@ -94,7 +94,7 @@ std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
         if (baudRate <= 0)
             return fail(QObject::tr("The bit rate must be positive"));
         if (!dialsModem())
-            return std::make_unique<SerialLink>(serialPort.trimmed(), baudRate);
+            return std::make_unique<SerialLink>(serialPort.trimmed(), baudRate, nullptr, clock);
         if (!modemInit.trimmed().toUpper().startsWith(QLatin1String("AT")))
             return fail(QObject::tr("The modem's init string must start with AT: \"%1\"").arg(modemInit));
         const std::optional<modem::Profile> profile = modem::findProfile(modemProfile);
@@ -102,13 +102,15 @@ std::unique_ptr<Link> LinkSettings::createLink(QString* error) const
             return fail(QObject::tr("No modem profile is called \"%1\"; there are %2")
                             .arg(modemProfile, modem::profileNames().join(QStringLiteral(", "))));
         auto port = std::make_unique<SerialLink>(serialPort.trimmed(), baudRate,
-                                                 rtsCts ? SerialLink::FlowControl::RtsCts : SerialLink::FlowControl::None);
+                                                 rtsCts ? SerialLink::FlowControl::RtsCts : SerialLink::FlowControl::None,
+                                                 nullptr, clock);
         ModemLink::Options modem;
         modem.number = dialNumber.trimmed();
         modem.initString = modemInit.trimmed().toLatin1();
         modem.profile = *profile;
         modem.costPerMinute = callCostPerMinute;
         modem.costCurrency = callCurrency.trimmed();
+        modem.clock = std::move(clock);
         return std::make_unique<ModemLink>(std::move(port), modem);
     }
     const QHostAddress local(localAddress.trimmed());

@@ -5,6 +5,7 @@
 // between sessions (the key file's path, never the key), shown and edited by
 // LinkSettingsWidget, turned into a transport by createLink().
 
+#include "link/clock/Clock.h"
 #include "link/transport/Link.h"
 
 #include <QString>
@@ -50,9 +51,10 @@ struct LinkSettings {
     // calls a reported value that disagrees with the command a mismatch.
     int satelliteDelayMs = 1500;
 
-    // The transport, not yet open (it opens in the link thread). Nothing,
-    // with the reason, when the settings are incomplete.
-    std::unique_ptr<Link> createLink(QString* error = nullptr) const;
+    // The transport, not yet open (it opens in the link thread), its timers
+    // (a serial port's reopening, a modem's) on `clock`, the session's (null:
+    // the SystemClock). Nothing, with the reason, when the settings are incomplete.
+    std::unique_ptr<Link> createLink(QString* error = nullptr, std::shared_ptr<Clock> clock = nullptr) const;
     // "UDP 127.0.0.1:5600", "serial ttyUSB0 at 9600 bit/s"; ", encrypted" with a key file
     QString summary() const;
 

@@ -1,16 +1,21 @@
 #include "link/transport/SerialLink.h"
 
-SerialLink::SerialLink(const QString& portName, qint32 baudRate, QObject* parent)
-    : Link(parent), m_portName(portName), m_baudRate(baudRate), m_port(this), m_reopenTimer(this)
+SerialLink::SerialLink(const QString& portName, qint32 baudRate, QObject* parent, std::shared_ptr<Clock> clock)
+    : Link(parent),
+      m_portName(portName),
+      m_baudRate(baudRate),
+      m_port(this),
+      m_clock(clock ? std::move(clock) : std::make_shared<SystemClock>()),
+      m_reopenTimer(m_clock->createTimer(this))
 {
-    m_reopenTimer.setInterval(kDefaultReopenInterval);
-    connect(&m_reopenTimer, &QTimer::timeout, this, &SerialLink::retryOpen);
+    connect(m_reopenTimer, &ClockTimer::timeout, this, &SerialLink::retryOpen);
     connect(&m_port, &QSerialPort::readyRead, this, [this] { emit bytesReceived(m_port.readAll()); });
     connect(&m_port, &QSerialPort::errorOccurred, this, &SerialLink::handleError);
 }
 
-SerialLink::SerialLink(const QString& portName, qint32 baudRate, FlowControl flowControl, QObject* parent)
-    : SerialLink(portName, baudRate, parent)
+SerialLink::SerialLink(const QString& portName, qint32 baudRate, FlowControl flowControl, QObject* parent,
+                       std::shared_ptr<Clock> clock)
+    : SerialLink(portName, baudRate, parent, std::move(clock))
 {
     m_flowControl = flowControl;
 }
@@ -19,7 +24,7 @@ SerialLink::~SerialLink()
 {
     // Quietly: nobody should hear from a link being destroyed.
     m_wanted = false;
-    m_reopenTimer.stop();
+    m_reopenTimer->stop();
     m_port.close();
 }
 
@@ -30,12 +35,12 @@ QList<QSerialPortInfo> SerialLink::availablePorts()
 
 void SerialLink::setReopenInterval(std::chrono::milliseconds interval)
 {
-    m_reopenTimer.setInterval(interval);
+    m_reopenInterval = interval;
 }
 
 std::chrono::milliseconds SerialLink::reopenInterval() const
 {
-    return m_reopenTimer.intervalAsDuration();
+    return m_reopenInterval;
 }
 
 QString SerialLink::description() const
@@ -49,11 +54,11 @@ QString SerialLink::description() const
 void SerialLink::open()
 {
     m_wanted = true;
-    if (m_port.isOpen() || m_reopenTimer.isActive())
+    if (m_port.isOpen() || m_reopenTimer->isActive())
         return;
     if (!tryOpen()) {
         reportFailure(QStringLiteral("%1: cannot open: %2; retrying").arg(m_portName, m_port.errorString()));
-        m_reopenTimer.start();
+        m_reopenTimer->start(m_reopenInterval);
     }
 }
 
@@ -61,7 +66,7 @@ void SerialLink::close()
 {
     m_wanted = false;
     m_losing = false;
-    m_reopenTimer.stop();
+    m_reopenTimer->stop();
     if (!m_port.isOpen())
         return;
     m_port.close();
@@ -94,7 +99,7 @@ bool SerialLink::tryOpen()
     m_port.clearError();
     m_failureReported = false;
     m_lastError.clear();
-    m_reopenTimer.stop();
+    m_reopenTimer->stop();
     emit opened();
     return true;
 }
@@ -143,11 +148,12 @@ bool SerialLink::waitForBytesReceived(std::chrono::milliseconds timeout)
 void SerialLink::retryOpen()
 {
     if (!m_wanted || m_port.isOpen()) {
-        m_reopenTimer.stop();
+        m_reopenTimer->stop();
         return;
     }
     ++m_reopenAttempts;
-    tryOpen();  // failures were reported when the port was lost
+    if (!tryOpen())  // failures were reported when the port was lost
+        m_reopenTimer->start(m_reopenInterval);
 }
 
 void SerialLink::handleError(QSerialPort::SerialPortError error)
@@ -185,10 +191,10 @@ void SerialLink::lose(const QString& reason)
     m_port.close();
     reportFailure(QStringLiteral("%1: port lost: %2; reopening every %3 ms")
                       .arg(m_portName, reason)
-                      .arg(m_reopenTimer.intervalAsDuration().count()));
+                      .arg(m_reopenInterval.count()));
     emit closed();
     if (m_wanted)
-        m_reopenTimer.start();
+        m_reopenTimer->start(m_reopenInterval);
 }
 
 void SerialLink::reportFailure(const QString& message)

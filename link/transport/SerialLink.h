@@ -7,15 +7,16 @@
 // closed) is closed at once, reported once, and reopened by a timer until it
 // is back, so a modem that comes back needs no action from the operator.
 
+#include "link/clock/Clock.h"
 #include "link/transport/Link.h"
 
 #include <QList>
 #include <QSerialPort>
 #include <QSerialPortInfo>
-#include <QTimer>
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <optional>
 
 class SerialLink : public Link {
@@ -29,8 +30,11 @@ public:
     // be a pseudo-terminal ("/dev/pts/3") or a symlink to the device.
     enum class FlowControl { None, RtsCts };
 
-    explicit SerialLink(const QString& portName, qint32 baudRate = kDefaultBaudRate, QObject* parent = nullptr);
-    SerialLink(const QString& portName, qint32 baudRate, FlowControl flowControl, QObject* parent = nullptr);
+    // The reopen timer runs on `clock`, the session's (null: the SystemClock).
+    explicit SerialLink(const QString& portName, qint32 baudRate = kDefaultBaudRate, QObject* parent = nullptr,
+                        std::shared_ptr<Clock> clock = nullptr);
+    SerialLink(const QString& portName, qint32 baudRate, FlowControl flowControl, QObject* parent = nullptr,
+               std::shared_ptr<Clock> clock = nullptr);
     ~SerialLink() override;
 
     // The ports the system knows, for the operator to choose from.
@@ -82,7 +86,9 @@ private:
     qint32 m_baudRate;
     FlowControl m_flowControl = FlowControl::None;
     QSerialPort m_port;
-    QTimer m_reopenTimer;
+    std::shared_ptr<Clock> m_clock;
+    ClockTimer* m_reopenTimer;
+    std::chrono::milliseconds m_reopenInterval = kDefaultReopenInterval;
     bool m_wanted = false;           // open() asked for, close() not since
     bool m_askingPins = false;       // a pin asked for or set: a port without pins is no error
     bool m_losing = false;           // the port failed; lose() is queued to close it

@@ -19,6 +19,7 @@
 #include "link/broker/MqttClient.h"
 #include "link/broker/SequenceCheck.h"
 #include "link/broker/SessionPublisher.h"
+#include "link/clock/VirtualClock.h"
 #include "link/eventlog/EventLog.h"
 #include "link/session/ConsoleSession.h"
 #include "link/session/LinkEvents.h"
@@ -249,13 +250,13 @@ private slots:
     {
         const QString topic = BrokerTopics::framesTopic(kAircraft, kPrimary);
         EnvelopeWriter writer = signedAs(kPrimary);
-        qint64 clock = kT0;
-        writer.setClock([&clock] { return clock; });
+        const auto clock = std::make_shared<VirtualClock>(kT0);
+        writer.setClock(clock);
         const QByteArray body = "{\"x\":1}";
         const QByteArray payload = writer.wrap(topic, body);
         QCOMPARE(writer.nextSeq(), kT0 + 1);  // the clock stood still: one more than the last
-        clock = kT0 + 500;
-        QCOMPARE(writer.nextSeq(), kT0 + 500);
+        clock->advance(std::chrono::milliseconds(500));
+        QCOMPARE(writer.nextSeq(), kT0 + 500'000);
 
         const std::shared_ptr<BrokerTrust> trust = trusting({kPrimary});
         const OpenedMessage good = trust->open(topic, payload, false);

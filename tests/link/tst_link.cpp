@@ -888,7 +888,10 @@ void TestLink::serialPortVanishesAndComesBack()
     first->setReplying(true);
     QVERIFY(QFile::link(first->slavePath(), port));
 
-    auto serial = std::make_unique<SerialLink>(port);
+    // The port's reopening on simulated time, stepped by the test; the rest
+    // of the link on the system's.
+    const auto reopenClock = std::make_shared<VirtualClock>(rcm::test::kFixtureStartUtcMicros);
+    auto serial = std::make_unique<SerialLink>(port, SerialLink::kDefaultBaudRate, nullptr, reopenClock);
     serial->setReopenInterval(50ms);
     const SerialLink* watched = serial.get();  // owned by the worker; reopenAttempts() is atomic
     LinkWorker::Options options = fastOptions();
@@ -908,8 +911,14 @@ void TestLink::serialPortVanishesAndComesBack()
     QTRY_COMPARE_WITH_TIMEOUT(lost.count(), 1, kPatience);
     QTRY_COMPARE_WITH_TIMEOUT(errors.count(), 1, kPatience);
     QVERIFY(errors.at(0).at(0).toString().contains(QStringLiteral("port lost")));
-    // Several failed attempts to reopen, and not one more report.
-    QTRY_VERIFY_WITH_TIMEOUT(watched->reopenAttempts() >= 3, kPatience);
+    // An attempt to reopen every 50 ms, each failing, and not one more report.
+    QTRY_COMPARE_WITH_TIMEOUT(reopenClock->activeTimers(), 1, kPatience);  // armed in the link's thread
+    QCOMPARE(watched->reopenAttempts(), 0);
+    reopenClock->advance(49ms);
+    QCOMPARE(watched->reopenAttempts(), 0);
+    reopenClock->advance(1ms + 100ms);
+    QCOMPARE(watched->reopenAttempts(), 3);
+    QCOMPARE(reopenClock->activeTimers(), 1);
     QCOMPARE(errors.count(), 1);
     QCOMPARE(regained.count(), 0);
 
@@ -917,6 +926,9 @@ void TestLink::serialPortVanishesAndComesBack()
     QVERIFY(second.open());
     second.setReplying(true);
     QVERIFY(QFile::link(second.slavePath(), port));
+    reopenClock->advance(50ms);
+    QCOMPARE(watched->reopenAttempts(), 4);
+    QCOMPARE(reopenClock->activeTimers(), 0);  // open: no more attempts
     QTRY_COMPARE_WITH_TIMEOUT(regained.count(), 1, kPatience);
     QTRY_VERIFY_WITH_TIMEOUT(second.received().size() >= 2, kPatience);
     QCOMPARE(lost.count(), 1);

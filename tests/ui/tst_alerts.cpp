@@ -6,6 +6,7 @@
 // durations in the event log, nothing in a replay). Time is a virtual clock;
 // the sound card is a fake that records what it was asked.
 
+#include "link/clock/VirtualClock.h"
 #include "link/eventlog/EventLog.h"
 #include "link/session/LinkController.h"
 #include "link/transport/SerialLink.h"
@@ -65,9 +66,15 @@ LinkStatistics stats(LinkState state, quint64 frames, qint64 lastGood)
 
 // An alarm with its event log, the Events table and a fake sound card, on a
 // virtual clock.
+// Moves `clock` on to `utcMicros`.
+void moveTo(VirtualClock& clock, qint64 utcMicros)
+{
+    clock.advance(std::chrono::microseconds(utcMicros - clock.utcMicros()));
+}
+
 struct AlarmBench {
-    AlarmBench() { log.setClock([this] { return now; }); }
-    qint64 now = kT0;
+    AlarmBench() { log.setClock(clock); }
+    std::shared_ptr<VirtualClock> clock = std::make_shared<VirtualClock>(kT0);
     EventLog log;
     EventLogModel model{&log};
     FakeSound sound;
@@ -97,7 +104,7 @@ private slots:
         AlarmBench b;
         RefusalDigest digest(&b.log);
         for (int s = 0; s < 130; ++s) {
-            b.now = kT0 + s * kSecond;
+            moveTo(*b.clock, kT0 + s * kSecond);
             digest.refused(QStringLiteral("uncorrectable: codeword 1 beyond correction (ID_msg %1)").arg(s));
             if (s % 10 == 0)
                 digest.refused(QStringLiteral("forged: authentication failed (offset %1)").arg(s));
@@ -116,7 +123,7 @@ private slots:
                      QStringLiteral("warning link: 6 more frames refused as forged in the last 60 s; the last: "
                                     "forged: authentication failed (offset 110)"),
                  }));
-        b.now += kSecond;
+        b.clock->advance(std::chrono::microseconds(kSecond));
         digest.flush();
         QCOMPARE(b.model.rowCount(), 8);
         QCOMPARE(texts(b.model).at(6),
@@ -126,7 +133,7 @@ private slots:
                  QStringLiteral("warning link: 10 more frames refused as uncorrectable in the last 10 s; the last: "
                                 "uncorrectable: codeword 1 beyond correction (ID_msg 129)"));
         // Quiet for a minute, then one: recorded whole again.
-        b.now += 61 * kSecond;
+        b.clock->advance(std::chrono::microseconds(61 * kSecond));
         digest.refused(QStringLiteral("forged: authentication failed (offset 999)"));
         QCOMPARE(texts(b.model).last(),
                  QStringLiteral("warning link: A frame was refused: forged: authentication failed (offset 999)"));
@@ -277,18 +284,18 @@ private slots:
     void lossSilencedAndRegained()
     {
         AlarmBench bench;
-        auto& [now, log, model, sound, alarm] = bench;
+        auto& [clock, log, model, sound, alarm] = bench;
         QSignalSpy changed(&alarm, &LinkAlarm::changed);
 
         alarm.setStatistics(stats(LinkState::Waiting, 0, 0));
-        now = kT0 + kSecond;
+        moveTo(*clock, kT0 + kSecond);
         alarm.setStatistics(stats(LinkState::Connected, 1, kT0 + kSecond));
-        now = kT0 + 120 * kSecond;
+        moveTo(*clock, kT0 + 120 * kSecond);
         alarm.setStatistics(stats(LinkState::Connected, 120, kT0 + 120 * kSecond));
         QVERIFY(!alarm.isActive());
         QCOMPARE(sound.starts, 0);
 
-        now = kT0 + 123 * kSecond;
+        moveTo(*clock, kT0 + 123 * kSecond);
         alarm.setStatistics(stats(LinkState::Lost, 120, kT0 + 120 * kSecond));
         QVERIFY(alarm.isActive());
         QVERIFY(alarm.isSounding());
@@ -298,7 +305,7 @@ private slots:
         QCOMPARE(texts(model),
                  QStringList{QStringLiteral("error alarm: Link lost: no good frame for 3 s, after 120 frames in 1 min 59 s")});
 
-        now = kT0 + 125 * kSecond;
+        moveTo(*clock, kT0 + 125 * kSecond);
         alarm.acknowledge();
         QVERIFY(alarm.isActive());
         QVERIFY(alarm.isAcknowledged());
@@ -310,19 +317,19 @@ private slots:
                  QStringLiteral("info alarm: Link-loss alarm silenced by the operator, 5 s without a frame"));
 
         // Still lost: more statistics change nothing.
-        now = kT0 + 130 * kSecond;
+        moveTo(*clock, kT0 + 130 * kSecond);
         alarm.setStatistics(stats(LinkState::Lost, 120, kT0 + 120 * kSecond));
         QCOMPARE(sound.starts, 1);
         QCOMPARE(model.rowCount(), 2);
 
-        now = kT0 + 134 * kSecond + 200'000;
+        moveTo(*clock, kT0 + 134 * kSecond + 200'000);
         alarm.setStatistics(stats(LinkState::Connected, 121, kT0 + 134 * kSecond));
         QVERIFY(!alarm.isActive());
         QCOMPARE(alarm.silentMicros(), 0);
         QCOMPARE(texts(model).at(2), QStringLiteral("info alarm: Link regained after 14 s without a frame"));
 
         // The next loss counts the frames of the new spell only.
-        now = kT0 + 200 * kSecond;
+        moveTo(*clock, kT0 + 200 * kSecond);
         alarm.setStatistics(stats(LinkState::Connected, 180, kT0 + 197 * kSecond));
         alarm.setStatistics(stats(LinkState::Lost, 180, kT0 + 197 * kSecond));
         QCOMPARE(texts(model).at(3),
@@ -334,13 +341,13 @@ private slots:
     void regainedStopsTheSound()
     {
         AlarmBench bench;
-        auto& [now, log, model, sound, alarm] = bench;
+        auto& [clock, log, model, sound, alarm] = bench;
         alarm.setStatistics(stats(LinkState::Connected, 5, kT0));
-        now += 3 * kSecond;
+        clock->advance(std::chrono::microseconds(3 * kSecond));
         alarm.setStatistics(stats(LinkState::Lost, 5, kT0));
         QVERIFY(sound.playing);
-        now += 10 * kSecond;
-        alarm.setStatistics(stats(LinkState::Connected, 6, now));
+        clock->advance(std::chrono::microseconds(10 * kSecond));
+        alarm.setStatistics(stats(LinkState::Connected, 6, clock->utcMicros()));
         QVERIFY(!sound.playing);
         QVERIFY(!alarm.isActive());
     }
@@ -349,7 +356,7 @@ private slots:
     void closedEndsItQuietly()
     {
         AlarmBench bench;
-        auto& [now, log, model, sound, alarm] = bench;
+        auto& [clock, log, model, sound, alarm] = bench;
         alarm.setStatistics(stats(LinkState::Connected, 5, kT0));
         alarm.setStatistics(stats(LinkState::Lost, 5, kT0));
         QVERIFY(alarm.isActive());
@@ -363,7 +370,7 @@ private slots:
     void neverConnectedWarnsOnce()
     {
         AlarmBench bench;
-        auto& [now, log, model, sound, alarm] = bench;
+        auto& [clock, log, model, sound, alarm] = bench;
         alarm.setStatistics(stats(LinkState::Waiting, 0, 0));
         alarm.setStatistics(stats(LinkState::Lost, 0, 0));
         QVERIFY(!alarm.isActive());
@@ -378,7 +385,7 @@ private slots:
     void disabledInReplay()
     {
         AlarmBench bench;
-        auto& [now, log, model, sound, alarm] = bench;
+        auto& [clock, log, model, sound, alarm] = bench;
         alarm.setEnabled(false);
         alarm.setStatistics(stats(LinkState::Connected, 5, kT0));
         alarm.setStatistics(stats(LinkState::Lost, 5, kT0));
@@ -424,7 +431,7 @@ private slots:
     void bannerShowsUntilRegained()
     {
         AlarmBench bench;
-        auto& [now, log, model, sound, alarm] = bench;
+        auto& [clock, log, model, sound, alarm] = bench;
         QWidget window;
         auto* layout = new QVBoxLayout(&window);
         auto* banner = new LinkAlarmBanner(&alarm);
@@ -437,12 +444,12 @@ private slots:
         QCOMPARE(banner->silenceButton()->focusPolicy(), Qt::NoFocus);
 
         alarm.setStatistics(stats(LinkState::Connected, 5, kT0));
-        now = kT0 + 3 * kSecond;
+        moveTo(*clock, kT0 + 3 * kSecond);
         alarm.setStatistics(stats(LinkState::Lost, 5, kT0));
         QVERIFY(banner->isVisible());
         QCOMPARE(banner->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s"));
         QVERIFY(banner->silenceButton()->isVisible());
-        now = kT0 + 42 * kSecond;
+        moveTo(*clock, kT0 + 42 * kSecond);
         banner->refresh();
         QCOMPARE(banner->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 42 s"));
         // Large: at least twice the height of a line of the window's text.
@@ -456,7 +463,7 @@ private slots:
         auto* silenced = banner->findChild<QLabel*>(QString(), Qt::FindDirectChildrenOnly);
         QVERIFY(silenced);
 
-        alarm.setStatistics(stats(LinkState::Connected, 6, now));
+        alarm.setStatistics(stats(LinkState::Connected, 6, clock->utcMicros()));
         QVERIFY(!banner->isVisible());
     }
 
@@ -467,7 +474,7 @@ private slots:
     {
         QTemporaryDir dir;
         ConsoleAlerts alerts;
-        alerts.events()->setClock([] { return kT0 + 4 * kSecond; });
+        alerts.events()->setClock(std::make_shared<VirtualClock>(kT0 + 4 * kSecond));
         QVERIFY(alerts.keepIn(dir.filePath(QStringLiteral("framelogs"))));
         QVERIFY(alerts.events()->filePath().startsWith(dir.filePath(QStringLiteral("framelogs/rcm-"))));
         QVERIFY(alerts.events()->filePath().endsWith(QStringLiteral(".events.txt")));
@@ -568,19 +575,19 @@ private slots:
     {
         FakeSound sound;
         ConsoleAlerts alerts(&sound);
-        qint64 now = kT0;
-        alerts.events()->setClock([&now] { return now; });
+        const auto clock = std::make_shared<VirtualClock>(kT0);
+        alerts.events()->setClock(clock);
         std::unique_ptr<LinkStateStrip> strip(alerts.newLinkStrip());
         QCOMPARE(strip->text(), QStringLiteral("Link: Not connected"));
         alerts.setStatistics(stats(LinkState::Waiting, 0, 0));
         QCOMPARE(strip->text(), QStringLiteral("Link: Waiting for the aircraft"));
         alerts.setStatistics(stats(LinkState::Connected, 10, kT0));
         QCOMPARE(strip->text(), QStringLiteral("Link: Connected"));
-        now = kT0 + 3 * kSecond;
+        moveTo(*clock, kT0 + 3 * kSecond);
         alerts.setStatistics(stats(LinkState::Lost, 10, kT0));
         QVERIFY(strip->isAlarm());
         QCOMPARE(strip->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 3 s"));
-        now = kT0 + 75 * kSecond;
+        moveTo(*clock, kT0 + 75 * kSecond);
         strip->refresh();  // what its timer does each second
         QCOMPARE(strip->text(), QStringLiteral("LINK LOST \u2014 no frame from the aircraft for 1 min 15 s"));
         QVERIFY(!strip->silenceButton()->isHidden());

@@ -3,6 +3,7 @@
 // none), read back exactly; and the Events dock's table of them, errors
 // tinted, the newest in view.
 
+#include "link/clock/VirtualClock.h"
 #include "link/eventlog/ConsoleEvent.h"
 #include "link/eventlog/EventLog.h"
 #include "ui/eventlog/EventLogModel.h"
@@ -90,9 +91,9 @@ private slots:
     {
         QTemporaryDir dir;
         const QString path = dir.filePath(QStringLiteral("logs/rcm-2026-11-23T17-45-20Z.events.txt"));
-        qint64 now = kT0;
+        const auto clock = std::make_shared<VirtualClock>(kT0);
         EventLog log;
-        log.setClock([&now] { return now; });
+        log.setClock(clock);
         QSignalSpy recorded(&log, &EventLog::recorded);
         QVERIFY(log.openFile(path));
         QCOMPARE(log.filePath(), path);
@@ -100,7 +101,7 @@ private slots:
         log.info(EventSource::Link, QStringLiteral("Connected: UDP 127.0.0.1:5600"));
         QCOMPARE(fileLines(path),
                  QStringList{QStringLiteral("2026-11-23T17:45:20.123Z\tinfo\tlink\tConnected: UDP 127.0.0.1:5600")});
-        now += 2'500'000;
+        clock->advance(std::chrono::microseconds(2'500'000));
         log.error(EventSource::Key, QStringLiteral("the key file is refused: /k: mode 644, run: chmod 600 /k"));
         QCOMPARE(fileLines(path).size(), 2);
         QCOMPARE(fileLines(path).at(1), QStringLiteral("2026-11-23T17:45:22.623Z\terror\tkey\tthe key file is "
@@ -111,7 +112,7 @@ private slots:
                                QStringLiteral("the key file is refused: /k: mode 644, run: chmod 600 /k")}));
 
         EventLog again;
-        again.setClock([&now] { return now; });
+        again.setClock(clock);
         QVERIFY(again.openFile(path));
         again.warning(EventSource::Plan, QStringLiteral("plan: no reply"));
         QCOMPARE(fileLines(path).size(), 3);
@@ -128,7 +129,7 @@ private slots:
         QVERIFY(child >= 0);
         if (child == 0) {
             EventLog log;
-            log.setClock([] { return kT0; });
+            log.setClock(std::make_shared<VirtualClock>(kT0));
             if (!log.openFile(path))
                 _exit(2);
             for (int i = 1; i <= 3; ++i)
@@ -168,7 +169,7 @@ private slots:
         if (!QFile::exists(QStringLiteral("/dev/full")))
             QSKIP("no /dev/full here");
         EventLog log;
-        log.setClock([] { return kT0; });
+        log.setClock(std::make_shared<VirtualClock>(kT0));
         QVERIFY(log.openFile(QStringLiteral("/dev/full")));
         QSignalSpy recorded(&log, &EventLog::recorded);
         log.info(EventSource::Link, QStringLiteral("first"));
@@ -187,7 +188,7 @@ private slots:
     void modelColumnsAndColours()
     {
         EventLog log;
-        log.setClock([] { return kT0; });
+        log.setClock(std::make_shared<VirtualClock>(kT0));
         EventLogModel model(&log);
         log.info(EventSource::Link, QStringLiteral("Connected"));
         log.warning(EventSource::Alarm, QStringLiteral("No frame from the aircraft since the link opened"));
@@ -236,7 +237,7 @@ private slots:
     void viewKeepsTheNewestInView()
     {
         EventLog log;
-        log.setClock([] { return kT0; });
+        log.setClock(std::make_shared<VirtualClock>(kT0));
         EventLogModel model(&log);
         EventLogView view(&model);
         view.resize(500, 200);

@@ -14,6 +14,7 @@
 #include "link/broker/EnvelopeWriter.h"
 #include "link/broker/FleetFeed.h"
 #include "link/broker/MqttClient.h"
+#include "link/clock/VirtualClock.h"
 #include "ui/fleet/FleetModel.h"
 #include "ui/fleet/FleetView.h"
 
@@ -606,14 +607,14 @@ private slots:
     }
 
     // An aircraft not heard of for the time to live goes, by the feed's
-    // clock; this console's own aircraft stays, and while the broker is
-    // unreachable nothing expires and only this console's link is known.
+    // clock and on its own cadence; this console's own aircraft stays, and
+    // while the broker is unreachable nothing expires and only this
+    // console's link is known.
     void feedExpiresAndKnowsItsOwnLink()
     {
-        FleetFeed feed(nullptr);
+        const auto clock = std::make_shared<VirtualClock>(kT0);
+        FleetFeed feed(nullptr, nullptr, clock);
         feed.setTrust(trusting({QStringLiteral("GB_1"), QStringLiteral("GB_2")}));
-        qint64 now = kT0;
-        feed.setClock([&now] { return now; });
         QSignalSpy removed(&feed, &FleetFeed::aircraftRemoved);
         QSignalSpy updated(&feed, &FleetFeed::aircraftUpdated);
         const QString a = QStringLiteral("GB_133");
@@ -631,6 +632,10 @@ private slots:
         feed.handleMessage(mineTopic, signedOn(mineTopic, mine.toJson()));
         QCOMPARE(feed.summary(a)->stations, 1);
         QVERIFY(feed.summary(a)->local);
+        // Silent for just the time to live, every expiry on the way run: still known.
+        clock->advance(std::chrono::microseconds(FleetFeed::kTimeToLiveMicros));
+        feed.expireStale();
+        QCOMPARE(removed.count(), 0);
 
         // The broker dies: the other aircraft is not known now, ours is.
         feed.setBrokerReachable(false);
@@ -643,22 +648,18 @@ private slots:
         QCOMPARE(theirs.stationsOnline, 0);
         QCOMPARE(FleetModel::linkCellText(theirs), QStringLiteral("Unknown: broker unreachable"));
         QCOMPARE(theirs.inControl, QStringLiteral("GB_2"));
-        now = kT0 + FleetFeed::kTimeToLiveMicros + kSecond;
+        // Past the time to live while unreachable: nothing goes.
+        clock->advance(std::chrono::microseconds(1));
         feed.expireStale();
         QCOMPARE(removed.count(), 0);
 
         // Back, and still silent: gone after the time to live; ours stays.
         feed.setBrokerReachable(true);
-        now = kT0 + FleetFeed::kTimeToLiveMicros;
-        feed.expireStale();
-        QCOMPARE(removed.count(), 0);
-        now += 1;
         feed.expireStale();
         QCOMPARE(removed.count(), 1);
         QCOMPARE(removed[0][0].toString(), b);
         QCOMPARE(feed.aircraftCount(), 1);
-        now += 10 * FleetFeed::kTimeToLiveMicros;
-        feed.expireStale();
+        clock->advance(std::chrono::microseconds(10 * FleetFeed::kTimeToLiveMicros));
         QCOMPARE(removed.count(), 1);
         // Gone from the model too.
         FleetModel model;
@@ -670,7 +671,7 @@ private slots:
         feed.setLocalStation(a, mine);
         QTRY_COMPARE(model.rowCount(), 2);
         QSignalSpy rowsRemoved(&model, &QAbstractItemModel::rowsRemoved);
-        now += FleetFeed::kTimeToLiveMicros + 1;
+        clock->advance(std::chrono::microseconds(FleetFeed::kTimeToLiveMicros + 1));
         feed.expireStale();
         QCOMPARE(rowsRemoved.count(), 1);
         QCOMPARE(model.rowCount(), 1);

@@ -51,10 +51,10 @@ void BrokerConnection::join(const BrokerSettings& settings, bool publish)
     // The fleet has a connection of its own: it reads everything, the publisher only writes.
     BrokerSettings fleetSettings = settings;
     fleetSettings.clientId.clear();
-    m_fleetClient = new MqttClient(fleetSettings, this);
+    m_fleetClient = new MqttClient(fleetSettings, this, m_session->clock());
     if (!publish)
         followClient(m_fleetClient, true);
-    m_fleetFeed = new FleetFeed(m_fleetClient, this);
+    m_fleetFeed = new FleetFeed(m_fleetClient, this, m_session->clock());
     updateTrust();
     showFleet(settings);
     m_fleetClient->start();
@@ -134,7 +134,7 @@ void BrokerConnection::observeRequested(const QString& aircraft)
 
 void BrokerConnection::observe(const BrokerSettings& settings)
 {
-    auto observation = std::make_unique<BrokerObservation>(settings);
+    auto observation = std::make_unique<BrokerObservation>(settings, nullptr, m_session->clock());
     // Refused messages are counted as refused frames are; what is worth
     // knowing (frames missed, stations unverified or sealed) is a warning.
     ConsoleAlerts* alerts = m_notices.alerts();

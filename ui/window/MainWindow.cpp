@@ -2,6 +2,7 @@
 
 #include "link/broker/BrokerObservation.h"
 #include "link/airframe/AirframeLoader.h"
+#include "link/eventlog/EventLog.h"
 #include "ui/alerts/Confirmation.h"
 #include "ui/alerts/ConsoleAlerts.h"
 #include "ui/alerts/LinkAlarm.h"
@@ -71,6 +72,8 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
       m_flightPlan(new FlightPlanWidget(m_upload))
 {
     LinkWorker::registerMetaTypes();
+    // Events, and the alarm's silences, on the session's time.
+    m_alerts->events()->setClock(m_session->clock());
     m_alerts->keepIn(m_session->frameLogDirectory());
     setWindowTitle(ConsoleMenus::title());
     setDockOptions(QMainWindow::AnimatedDocks | QMainWindow::AllowTabbedDocks);
