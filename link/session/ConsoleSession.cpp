@@ -96,6 +96,9 @@ ConsoleSession::ConsoleSession(const QString& frameLogDirectory, QObject* parent
 ConsoleSession::~ConsoleSession()
 {
     stop();
+    // Now, not among the children QObject deletes after the members: a
+    // replay's thread posts to this session until it ends.
+    joinStoppedLinks();
 }
 
 LinkStatistics ConsoleSession::statistics() const
@@ -435,6 +438,12 @@ void ConsoleSession::stop()
     stopController();
     m_rehearsal->stop();
     m_rehearsalKey.reset();
+}
+
+void ConsoleSession::joinStoppedLinks()
+{
+    // The running link has no parent: the children are the links retired.
+    qDeleteAll(findChildren<LinkController*>(Qt::FindDirectChildrenOnly));
 }
 
 void ConsoleSession::setCommand(const rcm::Message& command)

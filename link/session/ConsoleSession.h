@@ -164,8 +164,15 @@ public slots:
     // it; with `keyPath`, a keyed session's log, deciphered with that key
     // (opened off the GUI thread too, its replay state left alone).
     void openReplay(const QString& path, const QString& keyPath = QString()) { openReplay(path, keyPath, {}); }
-    // Stops whatever runs or is being started; uasim too.
+    // Stops whatever runs or is being started; uasim too. A link's thread
+    // ends later, on its own (a modem's hang-up takes seconds).
     void stop();
+    // Waits for the links stop() ended to finish closing, each at most
+    // LinkController::kJoinTimeout. Their threads call the hooks passed in
+    // (setLinkWrapper(), setOptionsFilter(): the flight plan upload's BLOCK 2
+    // source and reply) until they end, so whoever owns what those hooks
+    // call joins them before it goes.
+    void joinStoppedLinks();
 
     // The state to command, now and for every link started later.
     void setCommand(const rcm::Message& command);

@@ -111,6 +111,7 @@ private slots:
     void rehearsalAgainstUasim();
     void rehearsalWithoutUasimSaysWhy();
     void joinOfAStuckLinkThreadIsBounded();
+    void stoppedLinksAreJoinedOnRequest();
     void observationIsAKindOfSession();
 
 private:
@@ -440,6 +441,23 @@ void TestConsoleSession::joinOfAStuckLinkThreadIsBounded()
     // Unstuck, the thread goes on and destroys the link after all.
     release.release();
     QTRY_VERIFY_WITH_TIMEOUT(gone, kTimeoutMs);
+}
+
+// stop() does not wait for the link's thread; joinStoppedLinks() does, so
+// that an owner can delete what the thread's hooks call (the main window's
+// flight plan upload) once it returns.
+void TestConsoleSession::stoppedLinksAreJoinedOnRequest()
+{
+    QSemaphore unstuck(1);  // its destruction does not block: it only says when it happened
+    std::atomic<bool> gone = false;
+    ConsoleSession session(logDirectory(QStringLiteral("join")));
+    session.connectLink(std::make_unique<StuckLink>(&unstuck, &gone), QStringLiteral("stuck"));
+    QTRY_VERIFY_WITH_TIMEOUT(session.isRunning(), kTimeoutMs);
+    session.stop();
+    QVERIFY(!session.isRunning());
+    session.joinStoppedLinks();
+    QVERIFY(gone);
+    QVERIFY(session.findChildren<LinkController*>().isEmpty());
 }
 
 // An observation runs as a kind of session: read only (nothing is live,

@@ -136,8 +136,11 @@ MainWindow::MainWindow(const Options& options, QWidget* parent)
 
 MainWindow::~MainWindow()
 {
-    // The link first: its thread calls into m_upload until it ends.
+    // The link first, and its thread joined: it calls into m_upload (the
+    // BLOCK 2 hooks) until it ends, and m_upload, made before the session,
+    // is deleted before it. stop() alone leaves the thread closing the link.
     m_session->stop();
+    m_session->joinStoppedLinks();
     // Then the docks, whose views use the models made before them: a
     // floating dock is closed as it goes, and its views still ask their
     // models for columns and counts.
