@@ -146,6 +146,7 @@ private slots:
     void splicesRefusedWhereTheProfileTells();
     void noIntactFrameLostToAnEarlierReading_data();
     void noIntactFrameLostToAnEarlierReading();
+    void twoSlipsInARowThenAFrameWithoutItsMark();
     void firstFrameAfterAnOutageDelivered();
     void predictionsPaidFromABudget();
     void sendersForgottenBeyondTheTable();
@@ -689,6 +690,52 @@ void TestReceive::noIntactFrameLostToAnEarlierReading()
     QVERIFY(r.recoverable > 500);
     QVERIFY2(r.falseRefusals == 0, r.firstFalseRefusal.c_str());
     QVERIFY2(r.row.wrong == 0, r.row.firstWrong.c_str());
+}
+
+// Seen in soak_receive --attacks 20000, "byte slips 1-8" (frames 18100-18104
+// of its session): frame B lost 4 bytes in codeword 2 (read where it was due,
+// codeword 2 beyond correction), C lost 7 inside codeword 1 (read a byte
+// early into a rotation, refused as not exact), and D lost the last 4 bytes
+// of its preamble, its mark. D's codewords are intact: libfec reads them
+// 10 bytes before 600 after C's reading, 15 before the start due. No window
+// qualifies there, and nothing looked for D: it was lost.
+void TestReceive::twoSlipsInARowThenAFrameWithoutItsMark()
+{
+    struct Slip {
+        std::uint64_t frame;
+        std::size_t at, lost;  // bytes [at, at + lost) of the frame deleted
+    };
+    const CommandSession session;
+    Collected c;
+    Bytes stream;
+    std::vector<std::int64_t> codewordsAt;
+    for (const Slip& slip : {Slip{18100, 0, 0}, Slip{18101, 402, 4}, Slip{18102, 100, 7}, Slip{18103, 86, 4},
+                             Slip{18104, 0, 0}}) {
+        FrameBytes f = session.frameAt(slip.frame);
+        Bytes b(f.begin(), f.end());
+        b.erase(b.begin() + std::ptrdiff_t(slip.at), b.begin() + std::ptrdiff_t(slip.at + slip.lost));
+        const std::size_t lostFromPreamble = slip.at < kPreambleSize ? std::min(slip.lost, kPreambleSize - slip.at) : 0;
+        codewordsAt.push_back(std::int64_t(stream.size() + kPreambleSize - lostFromPreamble));
+        stream.insert(stream.end(), b.begin(), b.end());
+    }
+    // D as libfec reads it at its true place: both codewords, as sent.
+    const FrameBytes d = session.frameAt(18103);
+    QVERIFY(std::equal(d.begin() + kPreambleSize, d.end(), stream.begin() + codewordsAt[3]));
+    c.nowMicros = session.secondsAt(18104) * 1'000'000;
+    c.receiver.feed(stream);
+    c.receiver.flush();
+
+    std::vector<std::uint64_t> delivered;
+    for (const ReceivedFrame& f : c.frames) {
+        if (f.delivered())
+            delivered.push_back(f.decoded.message.header.number(ItemId::ID_msg) - session.messageAt(0).header.number(ItemId::ID_msg));
+    }
+    QCOMPARE(delivered, (std::vector<std::uint64_t>{18100, 18103, 18104}));
+    for (const ReceivedFrame& f : c.frames) {
+        if (f.delivered() && f.decoded.message.header.number(ItemId::ID_msg) ==
+                                 session.messageAt(18103).header.number(ItemId::ID_msg))
+            QCOMPARE(f.offset, codewordsAt[3] - std::int64_t(kPreambleSize));
+    }
 }
 
 // A sender that falls silent and comes back with its counter where it was
