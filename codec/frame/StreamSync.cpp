@@ -20,15 +20,19 @@ constexpr std::size_t kBufferSize = 8192;
 constexpr int kFailedCodewordBits = rs::kMaxCorrectable + 1;
 constexpr int kMaxPartialWindowBitErrors = 3;
 constexpr int kMaxSlippedMarkBitErrors = 2;
-// Bytes a frame due may be found early or late by (StreamSync::trySlipped).
-constexpr std::uint64_t kMaxSlip = 8;
+// Bytes a frame due may be found early or late by (StreamSync::trySlipped):
+// a slip of up to 8 bytes in the frame before (read where it was due, not
+// exact or beyond correction) and one in this frame's preamble, which may
+// have taken its mark, add up (soak_receive --attacks 10^6, byte slips:
+// 8 lost in codeword 1, then 3 of the next preamble's last bytes, 11 early).
+constexpr std::uint64_t kMaxSlip = 16;
 // ... and the frame after a reading that decoded but was not exact, off the
 // start due: that reading may itself be up to 16 bytes off the frame it was
 // read from (a rotation RS corrected), so the lock is taken from it with that
-// margin too. Otherwise a slip in each of two frames in a row (the first read
-// at its place beyond correction, the second read a byte off into a rotation)
-// leaves the third 10 or more bytes from where anything expects it, and its
-// own slip may have taken its mark: lost although libfec reads it there.
+// margin too. Otherwise slips in frames in a row (the first read at its
+// place beyond correction, the second read a byte off into a rotation) leave
+// the next 10 or more bytes from where anything expects it, and its own slip
+// may have taken its mark: lost although libfec reads it there.
 constexpr std::uint64_t kMaxSlipAfterInexact = kMaxSlip + static_cast<std::uint64_t>(rs::kMaxCorrectable);
 constexpr int kMinSlippedFill = 6;
 // A reading that decodes but is not exact may be a rotation of a real frame
