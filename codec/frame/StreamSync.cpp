@@ -20,8 +20,20 @@ constexpr std::size_t kBufferSize = 8192;
 constexpr int kFailedCodewordBits = rs::kMaxCorrectable + 1;
 constexpr int kMaxPartialWindowBitErrors = 3;
 constexpr int kMaxSlippedMarkBitErrors = 2;
-// Bytes a frame due may be found early or late by (StreamSync::trySlipped).
-constexpr std::uint64_t kMaxSlip = 8;
+// Bytes a frame due may be found early or late by (StreamSync::trySlipped):
+// a slip of up to 8 bytes in the frame before (read where it was due, not
+// exact or beyond correction) and one in this frame's preamble, which may
+// have taken its mark, add up (soak_receive --attacks 10^6, byte slips:
+// 8 lost in codeword 1, then 3 of the next preamble's last bytes, 11 early).
+constexpr std::uint64_t kMaxSlip = 16;
+// ... and the frame after a reading that decoded but was not exact, off the
+// start due: that reading may itself be up to 16 bytes off the frame it was
+// read from (a rotation RS corrected), so the lock is taken from it with that
+// margin too. Otherwise slips in frames in a row (the first read at its
+// place beyond correction, the second read a byte off into a rotation) leave
+// the next 10 or more bytes from where anything expects it, and its own slip
+// may have taken its mark: lost although libfec reads it there.
+constexpr std::uint64_t kMaxSlipAfterInexact = kMaxSlip + static_cast<std::uint64_t>(rs::kMaxCorrectable);
 constexpr int kMinSlippedFill = 6;
 // A reading that decodes but is not exact may be a rotation of a real frame
 // whose start no window shows (its mark lost to a slip, bytes inserted
@@ -345,7 +357,7 @@ void StreamSync::process(bool final)
                     expectTried_ = true;
                 }
                 // Not where it was due: a few bytes either side, once they are here.
-                if (expect_ + kMaxSlip + kDatagramSize > end && !final)
+                if (expect_ + expectSlip_ + kDatagramSize > end && !final)
                     return;
                 const std::uint64_t c = std::exchange(expect_, 0);
                 expectTried_ = false;
@@ -411,7 +423,7 @@ bool StreamSync::trySlipped(std::uint64_t c, std::uint64_t end)
     // rotation of a real frame is never both (its wrapped bytes differ).
     if (!exact_)
         return false;
-    for (std::uint64_t j = 1; j <= kMaxSlip; ++j) {
+    for (std::uint64_t j = 1; j <= expectSlip_; ++j) {
         for (const std::uint64_t at : {c - j, c + j}) {
             if (at < base_ + kPreambleSize || at + kDatagramSize > end || (emitted_ && at <= lastEmitted_))
                 continue;
@@ -599,8 +611,7 @@ void StreamSync::holdFailure(Neighbourhood& hood)
     failEnd_ = p + kDatagramSize;
     if (p == due_) {
         due_ = p + kFrameSize;  // lock kept through a frame beyond correction
-        expect_ = due_;
-        expectTried_ = false;
+        expect(due_, kMaxSlip);
     } else if (due_ < p) {
         // Past the start due with no frame found there (its window lost to
         // errors): the next frame is due after this failure, so a lock lost
@@ -625,8 +636,12 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
         // is kept only where this frame was due.
         if (c == due_) {
             due_ = c + kFrameSize;
-            expect_ = due_;  // looked for there, and a few bytes either side
-            expectTried_ = false;
+            expect(due_, kMaxSlip);  // looked for there, and a few bytes either side
+        } else {
+            // Off the start due: the lock stays where it was, but the next
+            // frame is also looked for 600 bytes after this reading, with
+            // the margin of a reading that may be a rotation.
+            expect(c + kFrameSize, kMaxSlipAfterInexact);
         }
         scan_ = c + 1;
         failEnd_ = std::max(failEnd_, c + kDatagramSize);
@@ -635,13 +650,20 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
     due_ = c + kFrameSize;
     if (blocks.corrected.block2 >= 0 || blocks.corrected.block1 < 0) {
         scan_ = c + kDatagramSize;
-        expect_ = c + kFrameSize;
+        expect(c + kFrameSize, kMaxSlip);
     } else {
         // Codeword 2 may have failed because bytes were lost inside it, so
         // the next frame may begin there.
         scan_ = c + kCodewordSize;
         failEnd_ = std::max(failEnd_, c + kDatagramSize);
     }
+}
+
+void StreamSync::expect(std::uint64_t c, std::uint64_t slip)
+{
+    expect_ = c;
+    expectTried_ = false;
+    expectSlip_ = slip;
 }
 
 void StreamSync::reportPending()

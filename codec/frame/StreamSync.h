@@ -37,6 +37,13 @@
 //
 // On a clean continuous stream the frame due is checked first: a perfect
 // window with two clean codewords cannot be beaten, so no search is made.
+// Where it is not there, it is looked for up to 16 bytes either side (slips
+// of up to 8 in the frame before and in its own preamble), clean and exact,
+// whatever its window shows (a slip may have taken its mark); and after a
+// reading refused as not exact off the start due, also 600 bytes on from
+// that reading, up to 32 bytes either side (16, plus the 16 a rotation RS
+// corrected may be off by), so slips in frames in a row do not leave the
+// next frame where nothing looks for it.
 //
 // Plain C++20, no Qt. Not thread-safe; the handler and the acceptor must
 // not call back into the synchroniser. Memory is fixed: an 8 KiB buffer
@@ -82,7 +89,7 @@ public:
     static constexpr int kMaxDueWindowBitErrors = 16;
     static constexpr std::size_t kNeighbourhood = kPreambleSize;  // candidates q .. q+89
     // Upper bound of bufferedBytes() between feed() calls: the frame due
-    // after a failed neighbourhood (up to a frame on) with the 8 bytes after
+    // after a failed neighbourhood (up to a frame on) with the 32 bytes after
     // it that its search a few bytes either side needs, the frame before
     // it, and the codeword and preamble before the scan that a rotation back
     // may find a frame in.
@@ -128,6 +135,7 @@ private:
     void holdFailure(Neighbourhood& hood);
     void confirm(std::uint64_t c, int distance, const DecodedBlocks& blocks, bool exact);
     void emitFrame(std::uint64_t c, int distance, const DecodedBlocks& blocks);
+    void expect(std::uint64_t c, std::uint64_t slip);
     void reportPending();
     void accountSkippedUpTo(std::uint64_t offset);
     void compact();
@@ -144,6 +152,7 @@ private:
     std::uint64_t scan_ = kWindowSize;  // next candidate not yet examined
     std::uint64_t expect_ = 0;   // where the next frame is likely to start (0: no guess)
     bool expectTried_ = false;   // ... and it was not there exactly
+    std::uint64_t expectSlip_ = 16;  // ... and how many bytes either side it is looked for
     std::uint64_t due_ = 0;      // where the next frame is due after the last reported, good or not
     std::uint64_t failEnd_ = 0;  // failing candidates before this are dropped silently
     std::uint64_t covered_ = 0;  // bytes before this are in an emitted frame or counted as skipped

@@ -146,6 +146,8 @@ private slots:
     void splicesRefusedWhereTheProfileTells();
     void noIntactFrameLostToAnEarlierReading_data();
     void noIntactFrameLostToAnEarlierReading();
+    void slipsInARowThenAFrameWithoutItsMark_data();
+    void slipsInARowThenAFrameWithoutItsMark();
     void firstFrameAfterAnOutageDelivered();
     void predictionsPaidFromABudget();
     void sendersForgottenBeyondTheTable();
@@ -689,6 +691,62 @@ void TestReceive::noIntactFrameLostToAnEarlierReading()
     QVERIFY(r.recoverable > 500);
     QVERIFY2(r.falseRefusals == 0, r.firstFalseRefusal.c_str());
     QVERIFY2(r.row.wrong == 0, r.row.firstWrong.c_str());
+}
+
+// Slips in frames in a row, then a frame whose slip took its preamble's mark
+// (its last bytes): its codewords are intact, libfec reads them where they
+// are, but no window qualifies there; only the search for a frame due a few
+// bytes either side finds it. Seen in soak_receive --attacks, "byte slips 1-8".
+// Frames 18100-18104 (20,000 a row): B lost 4 bytes in codeword 2 (read where
+// it was due, codeword 2 beyond correction), C 7 inside codeword 1 (read a
+// byte early into a rotation, refused as not exact), D its last 4 preamble
+// bytes: D lies 10 bytes before 600 after C's reading, 15 before the start
+// due, and nothing looked for it.
+void TestReceive::slipsInARowThenAFrameWithoutItsMark_data()
+{
+    QTest::addColumn<QList<int>>("slips");  // frame, first byte deleted, bytes deleted; ...
+    QTest::addColumn<int>("lost");           // the frame that lost its mark
+    QTest::newRow("18100-18104") << QList<int>{18100, 0, 0, 18101, 402, 4, 18102, 100, 7, 18103, 86, 4, 18104, 0, 0}
+                                 << 18103;
+}
+
+void TestReceive::slipsInARowThenAFrameWithoutItsMark()
+{
+    QFETCH(QList<int>, slips);
+    QFETCH(int, lost);
+    const CommandSession session;
+    Collected c;
+    Bytes stream;
+    std::int64_t lostAt = -1;  // codeword 1 of the frame that lost its mark
+    std::vector<std::uint32_t> ids;
+    for (qsizetype i = 0; i < slips.size(); i += 3) {
+        const auto frame = std::uint64_t(slips[i]);
+        const auto at = std::size_t(slips[i + 1]), n = std::size_t(slips[i + 2]);
+        const FrameBytes f = session.frameAt(frame);
+        Bytes b(f.begin(), f.end());
+        b.erase(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + n));
+        if (slips[i] == lost) {
+            lostAt = std::int64_t(stream.size() + at);
+            // As libfec reads it there: both codewords, as sent.
+            QVERIFY(std::equal(f.begin() + kPreambleSize, f.end(), b.begin() + std::ptrdiff_t(at)));
+        }
+        if (at + n <= kPreambleSize)  // codewords intact
+            ids.push_back(std::uint32_t(session.messageAt(frame).header.number(ItemId::ID_msg)));
+        stream.insert(stream.end(), b.begin(), b.end());
+        c.nowMicros = session.secondsAt(frame) * 1'000'000 + 500'000;
+    }
+    c.receiver.feed(stream);
+    c.receiver.flush();
+
+    std::vector<std::uint32_t> delivered;
+    for (const ReceivedFrame& f : c.frames) {
+        if (!f.delivered())
+            continue;
+        delivered.push_back(std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg)));
+        if (delivered.back() == session.messageAt(std::uint64_t(lost)).header.number(ItemId::ID_msg))
+            QCOMPARE(f.offset, lostAt - std::int64_t(kPreambleSize));
+    }
+    QCOMPARE(delivered, ids);
 }
 
 // A sender that falls silent and comes back with its counter where it was
