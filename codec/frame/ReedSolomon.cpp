@@ -281,36 +281,6 @@ void correctErrors(const Field& gf, const int* s, const int* lambdaLog, int degL
     }
 }
 
-// libfec's decode_rs (decode_rs.h, no erasures) from the remainder of the
-// word modulo the generator instead of from the word itself: the syndromes
-// are the remainder's values at the generator's roots, 32 coefficients
-// instead of 255. `remainder[k]` is the coefficient of x^(31-k), conventional
-// basis; `word` is corrected in place, dual basis. The same steps as libfec's
-// (Berlekamp-Massey, Chien search, Forney), so the same result; `maxErrors`
-// stops before the Chien search when the error locator already says more.
-int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int maxErrors)
-{
-    const Field& gf = field();
-    int s[kRoots];
-    if (!syndromes(gf, remainder, s))
-        return 0;
-
-    std::uint8_t lambda[kRoots + 1] = {1};
-    errorLocator(gf, s, lambda);
-    int lambdaLog[kRoots + 1];
-    const int degLambda = toLogForm(gf, lambda, lambdaLog);
-    if (degLambda > maxErrors)
-        return -1;
-
-    int root[kRoots];
-    int loc[kRoots];
-    const int count = chienSearch(gf, lambdaLog, degLambda, root, loc);
-    if (degLambda != count)
-        return -1;
-    correctErrors(gf, s, lambdaLog, degLambda, root, loc, count, word);
-    return count;
-}
-
 // The erasure locator of the places `at` (codeword indices): the product of
 // (1 + X alpha^(11 (254 - place))), libfec's initial lambda.
 void erasureLocator(const Field& gf, const int* at, int count, std::uint8_t* lambda)
@@ -326,9 +296,16 @@ void erasureLocator(const Field& gf, const int* at, int count, std::uint8_t* lam
     }
 }
 
-// correctFromRemainder with erasures: errors at unknown places and the
-// values at `erasures` known places (libfec's decode_rs with eras_pos).
-int correctWithErasures(std::uint8_t* word, const std::uint8_t* remainder, const int* erasures, int count)
+// libfec's decode_rs (decode_rs.h; with eras_pos when `count` places are
+// erased) from the remainder of the word modulo the generator instead of
+// from the word itself: the syndromes are the remainder's values at the
+// generator's roots, 32 coefficients instead of 255. `remainder[k]` is the
+// coefficient of x^(31-k), conventional basis; `word` is corrected in place,
+// dual basis. The same steps as libfec's (Berlekamp-Massey, Chien search,
+// Forney), so the same result; `maxErrors` (errors at unknown places) stops
+// before the Chien search when the error locator already says more.
+int correctWithErasures(std::uint8_t* word, const std::uint8_t* remainder, const int* erasures, int count,
+                        int maxErrors)
 {
     const Field& gf = field();
     int s[kRoots];
@@ -340,8 +317,7 @@ int correctWithErasures(std::uint8_t* word, const std::uint8_t* remainder, const
     errorLocator(gf, s, lambda, count);
     int lambdaLog[kRoots + 1];
     const int degLambda = toLogForm(gf, lambda, lambdaLog);
-    // Beyond 2 e + f <= 32 the locator cannot be right.
-    if (2 * (degLambda - count) + count > kRoots)
+    if (degLambda - count > maxErrors)
         return -1;
     int root[kRoots];
     int loc[kRoots];
@@ -355,6 +331,12 @@ int correctWithErasures(std::uint8_t* word, const std::uint8_t* remainder, const
             return -1;
     correctErrors(gf, s, lambdaLog, degLambda, root, loc, found, word);
     return found;
+}
+
+// Errors only.
+int correctFromRemainder(std::uint8_t* word, const std::uint8_t* remainder, int maxErrors)
+{
+    return correctWithErasures(word, remainder, nullptr, 0, maxErrors);
 }
 
 // correctFromRemainder on a copy: `word` is left as received when it fails.
@@ -465,9 +447,10 @@ int decodeWithErasures(std::uint8_t* codeword, const int* erasures, int count)
         return 0;
     std::uint8_t copy[kCodewordSize];
     std::memcpy(copy, codeword, kCodewordSize);
-    // Beyond reach the locator may still split into roots whose values do not
-    // make a codeword: the result is checked.
-    if (correctWithErasures(copy, remainder, erasures, count) < 0 || !isCodeword(copy))
+    // Beyond 2 e + f <= 32 the locator cannot be right, so at most
+    // (32 - f) / 2 errors beside the erasures; beyond reach it may still split
+    // into roots whose values do not make a codeword: the result is checked.
+    if (correctWithErasures(copy, remainder, erasures, count, (kRoots - count) / 2) < 0 || !isCodeword(copy))
         return -1;
     // Bytes changed: an erased place may have been right (libfec counts so too).
     int changed = 0;
