@@ -54,9 +54,10 @@ public:
         return m_process.waitForStarted();
     }
     // uasim says so once its sockets are bound: the first command can go.
-    // The whole line, not its start: a read can end inside it, and the
-    // suites check what the rest of it says.
-    bool listening() const { return saidLine("on udp") || saidLine("stations: "); }
+    // With stations, the line that names their roles comes last, after each
+    // channel's "on udp" (uasim --verbose); the whole line, not its start: a
+    // read can end inside it, and the suites check what the rest of it says.
+    bool listening() const { return saidLine(ports[0] ? "stations: " : "on udp"); }
     // SIGTERM: uasim stops, printing its counts, and exits; true when it
     // did, of its own accord, with status 0.
     bool stop(int timeoutMs)
