@@ -423,10 +423,17 @@ bool StreamSync::trySlipped(std::uint64_t c, std::uint64_t end)
     // rotation of a real frame is never both (its wrapped bytes differ).
     if (!exact_)
         return false;
-    for (std::uint64_t j = 1; j <= expectSlip_; ++j) {
-        for (const std::uint64_t at : {c - j, c + j}) {
+    // j = 0: the start due itself, when tryExpected passed it over for its
+    // window (a slip took this frame's mark, and one in the frame before put
+    // its codewords back where they were due).
+    for (std::uint64_t j = 0; j <= expectSlip_; ++j) {
+        const std::array<std::uint64_t, 2> starts = {c - j, c + j};
+        for (std::size_t k = 0; k < (j == 0 ? 1U : 2U); ++k) {
+            const std::uint64_t at = starts[k];
             if (at < base_ + kPreambleSize || at + kDatagramSize > end || (emitted_ && at <= lastEmitted_))
                 continue;
+            if (j == 0 && distance(at) == 0)
+                continue;  // tryExpected's
             const std::uint8_t* cw = this->at(at);
             bool clean1 = false, clean2 = false;
             rs::checkCodewords(cw, cw + kCodewordSize, &clean1, &clean2);

@@ -37,13 +37,13 @@
 //
 // On a clean continuous stream the frame due is checked first: a perfect
 // window with two clean codewords cannot be beaten, so no search is made.
-// Where it is not there, it is looked for up to 16 bytes either side (slips
-// of up to 8 in the frame before and in its own preamble), clean and exact,
-// whatever its window shows (a slip may have taken its mark); and after a
-// reading refused as not exact off the start due, also 600 bytes on from
-// that reading, up to 32 bytes either side (16, plus the 16 a rotation RS
-// corrected may be off by), so slips in frames in a row do not leave the
-// next frame where nothing looks for it.
+// Otherwise it is looked for at the start due and up to 16 bytes either
+// side (slips of up to 8 in the frame before and in its own preamble),
+// clean and exact, whatever its window shows (a slip may have taken its
+// mark); and after a reading refused as not exact off the start due, also
+// 600 bytes on from that reading, up to 32 bytes either side (16, plus the
+// 16 a rotation RS corrected may be off by), so slips in frames in a row do
+// not leave the next frame where nothing looks for it.
 //
 // Plain C++20, no Qt. Not thread-safe; the handler and the acceptor must
 // not call back into the synchroniser. Memory is fixed: an 8 KiB buffer

@@ -704,10 +704,17 @@ void TestReceive::noIntactFrameLostToAnEarlierReading()
 // due, and nothing looked for it.
 void TestReceive::slipsInARowThenAFrameWithoutItsMark_data()
 {
-    QTest::addColumn<QList<int>>("slips");  // frame, first byte deleted, bytes deleted; ...
-    QTest::addColumn<int>("lost");           // the frame that lost its mark
+    // frame, first byte slipped, bytes deleted (negative: bytes of C3 inserted); ...
+    QTest::addColumn<QList<int>>("slips");
+    QTest::addColumn<int>("lost");  // the frame that lost its mark
     QTest::newRow("18100-18104") << QList<int>{18100, 0, 0, 18101, 402, 4, 18102, 100, 7, 18103, 86, 4, 18104, 0, 0}
                                  << 18103;
+    // soak_receive --attacks 1000000 "byte slips": 2 bytes inserted in
+    // codeword 1 (refused where it was due, beyond correction), then the
+    // next frame's mark lost, which puts its codewords back where they were
+    // due: found there only by looking whatever its window shows.
+    QTest::newRow("334305-334308") << QList<int>{334305, 0, 0, 334306, 308, -2, 334307, 88, 2, 334308, 0, 0}
+                                   << 334307;
 }
 
 void TestReceive::slipsInARowThenAFrameWithoutItsMark()
@@ -721,16 +728,21 @@ void TestReceive::slipsInARowThenAFrameWithoutItsMark()
     std::vector<std::uint32_t> ids;
     for (qsizetype i = 0; i < slips.size(); i += 3) {
         const auto frame = std::uint64_t(slips[i]);
-        const auto at = std::size_t(slips[i + 1]), n = std::size_t(slips[i + 2]);
+        const auto at = std::size_t(slips[i + 1]);
+        const bool inserted = slips[i + 2] < 0;
+        const auto n = std::size_t(std::abs(slips[i + 2]));
         const FrameBytes f = session.frameAt(frame);
         Bytes b(f.begin(), f.end());
-        b.erase(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + n));
+        if (inserted)
+            b.insert(b.begin() + std::ptrdiff_t(at), n, std::uint8_t{0xC3});
+        else
+            b.erase(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + n));
         if (slips[i] == lost) {
             lostAt = std::int64_t(stream.size() + at);
             // As libfec reads it there: both codewords, as sent.
             QVERIFY(std::equal(f.begin() + kPreambleSize, f.end(), b.begin() + std::ptrdiff_t(at)));
         }
-        if (at + n <= kPreambleSize)  // codewords intact
+        if ((inserted ? at : at + n) <= kPreambleSize)  // codewords intact
             ids.push_back(std::uint32_t(session.messageAt(frame).header.number(ItemId::ID_msg)));
         stream.insert(stream.end(), b.begin(), b.end());
         c.nowMicros = session.secondsAt(frame) * 1'000'000 + 500'000;
