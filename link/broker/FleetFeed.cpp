@@ -6,16 +6,6 @@
 #include <algorithm>
 #include <tuple>
 
-namespace {
-
-// A frame the receive path delivered: the link's "last good frame".
-bool isGood(FrameStatus status)
-{
-    return status == FrameStatus::Decoded || status == FrameStatus::Corrected;
-}
-
-}  // namespace
-
 FleetFeed::FleetFeed(MqttClient* client, QObject* parent, std::shared_ptr<Clock> clock)
     : QObject(parent),
       m_client(client),
