@@ -342,7 +342,11 @@ void StreamSync::process(bool final)
 {
     for (;;) {
         const std::uint64_t end = base_ + len_;
-        if (expect_ != 0) {
+        // What lies before the frame due is scanned first: a frame there
+        // (the true one a byte after a rotation just refused) comes before
+        // it, and taking the frame due first would skip it.
+        const std::uint64_t dueRegion = expect_ - std::min(expect_, expectSlip_);
+        if (expect_ != 0 && scan_ >= dueRegion) {
             if (expect_ + kDatagramSize > end) {
                 if (!final)
                     return;
@@ -367,7 +371,8 @@ void StreamSync::process(bool final)
         }
 
         std::uint64_t q = scan_;
-        while (q <= end && !qualifies(q, distance(q)))
+        const std::uint64_t stop = expect_ != 0 ? std::min(end + 1, dueRegion) : end + 1;
+        while (q < stop && !qualifies(q, distance(q)))
             ++q;
         scan_ = q;
         // Only a good frame whose preamble covers the failed start can show
@@ -376,6 +381,8 @@ void StreamSync::process(bool final)
             reportPending();
         if (q > end)
             return;
+        if (expect_ != 0 && q >= dueRegion)
+            continue;  // the frame due is looked for first
 
         const std::uint64_t last = q + kNeighbourhood - 1;
         if (last + kDatagramSize <= end)

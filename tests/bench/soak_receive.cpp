@@ -97,6 +97,9 @@ int attacks(std::uint64_t frames, std::string_view only, std::uint64_t seedOffse
     row("overlap", [&] { return runStreamDamage(session, StreamDamage::Overlap, frames, seedOffset + 107); });
     row("garbage between", [&] { return runStreamDamage(session, StreamDamage::GarbageBetween, frames, seedOffset + 108); });
     row("byte slips 1-8", [&] { return runStreamDamage(session, StreamDamage::ByteSlips, frames, seedOffset + 109); });
+    row("mixed: cut, overlap, garbage, slips, none", [&] {
+        return runStreamDamage(session, StreamDamage::Mixed, frames, seedOffset + 111);
+    });
     row("outages 2-600 s", [&] { return runOutages(session, frames, 0.02, seedOffset + 110); });
     return failed ? 1 : 0;
 }

@@ -148,6 +148,7 @@ private slots:
     void noIntactFrameLostToAnEarlierReading();
     void slipsInARowThenAFrameWithoutItsMark_data();
     void slipsInARowThenAFrameWithoutItsMark();
+    void trueFrameJustAfterARefusedRotation();
     void firstFrameAfterAnOutageDelivered();
     void predictionsPaidFromABudget();
     void sendersForgottenBeyondTheTable();
@@ -759,6 +760,34 @@ void TestReceive::slipsInARowThenAFrameWithoutItsMark()
             QCOMPARE(f.offset, lostAt - std::int64_t(kPreambleSize));
     }
     QCOMPARE(delivered, ids);
+}
+
+// soak_receive --attacks "mixed": frame 10673 has its last 31 bytes
+// overwritten by 10674's start and is read where it was due, not exact;
+// 10674, its last 6 bytes overwritten by 10675, is first read a byte early,
+// a rotation refused as not exact; the frame 600 bytes on from that reading
+// is 10675, 5 bytes early. Taking 10675 there (once 10676's bytes were
+// in) before scanning on from the rotation skipped 10674, which libfec
+// reads a byte after it.
+void TestReceive::trueFrameJustAfterARefusedRotation()
+{
+    const CommandSession session;
+    Collected c;
+    Bytes stream;
+    for (const auto& [frame, kept] : {std::pair{10672, 600}, {10673, 569}, {10674, 594}, {10675, 600}, {10676, 600}}) {
+        const FrameBytes f = session.frameAt(std::uint64_t(frame));
+        stream.insert(stream.end(), f.begin(), f.begin() + kept);
+        c.nowMicros = session.secondsAt(std::uint64_t(frame)) * 1'000'000 + 500'000;
+    }
+    c.receiver.feed(stream);
+    c.receiver.flush();
+
+    std::vector<std::uint32_t> delivered;
+    for (const ReceivedFrame& f : c.frames)
+        if (f.delivered())
+            delivered.push_back(std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg)));
+    const auto id = [&](std::uint64_t i) { return std::uint32_t(session.messageAt(i).header.number(ItemId::ID_msg)); };
+    QCOMPARE(delivered, (std::vector<std::uint32_t>{id(10672), id(10674), id(10675), id(10676)}));
 }
 
 // A sender that falls silent and comes back with its counter where it was

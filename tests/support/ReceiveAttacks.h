@@ -161,6 +161,7 @@ enum class StreamDamage {
     Overlap,         // each frame's last 1 .. 90 bytes overwritten by the next frame's start
     GarbageBetween,  // 1 .. 1200 bytes between frames: random, runs of 55, preamble pieces
     ByteSlips,       // 1 .. 8 bytes lost or inserted at a random place in every frame
+    Mixed,           // each frame one of the above, or none, at random
 };
 
 // A stream damaged as `damage` says; every frame libfec reads at its true
@@ -229,9 +230,17 @@ inline AttackResult runStreamDamage(const CommandSession& session, StreamDamage 
         const FrameBytes f = session.frameAt(i);
         chunk.assign(f.begin(), f.end());
         std::uint64_t codewordsAt = kPreambleSize;  // within chunk
-        switch (damage) {
+        StreamDamage kind = damage;
+        if (damage == StreamDamage::Mixed) {
+            kind = static_cast<StreamDamage>(rng() % 5);  // Mixed itself: none
+            if (kind == StreamDamage::CutThenIntact)
+                chunk.resize(uniform(1, kFrameSize - 1));
+        }
+        switch (kind) {
+        case StreamDamage::Mixed:
+            break;
         case StreamDamage::CutThenIntact:
-            if (i % 2 == 0)
+            if (damage == StreamDamage::CutThenIntact && i % 2 == 0)
                 chunk.resize(uniform(1, kFrameSize - 1));
             break;
         case StreamDamage::Overlap:
