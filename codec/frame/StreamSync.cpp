@@ -60,6 +60,7 @@ std::uint64_t load64(const std::uint8_t* p)
 // In native byte order, like load64's result: only bit counts matter.
 const std::uint64_t kWindowLo = load64(kWindow.data());
 const std::uint64_t kWindowHi = load64(kWindow.data() + 8);
+constexpr std::uint64_t kFillWord = 0x5555555555555555ULL;
 
 std::uint64_t preambleStart(std::uint64_t c)
 {
@@ -234,6 +235,7 @@ void StreamSync::reset()
     lastEmitted_ = 0;
     expectTried_ = false;
     lastClean2_.fill(0);
+    paddingCount_ = 0;
     stats_ = Stats{};
 }
 
@@ -372,14 +374,15 @@ void StreamSync::process(bool final)
 
         std::uint64_t q = scan_;
         const std::uint64_t stop = expect_ != 0 ? std::min(end + 1, dueRegion) : end + 1;
-        while (q < stop && !qualifies(q, distance(q)))
-            ++q;
+        const Scan found = scanFor(q, stop, end, final);
+        if (found == Scan::Taken)
+            continue;
         scan_ = q;
         // Only a good frame whose preamble covers the failed start can show
         // that start was false; once scanning is past that, report it.
         if (hasPending_ && scan_ >= pendingC_ + kPreambleSize)
             reportPending();
-        if (q > end)
+        if (found == Scan::Waiting || q > end)
             return;
         if (expect_ != 0 && q >= dueRegion)
             continue;  // the frame due is looked for first
@@ -390,6 +393,63 @@ void StreamSync::process(bool final)
         else if (!final || !decideNeighbourhood(q, std::min(last, end), end))
             return;
     }
+}
+
+StreamSync::Scan StreamSync::scanFor(std::uint64_t& q, std::uint64_t stop, std::uint64_t end, bool final)
+{
+    for (; q < stop; ++q) {
+        if (qualifies(q, distance(q)))
+            return Scan::Candidate;
+        if (!fillBefore(q))
+            continue;
+        if (q == end)  // whether the fill ends here is not known yet
+            return final ? Scan::Reached : Scan::Waiting;
+        if (*at(q) == kPreambleFillByte)
+            continue;
+        if (q + kDatagramSize > end && !final)
+            return Scan::Waiting;
+        if (tryWithoutMark(q, end))
+            return Scan::Taken;
+    }
+    return Scan::Reached;
+}
+
+bool StreamSync::fillBefore(std::uint64_t q) const
+{
+    const std::uint8_t* w = at(q - kWindowSize);
+    return load64(w) == kFillWord && load64(w + 8) == kFillWord;
+}
+
+bool StreamSync::tryWithoutMark(std::uint64_t q, std::uint64_t end)
+{
+    // The fill ends at q, with no mark: a slip took it. On a keyed link
+    // codeword 1 starts there; on the plain link BLOCK 1 begins with its
+    // padding, so it starts that many bytes of 55 before, as many as in a
+    // frame lately taken. Taken only clean and exact, like a slipped frame due.
+    if (!exact_)
+        return false;
+    for (std::size_t i = 0; i <= paddingCount_; ++i) {
+        const std::uint64_t padding = i == 0 ? 0 : paddings_[i - 1];
+        if (padding > q)
+            continue;
+        const std::uint64_t c = q - padding;
+        if (c < base_ + kPreambleSize || c + kDatagramSize > end || (emitted_ && c <= lastEmitted_) ||
+            !fillBefore(c))
+            continue;
+        const std::uint8_t* cw = at(c);
+        bool clean1 = false, clean2 = false;
+        rs::checkCodewords(cw, cw + kCodewordSize, &clean1, &clean2);
+        if (!clean1 || !clean2)
+            continue;
+        DecodedBlocks blocks;
+        std::memcpy(blocks.block1.data(), cw, kBlockSize);
+        std::memcpy(blocks.block2.data(), cw + kCodewordSize, kBlockSize);
+        if (!exact_(blocks))
+            continue;
+        confirm(c, distance(c), blocks, true);
+        return true;
+    }
+    return false;
 }
 
 bool StreamSync::tryExpected(std::uint64_t c)
@@ -661,6 +721,7 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
         failEnd_ = std::max(failEnd_, c + kDatagramSize);
         return;
     }
+    rememberPadding(blocks);
     due_ = c + kFrameSize;
     if (blocks.corrected.block2 >= 0 || blocks.corrected.block1 < 0) {
         scan_ = c + kDatagramSize;
@@ -671,6 +732,22 @@ void StreamSync::confirm(std::uint64_t c, int distance, const DecodedBlocks& blo
         scan_ = c + kCodewordSize;
         failEnd_ = std::max(failEnd_, c + kDatagramSize);
     }
+}
+
+void StreamSync::rememberPadding(const DecodedBlocks& blocks)
+{
+    if (blocks.corrected.block1 < 0)
+        return;
+    const auto padding = static_cast<std::uint8_t>(
+        std::find_if(blocks.block1.begin(), blocks.block1.end(), [](std::uint8_t b) { return b != kPreambleFillByte; }) -
+        blocks.block1.begin());
+    if (padding == 0 || std::find(paddings_.begin(), paddings_.begin() + paddingCount_, padding) !=
+                            paddings_.begin() + paddingCount_)
+        return;
+    // The newest first; the oldest forgotten.
+    std::move_backward(paddings_.begin(), paddings_.end() - 1, paddings_.end());
+    paddings_[0] = padding;
+    paddingCount_ = std::min(paddingCount_ + 1, paddings_.size());
 }
 
 void StreamSync::expect(std::uint64_t c, std::uint64_t slip)

@@ -43,7 +43,14 @@
 // mark); and after a reading refused as not exact off the start due, also
 // 600 bytes on from that reading, up to 32 bytes either side (16, plus the
 // 16 a rotation RS corrected may be off by), so slips in frames in a row do
-// not leave the next frame where nothing looks for it.
+// not leave the next frame where nothing looks for it. What lies before the
+// frame due is scanned first: the true frame a byte after a refused rotation
+// comes before it.
+//
+// A mark lost far from any frame due (after frames cut short): where 16 or
+// more bytes of fill end with no mark, codeword 1 starts there (keyed link)
+// or, on the plain link, whose BLOCK 1 begins with padding, as many bytes
+// before as BLOCK 1's padding in the last frames taken; clean and exact only.
 //
 // Plain C++20, no Qt. Not thread-safe; the handler and the acceptor must
 // not call back into the synchroniser. Memory is fixed: an 8 KiB buffer
@@ -125,6 +132,11 @@ public:
 
 private:
     void process(bool final);
+    enum class Scan { Candidate, Reached, Waiting, Taken };
+    Scan scanFor(std::uint64_t& q, std::uint64_t stop, std::uint64_t end, bool final);
+    bool fillBefore(std::uint64_t q) const;
+    bool tryWithoutMark(std::uint64_t q, std::uint64_t end);
+    void rememberPadding(const DecodedBlocks& blocks);
     bool tryExpected(std::uint64_t c);
     bool trySlipped(std::uint64_t c, std::uint64_t end);
     struct Neighbourhood;
@@ -164,6 +176,10 @@ private:
     DecodedBlocks pendingBlocks_;
     Stats stats_;
     std::array<std::uint8_t, kCodewordSize> lastClean2_{};  // codeword 2 of the last clean frame due
+    // BLOCK 1's leading padding in the frames lately taken, newest first:
+    // where a frame whose mark was lost starts, before the fill's end.
+    std::array<std::uint8_t, 4> paddings_{};
+    std::size_t paddingCount_ = 0;
 };
 
 }  // namespace rcm

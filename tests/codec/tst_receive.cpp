@@ -716,6 +716,11 @@ void TestReceive::slipsInARowThenAFrameWithoutItsMark_data()
     // due: found there only by looking whatever its window shows.
     QTest::newRow("334305-334308") << QList<int>{334305, 0, 0, 334306, 308, -2, 334307, 88, 2, 334308, 0, 0}
                                    << 334307;
+    // soak_receive --attacks 100000 "mixed": three frames cut short, then
+    // one whose mark was lost, nowhere near a frame due.
+    QTest::newRow("78698-78703") << QList<int>{78698, 0,  0,   78699, 495, 105, 78700, 240, 360,
+                                               78701, 59, 541, 78702, 84,  6,   78703, 0,   0}
+                                 << 78702;
 }
 
 void TestReceive::slipsInARowThenAFrameWithoutItsMark()

@@ -195,6 +195,7 @@ private slots:
     void bitErrorRate_data();
     void bitErrorRate();
     void slipsInsidePadding();
+    void markLostFarFromTheFrameDue();
     void memoryStaysBounded();
     void flushReportsLastFrame();
     void resetStartsOver();
@@ -815,6 +816,48 @@ void TestStreamSync::slipsInsidePadding()
                     QVERIFY2(g.blocks.ok() && sameBlocks(g, s.frames[i]), qPrintable(where));
             }
         }
+    }
+}
+
+// Frames whose mark a slip took, after garbage (no frame due near them):
+// found where the fill ends, or, when BLOCK 1 begins with padding, as many
+// bytes before as the padding of the frame taken before them. Fed in pieces,
+// so the fill's end and the codewords after it arrive in separate calls.
+void TestStreamSync::markLostFarFromTheFrameDue()
+{
+    std::mt19937 rng(41);
+    Stream s;
+    appendFrame(s, paddedBlock(rng, 40), randomBlock(rng));
+    appendGarbage(s, rng, 777);
+    appendFrame(s, paddedBlock(rng, 40), flightPlanBlock(rng));
+    std::vector<std::size_t> markless = {1};
+    appendGarbage(s, rng, 333);
+    appendFrame(s, randomBlock(rng), randomBlock(rng));  // as a keyed link's
+    markless.push_back(2);
+    appendGarbage(s, rng, 1234);
+    appendFrame(s, paddedBlock(rng, 40), randomBlock(rng));
+    // Each mark taken, last frame first so the offsets before stay true.
+    for (auto i = markless.rbegin(); i != markless.rend(); ++i) {
+        const auto mark = s.bytes.begin() + s.frames[*i].offset + kPreambleSize - 2;
+        s.bytes.erase(mark, mark + 2);
+        for (std::size_t k = *i + 1; k < s.frames.size(); ++k)
+            s.frames[k].offset -= 2;
+        s.frames[*i].offset -= 2;  // the codewords follow the fill at once
+    }
+
+    std::vector<Got> got;
+    StreamSync sync([&](const SyncedFrame& f) {
+        got.push_back({f.offset, Bytes(f.raw.begin(), f.raw.end()), f.blocks, f.preambleBitErrors});
+    }, [](const DecodedBlocks& blocks) { return blocks.ok(); });
+    feedSplit(sync, s.bytes, rng, 97);
+    sync.flush();
+    QCOMPARE(got.size(), s.frames.size());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+        QCOMPARE(got[i].offset, s.frames[i].offset);
+        QVERIFY(got[i].blocks.ok());
+        QCOMPARE(got[i].blocks.block1, s.frames[i].b1);
+        QCOMPARE(got[i].blocks.block2, s.frames[i].b2);
+        QCOMPARE(got[i].preambleBitErrors, i == 1 || i == 2 ? 8 : 0);
     }
 }
 
