@@ -95,6 +95,15 @@ int main(int argc, char** argv)
                  out.insert(out.end(), 2, kPreambleMark);
              }
          }},
+        // Each run's end is where a frame whose mark a slip took would start:
+        // its codewords are checked there (StreamSync's hunt), the most often
+        // an input can make it.
+        {"fill runs that end without a mark", [](std::uint64_t, Bytes& out, std::mt19937_64& rng) {
+             for (std::size_t k = 0; k < kFrameSize; k += 17) {
+                 out.insert(out.end(), 16, kPreambleFillByte);
+                 out.push_back(static_cast<std::uint8_t>(rng() % 0x55));
+             }
+         }},
         {"predicted BLOCK 1, random BLOCK 2",
          [&](std::uint64_t i, Bytes& out, std::mt19937_64& rng) { fakeBlock2(plain, i, out, rng); }},
         {"BLOCK 1 with 20 errors, random BLOCK 2",
