@@ -524,9 +524,22 @@ struct StreamSync::Neighbourhood {
     std::array<Candidate, kNeighbourhood> cands;
     std::size_t n = 0;
     // At the end of the stream, candidates whose codewords are cut off
-    // cannot be tried; none whose window is no closer than theirs may be
-    // accepted instead (one byte early, a cut-off frame still "decodes").
-    int bar = std::numeric_limits<int>::max();
+    // cannot be tried; none near one of them (a rotation RS would correct:
+    // up to 16 bytes off) whose window is no closer may be accepted instead
+    // (one byte early, a cut-off frame still "decodes"). Further off, a
+    // cut-off window is no reason to refuse a whole frame: it may lie inside
+    // that frame's own BLOCK 1 (padding, then 0F 0F).
+    std::array<Candidate, kNeighbourhood> cutOff;
+    std::size_t nCutOff = 0;
+    bool barred(std::uint64_t c, int distance) const
+    {
+        for (std::size_t i = 0; i < nCutOff; ++i) {
+            const std::uint64_t apart = cutOff[i].c > c ? cutOff[i].c - c : c - cutOff[i].c;
+            if (cutOff[i].distance <= distance && apart <= static_cast<std::uint64_t>(rs::kMaxCorrectable))
+                return true;
+        }
+        return false;
+    }
     // The reading taken is the best the acceptance decision finds exact, or,
     // when none is, the best of all (which it will then refuse); without an
     // acceptor every reading counts as exact.
@@ -542,14 +555,15 @@ bool StreamSync::decideNeighbourhood(std::uint64_t q, std::uint64_t last, std::u
 {
     Neighbourhood hood;
     gatherCandidates(hood, q, last, end);
-    if (hood.n == 0 || hood.cands[0].distance >= hood.bar)
+    if (std::all_of(hood.cands.begin(), hood.cands.begin() + hood.n,
+                    [&](const Candidate& k) { return hood.barred(k.c, k.distance); }))
         return false;
     tryCandidates(hood);
     if (hood.best >= 0 && hood.exact < 0 && exact_ && hood.trials[hood.best].blocks.ok())
         searchRotations(hood, end);
     if (hood.best >= 0) {
         const Trial& taken = hood.trials[hood.exact >= 0 ? hood.exact : hood.best];
-        if (taken.distance >= hood.bar)
+        if (hood.barred(taken.c, taken.distance))
             return false;
         // A reading that is not exact, inside a frame already found not to
         // be, is no news: it is dropped like a failure there.
@@ -570,7 +584,7 @@ void StreamSync::gatherCandidates(Neighbourhood& hood, std::uint64_t q, std::uin
         if (!qualifies(c, d))
             continue;
         if (c + kDatagramSize > end) {
-            hood.bar = std::min(hood.bar, d);
+            hood.cutOff[hood.nCutOff++] = {c, d};
             continue;
         }
         // Insertion keeps equal distances in stream order.

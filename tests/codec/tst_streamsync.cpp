@@ -198,6 +198,7 @@ private slots:
     void markLostFarFromTheFrameDue();
     void memoryStaysBounded();
     void flushReportsLastFrame();
+    void lastFrameWithAPerfectWindowInsideIt();
     void resetStartsOver();
 };
 
@@ -944,6 +945,28 @@ void TestStreamSync::flushReportsLastFrame()
         QCOMPARE(col.frames.size(), std::size_t{2});
         QCOMPARE(col.frames[1].offset, std::int64_t(s.bytes.size()) + s.frames[0].offset);
     }
+}
+
+// fuzz_streamsync 10^6 rounds, round 142867: a stream of one clean frame
+// whose BLOCK 1 is 72 bytes of padding and then 0F 0F, a perfect window 74
+// bytes into the frame. At the end of the stream that window's codewords are
+// cut off; it barred every candidate with no closer window, the frame's own
+// included, and the frame was never reported. Only starts a rotation away
+// (16 bytes) are barred now.
+void TestStreamSync::lastFrameWithAPerfectWindowInsideIt()
+{
+    std::mt19937 rng(142867);
+    Block b1 = paddedBlock(rng, 72);
+    b1[72] = b1[73] = kPreambleMark;
+    const FrameBytes f = makeFrame(b1, randomBlock(rng));
+    Collector col;
+    col.sync.feed(f);
+    QVERIFY(col.frames.empty());  // the window at 164 waits for its codewords
+    col.sync.flush();
+    QCOMPARE(col.frames.size(), std::size_t{1});
+    QCOMPARE(col.frames[0].offset, std::int64_t{0});
+    QVERIFY(col.frames[0].blocks.ok());
+    QCOMPARE(col.frames[0].blocks.block1, b1);
 }
 
 void TestStreamSync::resetStartsOver()
