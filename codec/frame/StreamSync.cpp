@@ -98,6 +98,22 @@ struct Decoded {
     int corrected[2];
 };
 
+// Bytes lost inside BLOCK 1's leading padding leave codeword 1, read where
+// it starts, a few bytes from its own rotation: the padding lines up with
+// itself, and only the k bytes read after its end differ from the k 55s the
+// rotation wraps around. RS "corrects" them into 55s and BLOCK 1 comes out
+// shifted by k, its last item k parity bytes: a command never sent, which
+// can pass as exact. So codeword 1 decoded into a block that begins with
+// padding and ends (parity included) with corrected 55s is not trusted. A
+// genuine frame is read so only when its last two parity bytes are 55 and
+// both took errors.
+bool rotatedPadding(const std::uint8_t* received, const std::uint8_t* cw, int corrected)
+{
+    constexpr std::size_t last = kCodewordSize - 1;
+    return corrected >= 2 && cw[0] == kPreambleFillByte && cw[last] == kPreambleFillByte &&
+           cw[last - 1] == kPreambleFillByte && received[last] != cw[last] && received[last - 1] != cw[last - 1];
+}
+
 // RS codes are cyclic, so read j bytes from where `near` decoded, a codeword
 // that RS would decode is, within 16 bytes, near's rotated by j: whenever
 // that rotation is within 16 bytes of what is read there, it is what the
@@ -124,6 +140,10 @@ void rsDecode(const std::uint8_t* codewords, const Decoded* near, std::int64_t j
         }
         std::memcpy(cw, received, kCodewordSize);
         d.corrected[b] = rs::decode(cw);
+    }
+    if (rotatedPadding(codewords, d.cw[0], d.corrected[0])) {
+        std::memcpy(d.cw[0], codewords, kCodewordSize);
+        d.corrected[0] = -1;
     }
 }
 

@@ -149,6 +149,7 @@ private slots:
     void slipsInARowThenAFrameWithoutItsMark_data();
     void slipsInARowThenAFrameWithoutItsMark();
     void trueFrameJustAfterARefusedRotation();
+    void slipInsideBlock1PaddingNotDeliveredShifted();
     void firstFrameAfterAnOutageDelivered();
     void predictionsPaidFromABudget();
     void sendersForgottenBeyondTheTable();
@@ -793,6 +794,45 @@ void TestReceive::trueFrameJustAfterARefusedRotation()
             delivered.push_back(std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg)));
     const auto id = [&](std::uint64_t i) { return std::uint32_t(session.messageAt(i).header.number(ItemId::ID_msg)); };
     QCOMPARE(delivered, (std::vector<std::uint32_t>{id(10672), id(10674), id(10675), id(10676)}));
+}
+
+// Two slips in one frame (a soak of byte slips, two a frame, frame 39539):
+// 2 bytes lost inside BLOCK 1's leading padding, 2 inserted at codeword 2's
+// start. Read where it starts, codeword 1 is then within 2 bytes of its own
+// rotation by 2 (the padding lines up with itself), and RS "corrects" it
+// into BLOCK 1 shifted, whose last item is 2 parity bytes (B0 52): a command
+// never sent. Codeword 2 is back in place and decodes. Not delivered.
+void TestReceive::slipInsideBlock1PaddingNotDeliveredShifted()
+{
+    const CommandSession session;
+    Collected c;
+    Bytes stream;
+    for (std::uint64_t frame = 39537; frame <= 39541; ++frame) {
+        const FrameBytes f = session.frameAt(frame);
+        Bytes b(f.begin(), f.end());
+        if (frame == 39539) {
+            QCOMPARE(b[kPreambleSize + 9], kPreambleFillByte);  // inside the padding
+            QCOMPARE(b[kPreambleSize + 10], kPreambleFillByte);
+            b.erase(b.begin() + 99, b.begin() + 101);
+            b.insert(b.begin() + 344, 2, std::uint8_t{0xC3});
+        }
+        stream.insert(stream.end(), b.begin(), b.end());
+        c.nowMicros = session.secondsAt(frame) * 1'000'000 + 500'000;
+    }
+    c.receiver.feed(stream);
+    c.receiver.flush();
+
+    std::vector<std::uint64_t> delivered;
+    for (const ReceivedFrame& f : c.frames) {
+        if (!f.delivered())
+            continue;
+        const auto id = std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg));
+        const std::optional<std::uint64_t> i = session.indexOf(id, 39542);
+        QVERIFY(i);
+        QVERIFY2(f.decoded.message == session.messageAt(*i), qPrintable(QString::number(*i)));  // as sent
+        delivered.push_back(*i);
+    }
+    QCOMPARE(delivered, (std::vector<std::uint64_t>{39537, 39538, 39540, 39541}));
 }
 
 // A sender that falls silent and comes back with its counter where it was
