@@ -23,7 +23,11 @@
 // finds exact, or, when none is, the lowest-scored of all, which the
 // acceptance decision will then refuse. So a frame within RS's reach is
 // found even when a reading a byte off scores as well, and a slip that
-// leaves a codeword decoding into its rotation costs that frame only.
+// leaves a codeword decoding into its rotation costs that frame only. One
+// rotation could pass as exact: bytes lost inside BLOCK 1's leading padding
+// make codeword 1 decode into BLOCK 1 shifted, its last item parity bytes;
+// a codeword 1 that begins with padding and ends with two corrected 55s is
+// therefore taken as beyond correction.
 //
 // Failures. When nothing in a neighbourhood confirms, one "uncorrectable"
 // frame is reported where the next frame was due if that was a candidate,
