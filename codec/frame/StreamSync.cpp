@@ -445,7 +445,8 @@ bool StreamSync::tryWithoutMark(std::uint64_t q, std::uint64_t end)
     // The fill ends at q, with no mark: a slip took it. On a keyed link
     // codeword 1 starts there; on the plain link BLOCK 1 begins with its
     // padding, so it starts that many bytes of 55 before, as many as in a
-    // frame lately taken. Taken only clean and exact, like a slipped frame due.
+    // frame lately taken. Taken only where it cannot be a rotation, like a
+    // slipped frame due (takeIfWhole).
     if (!exact_)
         return false;
     for (std::size_t i = 0; i <= paddingCount_; ++i) {
@@ -456,20 +457,42 @@ bool StreamSync::tryWithoutMark(std::uint64_t q, std::uint64_t end)
         if (c < base_ + kPreambleSize || c + kDatagramSize > end || (emitted_ && c <= lastEmitted_) ||
             !fillBefore(c))
             continue;
-        const std::uint8_t* cw = at(c);
-        bool clean1 = false, clean2 = false;
-        rs::checkCodewords(cw, cw + kCodewordSize, &clean1, &clean2);
-        if (!clean1 || !clean2)
-            continue;
-        DecodedBlocks blocks;
-        std::memcpy(blocks.block1.data(), cw, kBlockSize);
-        std::memcpy(blocks.block2.data(), cw + kCodewordSize, kBlockSize);
-        if (!exact_(blocks))
-            continue;
-        confirm(c, distance(c), blocks, true);
-        return true;
+        if (takeIfWhole(c))
+            return true;
     }
     return false;
+}
+
+bool StreamSync::takeIfWhole(std::uint64_t c)
+{
+    // A start whatever its window shows, taken only where it cannot be a
+    // rotation of a real frame, which needs a correction in each codeword
+    // (the bytes wrapped around are another codeword's or a preamble's): one
+    // codeword clean, the other within RS's reach (and not a padding
+    // rotation), and the frame exact.
+    const std::uint8_t* received = at(c);
+    bool clean[2] = {false, false};
+    rs::checkCodewords(received, received + kCodewordSize, &clean[0], &clean[1]);
+    if (!clean[0] && !clean[1])
+        return false;
+    Decoded d;
+    for (int b = 0; b < 2; ++b) {
+        std::memcpy(d.cw[b], received + b * kCodewordSize, kCodewordSize);
+        d.corrected[b] = clean[b] ? 0 : rs::decode(d.cw[b]);
+        if (d.corrected[b] < 0)
+            return false;
+    }
+    if (rotatedPadding(received, d.cw[0], d.corrected[0]))
+        return false;
+    DecodedBlocks blocks;
+    std::memcpy(blocks.block1.data(), d.cw[0], kBlockSize);
+    std::memcpy(blocks.block2.data(), d.cw[1], kBlockSize);
+    blocks.corrected.block1 = d.corrected[0];
+    blocks.corrected.block2 = d.corrected[1];
+    if (!exact_(blocks))
+        return false;
+    confirm(c, distance(c), blocks, true);
+    return true;
 }
 
 bool StreamSync::tryExpected(std::uint64_t c)
@@ -506,8 +529,7 @@ bool StreamSync::trySlipped(std::uint64_t c, std::uint64_t end)
 {
     // The frame due, a few bytes early or late (bytes lost or inserted in it
     // or the frame before), whatever its window shows: its mark may be what
-    // was lost. Taken only whole, both codewords clean, and exact; a
-    // rotation of a real frame is never both (its wrapped bytes differ).
+    // was lost. Taken only where it cannot be a rotation (takeIfWhole).
     if (!exact_)
         return false;
     // j = 0: the start due itself, when tryExpected passed it over for its
@@ -521,18 +543,8 @@ bool StreamSync::trySlipped(std::uint64_t c, std::uint64_t end)
                 continue;
             if (j == 0 && distance(at) == 0)
                 continue;  // tryExpected's
-            const std::uint8_t* cw = this->at(at);
-            bool clean1 = false, clean2 = false;
-            rs::checkCodewords(cw, cw + kCodewordSize, &clean1, &clean2);
-            if (!clean1 || !clean2)
-                continue;
-            DecodedBlocks blocks;
-            std::memcpy(blocks.block1.data(), cw, kBlockSize);
-            std::memcpy(blocks.block2.data(), cw + kCodewordSize, kBlockSize);
-            if (!exact_(blocks))
-                continue;
-            confirm(at, distance(at), blocks, true);
-            return true;
+            if (takeIfWhole(at))
+                return true;
         }
     }
     return false;

@@ -140,6 +140,7 @@ private:
     Scan scanFor(std::uint64_t& q, std::uint64_t stop, std::uint64_t end, bool final);
     bool fillBefore(std::uint64_t q) const;
     bool tryWithoutMark(std::uint64_t q, std::uint64_t end);
+    bool takeIfWhole(std::uint64_t c);
     void rememberPadding(const DecodedBlocks& blocks);
     bool tryExpected(std::uint64_t c);
     bool trySlipped(std::uint64_t c, std::uint64_t end);
