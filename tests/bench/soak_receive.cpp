@@ -97,6 +97,9 @@ int attacks(std::uint64_t frames, std::string_view only, std::uint64_t seedOffse
     row("overlap", [&] { return runStreamDamage(session, StreamDamage::Overlap, frames, seedOffset + 107); });
     row("garbage between", [&] { return runStreamDamage(session, StreamDamage::GarbageBetween, frames, seedOffset + 108); });
     row("byte slips 1-8", [&] { return runStreamDamage(session, StreamDamage::ByteSlips, frames, seedOffset + 109); });
+    row("two byte slips a frame", [&] {
+        return runStreamDamage(session, StreamDamage::TwoByteSlips, frames, seedOffset + 112);
+    });
     row("mixed: cut, overlap, garbage, slips, none", [&] {
         return runStreamDamage(session, StreamDamage::Mixed, frames, seedOffset + 111);
     });

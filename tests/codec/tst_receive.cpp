@@ -681,6 +681,8 @@ void TestReceive::noIntactFrameLostToAnEarlierReading_data()
     QTest::newRow("overlap") << int(StreamDamage::Overlap);
     QTest::newRow("garbage between") << int(StreamDamage::GarbageBetween);
     QTest::newRow("byte slips 1-8") << int(StreamDamage::ByteSlips);
+    QTest::newRow("mixed") << int(StreamDamage::Mixed);
+    QTest::newRow("two byte slips a frame") << int(StreamDamage::TwoByteSlips);
 }
 
 // Every frame that libfec reads at its true place in the damaged stream is
@@ -691,7 +693,7 @@ void TestReceive::noIntactFrameLostToAnEarlierReading()
     const AttackResult r = runStreamDamage(CommandSession{}, StreamDamage(damage), 5000, 40 + std::uint64_t(damage));
     qInfo("%llu frames libfec reads, %llu delivered in all", static_cast<unsigned long long>(r.recoverable),
           static_cast<unsigned long long>(r.row.correct));
-    QVERIFY(r.recoverable > 500);
+    QVERIFY(r.recoverable > 200);
     QVERIFY2(r.falseRefusals == 0, r.firstFalseRefusal.c_str());
     QVERIFY2(r.row.wrong == 0, r.row.firstWrong.c_str());
 }

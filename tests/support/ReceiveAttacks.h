@@ -162,6 +162,7 @@ enum class StreamDamage {
     GarbageBetween,  // 1 .. 1200 bytes between frames: random, runs of 55, preamble pieces
     ByteSlips,       // 1 .. 8 bytes lost or inserted at a random place in every frame
     Mixed,           // each frame one of the above, or none, at random
+    TwoByteSlips,    // two such slips in every frame
 };
 
 // A stream damaged as `damage` says; every frame libfec reads at its true
@@ -259,24 +260,26 @@ inline AttackResult runStreamDamage(const CommandSession& session, StreamDamage 
             }
             break;
         }
-        case StreamDamage::ByteSlips: {
-            const std::size_t n = uniform(1, 8);
-            const std::size_t at = uniform(0, kFrameSize - n);
-            if (rng() & 1) {
-                chunk.erase(chunk.begin() + static_cast<std::ptrdiff_t>(at),
-                            chunk.begin() + static_cast<std::ptrdiff_t>(at + n));
-                if (at < kPreambleSize)
-                    codewordsAt -= std::min<std::uint64_t>(n, kPreambleSize - at);
-            } else {
-                Bytes extra(n);
-                for (auto& b : extra)
-                    b = static_cast<std::uint8_t>(rng());
-                chunk.insert(chunk.begin() + static_cast<std::ptrdiff_t>(at), extra.begin(), extra.end());
-                if (at <= kPreambleSize)
-                    codewordsAt += n;
+        case StreamDamage::ByteSlips:
+        case StreamDamage::TwoByteSlips:
+            for (int k = kind == StreamDamage::TwoByteSlips ? 2 : 1; k > 0; --k) {
+                const std::size_t n = uniform(1, 8);
+                const std::size_t at = uniform(0, chunk.size() - n);
+                if (rng() & 1) {
+                    chunk.erase(chunk.begin() + static_cast<std::ptrdiff_t>(at),
+                                chunk.begin() + static_cast<std::ptrdiff_t>(at + n));
+                    if (at < codewordsAt)
+                        codewordsAt -= std::min<std::uint64_t>(n, codewordsAt - at);
+                } else {
+                    Bytes extra(n);
+                    for (auto& b : extra)
+                        b = static_cast<std::uint8_t>(rng());
+                    chunk.insert(chunk.begin() + static_cast<std::ptrdiff_t>(at), extra.begin(), extra.end());
+                    if (at <= codewordsAt)
+                        codewordsAt += n;
+                }
             }
             break;
-        }
         }
         const std::uint64_t start = windowBase + window.size();
         pending.push_back({i, start + codewordsAt});
