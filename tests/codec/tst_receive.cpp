@@ -41,6 +41,51 @@ struct Collected {
     Collected& operator=(const Collected&) = delete;
 };
 
+// Frames first .. last of a session as one stream, each as `edit` leaves it
+// (cut, slipped), through the receiver on the sender's clock.
+void feedSession(const CommandSession& session, Collected& c, std::uint64_t first, std::uint64_t last,
+                 const std::function<void(std::uint64_t frame, Bytes& bytes)>& edit)
+{
+    Bytes stream;
+    for (std::uint64_t frame = first; frame <= last; ++frame) {
+        const FrameBytes f = session.frameAt(frame);
+        Bytes b(f.begin(), f.end());
+        edit(frame, b);
+        stream.insert(stream.end(), b.begin(), b.end());
+        c.nowMicros = session.secondsAt(frame) * 1'000'000 + 500'000;
+    }
+    c.receiver.feed(stream);
+    c.receiver.flush();
+}
+
+// What the receiver delivered of a session: frame indices in order, their
+// offsets, and the first delivered frame that is not what was sent with
+// its ID_msg (empty when there is none).
+struct SessionDeliveries {
+    std::vector<std::uint64_t> frames;
+    std::vector<std::int64_t> offsets;
+    std::string wrong;
+};
+
+SessionDeliveries deliveredFrom(const CommandSession& session, const Collected& c, std::uint64_t sent)
+{
+    SessionDeliveries d;
+    for (const ReceivedFrame& f : c.frames) {
+        if (!f.delivered())
+            continue;
+        const auto id = std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg));
+        const std::optional<std::uint64_t> i = session.indexOf(id, sent);
+        if (!i || !(f.decoded.message == session.messageAt(*i))) {
+            if (d.wrong.empty())
+                d.wrong = "ID_msg " + std::to_string(id) + " at offset " + std::to_string(f.offset) + " is not as sent";
+            continue;
+        }
+        d.frames.push_back(*i);
+        d.offsets.push_back(f.offset);
+    }
+    return d;
+}
+
 // A command as the console sends it at kNoon + `second`.
 Message command(std::uint32_t id, std::int64_t second = 0)
 {
@@ -733,50 +778,43 @@ void TestReceive::slipsInARowThenAFrameWithoutItsMark()
     QFETCH(int, lost);
     const CommandSession session;
     Collected c;
-    Bytes stream;
+    std::int64_t streamSize = 0;
     std::int64_t lostAt = -1;  // codeword 1 of the frame that lost its mark
-    std::vector<std::uint32_t> ids;
-    for (qsizetype i = 0; i < slips.size(); i += 3) {
-        const auto frame = std::uint64_t(slips[i]);
+    std::vector<std::uint64_t> intact;
+    const auto first = std::uint64_t(slips[0]);
+    feedSession(session, c, first, std::uint64_t(slips[slips.size() - 3]), [&](std::uint64_t frame, Bytes& b) {
+        const qsizetype i = qsizetype(frame - first) * 3;
         const auto at = std::size_t(slips[i + 1]);
         const bool inserted = slips[i + 2] < 0;
         const auto n = std::size_t(std::abs(slips[i + 2]));
-        const FrameBytes f = session.frameAt(frame);
-        Bytes b(f.begin(), f.end());
+        const Bytes sent = b;
         if (inserted)
             b.insert(b.begin() + std::ptrdiff_t(at), n, std::uint8_t{0xC3});
         else
             b.erase(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + n));
-        if (slips[i] == lost) {
-            lostAt = std::int64_t(stream.size() + at);
+        if (frame == std::uint64_t(lost)) {
+            lostAt = streamSize + std::int64_t(at);
             // As libfec reads it there: both codewords, as sent.
-            QVERIFY(std::equal(f.begin() + kPreambleSize, f.end(), b.begin() + std::ptrdiff_t(at)));
+            QVERIFY(std::equal(sent.begin() + kPreambleSize, sent.end(), b.begin() + std::ptrdiff_t(at)));
         }
         if ((inserted ? at : at + n) <= kPreambleSize)  // codewords intact
-            ids.push_back(std::uint32_t(session.messageAt(frame).header.number(ItemId::ID_msg)));
-        stream.insert(stream.end(), b.begin(), b.end());
-        c.nowMicros = session.secondsAt(frame) * 1'000'000 + 500'000;
-    }
-    c.receiver.feed(stream);
-    c.receiver.flush();
+            intact.push_back(frame);
+        streamSize += std::int64_t(b.size());
+    });
 
-    std::vector<std::uint32_t> delivered;
-    for (const ReceivedFrame& f : c.frames) {
-        if (!f.delivered())
-            continue;
-        const auto id = std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg));
-        const std::optional<std::uint64_t> i = session.indexOf(id, std::uint64_t(slips[slips.size() - 3]) + 1);
-        QVERIFY(i);
-        QVERIFY2(f.decoded.message == session.messageAt(*i), qPrintable(QString::number(*i)));  // as sent
-        if (*i == std::uint64_t(lost))
-            QCOMPARE(f.offset, lostAt - std::int64_t(kPreambleSize));
-        // Frames whose codewords were slipped inside may be read too (from
-        // a few bytes off, where one codeword is whole and the other within
-        // RS's reach); every frame with both codewords intact must be.
-        if (std::find(ids.begin(), ids.end(), id) != ids.end())
-            delivered.push_back(id);
+    const SessionDeliveries d = deliveredFrom(session, c, first + std::uint64_t(slips.size() / 3));
+    QVERIFY2(d.wrong.empty(), d.wrong.c_str());
+    // Frames whose codewords were slipped inside may be read too (from a few
+    // bytes off, where one codeword is whole and the other within RS's
+    // reach); every frame with both codewords intact must be.
+    std::vector<std::uint64_t> delivered;
+    for (std::size_t k = 0; k < d.frames.size(); ++k) {
+        if (d.frames[k] == std::uint64_t(lost))
+            QCOMPARE(d.offsets[k], lostAt - std::int64_t(kPreambleSize));
+        if (std::find(intact.begin(), intact.end(), d.frames[k]) != intact.end())
+            delivered.push_back(d.frames[k]);
     }
-    QCOMPARE(delivered, ids);
+    QCOMPARE(delivered, intact);
 }
 
 // soak_receive --attacks "mixed": frame 10673 has its last 31 bytes
@@ -790,21 +828,12 @@ void TestReceive::trueFrameJustAfterARefusedRotation()
 {
     const CommandSession session;
     Collected c;
-    Bytes stream;
-    for (const auto& [frame, kept] : {std::pair{10672, 600}, {10673, 569}, {10674, 594}, {10675, 600}, {10676, 600}}) {
-        const FrameBytes f = session.frameAt(std::uint64_t(frame));
-        stream.insert(stream.end(), f.begin(), f.begin() + kept);
-        c.nowMicros = session.secondsAt(std::uint64_t(frame)) * 1'000'000 + 500'000;
-    }
-    c.receiver.feed(stream);
-    c.receiver.flush();
-
-    std::vector<std::uint32_t> delivered;
-    for (const ReceivedFrame& f : c.frames)
-        if (f.delivered())
-            delivered.push_back(std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg)));
-    const auto id = [&](std::uint64_t i) { return std::uint32_t(session.messageAt(i).header.number(ItemId::ID_msg)); };
-    QCOMPARE(delivered, (std::vector<std::uint32_t>{id(10672), id(10674), id(10675), id(10676)}));
+    feedSession(session, c, 10672, 10676, [](std::uint64_t frame, Bytes& b) {
+        b.resize(frame == 10673 ? 569 : frame == 10674 ? 594 : kFrameSize);  // overwritten by the next
+    });
+    const SessionDeliveries d = deliveredFrom(session, c, 10677);
+    QVERIFY2(d.wrong.empty(), d.wrong.c_str());
+    QCOMPARE(d.frames, (std::vector<std::uint64_t>{10672, 10674, 10675, 10676}));
 }
 
 // Two slips in one frame (a soak of byte slips, two a frame, frame 39539):
@@ -817,33 +846,17 @@ void TestReceive::slipInsideBlock1PaddingNotDeliveredShifted()
 {
     const CommandSession session;
     Collected c;
-    Bytes stream;
-    for (std::uint64_t frame = 39537; frame <= 39541; ++frame) {
-        const FrameBytes f = session.frameAt(frame);
-        Bytes b(f.begin(), f.end());
-        if (frame == 39539) {
-            QCOMPARE(b[kPreambleSize + 9], kPreambleFillByte);  // inside the padding
-            QCOMPARE(b[kPreambleSize + 10], kPreambleFillByte);
-            b.erase(b.begin() + 99, b.begin() + 101);
-            b.insert(b.begin() + 344, 2, std::uint8_t{0xC3});
-        }
-        stream.insert(stream.end(), b.begin(), b.end());
-        c.nowMicros = session.secondsAt(frame) * 1'000'000 + 500'000;
-    }
-    c.receiver.feed(stream);
-    c.receiver.flush();
-
-    std::vector<std::uint64_t> delivered;
-    for (const ReceivedFrame& f : c.frames) {
-        if (!f.delivered())
-            continue;
-        const auto id = std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg));
-        const std::optional<std::uint64_t> i = session.indexOf(id, 39542);
-        QVERIFY(i);
-        QVERIFY2(f.decoded.message == session.messageAt(*i), qPrintable(QString::number(*i)));  // as sent
-        delivered.push_back(*i);
-    }
-    QCOMPARE(delivered, (std::vector<std::uint64_t>{39537, 39538, 39540, 39541}));
+    feedSession(session, c, 39537, 39541, [](std::uint64_t frame, Bytes& b) {
+        if (frame != 39539)
+            return;
+        QCOMPARE(b[kPreambleSize + 9], kPreambleFillByte);  // inside the padding
+        QCOMPARE(b[kPreambleSize + 10], kPreambleFillByte);
+        b.erase(b.begin() + 99, b.begin() + 101);
+        b.insert(b.begin() + 344, 2, std::uint8_t{0xC3});
+    });
+    const SessionDeliveries d = deliveredFrom(session, c, 39542);
+    QVERIFY2(d.wrong.empty(), d.wrong.c_str());
+    QCOMPARE(d.frames, (std::vector<std::uint64_t>{39537, 39538, 39540, 39541}));
 }
 
 // 7 bytes lost inside BLOCK 1's leading padding: read 7 bytes early,
@@ -855,33 +868,16 @@ void TestReceive::slipInsideBlock1PaddingReadFromBytesEarly()
 {
     const CommandSession session;
     Collected c;
-    Bytes stream;
-    for (std::uint64_t frame = 18101; frame <= 18103; ++frame) {
-        const FrameBytes f = session.frameAt(frame);
-        Bytes b(f.begin(), f.end());
-        if (frame == 18102) {
-            QVERIFY(std::all_of(b.begin() + 100, b.begin() + 107, [](std::uint8_t x) { return x == kPreambleFillByte; }));
-            b.erase(b.begin() + 100, b.begin() + 107);
-        }
-        stream.insert(stream.end(), b.begin(), b.end());
-        c.nowMicros = session.secondsAt(frame) * 1'000'000 + 500'000;
-    }
-    c.receiver.feed(stream);
-    c.receiver.flush();
-
-    std::vector<std::uint64_t> delivered;
-    for (const ReceivedFrame& f : c.frames) {
-        if (!f.delivered())
-            continue;
-        const std::optional<std::uint64_t> i =
-            session.indexOf(std::uint32_t(f.decoded.message.header.number(ItemId::ID_msg)), 18104);
-        QVERIFY(i);
-        QVERIFY(f.decoded.message == session.messageAt(*i));
-        delivered.push_back(*i);
-        if (*i == 18102)
-            QCOMPARE(f.offset, std::int64_t(600 - 7));
-    }
-    QCOMPARE(delivered, (std::vector<std::uint64_t>{18101, 18102, 18103}));
+    feedSession(session, c, 18101, 18103, [](std::uint64_t frame, Bytes& b) {
+        if (frame != 18102)
+            return;
+        QVERIFY(std::all_of(b.begin() + 100, b.begin() + 107, [](std::uint8_t x) { return x == kPreambleFillByte; }));
+        b.erase(b.begin() + 100, b.begin() + 107);
+    });
+    const SessionDeliveries d = deliveredFrom(session, c, 18104);
+    QVERIFY2(d.wrong.empty(), d.wrong.c_str());
+    QCOMPARE(d.frames, (std::vector<std::uint64_t>{18101, 18102, 18103}));
+    QCOMPARE(d.offsets[1], std::int64_t(kFrameSize - 7));
 }
 
 // A sender that falls silent and comes back with its counter where it was
