@@ -98,20 +98,21 @@ struct Decoded {
     int corrected[2];
 };
 
-// Bytes lost inside BLOCK 1's leading padding leave codeword 1, read where
-// it starts, a few bytes from its own rotation: the padding lines up with
-// itself, and only the k bytes read after its end differ from the k 55s the
-// rotation wraps around. RS "corrects" them into 55s and BLOCK 1 comes out
-// shifted by k, its last item k parity bytes: a command never sent, which
-// can pass as exact. So codeword 1 decoded into a block that begins with
-// padding and ends (parity included) with corrected 55s is not trusted. A
-// genuine frame is read so only when its last two parity bytes are 55 and
-// both took errors.
-bool rotatedPadding(const std::uint8_t* received, const std::uint8_t* cw, int corrected)
+// Bytes lost inside BLOCK 1's leading padding (or inserted after it) can
+// leave codeword 1, read a few bytes off, within 16 bytes of its own
+// rotation by k: the padding lines up with itself. RS "corrects" it into
+// that rotation, which wraps the padding's first k bytes round to the end,
+// and BLOCK 1 comes out shifted by k, its last item k parity bytes: a
+// command never sent, which can pass as exact. So a codeword 1 that needed
+// a correction and decodes into one beginning with padding and ending with
+// 55 55 is not trusted (k = 1 leaves a last item of one byte, which no item
+// is). A genuine frame is refused so only when its last two parity bytes
+// are 55, 1 in 65,536, and codeword 1 took errors.
+bool rotatedPadding(const std::uint8_t* cw, int corrected)
 {
     constexpr std::size_t last = kCodewordSize - 1;
-    return corrected >= 2 && cw[0] == kPreambleFillByte && cw[last] == kPreambleFillByte &&
-           cw[last - 1] == kPreambleFillByte && received[last] != cw[last] && received[last - 1] != cw[last - 1];
+    return corrected > 0 && cw[0] == kPreambleFillByte && cw[last] == kPreambleFillByte &&
+           cw[last - 1] == kPreambleFillByte;
 }
 
 // RS codes are cyclic, so read j bytes from where `near` decoded, a codeword
@@ -141,7 +142,7 @@ void rsDecode(const std::uint8_t* codewords, const Decoded* near, std::int64_t j
         std::memcpy(cw, received, kCodewordSize);
         d.corrected[b] = rs::decode(cw);
     }
-    if (rotatedPadding(codewords, d.cw[0], d.corrected[0])) {
+    if (rotatedPadding(d.cw[0], d.corrected[0])) {
         std::memcpy(d.cw[0], codewords, kCodewordSize);
         d.corrected[0] = -1;
     }
@@ -482,7 +483,7 @@ bool StreamSync::takeIfWhole(std::uint64_t c)
         if (d.corrected[b] < 0)
             return false;
     }
-    if (rotatedPadding(received, d.cw[0], d.corrected[0]))
+    if (rotatedPadding(d.cw[0], d.corrected[0]))
         return false;
     DecodedBlocks blocks;
     std::memcpy(blocks.block1.data(), d.cw[0], kBlockSize);

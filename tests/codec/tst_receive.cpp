@@ -196,6 +196,7 @@ private slots:
     void trueFrameJustAfterARefusedRotation();
     void slipInsideBlock1PaddingNotDeliveredShifted();
     void slipInsideBlock1PaddingReadFromBytesEarly();
+    void slipInsideBlock1ParityNotDeliveredShifted();
     void firstFrameAfterAnOutageDelivered();
     void predictionsPaidFromABudget();
     void sendersForgottenBeyondTheTable();
@@ -878,6 +879,26 @@ void TestReceive::slipInsideBlock1PaddingReadFromBytesEarly()
     QVERIFY2(d.wrong.empty(), d.wrong.c_str());
     QCOMPARE(d.frames, (std::vector<std::uint64_t>{18101, 18102, 18103}));
     QCOMPARE(d.offsets[1], std::int64_t(kFrameSize - 7));
+}
+
+// soak_receive --seed 1 --attacks 1000000 "byte slips", frame 106996: 2
+// bytes inserted at codeword 1's byte 240. Read 2 bytes late, codeword 2 is
+// whole and codeword 1 is within 16 bytes of its rotation by 2 (BLOCK 1
+// shifted, parity bytes as its last item). Only one of the two 55s the
+// rotation wraps round to its end was corrected: this codeword's own last
+// parity byte is 55.
+void TestReceive::slipInsideBlock1ParityNotDeliveredShifted()
+{
+    const CommandSession session;
+    QCOMPARE(session.frameAt(106996)[kFrameSize - kCodewordSize - 1], kPreambleFillByte);
+    Collected c;
+    feedSession(session, c, 106994, 106998, [](std::uint64_t frame, Bytes& b) {
+        if (frame == 106996)
+            b.insert(b.begin() + 330, 2, std::uint8_t{0xC3});
+    });
+    const SessionDeliveries d = deliveredFrom(session, c, 106999);
+    QVERIFY2(d.wrong.empty(), d.wrong.c_str());
+    QCOMPARE(d.frames, (std::vector<std::uint64_t>{106994, 106995, 106997, 106998}));
 }
 
 // A sender that falls silent and comes back with its counter where it was
