@@ -365,11 +365,14 @@ void StreamSync::process(bool final)
 {
     for (;;) {
         const std::uint64_t end = base_ + len_;
-        // What lies before the frame due is scanned first: a frame there
-        // (the true one a byte after a rotation just refused) comes before
-        // it, and taking the frame due first would skip it.
+        // What lies before the frame due is scanned first where a whole frame
+        // fits before it: a frame there (the true one a byte after a rotation
+        // just refused) comes before it, and taking the frame due first would
+        // skip it. Right after a frame taken, none fits, and on a clean
+        // stream the frame due is taken without a scan.
         const std::uint64_t dueRegion = expect_ - std::min(expect_, expectSlip_);
-        if (expect_ != 0 && scan_ >= dueRegion) {
+        const std::uint64_t scanFirst = dueRegion - std::min(dueRegion, kDatagramSize - 1);
+        if (expect_ != 0 && scan_ >= scanFirst) {
             if (expect_ + kDatagramSize > end) {
                 if (!final)
                     return;
@@ -394,7 +397,7 @@ void StreamSync::process(bool final)
         }
 
         std::uint64_t q = scan_;
-        const std::uint64_t stop = expect_ != 0 ? std::min(end + 1, dueRegion) : end + 1;
+        const std::uint64_t stop = expect_ != 0 ? std::min(end + 1, scanFirst) : end + 1;
         const Scan found = scanFor(q, stop, end, final);
         if (found == Scan::Taken)
             continue;
@@ -405,7 +408,7 @@ void StreamSync::process(bool final)
             reportPending();
         if (found == Scan::Waiting || q > end)
             return;
-        if (expect_ != 0 && q >= dueRegion)
+        if (expect_ != 0 && q >= scanFirst)
             continue;  // the frame due is looked for first
 
         const std::uint64_t last = q + kNeighbourhood - 1;
