@@ -48,8 +48,8 @@
 // 600 bytes on from that reading, up to 32 bytes either side (16, plus the
 // 16 a rotation RS corrected may be off by), so slips in frames in a row do
 // not leave the next frame where nothing looks for it. What lies before the
-// frame due is scanned first: the true frame a byte after a refused rotation
-// comes before it.
+// frame due is scanned first where a whole frame fits before it: the true
+// frame a byte after a refused rotation comes before it.
 //
 // A mark lost far from any frame due (after frames cut short): where 16 or
 // more bytes of fill end with no mark, codeword 1 starts there (keyed link)
